@@ -1,0 +1,221 @@
+#include "geometry/accel.h"
+
+#include <embree3/rtcore.h>
+
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+#include <stdexcept>
+
+#include "core/check.h"
+#include "geometry/sphere.h"
+#include "geometry/user_geometry.h"
+
+namespace prism {
+
+namespace {
+
+// Device errors are collected (not printed from the callback) so they can be raised as
+// exceptions at the call that caused them.
+struct DeviceErrors {
+    std::mutex mutex;
+    std::string last;
+};
+
+void DeviceErrorCallback(void *user, RTCError code, const char *str) {
+    auto *errors = static_cast<DeviceErrors *>(user);
+    std::lock_guard<std::mutex> lock(errors->mutex);
+    errors->last = std::string("Embree error ") + std::to_string(int(code)) + ": " +
+                   (str ? str : "(no message)");
+}
+
+// One Embree device per process: devices are heavyweight and thread-safe.
+struct Device {
+    RTCDevice device = nullptr;
+    DeviceErrors errors;
+    Device() {
+        // No "threads=N" here: on a TBB build it installs a process-wide global_control
+        // (REFERENCE.md §0.7). Threads are limited by the application instead.
+        device = rtcNewDevice(nullptr);
+        if (!device) throw std::runtime_error("cannot create Embree device");
+        rtcSetDeviceErrorFunction(device, DeviceErrorCallback, &errors);
+    }
+    ~Device() { rtcReleaseDevice(device); }
+    void ThrowIfError(const char *what) {
+        std::lock_guard<std::mutex> lock(errors.mutex);
+        if (!errors.last.empty()) {
+            std::string msg = std::string(what) + ": " + errors.last;
+            errors.last.clear();
+            throw std::runtime_error(msg);
+        }
+    }
+};
+
+Device &GetDevice() {
+    static Device device;
+    return device;
+}
+
+void InitRay(const Ray &r, RTCRay *ray) {
+    ray->org_x = r.o.x; ray->org_y = r.o.y; ray->org_z = r.o.z;
+    ray->dir_x = r.d.x; ray->dir_y = r.d.y; ray->dir_z = r.d.z;
+    ray->tnear = 0;
+    ray->tfar = r.tMax;
+    ray->time = 0;
+    ray->mask = 0xFFFFFFFFu;  // the default geometry mask; a zero mask would hit nothing
+    ray->id = 0;
+    ray->flags = 0;
+}
+
+}  // namespace
+
+struct Accel::Impl {
+    AccelOptions options;
+    RTCScene scene = nullptr;
+    struct Entry {
+        std::unique_ptr<TriangleMesh> mesh;
+        std::unique_ptr<AnalyticShape> analytic;
+    };
+    std::vector<Entry> shapes;
+    std::vector<int> shapeOfGeom;  // geomID -> shape index
+    double buildSeconds = 0;
+    bool committed = false;
+
+    ~Impl() {
+        if (scene) rtcReleaseScene(scene);
+    }
+};
+
+Accel::Accel(const AccelOptions &options) : impl_(std::make_unique<Impl>()) {
+    impl_->options = options;
+    Device &dev = GetDevice();
+    impl_->scene = rtcNewScene(dev.device);
+    dev.ThrowIfError("rtcNewScene");
+    rtcSetSceneFlags(impl_->scene, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    rtcSetSceneBuildQuality(impl_->scene,
+                            options.highQuality ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+}
+
+Accel::~Accel() = default;
+
+static void MapGeom(std::vector<int> &table, unsigned geomID, int shape) {
+    if (table.size() <= geomID) table.resize(geomID + 1, -1);
+    table[geomID] = shape;
+}
+
+int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh) {
+    PRISM_CHECK(!impl_->committed);
+    Device &dev = GetDevice();
+    RTCGeometry geom = rtcNewGeometry(dev.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                               mesh->PositionData(), 0, 3 * sizeof(float), mesh->NumVertices());
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               mesh->IndexData(), 0, 3 * sizeof(uint32_t), mesh->NumTriangles());
+    rtcCommitGeometry(geom);
+    unsigned id = rtcAttachGeometry(impl_->scene, geom);
+    rtcReleaseGeometry(geom);
+    dev.ThrowIfError("adding a triangle mesh");
+    int shape = int(impl_->shapes.size());
+    MapGeom(impl_->shapeOfGeom, id, shape);
+    impl_->shapes.push_back({std::move(mesh), nullptr});
+    return shape;
+}
+
+int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape) {
+    PRISM_CHECK(!impl_->committed);
+    Device &dev = GetDevice();
+    unsigned id = AttachUserGeometry(dev.device, impl_->scene, shape.get(),
+                                     impl_->options.precision);
+    dev.ThrowIfError("adding an analytic shape");
+    int index = int(impl_->shapes.size());
+    MapGeom(impl_->shapeOfGeom, id, index);
+    impl_->shapes.push_back({nullptr, std::move(shape)});
+    return index;
+}
+
+void Accel::Commit() {
+    auto start = std::chrono::steady_clock::now();
+    rtcCommitScene(impl_->scene);
+    GetDevice().ThrowIfError("building the BVH");
+    impl_->buildSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    impl_->committed = true;
+}
+
+bool Accel::IntersectRaw(const Ray &r, RawHit *hit) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    alignas(16) RTCRayHit rh;
+    InitRay(r, &rh.ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit->shape = impl_->shapeOfGeom[rh.hit.geomID];
+    hit->prim = int(rh.hit.primID);
+    hit->t = rh.ray.tfar;
+    hit->u = rh.hit.u;
+    hit->v = rh.hit.v;
+    return true;
+}
+
+SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
+    const Impl::Entry &e = impl_->shapes[hit.shape];
+    SurfaceInteraction si;
+    if (e.mesh) {
+        si = e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d);
+    } else {
+        // Phase 2: re-run the same root routine on the winning shape to recover the hit in
+        // full precision (the callback could only report a float t).
+        ObjectHit oh;
+        if (!e.analytic->Intersect(r.o, r.d, 0.f, r.tMax, impl_->options.precision, &oh)) {
+            // Cannot happen for a deterministic routine; fall back to the float t.
+            oh.t = hit.t;
+            Vec3d pW = Vec3d(r.o) + Vec3d(r.d) * double(hit.t);
+            oh.p = e.analytic->WorldFromObject().Inverse().Point(pW);
+            oh.pError = Abs(oh.p) * 1e-6;
+        }
+        si = e.analytic->Interaction(oh, r.d);
+        si.t = hit.t;
+    }
+    si.shape = hit.shape;
+    si.prim = hit.prim;
+    return si;
+}
+
+bool Accel::Intersect(const Ray &r, SurfaceInteraction *si) const {
+    RawHit hit;
+    if (!IntersectRaw(r, &hit)) return false;
+    *si = Interaction(r, hit);
+    return true;
+}
+
+bool Accel::Occluded(const Ray &r) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    alignas(16) RTCRay ray;
+    InitRay(r, &ray);
+    rtcOccluded1(impl_->scene, &ctx, &ray);
+    return ray.tfar < 0;
+}
+
+int Accel::NumShapes() const { return int(impl_->shapes.size()); }
+const TriangleMesh *Accel::Mesh(int s) const { return impl_->shapes[s].mesh.get(); }
+const AnalyticShape *Accel::Analytic(int s) const { return impl_->shapes[s].analytic.get(); }
+double Accel::BuildSeconds() const { return impl_->buildSeconds; }
+const AccelOptions &Accel::Options() const { return impl_->options; }
+
+Bounds3f Accel::WorldBounds() const {
+    Bounds3f b;
+    for (const auto &e : impl_->shapes) b.Expand(e.mesh ? e.mesh->WorldBounds() : e.analytic->WorldBounds());
+    return b;
+}
+
+size_t Accel::NumTriangles() const {
+    size_t n = 0;
+    for (const auto &e : impl_->shapes)
+        if (e.mesh) n += e.mesh->NumTriangles();
+    return n;
+}
+
+}  // namespace prism

@@ -1,0 +1,64 @@
+// The ray-tracing acceleration structure: an Embree scene holding triangle meshes (native
+// triangles, shared buffers) and analytic shapes (user geometry with our intersectors).
+// Only src/geometry includes Embree; this header keeps it out (pimpl).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/interaction.h"
+#include "geometry/shape.h"
+#include "geometry/triangle_mesh.h"
+
+namespace prism {
+
+struct AccelOptions {
+    Precision precision = Precision::Double;
+    bool robust = false;        // RTC_SCENE_FLAG_ROBUST (watertight triangles, robust traversal)
+    bool highQuality = false;   // RTC_BUILD_QUALITY_HIGH (spatial splits)
+};
+
+struct RawHit {
+    int shape = -1;  // shape index (order of Add* calls)
+    int prim = 0;
+    float t = 0, u = 0, v = 0;
+};
+
+class Accel {
+public:
+    explicit Accel(const AccelOptions &options = {});
+    ~Accel();
+    Accel(const Accel &) = delete;
+    Accel &operator=(const Accel &) = delete;
+
+    // Each returns the shape index. Call before Commit().
+    int AddMesh(std::unique_ptr<TriangleMesh> mesh);
+    int AddAnalytic(std::unique_ptr<AnalyticShape> shape);
+    // Builds the BVH. Throws std::runtime_error with Embree's message on failure.
+    void Commit();
+
+    // Closest hit in (0, ray.tMax), with full shading geometry (phase 2).
+    bool Intersect(const Ray &ray, SurfaceInteraction *si) const;
+    // Closest hit, ids and t only.
+    bool IntersectRaw(const Ray &ray, RawHit *hit) const;
+    // Any hit in (0, ray.tMax).
+    bool Occluded(const Ray &ray) const;
+    // Full interaction for a raw hit (same ray).
+    SurfaceInteraction Interaction(const Ray &ray, const RawHit &hit) const;
+
+    int NumShapes() const;
+    const TriangleMesh *Mesh(int shape) const;          // nullptr if analytic
+    const AnalyticShape *Analytic(int shape) const;     // nullptr if mesh
+    Bounds3f WorldBounds() const;
+    size_t NumTriangles() const;
+    double BuildSeconds() const;
+    const AccelOptions &Options() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace prism

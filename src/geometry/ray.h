@@ -1,0 +1,34 @@
+// Rays and robust spawning of secondary rays from error-bounded hit points
+// (pbrt-v3 §3.9.5: offset along the geometric normal by the hit point's error bound, then one
+// more ulp away). No scene-scale epsilon exists anywhere in Prism.
+#pragma once
+
+#include "core/vecmath.h"
+
+namespace prism {
+
+struct Ray {
+    Vec3f o, d;
+    float tMax = Infinity;
+    Vec3f At(float t) const { return o + d * t; }
+};
+
+inline Vec3f OffsetRayOrigin(const Vec3f &p, const Vec3f &pError, const Vec3f &n, const Vec3f &w) {
+    float d = Dot(Abs(n), pError);
+    Vec3f offset = n * d;
+    if (Dot(w, n) < 0) offset = -offset;
+    Vec3f po = p + offset;
+    for (int i = 0; i < 3; ++i) {
+        if (offset[i] > 0)
+            po[i] = NextFloatUp(po[i]);
+        else if (offset[i] < 0)
+            po[i] = NextFloatDown(po[i]);
+    }
+    return po;
+}
+
+// Shadow rays stop this fraction short of their target (pbrt's ShadowEpsilon), so a light or
+// surface exactly at the target never occludes itself.
+inline constexpr float ShadowEpsilon = 1e-4f;
+
+}  // namespace prism

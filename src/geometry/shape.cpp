@@ -1,0 +1,58 @@
+#include "geometry/shape.h"
+
+#include <cmath>
+
+namespace prism {
+
+template <typename Real>
+static Affine3<Real> ToAffine(const Matrix4 &m) {
+    Affine3<Real> a;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j) a.m[i][j] = Real(m.m[i][j]);
+    return a;
+}
+
+AnalyticShape::AnalyticShape(const Transform &worldFromObject, bool reverseOrientation)
+    : worldFromObject_(worldFromObject),
+      reverseOrientation_(reverseOrientation),
+      flipNormals_(reverseOrientation != worldFromObject.SwapsHandedness()),
+      objectFromWorldF_(ToAffine<float>(worldFromObject.InverseMatrix())),
+      objectFromWorldD_(ToAffine<double>(worldFromObject.InverseMatrix())) {}
+
+Bounds3f AnalyticShape::WorldBounds() const {
+    Bounds3d b = worldFromObject_.Bounds(ObjectBounds());
+    // Relative padding: 1e-6 of the largest coordinate magnitude plus the box's own extent,
+    // then rounded outward to float.
+    double scale = std::max(MaxComponent(Abs(b.pMin)), MaxComponent(Abs(b.pMax)));
+    double pad = 1e-6 * scale + 1e-6 * MaxComponent(b.Diagonal()) + 1e-30;
+    Bounds3f r;
+    for (int i = 0; i < 3; ++i) {
+        r.pMin[i] = NextFloatDown(float(b.pMin[i] - pad));
+        r.pMax[i] = NextFloatUp(float(b.pMax[i] + pad));
+    }
+    return r;
+}
+
+SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir) const {
+    LocalGeometry g = Geometry(hit);
+    SurfaceInteraction si;
+    Vec3d pW = worldFromObject_.Point(hit.p);
+    Vec3d errW = worldFromObject_.PointError(hit.p, hit.pError, MachineEpsilon<double>());
+    si.p = Vec3f(pW);
+    // Rounding the double world point to float adds up to half an ulp per component; bound it
+    // by the exact difference plus one float ulp of headroom.
+    for (int i = 0; i < 3; ++i)
+        si.pError[i] = float(errW[i] + std::abs(double(si.p[i]) - pW[i]) +
+                             std::abs(pW[i]) * MachineEpsilon<float>());
+    Vec3d n = Normalize(worldFromObject_.Normal(g.n));
+    if (flipNormals_) n = -n;
+    si.n = si.ns = Vec3f(n);
+    si.dpdu = Vec3f(worldFromObject_.Vector(g.dpdu));
+    si.dpdv = Vec3f(worldFromObject_.Vector(g.dpdv));
+    si.uv = Vec2f(float(g.uv.x), float(g.uv.y));
+    si.wo = Normalize(-rayDir);
+    si.t = float(hit.t);
+    return si;
+}
+
+}  // namespace prism

@@ -1,0 +1,128 @@
+// Analytic shapes (Embree user geometry): the interface shared by the quadrics and the torus.
+//
+// Intersection is two-phase (the Mitsuba pattern): Intersect() runs inside Embree's callback
+// and returns only the ray parameter and the object-space hit; Interaction() builds normals,
+// uv and derivatives once, for the winning hit. Each shape implements one templated root
+// routine IntersectT<Real>() that both the closest-hit and the occlusion callbacks use, with Real
+// = double (default) or float (--precision float) so the cost of accuracy can be measured.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/transform.h"
+#include "core/vecmath.h"
+#include "geometry/interaction.h"
+
+namespace prism {
+
+enum class Precision { Float, Double };
+
+// Result of the root routine, in object space.
+struct ObjectHit {
+    double t = 0;       // ray parameter (units of the world ray's direction)
+    Vec3d p;            // object-space hit point, re-projected onto the surface where possible
+    Vec3d pError;       // conservative absolute error of p
+    double phi = 0;     // azimuth of the hit (used by partial shapes)
+};
+
+// Object-space differential geometry at a hit.
+struct LocalGeometry {
+    Vec3d dpdu, dpdv;
+    Vec3d n;  // unnormalized; pbrt orientation before ReverseOrientation/handedness flips
+    Vec2d uv;
+};
+
+// 3x4 affine matrix in a chosen precision, for callbacks.
+template <typename Real>
+struct Affine3 {
+    Real m[3][4];
+    Vec3<Real> Point(const Vec3<Real> &p) const {
+        return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+                m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+                m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
+    }
+    Vec3<Real> Vector(const Vec3<Real> &v) const {
+        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+                m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+                m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+    }
+};
+
+class AnalyticShape {
+public:
+    AnalyticShape(const Transform &worldFromObject, bool reverseOrientation);
+    virtual ~AnalyticShape() = default;
+
+    virtual const char *Name() const = 0;
+    virtual Bounds3d ObjectBounds() const = 0;
+    // Implicit function F(p) (zero on the surface) and a bound on |grad F| scale, used by the
+    // tests to measure residuals; positive outside for closed shapes.
+    virtual double Implicit(const Vec3d &pObj) const = 0;
+    virtual Vec3d ImplicitGradient(const Vec3d &pObj) const = 0;
+
+    // Nearest valid hit with t in (tMin, tMax) for a world-space ray.
+    virtual bool Intersect(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
+                           Precision precision, ObjectHit *hit) const = 0;
+    // Object-space differential geometry at a hit found by Intersect.
+    virtual LocalGeometry Geometry(const ObjectHit &hit) const = 0;
+
+    // World-space bounds, padded by a relative margin: Embree's user-geometry traversal is not
+    // robust (REFERENCE.md §0.2), so the box must absorb its rounding.
+    Bounds3f WorldBounds() const;
+    // Phase 2: the full world-space interaction for a hit.
+    SurfaceInteraction Interaction(const ObjectHit &hit, const Vec3f &rayDir) const;
+
+    const Transform &WorldFromObject() const { return worldFromObject_; }
+    bool FlipNormals() const { return flipNormals_; }
+
+    template <typename Real>
+    const Affine3<Real> &ObjectFromWorld() const {
+        if constexpr (std::is_same_v<Real, float>)
+            return objectFromWorldF_;
+        else
+            return objectFromWorldD_;
+    }
+
+protected:
+    Transform worldFromObject_;
+    bool reverseOrientation_, flipNormals_;
+    Affine3<float> objectFromWorldF_;
+    Affine3<double> objectFromWorldD_;
+};
+
+// Adds the per-shape world-ray → object-ray conversion and the precision switch on top of a
+// shape's templated root routine: Derived provides
+//   template <typename Real> bool IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax,
+//                                            Real tSlack, ObjectHit *hit) const;
+// where tSlack bounds the error in t caused by rounding in the world-to-object transform of
+// the ray origin (negligible in double, decisive in float for far-from-origin shapes).
+template <typename Derived>
+class AnalyticShapeT : public AnalyticShape {
+public:
+    using AnalyticShape::AnalyticShape;
+
+    template <typename Real>
+    bool IntersectWorld(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
+                        ObjectHit *hit) const {
+        const Affine3<Real> &m = ObjectFromWorld<Real>();
+        Vec3<Real> ow(o), dw(d);
+        Vec3<Real> oo = m.Point(ow), dd = m.Vector(dw);
+        // pbrt-v3 transform.h: |error| <= gamma3 (|M| |o| + |t|) per component.
+        Real oErr = 0;
+        for (int i = 0; i < 3; ++i)
+            oErr += std::abs(m.m[i][0] * ow.x) + std::abs(m.m[i][1] * ow.y) +
+                    std::abs(m.m[i][2] * ow.z) + std::abs(m.m[i][3]);
+        Real dLen = Length(dd);
+        Real tSlack = dLen > 0 ? Gamma<Real>(3) * oErr / dLen : Real(0);
+        return static_cast<const Derived *>(this)->template IntersectT<Real>(
+            oo, dd, Real(tMin), Real(tMax), tSlack, hit);
+    }
+    bool Intersect(const Vec3f &o, const Vec3f &d, float tMin, float tMax, Precision precision,
+                   ObjectHit *hit) const override {
+        return precision == Precision::Double ? IntersectWorld<double>(o, d, tMin, tMax, hit)
+                                              : IntersectWorld<float>(o, d, tMin, tMax, hit);
+    }
+};
+
+}  // namespace prism

@@ -1,0 +1,31 @@
+// pbrt's sphere (radius, zmin, zmax, phimax) with a robust double-precision root routine.
+#pragma once
+
+#include "geometry/shape.h"
+
+namespace prism {
+
+class Sphere final : public AnalyticShapeT<Sphere> {
+public:
+    Sphere(const Transform &worldFromObject, bool reverseOrientation, double radius, double zMin,
+           double zMax, double phiMaxDeg);
+
+    const char *Name() const override { return "sphere"; }
+    Bounds3d ObjectBounds() const override;
+    double Implicit(const Vec3d &p) const override { return Length(p) - radius_; }
+    Vec3d ImplicitGradient(const Vec3d &p) const override { return Normalize(p); }
+    LocalGeometry Geometry(const ObjectHit &hit) const override;
+
+    template <typename Real>
+    bool IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real tSlack,
+                    ObjectHit *hit) const;
+
+    double Radius() const { return radius_; }
+    bool IsPartial() const { return partial_; }
+
+private:
+    double radius_, zMin_, zMax_, thetaZMin_, thetaZMax_, phiMax_;
+    bool partial_;
+};
+
+}  // namespace prism

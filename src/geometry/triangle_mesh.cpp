@@ -1,0 +1,108 @@
+#include "geometry/triangle_mesh.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace prism {
+
+TriangleMesh::TriangleMesh(const Transform &worldFromObject, bool reverseOrientation,
+                           const std::vector<Vec3f> &P, std::vector<uint32_t> indices,
+                           const std::vector<Vec3f> &N, std::vector<Vec2f> uv)
+    : indices_(std::move(indices)),
+      uv_(std::move(uv)),
+      flipNormals_(reverseOrientation != worldFromObject.SwapsHandedness()) {
+    if (indices_.size() % 3 != 0)
+        throw std::invalid_argument("number of vertex indices (" + std::to_string(indices_.size()) +
+                                    ") is not a multiple of 3");
+    for (uint32_t i : indices_)
+        if (i >= P.size())
+            throw std::invalid_argument("vertex index " + std::to_string(i) + " out of range (" +
+                                        std::to_string(P.size()) + " vertices)");
+    if (!N.empty() && N.size() != P.size())
+        throw std::invalid_argument("\"N\" has " + std::to_string(N.size()) +
+                                    " normals but there are " + std::to_string(P.size()) +
+                                    " vertices");
+    if (!uv_.empty() && uv_.size() != P.size())
+        throw std::invalid_argument("\"uv\" has " + std::to_string(uv_.size()) +
+                                    " entries but there are " + std::to_string(P.size()) +
+                                    " vertices");
+    positions_.resize(3 * P.size() + 1);  // Embree reads 16 bytes past the last float3
+    bool identity = worldFromObject.IsIdentity();
+    for (size_t i = 0; i < P.size(); ++i) {
+        Vec3f w = identity ? P[i] : Vec3f(worldFromObject.Point(Vec3d(P[i])));
+        positions_[3 * i] = w.x;
+        positions_[3 * i + 1] = w.y;
+        positions_[3 * i + 2] = w.z;
+    }
+    if (!N.empty()) {
+        normals_.resize(N.size());
+        for (size_t i = 0; i < N.size(); ++i) {
+            Vec3d n = identity ? Vec3d(N[i]) : worldFromObject.Normal(Vec3d(N[i]));
+            double len = Length(n);
+            normals_[i] = len > 0 ? Vec3f(n / len) : Vec3f(0, 0, 0);
+        }
+    }
+}
+
+Bounds3f TriangleMesh::WorldBounds() const {
+    Bounds3f b;
+    for (size_t i = 0; i + 1 < positions_.size(); i += 3)
+        b.Expand(Vec3f(positions_[i], positions_[i + 1], positions_[i + 2]));
+    return b;
+}
+
+Vec3f TriangleMesh::GeometricNormal(size_t prim) const {
+    const uint32_t *v = Triangle(prim);
+    Vec3f p0 = Position(v[0]), p1 = Position(v[1]), p2 = Position(v[2]);
+    Vec3d n = Cross(Vec3d(p1 - p0), Vec3d(p2 - p0));
+    double len = Length(n);
+    if (!(len > 0)) return {0, 0, 0};
+    n = n / len;
+    return Vec3f(flipNormals_ ? -n : n);
+}
+
+SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, float t,
+                                             const Vec3f &rayDir) const {
+    const uint32_t *vi = Triangle(prim);
+    Vec3f p0 = Position(vi[0]), p1 = Position(vi[1]), p2 = Position(vi[2]);
+    float b0 = 1 - u - v, b1 = u, b2 = v;
+    SurfaceInteraction si;
+    si.p = p0 * b0 + p1 * b1 + p2 * b2;
+    // pbrt-v3 triangle.cpp: gamma7 * sum |b_i p_i|.
+    si.pError = (Abs(p0 * b0) + Abs(p1 * b1) + Abs(p2 * b2)) * Gamma<float>(7);
+
+    Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
+    if (!uv_.empty()) { uv0 = uv_[vi[0]]; uv1 = uv_[vi[1]]; uv2 = uv_[vi[2]]; }
+    si.uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
+
+    Vec3f n = GeometricNormal(prim);
+    if (n == Vec3f(0, 0, 0)) n = Normalize(-rayDir);  // degenerate: never NaN
+    // Partial derivatives from the uv parameterization (pbrt-v3 Triangle::Intersect).
+    Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+    Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
+    double det = double(duv02.x) * duv12.y - double(duv02.y) * duv12.x;
+    if (std::abs(det) < 1e-12) {
+        CoordinateSystem(n, &si.dpdu, &si.dpdv);
+    } else {
+        float invdet = float(1 / det);
+        si.dpdu = (dp02 * duv12.y - dp12 * duv02.y) * invdet;
+        si.dpdv = (dp12 * duv02.x - dp02 * duv12.x) * invdet;
+    }
+    si.n = si.ns = n;
+    if (!normals_.empty()) {
+        Vec3f ns = normals_[vi[0]] * b0 + normals_[vi[1]] * b1 + normals_[vi[2]] * b2;
+        float len = Length(ns);
+        if (len > 0) {
+            si.ns = ns / len;
+            // pbrt: with shading normals, the geometric normal is turned to agree with them.
+            si.n = FaceForward(n, si.ns);
+        }
+    }
+    si.wo = Normalize(-rayDir);
+    si.t = t;
+    si.prim = int(prim);
+    return si;
+}
+
+}  // namespace prism

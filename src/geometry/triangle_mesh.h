@@ -1,0 +1,47 @@
+// Triangle meshes in world space, shared with Embree without copying.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/transform.h"
+#include "geometry/interaction.h"
+
+namespace prism {
+
+class TriangleMesh {
+public:
+    // Object-space data; transformed to world space here (in double, rounded once).
+    // Throws std::invalid_argument for inconsistent sizes or out-of-range indices.
+    TriangleMesh(const Transform &worldFromObject, bool reverseOrientation,
+                 const std::vector<Vec3f> &P, std::vector<uint32_t> indices,
+                 const std::vector<Vec3f> &N = {}, std::vector<Vec2f> uv = {});
+
+    size_t NumTriangles() const { return indices_.size() / 3; }
+    size_t NumVertices() const { return (positions_.size() - 1) / 3; }
+    const float *PositionData() const { return positions_.data(); }  // xyz, padded by one float
+    const uint32_t *IndexData() const { return indices_.data(); }
+    Vec3f Position(uint32_t i) const {
+        return {positions_[3 * i], positions_[3 * i + 1], positions_[3 * i + 2]};
+    }
+    const uint32_t *Triangle(size_t prim) const { return &indices_[3 * prim]; }
+    bool HasNormals() const { return !normals_.empty(); }
+    bool HasUV() const { return !uv_.empty(); }
+    bool FlipNormals() const { return flipNormals_; }
+    Bounds3f WorldBounds() const;
+
+    // Geometric normal as the trace command defines it: (p1-p0) x (p2-p0), flipped by
+    // ReverseOrientation XOR handedness; unit length; zero for degenerate triangles.
+    Vec3f GeometricNormal(size_t prim) const;
+    // Phase 2 for a hit with Embree barycentrics (u, v) of vertices 1 and 2.
+    SurfaceInteraction Interaction(size_t prim, float u, float v, float t, const Vec3f &rayDir) const;
+
+private:
+    std::vector<float> positions_;
+    std::vector<uint32_t> indices_;
+    std::vector<Vec3f> normals_;
+    std::vector<Vec2f> uv_;
+    bool flipNormals_;
+};
+
+}  // namespace prism

@@ -1,0 +1,74 @@
+// Typed pbrt parameter lists ("float radius" [1]) with source locations and use tracking.
+// Spectral types (rgb/color, blackbody, spectrum, xyz) are converted to linear sRGB when the
+// list is parsed, so lookups only ever see RGB.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "core/vecmath.h"
+
+namespace prism {
+
+enum class ParamType {
+    Float, Integer, Bool, String, Point2, Vector2, Point3, Vector3, Normal, RGB, Texture
+};
+const char *ParamTypeName(ParamType t);
+
+struct Param {
+    ParamType type = ParamType::Float;
+    std::string name;
+    std::vector<double> numbers;       // Float/Integer/Point*/Vector*/Normal/RGB (3 per RGB)
+    std::vector<std::string> strings;  // String/Texture
+    std::vector<bool> bools;           // Bool
+    FileLoc loc;                       // location of the "type name" string
+    mutable bool lookedUp = false;
+    // Spelling as written in the file ("color", "point", "blackbody", ...), for messages.
+    std::string spelledType;
+};
+
+class ParamSet {
+public:
+    // Adds or replaces (a later parameter of the same name wins, as in pbrt).
+    void Add(Param p);
+    bool Has(const std::string &name) const { return Find(name) != nullptr; }
+    const Param *Find(const std::string &name) const;
+    const std::vector<Param> &Params() const { return params_; }
+    bool Empty() const { return params_.empty(); }
+
+    // Single-value lookups. Absent → default. Present with the wrong type → SceneError at the
+    // parameter's location ("parameter "radius" must be float, not string").
+    float GetFloat(const std::string &name, float def) const;
+    int GetInt(const std::string &name, int def) const;
+    bool GetBool(const std::string &name, bool def) const;
+    std::string GetString(const std::string &name, const std::string &def) const;
+    Vec3f GetPoint3(const std::string &name, const Vec3f &def) const;
+    Vec3f GetVector3(const std::string &name, const Vec3f &def) const;
+    Vec3f GetNormal(const std::string &name, const Vec3f &def) const;
+    RGB GetRGB(const std::string &name, const RGB &def) const;
+    // Name of the texture bound by a "texture NAME" parameter, or "" if absent.
+    std::string GetTexture(const std::string &name) const;
+
+    // Array lookups: empty vector when absent.
+    std::vector<float> GetFloats(const std::string &name) const;
+    std::vector<int> GetInts(const std::string &name) const;
+    std::vector<Vec2f> GetPoint2s(const std::string &name) const;
+    std::vector<Vec3f> GetPoint3s(const std::string &name) const;
+    std::vector<Vec3f> GetNormals(const std::string &name) const;
+    std::vector<std::string> GetStrings(const std::string &name) const;
+
+    // Marks a parameter used without reading it (e.g. parameters Prism accepts and ignores).
+    void MarkUsed(const std::string &name) const;
+    // Warns (with location) for every parameter never looked up: "unused parameter "foo"".
+    void ReportUnused(Diagnostics &diag, const std::string &context) const;
+
+private:
+    const Param *FindTyped(const std::string &name, std::initializer_list<ParamType> ok,
+                           const char *want) const;
+    std::vector<Param> params_;
+};
+
+}  // namespace prism

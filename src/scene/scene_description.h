@@ -1,0 +1,85 @@
+// Plain-data scene description between the scene readers (pbrt, OBJ, glTF) and the renderer.
+// Nothing here knows about Embree; every entity keeps the location it came from so later
+// stages can report errors against the scene file.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/transform.h"
+#include "scene/paramset.h"
+
+namespace prism {
+
+// A directive with a type name ("sphere", "matte", ...), its parameters and its location.
+struct SceneEntity {
+    std::string type;
+    ParamSet params;
+    FileLoc loc;
+};
+
+struct CameraDesc : SceneEntity {
+    Transform cameraFromWorld;  // CTM at the Camera directive
+    bool specified = false;     // false → loader default (perspective, identity)
+};
+
+struct TextureDesc : SceneEntity {
+    std::string name;
+    bool isFloat = false;       // "float" vs "spectrum"/"color"
+    Transform worldFromTexture;
+};
+
+struct MaterialDesc : SceneEntity {
+    std::string name;           // for named materials; "" for anonymous Material directives
+};
+
+struct LightDesc : SceneEntity {
+    Transform worldFromLight;
+};
+
+struct AreaLightDesc : SceneEntity {
+    // type "diffuse"; params L, scale, twosided, nsamples
+};
+
+struct ShapeDesc : SceneEntity {
+    Transform worldFromObject;
+    bool reverseOrientation = false;
+    int material = -1;   // index into SceneDescription::materials; -1 = the default matte
+    int areaLight = -1;  // index into SceneDescription::areaLights; -1 = not emissive
+    int directiveIndex = 0;  // 0-based Shape directive order in the top-level file
+};
+
+// ObjectBegin/ObjectEnd: shapes recorded with the CTM at their declaration.
+struct ObjectDesc {
+    std::string name;
+    FileLoc loc;
+    std::vector<ShapeDesc> shapes;
+};
+
+struct InstanceDesc {
+    std::string object;
+    Transform worldFromInstance;
+    FileLoc loc;
+};
+
+struct SceneDescription {
+    CameraDesc camera;
+    SceneEntity film{"image", {}, {}};
+    SceneEntity sampler{"halton", {}, {}};
+    SceneEntity filter{"box", {}, {}};
+    SceneEntity integrator{"path", {}, {}};
+    std::vector<ShapeDesc> shapes;
+    std::vector<MaterialDesc> materials;
+    std::vector<TextureDesc> textures;
+    std::vector<LightDesc> lights;
+    std::vector<AreaLightDesc> areaLights;
+    std::vector<ObjectDesc> objects;
+    std::vector<InstanceDesc> instances;
+    std::string baseDir;      // directory of the top-level file: relative paths resolve here
+    std::string sourceFile;   // the top-level file
+    std::string format;       // "pbrt", "obj", "gltf"
+};
+
+}  // namespace prism
