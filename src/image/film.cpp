@@ -1,1 +1,215 @@
-// placeholder: being written
+// Filter evaluation, sample splatting and tile merging.
+#include "image/film.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace prism {
+
+namespace {
+
+// Mitchell-Netravali cubic on x = |2 d / r| in [0, 2].
+float Mitchell1D(float x, float B, float C) {
+    x = std::abs(x);
+    if (x >= 2) return 0.f;
+    float x2 = x * x, x3 = x2 * x;
+    if (x > 1)
+        return ((-B - 6 * C) * x3 + (6 * B + 30 * C) * x2 + (-12 * B - 48 * C) * x +
+                (8 * B + 24 * C)) * (1.f / 6.f);
+    return ((12 - 9 * B - 6 * C) * x3 + (-18 + 12 * B + 6 * C) * x2 + (6 - 2 * B)) * (1.f / 6.f);
+}
+
+// Largest number of pixels one sample can reach along an axis: radius <= MaxFilterRadius.
+constexpr int MaxSpan = 2 * int(Film::MaxFilterRadius) + 2;
+
+bool ValidRadius(float r) { return r > 0 && r <= Film::MaxFilterRadius; }
+
+// Keeps far-off sample positions representable as int pixel coordinates.
+double ClampCoord(float v) { return std::clamp(double(v), -1e9, 1e9); }
+
+}  // namespace
+
+FilterKernel::FilterKernel(const Filter &f)
+    : kind(f.kind), radius{f.radiusX, f.radiusY}, alpha(f.alpha), B(f.B), C(f.C) {
+    for (int a = 0; a < 2; ++a) {
+        invRadius[a] = 1.f / radius[a];
+        expRadius[a] = std::exp(-alpha * radius[a] * radius[a]);
+    }
+}
+
+float FilterKernel::Evaluate1D(int axis, float d) const {
+    float r = radius[axis];
+    if (!(std::abs(d) <= r)) return 0.f;
+    switch (kind) {
+    case Filter::Kind::Box:
+        return 1.f;
+    case Filter::Kind::Gaussian:
+        return std::max(0.f, std::exp(-alpha * d * d) - expRadius[axis]);
+    case Filter::Kind::Triangle:
+        return std::max(0.f, r - std::abs(d));
+    case Filter::Kind::Mitchell:
+        return Mitchell1D(2.f * d * invRadius[axis], B, C);
+    }
+    return 0.f;
+}
+
+float Filter::Evaluate(float dx, float dy) const {
+    // Not on the hot path: the film keeps a precomputed FilterKernel.
+    FilterKernel k(*this);
+    return k.Evaluate1D(0, dx) * k.Evaluate1D(1, dy);
+}
+
+Filter MakeBoxFilter(float radius) {
+    Filter f;
+    f.kind = Filter::Kind::Box;
+    f.radiusX = f.radiusY = radius;
+    return f;
+}
+
+Filter MakeGaussianFilter(float radius, float alpha) {
+    Filter f;
+    f.kind = Filter::Kind::Gaussian;
+    f.radiusX = f.radiusY = radius;
+    f.alpha = alpha;
+    return f;
+}
+
+Filter MakeTriangleFilter(float radius) {
+    Filter f;
+    f.kind = Filter::Kind::Triangle;
+    f.radiusX = f.radiusY = radius;
+    return f;
+}
+
+Filter MakeMitchellFilter(float radius, float B, float C) {
+    Filter f;
+    f.kind = Filter::Kind::Mitchell;
+    f.radiusX = f.radiusY = radius;
+    f.B = B;
+    f.C = C;
+    return f;
+}
+
+void NonFiniteRecord::Add(Vec2i p) {
+    ++count;
+    if (!firstPixel || p.y < firstPixel->y || (p.y == firstPixel->y && p.x < firstPixel->x))
+        firstPixel = p;
+}
+
+void NonFiniteRecord::Merge(const NonFiniteRecord &o) {
+    uint64_t n = count + o.count;
+    if (o.firstPixel) Add(*o.firstPixel);
+    count = n;
+}
+
+FilmTile::FilmTile(const Bounds2i &bounds, const FilterKernel &kernel)
+    : bounds_(bounds), kernel_(kernel), pixels_(size_t(bounds.Area())) {}
+
+void FilmTile::AddSample(Vec2f pFilm, const RGB &L) {
+    if (!std::isfinite(pFilm.x) || !std::isfinite(pFilm.y)) {
+        // No pixel to blame and nowhere to splat: only count it.
+        ++nonFinite_.count;
+        return;
+    }
+    RGB v = L;
+    if (!L.IsFinite()) {
+        nonFinite_.Add(
+            {int(std::floor(ClampCoord(pFilm.x))), int(std::floor(ClampCoord(pFilm.y)))});
+        v = RGB(0.f);
+    }
+    // Pixel x receives the sample if x + 0.5 - r <= p < x + 0.5 + r, i.e. x in
+    // (p - 0.5 - r, p - 0.5 + r]. Computed in double so the boundary test is exact.
+    double px = ClampCoord(pFilm.x) - 0.5, py = ClampCoord(pFilm.y) - 0.5;
+    double rx = kernel_.radius[0], ry = kernel_.radius[1];
+    int x0 = std::max(bounds_.pMin.x, int(std::floor(px - rx)) + 1);
+    int x1 = std::min(bounds_.pMax.x - 1, int(std::floor(px + rx)));
+    int y0 = std::max(bounds_.pMin.y, int(std::floor(py - ry)) + 1);
+    int y1 = std::min(bounds_.pMax.y - 1, int(std::floor(py + ry)));
+    if (x0 > x1 || y0 > y1) return;
+
+    // Separable filter: one weight per column and per row.
+    float wx[MaxSpan], wy[MaxSpan];
+    for (int x = x0; x <= x1; ++x) wx[x - x0] = kernel_.Evaluate1D(0, float(double(x) - px));
+    for (int y = y0; y <= y1; ++y) wy[y - y0] = kernel_.Evaluate1D(1, float(double(y) - py));
+
+    int stride = bounds_.Width();
+    for (int y = y0; y <= y1; ++y) {
+        float fy = wy[y - y0];
+        if (fy == 0) continue;
+        FilmPixel *row = &pixels_[size_t(y - bounds_.pMin.y) * size_t(stride)];
+        for (int x = x0; x <= x1; ++x) {
+            double w = double(wx[x - x0] * fy);
+            if (w == 0) continue;
+            FilmPixel &p = row[x - bounds_.pMin.x];
+            p.r += w * v.r;
+            p.g += w * v.g;
+            p.b += w * v.b;
+            p.weight += w;
+        }
+    }
+}
+
+Film::Film(Vec2i fullResolution, Bounds2i cropPixels, Filter filter)
+    : fullResolution_(fullResolution), filter_(filter) {
+    if (fullResolution.x <= 0 || fullResolution.y <= 0)
+        throw std::invalid_argument("film resolution must be positive");
+    cropPixels_ = Intersect(cropPixels, Bounds2i({0, 0}, fullResolution));
+    if (cropPixels_.Empty()) throw std::invalid_argument("film crop window covers no pixels");
+    if (!ValidRadius(filter.radiusX) || !ValidRadius(filter.radiusY))
+        throw std::invalid_argument("filter radius must be in (0, " +
+                                    std::to_string(int(MaxFilterRadius)) + "]");
+    kernel_ = FilterKernel(filter);
+    pixels_.resize(size_t(cropPixels_.Area()));
+}
+
+FilmTile Film::MakeTile(const Bounds2i &tilePixels) const {
+    if (tilePixels.Empty()) return FilmTile(Bounds2i(), kernel_);
+    // Samples lie in [pMin, pMax] (closed); invert the splat rule of AddSample.
+    double rx = kernel_.radius[0], ry = kernel_.radius[1];
+    Bounds2i b;
+    b.pMin = {int(std::floor(tilePixels.pMin.x - 0.5 - rx)) + 1,
+              int(std::floor(tilePixels.pMin.y - 0.5 - ry)) + 1};
+    b.pMax = {int(std::floor(tilePixels.pMax.x - 0.5 + rx)) + 1,
+              int(std::floor(tilePixels.pMax.y - 0.5 + ry)) + 1};
+    b = Intersect(b, cropPixels_);
+    if (b.Empty()) b = Bounds2i();
+    return FilmTile(b, kernel_);
+}
+
+void Film::MergeTile(const FilmTile &tile) {
+    nonFinite_.Merge(tile.nonFinite_);
+    const Bounds2i &tb = tile.bounds_;
+    if (tb.Empty()) return;
+    // A tile from another film (a programming error) would write out of bounds.
+    PRISM_CHECK(Intersect(tb, cropPixels_) == tb);
+    int tileStride = tb.Width(), filmStride = cropPixels_.Width();
+    for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
+        const FilmPixel *src = &tile.pixels_[size_t(y - tb.pMin.y) * size_t(tileStride)];
+        FilmPixel *dst = &pixels_[size_t(y - cropPixels_.pMin.y) * size_t(filmStride) +
+                                  size_t(tb.pMin.x - cropPixels_.pMin.x)];
+        for (int i = 0; i < tileStride; ++i) {
+            dst[i].r += src[i].r;
+            dst[i].g += src[i].g;
+            dst[i].b += src[i].b;
+            dst[i].weight += src[i].weight;
+        }
+    }
+}
+
+Image Film::ToImage() const {
+    Image img(cropPixels_.Width(), cropPixels_.Height(), 3);
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+        const FilmPixel &p = pixels_[i];
+        if (p.weight == 0) continue;
+        // std::max(0, NaN) would keep NaN; the comparison form maps it to 0.
+        auto out = [](double v) { return v > 0 ? float(v) : 0.f; };
+        img.pixels[3 * i + 0] = out(p.r / p.weight);
+        img.pixels[3 * i + 1] = out(p.g / p.weight);
+        img.pixels[3 * i + 2] = out(p.b / p.weight);
+    }
+    return img;
+}
+
+}  // namespace prism

@@ -1,1 +1,11 @@
-// placeholder: being written
+// Image construction (the accessors are inline in image.h).
+#include "image/image.h"
+
+namespace prism {
+
+Image::Image(int w, int h, int c) : width(w), height(h), channels(c) {
+    PRISM_CHECK(w >= 0 && h >= 0 && c >= 1);
+    pixels.assign(size_t(w) * size_t(h) * size_t(c), 0.f);
+}
+
+}  // namespace prism

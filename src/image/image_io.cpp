@@ -1,1 +1,320 @@
-// placeholder: being written
+// OpenImageIO-backed image reading and atomic image writing.
+#include "image/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <bit>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace prism {
+
+namespace fs = std::filesystem;
+
+float SrgbToLinear(float v) {
+    // Evaluated in double so the float result is correctly rounded for round trips.
+    double d = v;
+    if (d <= 0.04045) return float(d / 12.92);
+    return float(std::pow((d + 0.055) / 1.055, 2.4));
+}
+
+float LinearToSrgb(float v) {
+    double d = v;
+    if (d <= 0.0031308) return float(d * 12.92);
+    return float(1.055 * std::pow(d, 1.0 / 2.4) - 0.055);
+}
+
+uint8_t LinearToSrgb8(float v) {
+    if (!(v > 0)) return 0;  // also NaN
+    if (v >= 1) return 255;
+    return uint8_t(std::lround(std::clamp(LinearToSrgb(v), 0.f, 1.f) * 255.f));
+}
+
+namespace {
+
+// OIIO keeps error messages per object and globally; fetch whichever is set (this also clears
+// them, so OIIO does not print them on destruction) and keep the first line only.
+std::string OiioError(const OIIO::ImageInput *in) {
+    std::string msg = in ? in->geterror() : std::string();
+    if (msg.empty()) msg = OIIO::geterror();
+    if (msg.empty()) msg = "unknown error";
+    size_t nl = msg.find('\n');
+    if (nl != std::string::npos) msg.resize(nl);
+    return msg;
+}
+
+std::string OiioError(const OIIO::ImageOutput *out) {
+    std::string msg = out ? out->geterror() : std::string();
+    if (msg.empty()) msg = OIIO::geterror();
+    if (msg.empty()) msg = "unknown error";
+    size_t nl = msg.find('\n');
+    if (nl != std::string::npos) msg.resize(nl);
+    return msg;
+}
+
+std::string Quoted(const std::string &s) { return "\"" + s + "\""; }
+
+const std::array<float, 256> &Srgb8Table() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (int i = 0; i < 256; ++i) t[size_t(i)] = SrgbToLinear(float(i) / 255.f);
+        return t;
+    }();
+    return table;
+}
+
+std::string LowerExtension(const std::string &path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char &c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+}  // namespace
+
+Image ReadImage(const std::string &path, ReadImageOptions opts) {
+    auto fail = [&](const std::string &why) -> std::runtime_error {
+        return std::runtime_error("cannot read image " + Quoted(path) + ": " + why);
+    };
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw fail(fs::exists(path, ec) ? "not a regular file"
+                                                                         : "file not found");
+    // Ask for unassociated alpha: PNG/TGA store straight alpha and the sRGB decode must apply
+    // to the stored colour, not to colour premultiplied by alpha.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) throw fail(OiioError(static_cast<const OIIO::ImageInput *>(nullptr)));
+    const OIIO::ImageSpec &spec = in->spec();
+    if (spec.deep) throw fail("deep images are not supported");
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels <= 0)
+        throw fail("invalid image dimensions");
+
+    // Channels read from the file and channels of the result.
+    int nFile = spec.nchannels;
+    int nRead, nOut;
+    if (nFile == 1) {
+        nRead = nOut = 1;
+    } else if (nFile == 2) {
+        nRead = 2;  // gray + alpha
+        nOut = 4;
+    } else if (nFile == 3 || spec.alpha_channel != 3) {
+        nRead = nOut = 3;
+    } else {
+        nRead = nOut = 4;
+    }
+    int64_t count = int64_t(spec.width) * int64_t(spec.height) * int64_t(std::max(nRead, nOut));
+    if (count > opts.maxPixels)
+        throw fail("image is too large (" + std::to_string(spec.width) + "x" +
+                   std::to_string(spec.height) + "x" + std::to_string(nOut) + " values)");
+
+    std::vector<float> buf(size_t(spec.width) * size_t(spec.height) * size_t(nRead));
+    if (!in->read_image(0, 0, 0, nRead, OIIO::TypeDesc::FLOAT, buf.data()))
+        throw fail(OiioError(in.get()));
+    in->close();
+
+    bool integer = !spec.format.is_floating_point();
+    bool srgb = opts.encoding == ReadImageOptions::Encoding::SRGB ||
+                (opts.encoding == ReadImageOptions::Encoding::Auto && integer);
+    bool eightBit = spec.format.basetype == OIIO::TypeDesc::UINT8;
+    int nColor = nRead == 2 || nRead == 4 ? nRead - 1 : nRead;
+    if (srgb) {
+        const std::array<float, 256> &table = Srgb8Table();
+        for (size_t i = 0; i < buf.size(); i += size_t(nRead)) {
+            for (int c = 0; c < nColor; ++c) {
+                float &v = buf[i + size_t(c)];
+                // 8-bit values arrive as k/255; the table gives the same result faster.
+                v = eightBit ? table[size_t(std::clamp(std::lround(v * 255.f), 0L, 255L))]
+                             : SrgbToLinear(v);
+            }
+        }
+    }
+
+    Image img;
+    img.width = spec.width;
+    img.height = spec.height;
+    img.channels = nOut;
+    if (nRead == nOut) {
+        img.pixels = std::move(buf);
+    } else {
+        img.pixels.resize(size_t(spec.width) * size_t(spec.height) * 4);
+        for (size_t i = 0, n = size_t(spec.width) * size_t(spec.height); i < n; ++i) {
+            float g = buf[2 * i], a = buf[2 * i + 1];
+            img.pixels[4 * i + 0] = g;
+            img.pixels[4 * i + 1] = g;
+            img.pixels[4 * i + 2] = g;
+            img.pixels[4 * i + 3] = a;
+        }
+    }
+    return img;
+}
+
+namespace {
+
+enum class OutKind { Float, Srgb8 };
+
+struct OutputFormat {
+    OutKind kind;
+    bool allowGray, allowAlpha;  // channel layouts the format can store
+};
+
+bool LookupOutputFormat(const std::string &ext, OutputFormat *f) {
+    if (ext == ".exr") *f = {OutKind::Float, true, true};
+    else if (ext == ".pfm") *f = {OutKind::Float, true, false};
+    else if (ext == ".hdr") *f = {OutKind::Float, false, false};
+    else if (ext == ".png" || ext == ".tga" || ext == ".bmp") *f = {OutKind::Srgb8, true, true};
+    else if (ext == ".jpg" || ext == ".jpeg") *f = {OutKind::Srgb8, true, false};
+    else return false;
+    return true;
+}
+
+// Temporary name in the target's directory; the real extension stays last so OIIO picks the
+// same format. pid + counter keep concurrent writers (threads or processes) apart.
+fs::path TempPathFor(const fs::path &target) {
+    static std::atomic<uint64_t> counter{0};
+    std::string name = ".";
+    name += target.stem().string();
+    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
+    name += target.extension().string();
+    return target.parent_path() / name;
+}
+
+// Removes the temporary file unless released (after the rename succeeded).
+struct TempFileGuard {
+    fs::path path;
+    bool armed = true;
+    ~TempFileGuard() {
+        if (armed) {
+            std::error_code ec;
+            fs::remove(path, ec);
+        }
+    }
+};
+
+// PFM: "PF" (RGB) or "Pf" (gray), size, scale (negative = little-endian), then float rows from
+// the bottom of the image to the top. Throws std::runtime_error on an I/O error.
+void WritePfm(const std::string &path, int width, int height, int channels, const float *data) {
+    std::ofstream f(path, std::ios::binary | std::ios::trunc);
+    if (!f) throw std::runtime_error("could not create the file");
+    f << (channels == 1 ? "Pf" : "PF") << "\n" << width << " " << height << "\n-1.0\n";
+    size_t rowValues = size_t(width) * size_t(channels);
+    std::vector<uint32_t> row(rowValues);
+    for (int y = height - 1; y >= 0; --y) {
+        std::memcpy(row.data(), data + size_t(y) * rowValues, rowValues * sizeof(float));
+        if constexpr (std::endian::native == std::endian::big)
+            for (uint32_t &v : row) v = __builtin_bswap32(v);
+        f.write(reinterpret_cast<const char *>(row.data()),
+                std::streamsize(rowValues * sizeof(float)));
+    }
+    f.close();
+    if (!f) throw std::runtime_error("write error");
+}
+
+}  // namespace
+
+void WriteImage(const std::string &path, const Image &img) {
+    auto fail = [&](const std::string &why) -> std::runtime_error {
+        return std::runtime_error("cannot write image " + Quoted(path) + ": " + why);
+    };
+    std::string ext = LowerExtension(path);
+    OutputFormat format;
+    if (!LookupOutputFormat(ext, &format))
+        throw std::runtime_error("unsupported output format " + Quoted(ext) +
+                                 " (use .exr or .png)");
+    if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4 ||
+        img.pixels.size() != size_t(img.width) * size_t(img.height) * size_t(img.channels))
+        throw fail("invalid image (size " + std::to_string(img.width) + "x" +
+                   std::to_string(img.height) + "x" + std::to_string(img.channels) + ")");
+
+    // Map the image's channels onto what the format can store: gray -> RGB if gray is not
+    // supported, alpha dropped if alpha is not supported.
+    bool gray = img.channels <= 2, alpha = img.HasAlpha();
+    if (gray && !format.allowGray) gray = false;
+    if (alpha && !format.allowAlpha) alpha = false;
+    int nOut = (gray ? 1 : 3) + (alpha ? 1 : 0);
+    int srcAlpha = img.channels - 1;
+    auto source = [&](size_t pixel, int c) -> float {
+        const float *p = &img.pixels[pixel * size_t(img.channels)];
+        if (alpha && c == nOut - 1) return p[srcAlpha];
+        return img.channels >= 3 ? p[c] : p[0];
+    };
+
+    size_t nPixels = size_t(img.width) * size_t(img.height);
+    OIIO::ImageSpec spec(img.width, img.height, nOut,
+                         format.kind == OutKind::Float ? OIIO::TypeDesc::FLOAT
+                                                       : OIIO::TypeDesc::UINT8);
+    if (alpha) spec.alpha_channel = nOut - 1;
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // do not let OIIO un-premultiply
+    spec.attribute("oiio:ColorSpace", format.kind == OutKind::Float ? "Linear" : "sRGB");
+    if (ext == ".jpg" || ext == ".jpeg") spec.attribute("Compression", "jpeg:95");
+
+    std::vector<float> floats;
+    std::vector<uint8_t> bytes;
+    const void *data;
+    if (format.kind == OutKind::Float) {
+        if (nOut == img.channels) {
+            data = img.pixels.data();
+        } else {
+            floats.resize(nPixels * size_t(nOut));
+            for (size_t i = 0; i < nPixels; ++i)
+                for (int c = 0; c < nOut; ++c) floats[i * size_t(nOut) + size_t(c)] = source(i, c);
+            data = floats.data();
+        }
+    } else {
+        bytes.resize(nPixels * size_t(nOut));
+        for (size_t i = 0; i < nPixels; ++i) {
+            for (int c = 0; c < nOut; ++c) {
+                float v = source(i, c);
+                uint8_t &b = bytes[i * size_t(nOut) + size_t(c)];
+                if (alpha && c == nOut - 1)
+                    b = v > 0 ? uint8_t(std::lround(std::min(v, 1.f) * 255.f)) : 0;  // linear
+                else
+                    b = LinearToSrgb8(v);
+            }
+        }
+        data = bytes.data();
+    }
+
+    fs::path target(path);
+    std::error_code dirEc;
+    fs::path dir = target.parent_path();
+    if (!dir.empty() && !fs::is_directory(dir, dirEc))
+        throw fail("directory " + Quoted(dir.string()) + " does not exist");
+    TempFileGuard tmp{TempPathFor(target)};
+    std::string tmpName = tmp.path.string();
+    if (ext == ".pfm") {
+        // OIIO 2.4 reads PFM but cannot write it; the format is simple enough to write here.
+        try {
+            WritePfm(tmpName, img.width, img.height, nOut, static_cast<const float *>(data));
+        } catch (const std::runtime_error &e) {
+            throw fail(e.what());
+        }
+    } else {
+        auto out = OIIO::ImageOutput::create(tmpName);
+        if (!out) throw fail(OiioError(static_cast<const OIIO::ImageOutput *>(nullptr)));
+        if (!out->open(tmpName, spec)) throw fail(OiioError(out.get()));
+        OIIO::TypeDesc type =
+            format.kind == OutKind::Float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+        if (!out->write_image(type, data)) {
+            std::string msg = OiioError(out.get());
+            out->close();
+            throw fail(msg);
+        }
+        if (!out->close()) throw fail(OiioError(out.get()));
+    }
+
+    std::error_code ec;
+    fs::rename(tmp.path, target, ec);
+    if (ec) throw fail(ec.message());
+    tmp.armed = false;
+}
+
+}  // namespace prism

@@ -1,0 +1,129 @@
+// Pixel reconstruction: samples are splatted through a pixel filter into per-tile accumulators
+// (FilmTile) that are merged into the Film in a fixed order, so results do not depend on how
+// many threads rendered the tiles.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/color.h"
+#include "core/vecmath.h"
+#include "image/bounds2.h"
+#include "image/image.h"
+
+namespace prism {
+
+// pbrt-v3 pixel filters. All are separable: Evaluate(dx, dy) = f(dx) * f(dy), where dx, dy are
+// offsets from the pixel centre. Radii must be in (0, Film::MaxFilterRadius].
+struct Filter {
+    enum class Kind { Box, Gaussian, Triangle, Mitchell };
+    Kind kind = Kind::Box;
+    float radiusX = 0.5f, radiusY = 0.5f;
+    float alpha = 2.f;              // gaussian falloff
+    float B = 1.f / 3, C = 1.f / 3;  // mitchell-netravali parameters
+
+    // Zero outside the radius (the box is 1 on the closed [-r, r]^2).
+    float Evaluate(float dx, float dy) const;
+};
+
+Filter MakeBoxFilter(float radius = 0.5f);
+Filter MakeGaussianFilter(float radius = 2.f, float alpha = 2.f);
+Filter MakeTriangleFilter(float radius = 2.f);
+Filter MakeMitchellFilter(float radius = 2.f, float B = 1.f / 3, float C = 1.f / 3);
+
+// A Filter with its per-axis constants precomputed, evaluated one axis at a time.
+struct FilterKernel {
+    Filter::Kind kind = Filter::Kind::Box;
+    float radius[2] = {0.5f, 0.5f};
+    float invRadius[2] = {2.f, 2.f};
+    float expRadius[2] = {0, 0};  // gaussian: exp(-alpha r^2)
+    float alpha = 2.f, B = 1.f / 3, C = 1.f / 3;
+
+    FilterKernel() = default;
+    explicit FilterKernel(const Filter &f);
+    // Zero for |d| > radius[axis].
+    float Evaluate1D(int axis, float d) const;
+};
+
+// Sums of filter-weighted radiance in double precision: with many samples per pixel this keeps
+// the result independent of the summation order to far below float resolution.
+struct FilmPixel {
+    double r = 0, g = 0, b = 0, weight = 0;
+};
+
+// Record of samples with NaN/Inf radiance; the reported pixel is the smallest in (y, x) order
+// so that it does not depend on the order in which tiles finish.
+struct NonFiniteRecord {
+    uint64_t count = 0;
+    std::optional<Vec2i> firstPixel;
+    void Add(Vec2i p);
+    void Merge(const NonFiniteRecord &o);
+};
+
+// Accumulator for the samples of one tile; created by Film::MakeTile. Not thread-safe: one
+// thread fills one tile. Movable, so tiles can be stored and merged later.
+class FilmTile {
+  public:
+    FilmTile() = default;
+
+    // pFilm is the continuous raster position: pixel (x, y) covers [x, x+1) x [y, y+1) and has
+    // its centre at (x + 0.5, y + 0.5). The sample goes to every pixel of this tile's bounds
+    // whose centre c satisfies c - r <= pFilm < c + r on both axes (half-open, so with the
+    // default box filter a sample lands in exactly the one pixel containing it). Radiance with
+    // a NaN/Inf component is counted and added as 0; its filter weight still counts.
+    void AddSample(Vec2f pFilm, const RGB &L);
+
+    // Pixels this tile accumulates into (within the film's crop window).
+    const Bounds2i &PixelBounds() const { return bounds_; }
+    const NonFiniteRecord &NonFinite() const { return nonFinite_; }
+
+  private:
+    friend class Film;
+    FilmTile(const Bounds2i &bounds, const FilterKernel &kernel);
+
+    Bounds2i bounds_;
+    FilterKernel kernel_;
+    std::vector<FilmPixel> pixels_;
+    NonFiniteRecord nonFinite_;
+};
+
+class Film {
+  public:
+    static constexpr float MaxFilterRadius = 32.f;
+
+    // cropPixels is clipped to the full resolution. Throws std::invalid_argument for a
+    // non-positive resolution, an empty crop window or a filter radius outside
+    // (0, MaxFilterRadius]; callers validate user input first and report it with a location.
+    Film(Vec2i fullResolution, Bounds2i cropPixels, Filter filter);
+
+    Vec2i FullResolution() const { return fullResolution_; }
+    const Bounds2i &PixelBounds() const { return cropPixels_; }  // the crop window
+    const Filter &GetFilter() const { return filter_; }
+
+    // A tile covering every crop pixel that samples with pFilm in [pMin, pMax] (closed, so a
+    // sample rounded up onto the far edge still fits) of tilePixels can reach.
+    FilmTile MakeTile(const Bounds2i &tilePixels) const;
+
+    // Adds the tile's weighted sums. Not thread-safe; merge tiles in a fixed order for
+    // reproducible output.
+    void MergeTile(const FilmTile &tile);
+
+    // Crop-sized RGB image (pixel (0, 0) is the crop window's top-left corner) holding
+    // max(0, sum(w L) / sum(w)); pixels with zero total weight are 0. The clamp follows pbrt-v3
+    // and only matters for filters with negative lobes (mitchell).
+    Image ToImage() const;
+
+    uint64_t NonFiniteCount() const { return nonFinite_.count; }
+    std::optional<Vec2i> FirstNonFinitePixel() const { return nonFinite_.firstPixel; }
+
+  private:
+    Vec2i fullResolution_;
+    Bounds2i cropPixels_;
+    Filter filter_;
+    FilterKernel kernel_;
+    std::vector<FilmPixel> pixels_;
+    NonFiniteRecord nonFinite_;
+};
+
+}  // namespace prism

@@ -1,0 +1,40 @@
+// Reading and writing image files through OpenImageIO, plus the sRGB transfer curves.
+// Files are converted to and from linear float Images; writes are atomic (temp file + rename).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "image/image.h"
+
+namespace prism {
+
+struct ReadImageOptions {
+    // Auto: 8/16-bit integer files (PNG, JPEG, TGA, ...) are sRGB-encoded, float files (EXR,
+    // HDR, PFM) are linear. Linear/SRGB force the interpretation of integer files; float files
+    // are always linear unless SRGB is forced.
+    enum class Encoding { Auto, Linear, SRGB };
+    Encoding encoding = Encoding::Auto;
+    // Upper bound on width * height * channels, checked before any pixel memory is allocated.
+    int64_t maxPixels = int64_t(1) << 28;
+};
+
+// Returns linear float pixels with 1 (gray), 3 (RGB) or 4 (RGBA) channels; gray + alpha becomes
+// RGBA with the gray replicated. Alpha is never sRGB-decoded and is not premultiplied.
+// Throws std::runtime_error with a short reason (no scene location; callers add it).
+Image ReadImage(const std::string &path, ReadImageOptions opts = {});
+
+// The format follows the extension: .exr (32-bit float), .pfm/.hdr (float), .png/.jpg/.jpeg/
+// .tga/.bmp (8-bit sRGB, rounded, clamped to [0,1]). The file is first written to a temporary
+// file in the same directory and renamed over `path` only after a successful close, so `path`
+// is never left partially written. Throws std::runtime_error on any failure.
+void WriteImage(const std::string &path, const Image &img);
+
+// The exact piecewise sRGB curves (IEC 61966-2-1).
+float SrgbToLinear(float v);
+float LinearToSrgb(float v);
+
+// Linear float -> 8-bit sRGB code value with rounding; NaN maps to 0.
+uint8_t LinearToSrgb8(float v);
+
+}  // namespace prism
