@@ -1,1 +1,700 @@
-// placeholder: being written
+// glTF 2.0 → SceneDescription. tinygltf (Debian's shared library) parses the JSON and loads
+// buffers; image decoding is replaced by a callback that only keeps the encoded bytes. Every
+// accessor is bounds-checked here because tinygltf does not validate them.
+#include "scene/gltf_loader.h"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include <tiny_gltf.h>
+
+#include "scene/param_builders.h"
+
+namespace prism {
+
+namespace {
+
+using namespace loader;
+
+// Replaces tinygltf's stb_image decoding: images without an external URI (data URIs and .glb
+// bufferViews) keep their encoded bytes in Image::image; external files are referenced by
+// path and decoded later by the renderer.
+bool KeepEncodedBytes(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
+                      const unsigned char *bytes, int size, void *) {
+    if (image->uri.empty() && bytes && size > 0) image->image.assign(bytes, bytes + size);
+    return true;
+}
+
+std::vector<std::string> Lines(const std::string &s) {
+    std::vector<std::string> out;
+    std::istringstream in(s);
+    std::string line;
+    while (std::getline(in, line)) {
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+        if (!line.empty()) out.push_back(line);
+    }
+    return out;
+}
+
+// glTF URIs are percent-encoded ("my%20texture.png").
+std::string DecodeUri(const std::string &uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
+            std::isxdigit((unsigned char)uri[i + 2])) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const char *key,
+                 double def, bool *present = nullptr) {
+    auto it = ext.find(extName);
+    if (present) *present = it != ext.end();
+    if (it == ext.end() || !it->second.IsObject() || !it->second.Has(key)) return def;
+    const tinygltf::Value &v = it->second.Get(key);
+    return v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : def;
+}
+
+// Column-major glTF 4x4 → Matrix4 (row-major m[row][col]).
+Matrix4 FromColumnMajor(const std::vector<double> &v) {
+    Matrix4 m;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) m.m[r][c] = v[size_t(c * 4 + r)];
+    return m;
+}
+
+// T * R * S from a node's translation / rotation (unit quaternion x y z w) / scale.
+Matrix4 NodeLocalMatrix(const tinygltf::Node &n, const FileLoc &loc) {
+    if (!n.matrix.empty()) {
+        if (n.matrix.size() != 16) throw SceneError(loc, "node matrix must have 16 numbers");
+        return FromColumnMajor(n.matrix);
+    }
+    double t[3] = {0, 0, 0}, s[3] = {1, 1, 1}, q[4] = {0, 0, 0, 1};
+    if (!n.translation.empty()) {
+        if (n.translation.size() != 3)
+            throw SceneError(loc, "node translation must have 3 numbers");
+        for (int i = 0; i < 3; ++i) t[i] = n.translation[size_t(i)];
+    }
+    if (!n.scale.empty()) {
+        if (n.scale.size() != 3) throw SceneError(loc, "node scale must have 3 numbers");
+        for (int i = 0; i < 3; ++i) s[i] = n.scale[size_t(i)];
+    }
+    if (!n.rotation.empty()) {
+        if (n.rotation.size() != 4) throw SceneError(loc, "node rotation must have 4 numbers");
+        double len = 0;
+        for (int i = 0; i < 4; ++i) len += n.rotation[size_t(i)] * n.rotation[size_t(i)];
+        len = std::sqrt(len);
+        if (len > 0)
+            for (int i = 0; i < 4; ++i) q[i] = n.rotation[size_t(i)] / len;
+    }
+    double x = q[0], y = q[1], z = q[2], w = q[3];
+    double R[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                      {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                      {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    Matrix4 m = Matrix4::Identity();
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) m.m[r][c] = R[r][c] * s[c];
+        m.m[r][3] = t[r];
+    }
+    return m;
+}
+
+// Validated view of one accessor's elements.
+struct AccessorView {
+    const unsigned char *data = nullptr;
+    size_t count = 0, stride = 0;
+    int componentType = 0, components = 0;
+    bool normalized = false;
+};
+
+int ComponentSize(int type) {
+    switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_INT: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return 8;
+    default: return 0;
+    }
+}
+
+int ComponentCount(int type) {
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+    }
+}
+
+class GltfReader {
+public:
+    GltfReader(const tinygltf::Model &model, const std::string &path, Diagnostics &diag,
+               SceneDescription &desc)
+        : model_(model), loc_{path}, diag_(diag), desc_(desc) {}
+
+    void Read();
+
+private:
+    AccessorView View(int accessorIndex, const std::string &what);
+    std::vector<Vec3f> ReadVec3(int accessor, const std::string &what);
+    std::vector<Vec2f> ReadTexcoords(int accessor);
+    std::vector<int> ReadIndices(int accessor, size_t vertexCount);
+
+    void Traverse(int node, const Matrix4 &parent, std::vector<int> &path);
+    void AddMesh(int meshIndex, const Transform &worldFromObject);
+    void AddCamera(const tinygltf::Node &node, const Matrix4 &world);
+    void AddLight(const tinygltf::Node &node, const Matrix4 &world);
+    void ConvertMaterials();
+    std::string TextureFor(int textureIndex);
+    std::string ImageFilename(int imageIndex);
+
+    [[noreturn]] void Fail(const std::string &msg) const { throw SceneError(loc_, msg); }
+
+    const tinygltf::Model &model_;
+    FileLoc loc_;
+    Diagnostics &diag_;
+    SceneDescription &desc_;
+    std::vector<int> areaLightOfMaterial_;
+    std::map<int, std::string> textureNames_;
+    std::map<int, std::string> imageFilenames_;
+    std::set<int> warnedModes_;
+    bool haveCamera_ = false;
+};
+
+AccessorView GltfReader::View(int index, const std::string &what) {
+    if (index < 0 || size_t(index) >= model_.accessors.size())
+        Fail(what + " refers to accessor " + std::to_string(index) + ", which does not exist");
+    const tinygltf::Accessor &a = model_.accessors[size_t(index)];
+    std::string name = "accessor " + std::to_string(index) + " (" + what + ")";
+    if (a.sparse.isSparse) Fail(name + " is sparse, which is not supported");
+    AccessorView v;
+    v.componentType = a.componentType;
+    v.components = ComponentCount(a.type);
+    v.normalized = a.normalized;
+    v.count = a.count;
+    int cs = ComponentSize(a.componentType);
+    if (cs == 0 || v.components == 0) Fail(name + " has an invalid type");
+    if (a.count == 0) return v;
+    if (a.bufferView < 0 || size_t(a.bufferView) >= model_.bufferViews.size())
+        Fail(name + " has no valid buffer view");
+    const tinygltf::BufferView &bv = model_.bufferViews[size_t(a.bufferView)];
+    if (bv.buffer < 0 || size_t(bv.buffer) >= model_.buffers.size())
+        Fail(name + ": buffer view " + std::to_string(a.bufferView) + " has no valid buffer");
+    const tinygltf::Buffer &buf = model_.buffers[size_t(bv.buffer)];
+    uint64_t elemSize = uint64_t(cs) * uint64_t(v.components);
+    uint64_t stride = bv.byteStride ? bv.byteStride : elemSize;
+    if (stride < elemSize) Fail(name + ": byteStride " + std::to_string(stride) +
+                                " is smaller than the element size " + std::to_string(elemSize));
+    // All in 64-bit with the count bounded first, so nothing can overflow.
+    uint64_t viewEnd = uint64_t(bv.byteOffset) + uint64_t(bv.byteLength);
+    if (bv.byteOffset > buf.data.size() || viewEnd > buf.data.size())
+        Fail(name + ": buffer view " + std::to_string(a.bufferView) + " reaches past the end of " +
+             "its buffer (" + std::to_string(viewEnd) + " > " + std::to_string(buf.data.size()) +
+             " bytes)");
+    if (a.count > bv.byteLength || a.byteOffset > bv.byteLength)
+        Fail(name + " reaches past the end of its buffer view");
+    uint64_t need = uint64_t(a.byteOffset) + stride * (uint64_t(a.count) - 1) + elemSize;
+    if (need > bv.byteLength)
+        Fail(name + " reaches past the end of its buffer view (" + std::to_string(need) + " > " +
+             std::to_string(bv.byteLength) + " bytes)");
+    v.data = buf.data.data() + bv.byteOffset + a.byteOffset;
+    v.stride = size_t(stride);
+    return v;
+}
+
+// One component as double; normalized integers map to [0, 1] / [-1, 1] (glTF 2.0 §3.11).
+double Component(const AccessorView &v, size_t i, int c) {
+    const unsigned char *p = v.data + i * v.stride;
+    switch (v.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float x; std::memcpy(&x, p + 4 * c, 4); return x; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+        double x = p[c];
+        return v.normalized ? x / 255.0 : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        int8_t x; std::memcpy(&x, p + c, 1);
+        return v.normalized ? std::max(x / 127.0, -1.0) : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t x; std::memcpy(&x, p + 2 * c, 2);
+        return v.normalized ? x / 65535.0 : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        int16_t x; std::memcpy(&x, p + 2 * c, 2);
+        return v.normalized ? std::max(x / 32767.0, -1.0) : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t x; std::memcpy(&x, p + 4 * c, 4); return x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_INT: { int32_t x; std::memcpy(&x, p + 4 * c, 4); return x; }
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE: { double x; std::memcpy(&x, p + 8 * c, 8); return x; }
+    }
+    return 0;
+}
+
+std::vector<Vec3f> GltfReader::ReadVec3(int accessor, const std::string &what) {
+    AccessorView v = View(accessor, what);
+    if (v.components != 3) Fail(what + " accessor must be VEC3");
+    if (v.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+        Fail(what + " accessor must have float components");
+    std::vector<Vec3f> out(v.count);
+    for (size_t i = 0; i < v.count; ++i) {
+        out[i] = Vec3f(float(Component(v, i, 0)), float(Component(v, i, 1)),
+                       float(Component(v, i, 2)));
+        if (!std::isfinite(out[i].x) || !std::isfinite(out[i].y) || !std::isfinite(out[i].z))
+            Fail(what + " accessor contains a value that is not a finite number");
+    }
+    return out;
+}
+
+std::vector<Vec2f> GltfReader::ReadTexcoords(int accessor) {
+    AccessorView v = View(accessor, "TEXCOORD_0");
+    if (v.components != 2) Fail("TEXCOORD_0 accessor must be VEC2");
+    bool ok = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+              (v.normalized && (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    if (!ok) Fail("TEXCOORD_0 accessor must be float or normalized unsigned byte/short");
+    std::vector<Vec2f> out(v.count);
+    // glTF's texture origin is the top-left corner, pbrt's (and Prism's) the bottom-left.
+    for (size_t i = 0; i < v.count; ++i)
+        out[i] = Vec2f(float(Component(v, i, 0)), float(1.0 - Component(v, i, 1)));
+    return out;
+}
+
+std::vector<int> GltfReader::ReadIndices(int accessor, size_t vertexCount) {
+    AccessorView v = View(accessor, "indices");
+    if (v.components != 1) Fail("indices accessor must be SCALAR");
+    if (v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        Fail("indices accessor must be unsigned byte, short or int");
+    std::vector<int> out(v.count);
+    for (size_t i = 0; i < v.count; ++i) {
+        double x = Component(v, i, 0);
+        if (x >= double(vertexCount))
+            Fail("index " + std::to_string(uint64_t(x)) + " in accessor " +
+                 std::to_string(accessor) + " is out of range (" + std::to_string(vertexCount) +
+                 " vertices)");
+        out[i] = int(x);
+    }
+    return out;
+}
+
+void GltfReader::AddMesh(int meshIndex, const Transform &worldFromObject) {
+    if (meshIndex < 0 || size_t(meshIndex) >= model_.meshes.size())
+        Fail("node refers to mesh " + std::to_string(meshIndex) + ", which does not exist");
+    const tinygltf::Mesh &mesh = model_.meshes[size_t(meshIndex)];
+    for (const tinygltf::Primitive &prim : mesh.primitives) {
+        int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES) {
+            if (warnedModes_.insert(mode).second)
+                diag_.Warn(loc_, "primitive mode " + std::to_string(mode) +
+                                     " is not supported (only triangles); such primitives are "
+                                     "skipped");
+            continue;
+        }
+        auto pos = prim.attributes.find("POSITION");
+        if (pos == prim.attributes.end()) {
+            diag_.Warn(loc_, "mesh \"" + mesh.name +
+                                 "\" has a primitive without POSITION; skipped");
+            continue;
+        }
+        std::vector<Vec3f> P = ReadVec3(pos->second, "POSITION");
+        std::vector<Vec3f> N;
+        std::vector<Vec2f> uv;
+        if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
+            N = ReadVec3(it->second, "NORMAL");
+            if (N.size() != P.size()) Fail("NORMAL and POSITION accessors differ in count");
+        }
+        if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
+            uv = ReadTexcoords(it->second);
+            if (uv.size() != P.size()) Fail("TEXCOORD_0 and POSITION accessors differ in count");
+        }
+        std::vector<int> indices;
+        if (prim.indices >= 0) {
+            indices = ReadIndices(prim.indices, P.size());
+        } else {
+            indices.resize(P.size());
+            for (size_t i = 0; i < P.size(); ++i) indices[i] = int(i);
+        }
+        indices.resize(indices.size() / 3 * 3);
+        if (indices.empty() || P.empty()) continue;
+        if (prim.material >= int(model_.materials.size()))
+            Fail("primitive refers to material " + std::to_string(prim.material) +
+                 ", which does not exist");
+        ShapeDesc s;
+        s.type = "trianglemesh";
+        s.loc = loc_;
+        s.worldFromObject = worldFromObject;
+        s.material = prim.material;  // desc.materials mirrors model.materials
+        s.areaLight = prim.material >= 0 ? areaLightOfMaterial_[size_t(prim.material)] : -1;
+        s.directiveIndex = int(desc_.shapes.size());
+        s.params = TriangleMeshParams(indices, P, N, uv, loc_);
+        desc_.shapes.push_back(std::move(s));
+    }
+}
+
+// Keeps only the rigid part of a camera node's transform (glTF asks for unscaled camera nodes;
+// a scaled parent such as Duck's 0.01 root must not shrink the view).
+Matrix4 RigidPart(const Matrix4 &m) {
+    Vec3d c[3];
+    for (int j = 0; j < 3; ++j) c[j] = Vec3d(m.m[0][j], m.m[1][j], m.m[2][j]);
+    c[0] = Normalize(c[0]);
+    c[1] = Normalize(c[1] - c[0] * Dot(c[0], c[1]));
+    c[2] = Cross(c[0], c[1]);  // right-handed, like the glTF camera frame
+    Matrix4 r = Matrix4::Identity();
+    for (int j = 0; j < 3; ++j) {
+        r.m[0][j] = c[j].x; r.m[1][j] = c[j].y; r.m[2][j] = c[j].z;
+    }
+    for (int i = 0; i < 3; ++i) r.m[i][3] = m.m[i][3];
+    return r;
+}
+
+void GltfReader::AddCamera(const tinygltf::Node &node, const Matrix4 &world) {
+    if (node.camera < 0 || size_t(node.camera) >= model_.cameras.size())
+        Fail("node refers to camera " + std::to_string(node.camera) + ", which does not exist");
+    const tinygltf::Camera &cam = model_.cameras[size_t(node.camera)];
+    Matrix4 rigid = RigidPart(world);
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c)
+            if (!std::isfinite(rigid.m[r][c])) {
+                diag_.Warn(loc_, "camera node has a degenerate transform; camera ignored");
+                return;
+            }
+    CameraDesc &cd = desc_.camera;
+    cd.loc = loc_;
+    // glTF cameras look down -z with +y up (right-handed); pbrt's look down +z with +y up and
+    // +x to the right of the image (left-handed). Flipping z maps glTF-camera right to pbrt
+    // right and "in front" to z > 0 without mirroring the image.
+    cd.cameraFromWorld = Scale(1, 1, -1) * Transform(rigid).Inverse();
+    if (cam.type == "orthographic") {
+        const auto &o = cam.orthographic;
+        if (!(o.xmag != 0 && o.ymag != 0)) Fail("orthographic camera needs non-zero xmag and ymag");
+        cd.type = "orthographic";
+        Param p = MakeParam(ParamType::Float, "screenwindow", loc_);
+        double x = std::abs(o.xmag), y = std::abs(o.ymag);
+        p.numbers = {-x, x, -y, y};
+        cd.params.Add(std::move(p));
+    } else {
+        const auto &p = cam.perspective;
+        if (!(p.yfov > 0 && p.yfov < Pi)) Fail("perspective camera yfov must be in (0, pi)");
+        cd.type = "perspective";
+        // pbrt's fov spans the shorter image axis; glTF's yfov always spans the vertical one.
+        double aspect = p.aspectRatio > 0 ? p.aspectRatio : 1280.0 / 720.0;
+        if (p.aspectRatio > 0) {
+            ParamSet &film = desc_.film.params;
+            int xres = aspect >= 1 ? 1280 : std::max(1, int(std::lround(1280 * aspect)));
+            int yres = aspect >= 1 ? std::max(1, int(std::lround(1280 / aspect))) : 1280;
+            AddInts(film, "xresolution", {xres}, loc_);
+            AddInts(film, "yresolution", {yres}, loc_);
+        }
+        double fov = aspect >= 1 ? p.yfov : 2 * std::atan(std::tan(p.yfov / 2) * aspect);
+        AddFloat(cd.params, "fov", Degrees(fov), loc_);
+    }
+    cd.specified = true;
+    haveCamera_ = true;
+}
+
+// KHR_lights_punctual. Units: glTF gives candela (point/spot) and lux (directional); Prism is
+// radiometric RGB, and we take 1 cd as I = 1 and 1 lx as L = 1 (no 683 lm/W factor), so
+// I = color * intensity and L = color * intensity. "range" is ignored (pbrt lights have none).
+void GltfReader::AddLight(const tinygltf::Node &node, const Matrix4 &world) {
+    auto it = node.extensions.find("KHR_lights_punctual");
+    if (it == node.extensions.end() || !it->second.IsObject() || !it->second.Has("light")) return;
+    const tinygltf::Value &li = it->second.Get("light");
+    if (!li.IsInt() && !li.IsNumber()) Fail("KHR_lights_punctual light index must be a number");
+    int index = li.GetNumberAsInt();
+    if (index < 0 || size_t(index) >= model_.lights.size())
+        Fail("node refers to light " + std::to_string(index) + ", which does not exist");
+    const tinygltf::Light &l = model_.lights[size_t(index)];
+    double col[3] = {1, 1, 1};
+    if (l.color.size() == 3)
+        for (int i = 0; i < 3; ++i) col[i] = l.color[size_t(i)];
+    double k = l.intensity;
+    LightDesc ld;
+    ld.loc = loc_;
+    try {
+        ld.worldFromLight = Transform(world);
+    } catch (const std::invalid_argument &) {
+        diag_.Warn(loc_, "light node has a singular transform; light ignored");
+        return;
+    }
+    Vec3d origin(0, 0, 0), forward(0, 0, -1);  // glTF lights shine down -z
+    if (l.type == "point") {
+        ld.type = "point";
+        AddRGB(ld.params, "I", col[0] * k, col[1] * k, col[2] * k, loc_);
+        AddPoint3(ld.params, "from", origin, loc_);
+    } else if (l.type == "spot") {
+        ld.type = "spot";
+        AddRGB(ld.params, "I", col[0] * k, col[1] * k, col[2] * k, loc_);
+        AddPoint3(ld.params, "from", origin, loc_);
+        AddPoint3(ld.params, "to", forward, loc_);
+        double outer = Clamp(l.spot.outerConeAngle, 0.0, Pi / 2);
+        double inner = Clamp(l.spot.innerConeAngle, 0.0, outer);
+        AddFloat(ld.params, "coneangle", Degrees(outer), loc_);
+        AddFloat(ld.params, "conedeltaangle", Degrees(outer - inner), loc_);
+    } else if (l.type == "directional") {
+        ld.type = "distant";
+        AddRGB(ld.params, "L", col[0] * k, col[1] * k, col[2] * k, loc_);
+        AddPoint3(ld.params, "from", origin, loc_);
+        AddPoint3(ld.params, "to", forward, loc_);
+    } else {
+        diag_.Warn(loc_, "unknown KHR_lights_punctual type \"" + l.type + "\"; light ignored");
+        return;
+    }
+    desc_.lights.push_back(std::move(ld));
+}
+
+void GltfReader::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<int> &path) {
+    if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size())
+        Fail("reference to node " + std::to_string(nodeIndex) + ", which does not exist");
+    for (int p : path)
+        if (p == nodeIndex) Fail("node " + std::to_string(nodeIndex) + " is its own ancestor");
+    if (path.size() > 1000) Fail("node hierarchy is deeper than 1000 levels");
+    const tinygltf::Node &node = model_.nodes[size_t(nodeIndex)];
+    Matrix4 world = parent * NodeLocalMatrix(node, loc_);
+    if (node.mesh >= 0) {
+        Transform t;
+        bool ok = true;
+        try {
+            t = Transform(world);
+        } catch (const std::invalid_argument &) {
+            ok = false;  // zero scale hides a node; nothing to render
+        }
+        if (ok) AddMesh(node.mesh, t);
+    }
+    if (node.camera >= 0 && !haveCamera_) AddCamera(node, world);
+    AddLight(node, world);
+    path.push_back(nodeIndex);
+    for (int c : node.children) Traverse(c, world, path);
+    path.pop_back();
+}
+
+std::string GltfReader::ImageFilename(int imageIndex) {
+    auto it = imageFilenames_.find(imageIndex);
+    if (it != imageFilenames_.end()) return it->second;
+    const tinygltf::Image &img = model_.images[size_t(imageIndex)];
+    std::string filename;
+    if (!img.uri.empty() && img.uri.compare(0, 5, "data:") != 0) {
+        filename = DecodeUri(img.uri);
+    } else if (!img.image.empty()) {
+        EmbeddedImage e;
+        e.name = img.name.empty() ? "image " + std::to_string(imageIndex) : img.name;
+        e.mimeType = img.mimeType;
+        e.bytes = img.image;
+        filename = "embedded:" + std::to_string(desc_.embeddedImages.size());
+        desc_.embeddedImages.push_back(std::move(e));
+    }
+    imageFilenames_[imageIndex] = filename;
+    return filename;
+}
+
+// An "imagemap" texture for a glTF texture, shared by every material that uses it; "" if the
+// texture has no usable image.
+std::string GltfReader::TextureFor(int textureIndex) {
+    auto it = textureNames_.find(textureIndex);
+    if (it != textureNames_.end()) return it->second;
+    std::string name;
+    if (textureIndex >= 0 && size_t(textureIndex) < model_.textures.size()) {
+        const tinygltf::Texture &tex = model_.textures[size_t(textureIndex)];
+        if (tex.source >= 0 && size_t(tex.source) < model_.images.size()) {
+            std::string file = ImageFilename(tex.source);
+            if (!file.empty()) {
+                TextureDesc t;
+                t.type = "imagemap";
+                t.name = "gltf:texture" + std::to_string(textureIndex);
+                t.loc = loc_;
+                AddString(t.params, "filename", file, loc_);
+                if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size() &&
+                    model_.samplers[size_t(tex.sampler)].wrapS ==
+                        TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
+                    AddString(t.params, "wrap", "clamp", loc_);
+                name = t.name;
+                desc_.textures.push_back(std::move(t));
+            }
+        }
+    }
+    if (name.empty())
+        diag_.Warn(loc_, "texture " + std::to_string(textureIndex) +
+                             " has no usable image; ignored");
+    textureNames_[textureIndex] = name;
+    return name;
+}
+
+// Metallic-roughness → pbrt-v3 materials (Whitted approximations):
+//  - KHR_materials_transmission > 0 → "glass" (index = KHR_materials_ior, default 1.5;
+//    Kt = base colour factor).
+//  - metallic >= 0.5 → "metal" with eta = 1 and k = 2 sqrt(F0) / sqrt(1 - F0) per channel,
+//    F0 = base colour factor clamped below 0.999: for eta = 1 the conductor Fresnel at normal
+//    incidence is k² / (4 + k²), which this choice makes equal to F0. roughness = glTF
+//    roughness² (alpha), remaproughness false. Base colour textures are not used for metals.
+//    A metal whose metalness comes from a metallicRoughnessTexture and whose colour comes
+//    from a baseColorTexture (e.g. DamagedHelmet) is treated as plastic instead: per-texel
+//    metalness cannot be expressed, and an untextured tinted metal would hide the texture.
+//  - otherwise → "plastic": Kd = base colour (texture × factor), Ks = 1, roughness = glTF
+//    roughness², remaproughness false. Ks is 1, not 0.04, because pbrt's plastic already
+//    multiplies Ks by a dielectric Fresnel term with eta 1.5, which is 0.04 at normal incidence.
+//  - emissiveFactor × KHR_materials_emissive_strength → a "diffuse" area light on every shape
+//    with the material, unless an emissiveTexture modulates it (not supported: a full-strength
+//    emitter would be far brighter than intended, so emission is dropped with a warning).
+void GltfReader::ConvertMaterials() {
+    for (size_t mi = 0; mi < model_.materials.size(); ++mi) {
+        const tinygltf::Material &m = model_.materials[mi];
+        const auto &pbr = m.pbrMetallicRoughness;
+        MaterialDesc md;
+        md.name = m.name.empty() ? "material " + std::to_string(mi) : m.name;
+        md.loc = loc_;
+        ParamSet &ps = md.params;
+        double base[3] = {1, 1, 1};
+        if (pbr.baseColorFactor.size() >= 3)
+            for (int i = 0; i < 3; ++i) base[i] = Clamp(pbr.baseColorFactor[size_t(i)], 0.0, 1.0);
+        double rough = Clamp(pbr.roughnessFactor, 0.0, 1.0);
+        double alpha = rough * rough;
+        double metallic = Clamp(pbr.metallicFactor, 0.0, 1.0);
+        double transmission =
+            ExtNumber(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0);
+        if (transmission > 0) {
+            md.type = "glass";
+            AddFloat(ps, "index", ExtNumber(m.extensions, "KHR_materials_ior", "ior", 1.5), loc_);
+            AddRGB(ps, "Kr", 1, 1, 1, loc_);
+            AddRGB(ps, "Kt", base[0], base[1], base[2], loc_);
+        } else if (metallic >= 0.5 && !(pbr.metallicRoughnessTexture.index >= 0 &&
+                                         pbr.baseColorTexture.index >= 0)) {
+            md.type = "metal";
+            double k[3];
+            for (int i = 0; i < 3; ++i) {
+                double f0 = std::min(base[i], 0.999);
+                k[i] = 2 * std::sqrt(f0) / std::sqrt(1 - f0);
+            }
+            AddRGB(ps, "eta", 1, 1, 1, loc_);
+            AddRGB(ps, "k", k[0], k[1], k[2], loc_);
+            AddFloat(ps, "roughness", alpha, loc_);
+            AddBool(ps, "remaproughness", false, loc_);
+        } else {
+            md.type = "plastic";
+            std::string tex;
+            if (pbr.baseColorTexture.index >= 0) tex = TextureFor(pbr.baseColorTexture.index);
+            if (tex.empty()) {
+                AddRGB(ps, "Kd", base[0], base[1], base[2], loc_);
+            } else if (base[0] == 1 && base[1] == 1 && base[2] == 1) {
+                AddTexture(ps, "Kd", tex, loc_);
+            } else {
+                // pbrt's imagemap has no tint: multiply with a "scale" texture.
+                TextureDesc sc;
+                sc.type = "scale";
+                sc.name = "gltf:material" + std::to_string(mi) + ":baseColor";
+                sc.loc = loc_;
+                AddTexture(sc.params, "tex1", tex, loc_);
+                AddRGB(sc.params, "tex2", base[0], base[1], base[2], loc_);
+                AddTexture(ps, "Kd", sc.name, loc_);
+                desc_.textures.push_back(std::move(sc));
+            }
+            AddRGB(ps, "Ks", 1, 1, 1, loc_);
+            AddFloat(ps, "roughness", alpha, loc_);
+            AddBool(ps, "remaproughness", false, loc_);
+        }
+        desc_.materials.push_back(std::move(md));
+
+        int light = -1;
+        double e[3] = {0, 0, 0};
+        if (m.emissiveFactor.size() >= 3)
+            for (int i = 0; i < 3; ++i) e[i] = std::max(0.0, m.emissiveFactor[size_t(i)]);
+        double strength =
+            ExtNumber(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1);
+        if (e[0] > 0 || e[1] > 0 || e[2] > 0) {
+            if (m.emissiveTexture.index >= 0) {
+                diag_.Warn(loc_, "material \"" + desc_.materials.back().name +
+                                     "\": emissive textures are not supported; emission ignored");
+            } else {
+                AreaLightDesc al;
+                al.type = "diffuse";
+                al.loc = loc_;
+                AddRGB(al.params, "L", e[0] * strength, e[1] * strength, e[2] * strength, loc_);
+                // OBJ/glTF carry no sample count: 16 stratified shadow rays give clean soft shadows.
+                AddInts(al.params, "nsamples", {16}, loc_);
+                light = int(desc_.areaLights.size());
+                desc_.areaLights.push_back(std::move(al));
+            }
+        }
+        areaLightOfMaterial_.push_back(light);
+    }
+}
+
+void GltfReader::Read() {
+    static const std::set<std::string> supported = {
+        "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
+        "KHR_materials_emissive_strength"};
+    std::string unknown;
+    for (const std::string &e : model_.extensionsRequired)
+        if (!supported.count(e)) unknown += (unknown.empty() ? "" : ", ") + e;
+    if (!unknown.empty())
+        diag_.Warn(loc_, "required glTF extensions are not supported and are ignored: " + unknown);
+
+    ConvertMaterials();
+    if (model_.scenes.empty()) {
+        // No scene: glTF allows this for libraries of assets; render every root node.
+        std::vector<bool> isChild(model_.nodes.size(), false);
+        for (const tinygltf::Node &n : model_.nodes)
+            for (int c : n.children)
+                if (c >= 0 && size_t(c) < isChild.size()) isChild[size_t(c)] = true;
+        std::vector<int> path;
+        for (size_t i = 0; i < model_.nodes.size(); ++i)
+            if (!isChild[i]) Traverse(int(i), Matrix4::Identity(), path);
+        return;
+    }
+    int sceneIndex = model_.defaultScene;
+    if (sceneIndex < 0 || size_t(sceneIndex) >= model_.scenes.size()) sceneIndex = 0;
+    std::vector<int> path;
+    for (int n : model_.scenes[size_t(sceneIndex)].nodes) Traverse(n, Matrix4::Identity(), path);
+}
+
+}  // namespace
+
+SceneDescription LoadGltf(const std::string &path, Diagnostics &diag) {
+    namespace fs = std::filesystem;
+    FileLoc loc{path};
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw SceneError(loc, "cannot open file \"" + path + "\"");
+
+    tinygltf::Model model;
+    tinygltf::TinyGLTF ctx;
+    ctx.SetImageLoader(&KeepEncodedBytes, nullptr);
+    std::string err, warn;
+    bool ok;
+    std::string ext = fs::path(path).extension().string();
+    for (char &c : ext) c = char(std::tolower((unsigned char)c));
+    try {
+        ok = ext == ".glb" ? ctx.LoadBinaryFromFile(&model, &err, &warn, path)
+                           : ctx.LoadASCIIFromFile(&model, &err, &warn, path);
+    } catch (const std::exception &e) {
+        throw SceneError(loc, std::string("cannot parse glTF file: ") + e.what());
+    }
+    for (const std::string &w : Lines(warn)) diag.Warn(loc, w);
+    if (!ok) {
+        std::vector<std::string> errs = Lines(err);
+        throw SceneError(loc, errs.empty() ? std::string("cannot parse glTF file")
+                                           : "cannot parse glTF file: " + errs.front());
+    }
+
+    SceneDescription desc;
+    desc.format = "gltf";
+    desc.sourceFile = path;
+    desc.baseDir = DirectoryOf(path);
+    GltfReader(model, path, diag, desc).Read();
+    return desc;
+}
+
+}  // namespace prism

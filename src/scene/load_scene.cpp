@@ -1,1 +1,155 @@
-// placeholder: being written
+// Format dispatch plus the defaults (camera framing, key/fill lights) that OBJ, glTF and PLY
+// scenes need because those formats usually carry neither.
+#include "scene/load_scene.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "scene/gltf_loader.h"
+#include "scene/obj_loader.h"
+#include "scene/param_builders.h"
+#include "scene/ply_reader.h"
+
+namespace prism {
+
+std::string loader::DirectoryOf(const std::string &path) {
+    return std::filesystem::path(path).parent_path().string();
+}
+
+namespace {
+
+using namespace loader;
+
+void ExpandMesh(const ShapeDesc &s, const Transform &worldFromObject, Bounds3f &b) {
+    if (s.type != "trianglemesh") return;
+    const Param *p = s.params.Find("P");
+    if (!p || p->type != ParamType::Point3) return;
+    for (size_t i = 0; i + 2 < p->numbers.size(); i += 3) {
+        Vec3d w = worldFromObject.Point(Vec3d(p->numbers[i], p->numbers[i + 1], p->numbers[i + 2]));
+        b.Expand(Vec3f(w));
+    }
+}
+
+bool HasEmitters(const SceneDescription &desc) {
+    if (!desc.lights.empty()) return true;
+    for (const ShapeDesc &s : desc.shapes)
+        if (s.areaLight >= 0) return true;
+    return false;
+}
+
+SceneDescription LoadPlyScene(const std::string &path, Diagnostics &diag, Bounds3f *bounds) {
+    // Read once here for the bounds (and to report a broken file early); the renderer reads it
+    // again through the "plymesh" shape. Warnings are left to that second read.
+    Diagnostics scratch;
+    PlyMesh mesh = ReadPly(path, scratch);
+    for (const Vec3f &p : mesh.P) bounds->Expand(p);
+    SceneDescription desc;
+    desc.format = "ply";
+    desc.sourceFile = path;
+    desc.baseDir = DirectoryOf(path);
+    ShapeDesc s;
+    s.type = "plymesh";
+    s.loc = FileLoc{path};
+    AddString(s.params, "filename", std::filesystem::path(path).filename().string(), s.loc);
+    desc.shapes.push_back(std::move(s));
+    return desc;
+}
+
+}  // namespace
+
+Bounds3f SceneMeshBounds(const SceneDescription &desc) {
+    Bounds3f b;
+    for (const ShapeDesc &s : desc.shapes) ExpandMesh(s, s.worldFromObject, b);
+    for (const InstanceDesc &inst : desc.instances)
+        for (const ObjectDesc &obj : desc.objects)
+            if (obj.name == inst.object)
+                for (const ShapeDesc &s : obj.shapes)
+                    ExpandMesh(s, inst.worldFromInstance * s.worldFromObject, b);
+    return b;
+}
+
+void FrameDefaultCamera(SceneDescription &desc, const Bounds3f &bounds) {
+    const double fovDeg = 40;
+    Vec3d centre(0, 0, 0);
+    double radius = 1;
+    if (!bounds.IsEmpty()) {
+        centre = Vec3d(bounds.Center());
+        radius = 0.5 * Length(Vec3d(bounds.Diagonal()));
+        if (!(radius > 0) || !std::isfinite(radius)) radius = 1;
+    }
+    // fov spans the shorter image axis, so the bounding sphere fits at this distance whatever
+    // the aspect ratio.
+    double dist = radius / std::sin(Radians(fovDeg / 2));
+    Vec3d eye = centre + Normalize(Vec3d(0.3, 0.25, 1.0)) * dist;
+    CameraDesc &cd = desc.camera;
+    cd = CameraDesc{};
+    cd.type = "perspective";
+    cd.loc = FileLoc{desc.sourceFile};
+    // OBJ, glTF and PLY data are right-handed with +y up. pbrt's LookAt builds a left-handed
+    // camera frame, which would mirror the image; Scale(-1, 1, 1) in camera space (as pbrt
+    // exporters do) restores "world +x appears to the right when looking down -z".
+    cd.cameraFromWorld = Scale(-1, 1, 1) * LookAt(eye, centre, Vec3d(0, 1, 0));
+    AddFloat(cd.params, "fov", fovDeg, cd.loc);
+    cd.specified = true;
+}
+
+// Two distant lights placed relative to the camera, so the lit side faces the viewer whether
+// the camera was framed here or came from the file: a key of L = 2.5 from the camera's upper
+// left, slightly behind the viewer (a white Lambertian surface facing it reflects
+// 2.5 / pi ≈ 0.8), and a fill of L = 0.8 from the right at a low angle so surfaces facing away
+// from the key are not black. Camera space has +x to the image's right, +y up and +z ahead
+// for every camera Prism builds (see FrameDefaultCamera and the glTF loader).
+void AddDefaultLight(SceneDescription &desc, const Bounds3f &) {
+    FileLoc loc{desc.sourceFile};
+    Transform worldFromCamera = desc.camera.cameraFromWorld.Inverse();
+    auto Add = [&](Vec3d towardLightCamera, double L) {
+        Vec3d w = Normalize(worldFromCamera.Vector(towardLightCamera));
+        LightDesc l;
+        l.type = "distant";
+        l.loc = loc;
+        AddRGB(l.params, "L", L, L, L, loc);
+        AddPoint3(l.params, "from", w, loc);
+        AddPoint3(l.params, "to", Vec3d(0, 0, 0), loc);
+        desc.lights.push_back(std::move(l));
+    };
+    Add(Vec3d(-0.5, 0.8, -0.6), 2.5);
+    Add(Vec3d(1.0, 0.1, -0.3), 0.8);
+}
+
+SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const LoadOptions &opts) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw SceneError(FileLoc{path}, "cannot open file \"" + path + "\"");
+    std::string ext = fs::path(path).extension().string();
+    for (char &c : ext) c = char(std::tolower((unsigned char)c));
+
+    if (ext == ".pbrt") return ParsePbrtFile(path, diag, opts.pbrt);
+
+    SceneDescription desc;
+    Bounds3f bounds;
+    if (ext == ".obj") {
+        desc = LoadObj(path, diag);
+        bounds = SceneMeshBounds(desc);
+    } else if (ext == ".gltf" || ext == ".glb") {
+        desc = LoadGltf(path, diag);
+        bounds = SceneMeshBounds(desc);
+    } else if (ext == ".ply") {
+        desc = LoadPlyScene(path, diag, &bounds);
+    } else {
+        throw SceneError(FileLoc{path}, "unsupported scene format \"" + ext +
+                                            "\" (expected .pbrt, .obj, .gltf, .glb or .ply)");
+    }
+    if (bounds.IsEmpty()) desc.notes.push_back("the scene contains no triangles");
+    if (opts.defaultCamera && !desc.camera.specified) {
+        FrameDefaultCamera(desc, bounds);
+        desc.notes.push_back("no camera in file: framed the bounding box");
+    }
+    if (opts.defaultLights && !HasEmitters(desc)) {
+        AddDefaultLight(desc, bounds);
+        desc.notes.push_back("no lights in file: added a default key and fill light");
+    }
+    return desc;
+}
+
+}  // namespace prism

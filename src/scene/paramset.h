@@ -49,7 +49,8 @@ public:
     Vec3f GetVector3(const std::string &name, const Vec3f &def) const;
     Vec3f GetNormal(const std::string &name, const Vec3f &def) const;
     RGB GetRGB(const std::string &name, const RGB &def) const;
-    // Name of the texture bound by a "texture NAME" parameter, or "" if absent.
+    // Name of the texture bound by a "texture NAME" parameter, or "" if absent or if the
+    // parameter has another type (material parameters may be a texture or a constant).
     std::string GetTexture(const std::string &name) const;
 
     // Array lookups: empty vector when absent.

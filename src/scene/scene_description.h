@@ -64,6 +64,27 @@ struct InstanceDesc {
     FileLoc loc;
 };
 
+// An image stored inside a scene file (glTF data URI or .glb bufferView). Textures refer to
+// it with the filename "embedded:<index into SceneDescription::embeddedImages>".
+struct EmbeddedImage {
+    std::string name;
+    std::string mimeType;  // "image/png", "image/jpeg", ... ("" if the file did not say)
+    std::vector<unsigned char> bytes;  // the encoded file, not decoded pixels
+};
+
+// Index named by an "embedded:<i>" texture filename, or -1 for an ordinary path.
+inline int EmbeddedImageIndex(const std::string &filename) {
+    const std::string prefix = "embedded:";
+    if (filename.compare(0, prefix.size(), prefix) != 0 || filename.size() == prefix.size())
+        return -1;
+    int v = 0;
+    for (size_t i = prefix.size(); i < filename.size(); ++i) {
+        if (filename[i] < '0' || filename[i] > '9' || v > 100000000) return -1;
+        v = v * 10 + (filename[i] - '0');
+    }
+    return v;
+}
+
 struct SceneDescription {
     CameraDesc camera;
     SceneEntity film{"image", {}, {}};
@@ -79,7 +100,11 @@ struct SceneDescription {
     std::vector<InstanceDesc> instances;
     std::string baseDir;      // directory of the top-level file: relative paths resolve here
     std::string sourceFile;   // the top-level file
-    std::string format;       // "pbrt", "obj", "gltf"
+    std::string format;       // "pbrt", "obj", "gltf", "ply"
+    std::vector<EmbeddedImage> embeddedImages;
+    // Informational notes from the loader about what it supplied or interpreted, e.g. "no
+    // camera in file: framed the bounding box" (not warnings: nothing is wrong with the file).
+    std::vector<std::string> notes;
 };
 
 }  // namespace prism

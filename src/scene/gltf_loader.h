@@ -1,0 +1,16 @@
+// glTF 2.0 loader (.gltf and .glb, via tinygltf): the default scene's node hierarchy, triangle
+// primitives, the first camera, KHR_lights_punctual lights and approximate pbrt-v3 materials.
+#pragma once
+
+#include <string>
+
+#include "scene/scene_description.h"
+
+namespace prism {
+
+// Throws SceneError for unreadable or malformed files (including accessors that reach past
+// their buffers). Embedded images are returned in SceneDescription::embeddedImages and
+// referenced by textures as "embedded:<index>"; nothing is written to disk.
+SceneDescription LoadGltf(const std::string &path, Diagnostics &diag);
+
+}  // namespace prism

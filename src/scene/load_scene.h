@@ -1,0 +1,38 @@
+// Entry point for reading any supported scene file: dispatches on the extension (.pbrt, .obj,
+// .gltf/.glb, .ply) and, for formats without a camera or lights, supplies sensible defaults.
+#pragma once
+
+#include <string>
+
+#include "core/vecmath.h"
+#include "scene/pbrt_parser.h"
+#include "scene/scene_description.h"
+
+namespace prism {
+
+struct LoadOptions {
+    PbrtParseOptions pbrt;
+    // For OBJ/glTF/PLY input: frame the geometry when the file has no camera, and add lights
+    // when it has neither lights nor emissive materials. (pbrt files keep pbrt's defaults.)
+    bool defaultCamera = true;
+    bool defaultLights = true;
+};
+
+// Throws SceneError: `cannot open file "..."` for a missing file, `unsupported scene format
+// ".xyz" (...)` for an unknown extension, and whatever the format's reader reports.
+SceneDescription LoadScene(const std::string &path, Diagnostics &diag,
+                           const LoadOptions &opts = {});
+
+// World-space bounds of the scene's "trianglemesh" shapes (P through worldFromObject, for
+// top-level shapes and object instances). Other shape types are not included.
+Bounds3f SceneMeshBounds(const SceneDescription &desc);
+
+// Sets a perspective camera (fov 40 degrees on the shorter axis, +y up) looking at the centre
+// of `bounds` from the front, right and above, far enough for the bounding sphere to fit.
+void FrameDefaultCamera(SceneDescription &desc, const Bounds3f &bounds);
+
+// Adds a distant key light from the camera's upper left (from the viewer's side) and a weaker
+// fill from the right; directions follow desc.camera, so call it after the camera is final.
+void AddDefaultLight(SceneDescription &desc, const Bounds3f &bounds);
+
+}  // namespace prism

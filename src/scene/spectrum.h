@@ -1,0 +1,34 @@
+// Conversion of pbrt's spectral parameter types (xyz, blackbody, sampled spectra) to the
+// linear sRGB (Rec.709 primaries, D65 white) values the renderer works in.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "core/color.h"
+
+namespace prism {
+
+// CIE 1931 2° colour matching functions, from the multi-lobe Gaussian fit of Wyman, Sloan and
+// Shirley 2013 ("Simple Analytic Approximations to the CIE XYZ Color Matching Functions").
+// lambda in nanometres.
+double CIEXBar(double lambda);
+double CIEYBar(double lambda);
+double CIEZBar(double lambda);
+
+// Linear sRGB from CIE XYZ (no chromatic adaptation; Y = 1 is unit luminance).
+RGB XYZToRGB(double x, double y, double z);
+
+// Converts a piecewise-linear spectrum given as (lambda nm, value) samples, following pbrt's
+// RGBSpectrum::FromSampled: XYZ = ∫S·cmf dλ / ∫ybar dλ over 360–830 nm, then XYZ→RGB.
+// Values outside the sampled range are clamped to the end samples. Unsorted input is sorted.
+// An empty list gives black. Note that, as in pbrt-v3, a flat spectrum of 1 has XYZ ≈ (1,1,1)
+// (illuminant E), which is slightly reddish in sRGB: about (1.20, 0.95, 0.91).
+RGB SampledToRGB(std::vector<std::pair<double, double>> samples);
+
+// pbrt-v3 "blackbody" [T scale]: Planck's law for temperature T (kelvin) normalized so its peak
+// (at Wien's wavelength, as pbrt-v3 BlackbodyNormalized) is 1, converted as SampledToRGB and
+// multiplied by scale. T <= 0 or non-finite gives black.
+RGB BlackbodyToRGB(double temperatureK, double scale = 1.0);
+
+}  // namespace prism

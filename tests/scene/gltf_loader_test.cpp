@@ -1,0 +1,338 @@
+// glTF loader: node transforms, primitives, camera conventions, KHR lights, materials,
+// embedded images, and clean errors for malformed accessors.
+#include "scene/gltf_loader.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+namespace prism {
+namespace {
+
+std::string WriteFile(const std::string &name, const std::string &contents) {
+    std::string path = ::testing::TempDir() + name;
+    std::ofstream(path, std::ios::binary) << contents;
+    return path;
+}
+
+std::string Base64(const std::string &in) {
+    static const char *tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    size_t i = 0;
+    for (; i + 2 < in.size(); i += 3) {
+        uint32_t v = uint32_t((unsigned char)in[i]) << 16 |
+                     uint32_t((unsigned char)in[i + 1]) << 8 | uint32_t((unsigned char)in[i + 2]);
+        for (int k = 3; k >= 0; --k) out += tbl[(v >> (6 * k)) & 63];
+    }
+    if (i < in.size()) {
+        uint32_t v = uint32_t((unsigned char)in[i]) << 16;
+        if (i + 1 < in.size()) v |= uint32_t((unsigned char)in[i + 1]) << 8;
+        out += tbl[(v >> 18) & 63];
+        out += tbl[(v >> 12) & 63];
+        out += i + 1 < in.size() ? tbl[(v >> 6) & 63] : '=';
+        out += '=';
+    }
+    return out;
+}
+
+template <typename T>
+void Put(std::string &buf, std::initializer_list<T> values) {
+    for (T v : values) {
+        char b[sizeof(T)];
+        std::memcpy(b, &v, sizeof(T));
+        buf.append(b, sizeof(T));
+    }
+}
+
+// 140 bytes: 4 positions (0), 6 ushort indices (48), 4 normals (60), 4 texcoords (108).
+std::string QuadBuffer() {
+    std::string b;
+    Put<float>(b, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
+    Put<uint16_t>(b, {0, 1, 2, 0, 2, 3});
+    for (int i = 0; i < 4; ++i) Put<float>(b, {0, 0, 1});
+    Put<float>(b, {0, 0, 1, 0, 1, 1, 0, 1});
+    return b;
+}
+
+std::string Replace(std::string s, const std::string &from, const std::string &to) {
+    size_t p = s.find(from);
+    if (p != std::string::npos) s.replace(p, from.size(), to);
+    return s;
+}
+
+const char *kGltf = R"({
+  "asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
+                     "KHR_materials_emissive_strength", "EXT_made_up"],
+  "extensionsRequired": ["KHR_lights_punctual", "EXT_made_up"],
+  "scene": SCENE,
+  "scenes": [{"nodes": [0]}, {"nodes": [5]}, {"nodes": [6]}],
+  "nodes": [
+    {"name": "root", "translation": [1, 2, 3], "children": [1, 2, 3, 4]},
+    {"mesh": 0, "rotation": [0, 0.7071067811865476, 0, 0.7071067811865476], "scale": [2, 2, 2]},
+    {"mesh": 1, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,-5,1]},
+    {"camera": 0, "translation": [0, 0, 10]},
+    {"rotation": [-0.7071067811865476, 0, 0, 0.7071067811865476],
+     "extensions": {"KHR_lights_punctual": {"light": 0}}},
+    {"camera": 1},
+    {"camera": 2}
+  ],
+  "cameras": [
+    {"type": "perspective", "perspective": {"aspectRatio": 1.5, "yfov": 0.5, "znear": 0.1}},
+    {"type": "orthographic", "orthographic": {"xmag": 2, "ymag": 1.5, "znear": 0.1, "zfar": 10}},
+    {"type": "perspective", "perspective": {"aspectRatio": 0.5, "yfov": 0.8, "znear": 0.1}}
+  ],
+  "extensions": {"KHR_lights_punctual": {"lights": [
+    {"type": "spot", "color": [1, 0.5, 0.25], "intensity": 100,
+     "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}}]}},
+  "meshes": [
+    {"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 2, "TEXCOORD_0": 3},
+                     "indices": 1, "material": 0}]},
+    {"primitives": [{"attributes": {"POSITION": 4}, "material": 1},
+                    {"attributes": {"POSITION": 0}, "mode": 1},
+                    {"attributes": {"POSITION": 0}, "mode": 0},
+                    {"attributes": {"POSITION": 0}, "mode": 1},
+                    {"attributes": {"POSITION": 4}, "material": 2, "mode": 4},
+                    {"attributes": {"POSITION": 4}, "material": 3},
+                    {"attributes": {"POSITION": 4}, "material": 4}]}
+  ],
+  "materials": [
+    {"name": "textured", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1],
+      "baseColorTexture": {"index": 0}, "metallicFactor": 0, "roughnessFactor": 0.5}},
+    {"name": "gold", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.3, 1],
+      "metallicFactor": 1, "roughnessFactor": 0.2}},
+    {"name": "water", "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+                                     "KHR_materials_ior": {"ior": 1.33}}},
+    {"name": "lamp", "emissiveFactor": [1, 0.5, 0.25],
+     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}}},
+    {"name": "embedded", "pbrMetallicRoughness": {"baseColorTexture": {"index": 1},
+      "metallicFactor": 0}}
+  ],
+  "textures": [{"source": 0}, {"source": 1}],
+  "images": [{"uri": "gltft%20tex.png"}, {"uri": "data:image/png;base64,IMAGE64"}],
+  "buffers": [{"uri": "BUFFERURI", "byteLength": 140}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 48},
+    {"buffer": 0, "byteOffset": 48, "byteLength": 12},
+    {"buffer": 0, "byteOffset": 60, "byteLength": 48},
+    {"buffer": 0, "byteOffset": 108, "byteLength": 32}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"},
+    {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 3, "componentType": 5126, "count": POSCOUNT, "type": "VEC2"},
+    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]}
+  ]
+})";
+
+std::string WriteGltf(const std::string &name, int scene, bool dataUriBuffer = false,
+                      const std::string &texcoordCount = "4") {
+    std::string json = Replace(kGltf, "SCENE", std::to_string(scene));
+    json = Replace(json, "POSCOUNT", texcoordCount);
+    json = Replace(json, "IMAGE64", Base64("PNGDATA"));
+    if (dataUriBuffer) {
+        json = Replace(json, "BUFFERURI",
+                       "data:application/octet-stream;base64," + Base64(QuadBuffer()));
+    } else {
+        WriteFile(name + ".bin", QuadBuffer());
+        json = Replace(json, "BUFFERURI", name + ".bin");
+    }
+    WriteFile("gltft tex.png", "not really a png");
+    return WriteFile(name + ".gltf", json);
+}
+
+Vec3d Apply(const Transform &t, Vec3d p) { return t.Point(p); }
+
+void ExpectNear(Vec3d a, Vec3d b, double eps = 1e-9) {
+    EXPECT_NEAR(a.x, b.x, eps);
+    EXPECT_NEAR(a.y, b.y, eps);
+    EXPECT_NEAR(a.z, b.z, eps);
+}
+
+const TextureDesc *FindTexture(const SceneDescription &d, const std::string &name) {
+    for (const TextureDesc &t : d.textures)
+        if (t.name == name) return &t;
+    return nullptr;
+}
+
+TEST(GltfLoader, NodesPrimitivesAndWarnings) {
+    Diagnostics diag;
+    SceneDescription d = LoadGltf(WriteGltf("gltft_main", 0), diag);
+    EXPECT_EQ(d.format, "gltf");
+    ASSERT_EQ(d.shapes.size(), 5u);  // 1 indexed quad + 4 non-indexed triangles
+
+    const ShapeDesc &quad = d.shapes[0];
+    EXPECT_EQ(quad.type, "trianglemesh");
+    EXPECT_EQ(quad.params.GetInts("indices"), (std::vector<int>{0, 1, 2, 0, 2, 3}));
+    EXPECT_EQ(quad.params.GetNormals("N").size(), 4u);
+    std::vector<Vec2f> uv = quad.params.GetPoint2s("uv");
+    ASSERT_EQ(uv.size(), 4u);
+    EXPECT_EQ(uv[0], Vec2f(0, 1));  // glTF's v runs downwards; flipped to pbrt's convention
+    EXPECT_EQ(uv[2], Vec2f(1, 0));
+    // root T(1,2,3) * R_y(90°) * S(2): object (1,0,0) → (0,0,-2) → (1,2,1).
+    ExpectNear(Apply(quad.worldFromObject, Vec3d(1, 0, 0)), Vec3d(1, 2, 1), 1e-6);
+    ExpectNear(Apply(quad.worldFromObject, Vec3d(0, 1, 0)), Vec3d(1, 4, 3), 1e-6);
+
+    const ShapeDesc &tri = d.shapes[1];
+    EXPECT_EQ(tri.params.GetInts("indices"), (std::vector<int>{0, 1, 2}));
+    EXPECT_EQ(tri.params.GetPoint3s("P").size(), 3u);
+    ExpectNear(Apply(tri.worldFromObject, Vec3d(0, 0, 0)), Vec3d(1, 2, -2));
+
+    int modeWarnings = 0, extWarnings = 0;
+    for (const Warning &w : diag.Warnings()) {
+        modeWarnings += w.message.find("primitive mode") != std::string::npos;
+        if (w.message.find("EXT_made_up") != std::string::npos) {
+            ++extWarnings;
+            EXPECT_EQ(w.message.find("KHR_lights_punctual"), std::string::npos) << w.message;
+        }
+    }
+    EXPECT_EQ(modeWarnings, 2);  // modes 0 and 1, once each
+    EXPECT_EQ(extWarnings, 1);
+}
+
+TEST(GltfLoader, PerspectiveCameraConvention) {
+    Diagnostics diag;
+    SceneDescription d = LoadGltf(WriteGltf("gltft_cam", 0), diag);
+    const CameraDesc &c = d.camera;
+    ASSERT_TRUE(c.specified);
+    EXPECT_EQ(c.type, "perspective");
+    // aspect 1.5 > 1: the vertical axis is the shorter one, so pbrt's fov is yfov.
+    EXPECT_NEAR(c.params.GetFloat("fov", 0), 0.5 * 180 / Pi, 1e-4);
+    EXPECT_EQ(d.film.params.GetInt("xresolution", 0), 1280);
+    EXPECT_EQ(d.film.params.GetInt("yresolution", 0), 853);
+    // The camera sits at (1, 2, 13) looking down world -z.
+    const Transform &cw = c.cameraFromWorld;
+    ExpectNear(Apply(cw, Vec3d(1, 2, 13)), Vec3d(0, 0, 0), 1e-9);
+    Vec3d ahead = Apply(cw, Vec3d(1, 2, 3));
+    EXPECT_NEAR(ahead.z, 10, 1e-9);                       // in front → z > 0
+    EXPECT_GT(Apply(cw, Vec3d(2, 2, 8)).x, 0);            // camera's right (+x) → x > 0
+    EXPECT_GT(Apply(cw, Vec3d(1, 3, 8)).y, 0);            // up stays up
+}
+
+TEST(GltfLoader, OrthographicAndPortraitCameras) {
+    Diagnostics diag;
+    SceneDescription d = LoadGltf(WriteGltf("gltft_ortho", 1), diag);
+    ASSERT_TRUE(d.camera.specified);
+    EXPECT_EQ(d.camera.type, "orthographic");
+    EXPECT_EQ(d.camera.params.GetFloats("screenwindow"), (std::vector<float>{-2, 2, -1.5, 1.5}));
+    EXPECT_TRUE(d.shapes.empty());
+
+    SceneDescription p = LoadGltf(WriteGltf("gltft_portrait", 2), diag);
+    // aspect 0.5: the horizontal axis is shorter; its fov is 2 atan(tan(yfov/2) * aspect).
+    double expect = 2 * std::atan(std::tan(0.4) * 0.5) * 180 / Pi;
+    EXPECT_NEAR(p.camera.params.GetFloat("fov", 0), expect, 1e-4);
+    EXPECT_EQ(p.film.params.GetInt("xresolution", 0), 640);
+    EXPECT_EQ(p.film.params.GetInt("yresolution", 0), 1280);
+}
+
+TEST(GltfLoader, SpotLight) {
+    Diagnostics diag;
+    SceneDescription d = LoadGltf(WriteGltf("gltft_light", 0), diag);
+    ASSERT_EQ(d.lights.size(), 1u);
+    const LightDesc &l = d.lights[0];
+    EXPECT_EQ(l.type, "spot");
+    RGB I = l.params.GetRGB("I", RGB(0));
+    EXPECT_FLOAT_EQ(I.r, 100);
+    EXPECT_FLOAT_EQ(I.g, 50);
+    EXPECT_FLOAT_EQ(I.b, 25);
+    EXPECT_NEAR(l.params.GetFloat("coneangle", 0), 0.5 * 180 / Pi, 1e-4);
+    EXPECT_NEAR(l.params.GetFloat("conedeltaangle", 0), 0.3 * 180 / Pi, 1e-4);
+    Vec3d from = l.worldFromLight.Point(Vec3d(l.params.GetPoint3("from", Vec3f(9, 9, 9))));
+    Vec3d to = l.worldFromLight.Point(Vec3d(l.params.GetPoint3("to", Vec3f(9, 9, 9))));
+    ExpectNear(from, Vec3d(1, 2, 3), 1e-6);
+    ExpectNear(Normalize(to - from), Vec3d(0, -1, 0), 1e-6);  // rotated to point down
+}
+
+TEST(GltfLoader, Materials) {
+    Diagnostics diag;
+    SceneDescription d = LoadGltf(WriteGltf("gltft_mat", 0, /*dataUriBuffer=*/true), diag);
+    ASSERT_EQ(d.materials.size(), 5u);
+
+    const MaterialDesc &tex = d.materials[0];
+    EXPECT_EQ(tex.type, "plastic");
+    EXPECT_NEAR(tex.params.GetFloat("roughness", 0), 0.25, 1e-6);
+    EXPECT_FALSE(tex.params.GetBool("remaproughness", true));
+    const TextureDesc *scale = FindTexture(d, tex.params.GetTexture("Kd"));
+    ASSERT_TRUE(scale);
+    EXPECT_EQ(scale->type, "scale");  // factor 0.5 × texture
+    EXPECT_FLOAT_EQ(scale->params.GetRGB("tex2", RGB(0)).g, 0.5f);
+    const TextureDesc *image = FindTexture(d, scale->params.GetTexture("tex1"));
+    ASSERT_TRUE(image);
+    EXPECT_EQ(image->type, "imagemap");
+    EXPECT_EQ(image->params.GetString("filename", ""), "gltft tex.png");  // %20 decoded
+
+    const MaterialDesc &gold = d.materials[1];
+    EXPECT_EQ(gold.type, "metal");
+    RGB k = gold.params.GetRGB("k", RGB(0)), eta = gold.params.GetRGB("eta", RGB(0));
+    EXPECT_FLOAT_EQ(eta.r, 1);
+    // Conductor reflectance at normal incidence for eta = 1: k² / (4 + k²) = base colour.
+    EXPECT_NEAR(k.r * k.r / (4 + k.r * k.r), 0.9, 1e-5);
+    EXPECT_NEAR(k.g * k.g / (4 + k.g * k.g), 0.6, 1e-5);
+    EXPECT_NEAR(k.b * k.b / (4 + k.b * k.b), 0.3, 1e-5);
+    EXPECT_NEAR(gold.params.GetFloat("roughness", 0), 0.04, 1e-6);
+
+    EXPECT_EQ(d.materials[2].type, "glass");
+    EXPECT_NEAR(d.materials[2].params.GetFloat("index", 0), 1.33, 1e-6);
+
+    ASSERT_EQ(d.areaLights.size(), 1u);
+    RGB L = d.areaLights[0].params.GetRGB("L", RGB(0));
+    EXPECT_FLOAT_EQ(L.r, 4);
+    EXPECT_FLOAT_EQ(L.g, 2);
+    EXPECT_FLOAT_EQ(L.b, 1);
+    int emissive = 0;
+    for (const ShapeDesc &s : d.shapes)
+        if (s.areaLight >= 0) {
+            ++emissive;
+            EXPECT_EQ(s.material, 3);
+        }
+    EXPECT_EQ(emissive, 1);
+
+    // An embedded (data URI) image is kept in memory and referenced as "embedded:<i>".
+    const TextureDesc *emb = FindTexture(d, d.materials[4].params.GetTexture("Kd"));
+    ASSERT_TRUE(emb);
+    EXPECT_EQ(emb->type, "imagemap");
+    EXPECT_EQ(emb->params.GetString("filename", ""), "embedded:0");
+    EXPECT_EQ(EmbeddedImageIndex("embedded:0"), 0);
+    EXPECT_EQ(EmbeddedImageIndex("embedded:12"), 12);
+    EXPECT_EQ(EmbeddedImageIndex("textures/a.png"), -1);
+    EXPECT_EQ(EmbeddedImageIndex("embedded:"), -1);
+    EXPECT_EQ(EmbeddedImageIndex("embedded:1x"), -1);
+    ASSERT_EQ(d.embeddedImages.size(), 1u);
+    EXPECT_EQ(d.embeddedImages[0].mimeType, "image/png");
+    EXPECT_EQ(std::string(d.embeddedImages[0].bytes.begin(), d.embeddedImages[0].bytes.end()),
+              "PNGDATA");
+}
+
+TEST(GltfLoader, MalformedFilesAreSceneErrors) {
+    Diagnostics diag;
+    // TEXCOORD_0 accessor claims 100 elements in a 32-byte view.
+    std::string path = WriteGltf("gltft_bad", 0, true, "100");
+    try {
+        LoadGltf(path, diag);
+        ADD_FAILURE() << "expected SceneError";
+    } catch (const SceneError &e) {
+        EXPECT_NE(std::string(e.what()).find("reaches past"), std::string::npos) << e.what();
+    }
+    // Huge counts must not overflow the bounds arithmetic.
+    EXPECT_THROW(LoadGltf(WriteGltf("gltft_bad2", 0, true, "4611686018427387904"), diag),
+                 SceneError);
+    // A buffer view that reaches past its buffer.
+    std::string json = Replace(kGltf, "\"byteOffset\": 108, \"byteLength\": 32",
+                               "\"byteOffset\": 108, \"byteLength\": 3200");
+    json = Replace(Replace(Replace(json, "SCENE", "0"), "POSCOUNT", "4"), "IMAGE64", "AAAA");
+    json = Replace(json, "BUFFERURI",
+                   "data:application/octet-stream;base64," + Base64(QuadBuffer()));
+    EXPECT_THROW(LoadGltf(WriteFile("gltft_bad3.gltf", json), diag), SceneError);
+    EXPECT_THROW(LoadGltf(WriteFile("gltft_bad4.gltf", "{ \"asset\": "), diag), SceneError);
+    EXPECT_THROW(LoadGltf(WriteFile("gltft_bad5.glb", "glTF\x02\x00\x00\x00garbage"), diag),
+                 SceneError);
+    EXPECT_THROW(LoadGltf(::testing::TempDir() + "gltft_missing.gltf", diag), SceneError);
+}
+
+}  // namespace
+}  // namespace prism
