@@ -1,6 +1,7 @@
 // OpenImageIO-backed image reading and atomic image writing.
 #include "image/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
@@ -80,19 +82,11 @@ std::string LowerExtension(const std::string &path) {
 
 }  // namespace
 
-Image ReadImage(const std::string &path, ReadImageOptions opts) {
-    auto fail = [&](const std::string &why) -> std::runtime_error {
-        return std::runtime_error("cannot read image " + Quoted(path) + ": " + why);
-    };
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw fail(fs::exists(path, ec) ? "not a regular file"
-                                                                         : "file not found");
-    // Ask for unassociated alpha: PNG/TGA store straight alpha and the sRGB decode must apply
-    // to the stored colour, not to colour premultiplied by alpha.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) throw fail(OiioError(static_cast<const OIIO::ImageInput *>(nullptr)));
+namespace {
+
+// Decodes an opened image into linear float (shared by the file and in-memory readers).
+Image DecodeOpened(OIIO::ImageInput *in, const ReadImageOptions &opts,
+                   const std::function<std::runtime_error(const std::string &)> &fail) {
     const OIIO::ImageSpec &spec = in->spec();
     if (spec.deep) throw fail("deep images are not supported");
     if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels <= 0)
@@ -118,7 +112,7 @@ Image ReadImage(const std::string &path, ReadImageOptions opts) {
 
     std::vector<float> buf(size_t(spec.width) * size_t(spec.height) * size_t(nRead));
     if (!in->read_image(0, 0, 0, nRead, OIIO::TypeDesc::FLOAT, buf.data()))
-        throw fail(OiioError(in.get()));
+        throw fail(OiioError(in));
     in->close();
 
     bool integer = !spec.format.is_floating_point();
@@ -155,6 +149,67 @@ Image ReadImage(const std::string &path, ReadImageOptions opts) {
         }
     }
     return img;
+}
+
+// Ask for unassociated alpha: PNG/TGA store straight alpha and the sRGB decode must apply to
+// the stored colour, not to colour premultiplied by alpha.
+OIIO::ImageSpec ReadConfig() {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    return config;
+}
+
+}  // namespace
+
+Image ReadImage(const std::string &path, ReadImageOptions opts) {
+    auto fail = [&](const std::string &why) {
+        return std::runtime_error("cannot read image " + Quoted(path) + ": " + why);
+    };
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw fail(fs::exists(path, ec) ? "not a regular file"
+                                                                         : "file not found");
+    OIIO::ImageSpec config = ReadConfig();
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) throw fail(OiioError(static_cast<const OIIO::ImageInput *>(nullptr)));
+    return DecodeOpened(in.get(), opts, fail);
+}
+
+Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::string &name,
+                          ReadImageOptions opts) {
+    auto fail = [&](const std::string &why) {
+        return std::runtime_error("cannot read image " + Quoted(name) + ": " + why);
+    };
+    if (bytes.empty()) throw fail("no data");
+    OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
+    OIIO::ImageSpec config = ReadConfig();
+    auto in = OIIO::ImageInput::open(name, &config, &proxy);
+    if (in) return DecodeOpened(in.get(), opts, fail);
+    OIIO::geterror();  // clear
+    // Some of OIIO's readers (JPEG in 2.4) cannot read from memory: decode through a private
+    // temporary file that is removed straight away.
+    std::string ext = fs::path(name).extension().string();
+    std::string pattern = (fs::temp_directory_path() / ("prism-image-XXXXXX" + ext)).string();
+    std::vector<char> tmpl(pattern.begin(), pattern.end());
+    tmpl.push_back('\0');
+    int fd = mkstemps(tmpl.data(), int(ext.size()));
+    if (fd < 0) throw fail("cannot create a temporary file to decode it");
+    std::string tmp(tmpl.data());
+    bool ok = ::write(fd, bytes.data(), bytes.size()) == ssize_t(bytes.size());
+    ::close(fd);
+    try {
+        if (!ok) throw fail("cannot write a temporary file to decode it");
+        auto fin = OIIO::ImageInput::open(tmp, &config);
+        if (!fin) throw fail(OiioError(static_cast<const OIIO::ImageInput *>(nullptr)));
+        Image img = DecodeOpened(fin.get(), opts, fail);
+        fin->close();
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        return img;
+    } catch (...) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw;
+    }
 }
 
 namespace {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "image/image.h"
 
@@ -23,6 +24,10 @@ struct ReadImageOptions {
 // RGBA with the gray replicated. Alpha is never sRGB-decoded and is not premultiplied.
 // Throws std::runtime_error with a short reason (no scene location; callers add it).
 Image ReadImage(const std::string &path, ReadImageOptions opts = {});
+// Decodes an encoded image held in memory (glTF embedded images). `name` must end in the
+// format's extension (".png", ".jpg", ...); it also names the image in error messages.
+Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::string &name,
+                          ReadImageOptions opts = {});
 
 // The format follows the extension: .exr (32-bit float), .pfm/.hdr (float), .png/.jpg/.jpeg/
 // .tga/.bmp (8-bit sRGB, rounded, clamped to [0,1]). The file is first written to a temporary
