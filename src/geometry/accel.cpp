@@ -59,7 +59,7 @@ Device &GetDevice() {
 void InitRay(const Ray &r, RTCRay *ray) {
     ray->org_x = r.o.x; ray->org_y = r.o.y; ray->org_z = r.o.z;
     ray->dir_x = r.d.x; ray->dir_y = r.d.y; ray->dir_z = r.d.z;
-    ray->tnear = 0;
+    ray->tnear = r.tMin;
     ray->tfar = r.tMax;
     ray->time = 0;
     ray->mask = 0xFFFFFFFFu;  // the default geometry mask; a zero mask would hit nothing
@@ -75,6 +75,8 @@ struct Accel::Impl {
     struct Entry {
         std::unique_ptr<TriangleMesh> mesh;
         std::unique_ptr<AnalyticShape> analytic;
+        std::shared_ptr<const Accel> prototype;  // instances
+        Transform worldFromInstance;
     };
     std::vector<Entry> shapes;
     std::vector<int> shapeOfGeom;  // geomID -> shape index
@@ -117,8 +119,29 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh) {
     dev.ThrowIfError("adding a triangle mesh");
     int shape = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, shape);
-    impl_->shapes.push_back({std::move(mesh), nullptr});
+    impl_->shapes.push_back({std::move(mesh), nullptr, nullptr, {}});
     return shape;
+}
+
+int Accel::AddInstance(std::shared_ptr<const Accel> prototype, const Transform &worldFromInstance) {
+    PRISM_CHECK(!impl_->committed);
+    PRISM_CHECK(prototype && prototype->impl_->committed);
+    Device &dev = GetDevice();
+    RTCGeometry geom = rtcNewGeometry(dev.device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geom, prototype->impl_->scene);
+    float xfm[12];
+    const Matrix4 &m = worldFromInstance.Matrix();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) xfm[r * 4 + c] = float(m.m[r][c]);
+    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+    rtcCommitGeometry(geom);
+    unsigned id = rtcAttachGeometry(impl_->scene, geom);
+    rtcReleaseGeometry(geom);
+    dev.ThrowIfError("adding an instance");
+    int index = int(impl_->shapes.size());
+    MapGeom(impl_->shapeOfGeom, id, index);
+    impl_->shapes.push_back({nullptr, nullptr, std::move(prototype), worldFromInstance});
+    return index;
 }
 
 int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape) {
@@ -129,7 +152,7 @@ int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape) {
     dev.ThrowIfError("adding an analytic shape");
     int index = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, index);
-    impl_->shapes.push_back({nullptr, std::move(shape)});
+    impl_->shapes.push_back({nullptr, std::move(shape), nullptr, {}});
     return index;
 }
 
@@ -151,7 +174,14 @@ bool Accel::IntersectRaw(const Ray &r, RawHit *hit) const {
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    hit->shape = impl_->shapeOfGeom[rh.hit.geomID];
+    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+        hit->shape = impl_->shapeOfGeom[rh.hit.instID[0]];
+        const Accel &proto = *impl_->shapes[size_t(hit->shape)].prototype;
+        hit->instanceShape = proto.impl_->shapeOfGeom[rh.hit.geomID];
+    } else {
+        hit->shape = impl_->shapeOfGeom[rh.hit.geomID];
+        hit->instanceShape = -1;
+    }
     hit->prim = int(rh.hit.primID);
     hit->t = rh.ray.tfar;
     hit->u = rh.hit.u;
@@ -162,13 +192,47 @@ bool Accel::IntersectRaw(const Ray &r, RawHit *hit) const {
 SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
     const Impl::Entry &e = impl_->shapes[hit.shape];
     SurfaceInteraction si;
+    if (e.prototype) {
+        // Phase 2 in instance space, then back to world space. Normals use the inverse
+        // transpose and flip when the instance transform swaps handedness, exactly as if the
+        // prototype's shapes had been declared with the combined transform.
+        const Transform &w = e.worldFromInstance;
+        Transform instFromWorld = w.Inverse();
+        Ray ri{Vec3f(instFromWorld.Point(Vec3d(r.o))), Vec3f(instFromWorld.Vector(Vec3d(r.d))),
+               r.tMax, r.tMin};
+        RawHit sub = hit;
+        sub.shape = hit.instanceShape;
+        sub.instanceShape = -1;
+        SurfaceInteraction s = e.prototype->Interaction(ri, sub);
+        Vec3d pI(s.p);
+        Vec3d pW = w.Point(pI);
+        Vec3d errW = w.PointError(pI, Vec3d(s.pError), MachineEpsilon<float>());
+        si = s;
+        si.p = Vec3f(pW);
+        for (int i = 0; i < 3; ++i)
+            si.pError[i] = float(errW[i] + std::abs(double(si.p[i]) - pW[i]) +
+                                 std::abs(pW[i]) * MachineEpsilon<float>());
+        bool flip = w.SwapsHandedness();
+        Vec3f n = Vec3f(Normalize(w.Normal(Vec3d(s.n))));
+        Vec3f ns = Vec3f(Normalize(w.Normal(Vec3d(s.ns))));
+        si.n = flip ? -n : n;
+        si.ns = flip ? -ns : ns;
+        si.dpdu = Vec3f(w.Vector(Vec3d(s.dpdu)));
+        si.dpdv = Vec3f(w.Vector(Vec3d(s.dpdv)));
+        si.wo = Normalize(-r.d);
+        si.t = hit.t;
+        si.shape = hit.shape;
+        si.instanceShape = hit.instanceShape;
+        si.prim = hit.prim;
+        return si;
+    }
     if (e.mesh) {
         si = e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d);
     } else {
         // Phase 2: re-run the same root routine on the winning shape to recover the hit in
         // full precision (the callback could only report a float t).
         ObjectHit oh;
-        if (!e.analytic->Intersect(r.o, r.d, 0.f, r.tMax, impl_->options.precision, &oh)) {
+        if (!e.analytic->Intersect(r.o, r.d, r.tMin, r.tMax, impl_->options.precision, &oh)) {
             // Cannot happen for a deterministic routine; fall back to the float t.
             oh.t = hit.t;
             Vec3d pW = Vec3d(r.o) + Vec3d(r.d) * double(hit.t);
@@ -202,19 +266,33 @@ bool Accel::Occluded(const Ray &r) const {
 int Accel::NumShapes() const { return int(impl_->shapes.size()); }
 const TriangleMesh *Accel::Mesh(int s) const { return impl_->shapes[s].mesh.get(); }
 const AnalyticShape *Accel::Analytic(int s) const { return impl_->shapes[s].analytic.get(); }
+const Accel *Accel::Prototype(int s) const { return impl_->shapes[s].prototype.get(); }
 double Accel::BuildSeconds() const { return impl_->buildSeconds; }
 const AccelOptions &Accel::Options() const { return impl_->options; }
 
 Bounds3f Accel::WorldBounds() const {
     Bounds3f b;
-    for (const auto &e : impl_->shapes) b.Expand(e.mesh ? e.mesh->WorldBounds() : e.analytic->WorldBounds());
+    for (const auto &e : impl_->shapes) {
+        if (e.mesh) {
+            b.Expand(e.mesh->WorldBounds());
+        } else if (e.analytic) {
+            b.Expand(e.analytic->WorldBounds());
+        } else {
+            Bounds3f pb = e.prototype->WorldBounds();
+            if (pb.IsEmpty()) continue;
+            Bounds3d wb = e.worldFromInstance.Bounds(Bounds3d(Vec3d(pb.pMin), Vec3d(pb.pMax)));
+            b.Expand(Bounds3f(Vec3f(wb.pMin), Vec3f(wb.pMax)));
+        }
+    }
     return b;
 }
 
 size_t Accel::NumTriangles() const {
     size_t n = 0;
-    for (const auto &e : impl_->shapes)
+    for (const auto &e : impl_->shapes) {
         if (e.mesh) n += e.mesh->NumTriangles();
+        if (e.prototype) n += e.prototype->NumTriangles();
+    }
     return n;
 }
 

@@ -21,7 +21,8 @@ struct AccelOptions {
 };
 
 struct RawHit {
-    int shape = -1;  // shape index (order of Add* calls)
+    int shape = -1;  // shape index (order of Add* calls); for instances, the instance's index
+    int instanceShape = -1;  // for instance hits: the shape index within the prototype
     int prim = 0;
     float t = 0, u = 0, v = 0;
 };
@@ -36,6 +37,10 @@ public:
     // Each returns the shape index. Call before Commit().
     int AddMesh(std::unique_ptr<TriangleMesh> mesh);
     int AddAnalytic(std::unique_ptr<AnalyticShape> shape);
+    // An Embree instance of a committed prototype (pbrt ObjectInstance). Embree 3 allows one
+    // instance level: prototypes hold meshes and analytic shapes only, and analytic shapes
+    // apply their own object transform inside the instance.
+    int AddInstance(std::shared_ptr<const Accel> prototype, const Transform &worldFromInstance);
     // Builds the BVH. Throws std::runtime_error with Embree's message on failure.
     void Commit();
 
@@ -51,6 +56,7 @@ public:
     int NumShapes() const;
     const TriangleMesh *Mesh(int shape) const;          // nullptr if analytic
     const AnalyticShape *Analytic(int shape) const;     // nullptr if mesh
+    const Accel *Prototype(int shape) const;            // non-null for instances
     Bounds3f WorldBounds() const;
     size_t NumTriangles() const;
     double BuildSeconds() const;

@@ -19,6 +19,7 @@ struct SurfaceInteraction {
     float t = 0;    // ray parameter in units of the incoming ray's direction
     int shape = -1; // index of the shape in the render scene
     int prim = 0;   // primitive within the shape (triangle index; 0 for analytic shapes)
+    int instanceShape = -1;  // for hits inside an instance: the shape within the prototype
 
     Ray SpawnRay(const Vec3f &d) const {
         return {OffsetRayOrigin(p, pError, n, d), d, Infinity};

@@ -10,6 +10,7 @@ namespace prism {
 struct Ray {
     Vec3f o, d;
     float tMax = Infinity;
+    float tMin = 0;  // only `prism trace` sets it; spawned rays rely on their offset origin
     Vec3f At(float t) const { return o + d * t; }
 };
 

@@ -33,6 +33,29 @@ Bounds3f AnalyticShape::WorldBounds() const {
     return r;
 }
 
+bool AnalyticShape::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
+    Vec3d pObj, nObj;
+    double pdfObj;
+    if (!SampleObjectArea(u, &pObj, &nObj, &pdfObj)) return false;
+    double nLen = Length(nObj);
+    if (!(nLen > 0) || !(pdfObj > 0)) return false;
+    // World area element: dA_w = |det M| |M^-T n_o| dA_o for a unit object normal n_o.
+    Vec3d nW = worldFromObject_.Normal(nObj / nLen);
+    double jac = std::abs(worldFromObject_.Matrix().Determinant3x3()) * Length(nW);
+    Vec3d pW = worldFromObject_.Point(pObj);
+    nW = Normalize(nW);
+    if (flipNormals_) nW = -nW;
+    Vec3d w = pW - Vec3d(ref);
+    double dist2 = LengthSquared(w);
+    if (!(dist2 > 0)) return false;
+    double cosLight = std::abs(Dot(nW, w)) / std::sqrt(dist2);
+    if (cosLight == 0) return false;
+    ss->p = Vec3f(pW);
+    ss->n = Vec3f(nW);
+    ss->pdf = float(pdfObj / jac * dist2 / cosLight);
+    return std::isfinite(ss->pdf) && ss->pdf > 0;
+}
+
 SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir) const {
     LocalGeometry g = Geometry(hit);
     SurfaceInteraction si;

@@ -26,6 +26,13 @@ struct ObjectHit {
     double phi = 0;     // azimuth of the hit (used by partial shapes)
 };
 
+// A point sampled on a shape's surface for direct lighting, with the density of choosing it
+// expressed in solid angle as seen from the reference point.
+struct ShapeSample {
+    Vec3f p, n;        // world-space point and unit normal (pbrt orientation, flips applied)
+    float pdf = 0;     // solid-angle density at the reference point
+};
+
 // Object-space differential geometry at a hit.
 struct LocalGeometry {
     Vec3d dpdu, dpdv;
@@ -66,6 +73,21 @@ public:
                            Precision precision, ObjectHit *hit) const = 0;
     // Object-space differential geometry at a hit found by Intersect.
     virtual LocalGeometry Geometry(const ObjectHit &hit) const = 0;
+
+    // Uniform sampling of the object-space surface by area: the point, its unnormalized
+    // normal (pbrt orientation before flips) and the object-space area density. Shapes that
+    // cannot be sampled return false (they cannot be area lights).
+    virtual bool SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) const {
+        return false;
+    }
+    // Samples a point for direct lighting of `ref`, with the solid-angle density. The default
+    // converts object-space area sampling through the transform's exact area Jacobian.
+    virtual bool Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const;
+    bool CanSample() const {
+        Vec3d p, n;
+        double pdf;
+        return SampleObjectArea(Vec2f(0.5f, 0.5f), &p, &n, &pdf);
+    }
 
     // World-space bounds, padded by a relative margin: Embree's user-geometry traversal is not
     // robust (REFERENCE.md §0.2), so the box must absorb its rounding.

@@ -17,6 +17,56 @@ Sphere::Sphere(const Transform &worldFromObject, bool reverseOrientation, double
       thetaZMax_(std::acos(Clamp(std::max(zMin, zMax) / radius, -1.0, 1.0))),
       phiMax_(Radians(Clamp(phiMaxDeg, 0.0, 360.0))) {
     partial_ = zMin_ > -radius_ || zMax_ < radius_ || phiMax_ < 2 * Pi;
+    Vec3d ex = worldFromObject.Vector(Vec3d(1, 0, 0)), ey = worldFromObject.Vector(Vec3d(0, 1, 0)),
+          ez = worldFromObject.Vector(Vec3d(0, 0, 1));
+    double lx = Length(ex), ly = Length(ey), lz = Length(ez);
+    similarity_ = std::abs(lx - ly) <= 1e-9 * lx && std::abs(lx - lz) <= 1e-9 * lx &&
+                  std::abs(Dot(ex, ey)) <= 1e-9 * lx * ly && std::abs(Dot(ex, ez)) <= 1e-9 * lx * lz &&
+                  std::abs(Dot(ey, ez)) <= 1e-9 * ly * lz;
+}
+
+bool Sphere::SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) const {
+    // Uniform in z (Archimedes) and phi over the clipped band.
+    double z = Lerp(double(u.x), zMin_, zMax_);
+    double phi = double(u.y) * phiMax_;
+    double rxy = SafeSqrt(radius_ * radius_ - z * z);
+    *p = Vec3d(rxy * std::cos(phi), rxy * std::sin(phi), z);
+    *n = *p;
+    double area = phiMax_ * radius_ * (zMax_ - zMin_);
+    *pdfArea = area > 0 ? 1 / area : 0;
+    return area > 0;
+}
+
+bool Sphere::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
+    if (partial_ || !similarity_) return AnalyticShape::Sample(ref, u, ss);
+    Vec3d c = worldFromObject_.Point(Vec3d(0, 0, 0));
+    double rW = radius_ * Length(worldFromObject_.Vector(Vec3d(1, 0, 0)));
+    Vec3d wc = c - Vec3d(ref);
+    double dc2 = LengthSquared(wc);
+    if (dc2 <= rW * rW * (1 + 1e-6)) return AnalyticShape::Sample(ref, u, ss);  // inside
+    double dc = std::sqrt(dc2);
+    wc = wc / dc;
+    Vec3d wcX, wcY;
+    CoordinateSystem(wc, &wcX, &wcY);
+    double sinThetaMax2 = rW * rW / dc2;
+    double cosThetaMax = SafeSqrt(1 - sinThetaMax2);
+    // Uniform direction in the cone; 1 - cos computed without cancellation for tiny cones.
+    double oneMinusCosMax = sinThetaMax2 / (1 + cosThetaMax);
+    double oneMinusCos = double(u.x) * oneMinusCosMax;
+    double cosTheta = 1 - oneMinusCos;
+    double sinTheta = SafeSqrt(oneMinusCos * (2 - oneMinusCos));
+    double phi = double(u.y) * 2 * Pi;
+    // The point on the sphere where that direction first meets it.
+    double dsq = dc * cosTheta - SafeSqrt(rW * rW - dc2 * sinTheta * sinTheta);
+    Vec3d dir = wcX * (sinTheta * std::cos(phi)) + wcY * (sinTheta * std::sin(phi)) + wc * cosTheta;
+    Vec3d pW = Vec3d(ref) + dir * dsq;
+    Vec3d nW = Normalize(pW - c);
+    pW = c + nW * rW;  // re-project onto the surface
+    if (flipNormals_) nW = -nW;
+    ss->p = Vec3f(pW);
+    ss->n = Vec3f(nW);
+    ss->pdf = float(1 / (2 * Pi * oneMinusCosMax));
+    return std::isfinite(ss->pdf) && ss->pdf > 0;
 }
 
 Bounds3d Sphere::ObjectBounds() const {
@@ -53,7 +103,6 @@ bool Sphere::IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real t
         // Re-project onto the surface, in double regardless of Real.
         Vec3d p(pr);
         p *= radius_ / Length(p);
-        if (p.x == 0 && p.y == 0) p.x = 1e-5 * radius_;
         double phi = Azimuth(p.x, p.y);
         if (partial_ && ((zMin_ > -radius_ && p.z < zMin_) || (zMax_ < radius_ && p.z > zMax_) ||
                          phi > phiMax_))
@@ -80,7 +129,8 @@ LocalGeometry Sphere::Geometry(const ObjectHit &hit) const {
     double v = (theta - thetaZMin_) / (thetaZMax_ - thetaZMin_);
     g.uv = {u, v};
     double zRadius = std::sqrt(p.x * p.x + p.y * p.y);
-    double cosPhi = p.x / zRadius, sinPhi = p.y / zRadius;
+    // At the poles the azimuth is undefined; any unit (cos, sin) keeps dpdv finite.
+    double cosPhi = zRadius > 0 ? p.x / zRadius : 1, sinPhi = zRadius > 0 ? p.y / zRadius : 0;
     double sinTheta = SafeSqrt(1 - cosTheta * cosTheta);
     g.dpdu = Vec3d(-phiMax_ * p.y, phiMax_ * p.x, 0);
     g.dpdv = Vec3d(p.z * cosPhi, p.z * sinPhi, -radius_ * sinTheta) * (thetaZMax_ - thetaZMin_);

@@ -15,6 +15,10 @@ public:
     double Implicit(const Vec3d &p) const override { return Length(p) - radius_; }
     Vec3d ImplicitGradient(const Vec3d &p) const override { return Normalize(p); }
     LocalGeometry Geometry(const ObjectHit &hit) const override;
+    bool SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) const override;
+    // Full spheres under similarity transforms sample the cone they subtend (pbrt-v3
+    // Sphere::Sample), which wastes no samples on the far side; others sample by area.
+    bool Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const override;
 
     template <typename Real>
     bool IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real tSlack,
@@ -26,6 +30,7 @@ public:
 private:
     double radius_, zMin_, zMax_, thetaZMin_, thetaZMax_, phiMax_;
     bool partial_;
+    bool similarity_;  // transform is rotation + uniform scale + translation
 };
 
 }  // namespace prism

@@ -7,7 +7,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/cone.h"
+#include "geometry/cylinder.h"
+#include "geometry/disk.h"
+#include "geometry/hyperboloid.h"
+#include "geometry/paraboloid.h"
 #include "geometry/sphere.h"
+#include "geometry/torus.h"
 
 namespace prism {
 
