@@ -1,0 +1,297 @@
+// `prism batch LIST|DIR -o OUTDIR [--jobs N] [--force] [--format png|exr]`: renders many
+// scenes unattended. Each scene renders in its own child process (`prism render`), so a scene
+// that crashes or runs out of memory cannot take the batch or the finished images with it.
+// report.json and summary.txt are rewritten (atomically) after every scene.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "app/commands.h"
+#include "app/common.h"
+#include "app/output_file.h"
+
+namespace fs = std::filesystem;
+
+namespace prism {
+
+namespace {
+
+struct BatchArgs {
+    std::string input, outDir, format = "png";
+    int jobs = 1, spp = 0, threads = 0;
+    std::string res;
+    bool force = false, quiet = false;
+};
+
+struct Job {
+    std::string scene, output;
+    std::string status = "pending";  // ok, failed, skipped, interrupted
+    double seconds = 0;
+    int exitCode = 0;
+    std::vector<std::string> warnings;
+    std::string error;
+    pid_t pid = -1;
+    std::string logPath;
+    std::chrono::steady_clock::time_point start;
+};
+
+volatile sig_atomic_t g_interrupted = 0;
+void OnSigint(int) { g_interrupted = 1; }
+
+bool IsSceneFile(const fs::path &p) {
+    std::string e = p.extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), ::tolower);
+    return e == ".pbrt" || e == ".obj" || e == ".gltf" || e == ".glb";
+}
+
+std::vector<std::string> CollectScenes(const std::string &input) {
+    std::vector<std::string> scenes;
+    if (fs::is_directory(input)) {
+        for (const auto &e : fs::recursive_directory_iterator(input))
+            if (e.is_regular_file() && IsSceneFile(e.path())) scenes.push_back(e.path().string());
+        std::sort(scenes.begin(), scenes.end());
+        return scenes;
+    }
+    std::ifstream in(input);
+    if (!in) throw UsageError("cannot open scene list or directory \"" + input + "\"");
+    fs::path base = fs::path(input).parent_path();
+    std::string line;
+    while (std::getline(in, line)) {
+        line = line.substr(0, line.find('#'));
+        line.erase(0, line.find_first_not_of(" \t\r"));
+        line.erase(line.find_last_not_of(" \t\r") + 1);
+        if (line.empty()) continue;
+        fs::path p(line);
+        scenes.push_back(p.is_absolute() || base.empty() ? p.string() : (base / p).string());
+    }
+    return scenes;
+}
+
+// Output names: the scene's path relative to the common root with separators replaced, so
+// scenes with the same file name in different folders do not collide.
+std::vector<std::string> OutputNames(const std::vector<std::string> &scenes, const std::string &ext) {
+    std::vector<std::string> names;
+    std::set<std::string> used;
+    for (const std::string &s : scenes) {
+        fs::path p(s);
+        std::string stem = p.parent_path().filename().string() + "_" + p.stem().string();
+        if (stem.front() == '_') stem.erase(0, 1);
+        std::string name = stem + "." + ext;
+        for (int k = 2; used.count(name); ++k) name = stem + "-" + std::to_string(k) + "." + ext;
+        used.insert(name);
+        names.push_back(name);
+    }
+    return names;
+}
+
+std::string JsonEscape(const std::string &s) {
+    std::string o;
+    for (char c : s) {
+        switch (c) {
+        case '"': o += "\\\""; break;
+        case '\\': o += "\\\\"; break;
+        case '\n': o += "\\n"; break;
+        case '\t': o += "\\t"; break;
+        default:
+            if (static_cast<unsigned char>(c) < 0x20) o += fmt::format("\\u{:04x}", int(c));
+            else o += c;
+        }
+    }
+    return o;
+}
+
+void WriteReports(const std::string &outDir, const std::vector<Job> &jobs) {
+    std::map<std::string, int> counts;
+    for (const Job &j : jobs) counts[j.status]++;
+    std::string json = "{\n  \"scenes\": [\n";
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        const Job &j = jobs[i];
+        json += fmt::format("    {{\"scene\": \"{}\", \"output\": \"{}\", \"status\": \"{}\", "
+                            "\"seconds\": {:.3f}, \"exit_code\": {}, \"error\": \"{}\", \"warnings\": [",
+                            JsonEscape(j.scene), JsonEscape(j.output), j.status, j.seconds,
+                            j.exitCode, JsonEscape(j.error));
+        for (size_t k = 0; k < j.warnings.size(); ++k)
+            json += (k ? ", \"" : "\"") + JsonEscape(j.warnings[k]) + "\"";
+        json += std::string("]}") + (i + 1 < jobs.size() ? ",\n" : "\n");
+    }
+    json += "  ],\n  \"summary\": {";
+    bool first = true;
+    for (const char *k : {"ok", "skipped", "failed", "interrupted", "pending"}) {
+        json += fmt::format("{}\"{}\": {}", first ? "" : ", ", k, counts[k]);
+        first = false;
+    }
+    json += "}\n}\n";
+    WriteFileAtomically((fs::path(outDir) / "report.json").string(), json);
+
+    std::string txt = fmt::format("{:<11} {:>8}  {:>5}  {}\n", "status", "seconds", "warn", "scene");
+    for (const Job &j : jobs) {
+        txt += fmt::format("{:<11} {:>8.2f}  {:>5}  {}\n", j.status, j.seconds, j.warnings.size(), j.scene);
+        if (!j.error.empty()) txt += "            error: " + j.error + "\n";
+    }
+    txt += fmt::format("\n{} ok, {} skipped (up to date), {} failed, {} interrupted, {} not run\n",
+                       counts["ok"], counts["skipped"], counts["failed"], counts["interrupted"],
+                       counts["pending"]);
+    WriteFileAtomically((fs::path(outDir) / "summary.txt").string(), txt);
+}
+
+std::string SelfExecutable() {
+    std::error_code ec;
+    fs::path p = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw std::runtime_error("cannot locate the prism executable");
+    return p.string();
+}
+
+void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob) {
+    j.logPath = j.output + ".log.tmp";
+    std::vector<std::string> args = {exe, "render", j.scene, "-o", j.output, "--no-progress"};
+    if (a.spp > 0) { args.push_back("--spp"); args.push_back(std::to_string(a.spp)); }
+    if (!a.res.empty()) { args.push_back("--res"); args.push_back(a.res); }
+    args.push_back("--threads");
+    args.push_back(std::to_string(threadsPerJob));
+    j.start = std::chrono::steady_clock::now();
+    pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("cannot start a render process");
+    if (pid == 0) {
+        FILE *log = std::freopen(j.logPath.c_str(), "w", stderr);
+        (void)log;
+        std::freopen("/dev/null", "w", stdout);
+        std::vector<char *> argv;
+        for (auto &s : args) argv.push_back(s.data());
+        argv.push_back(nullptr);
+        execv(exe.c_str(), argv.data());
+        _exit(127);
+    }
+    j.pid = pid;
+    j.status = "running";
+}
+
+void Finish(Job &j, int status) {
+    j.seconds = SecondsSince(j.start);
+    std::ifstream log(j.logPath);
+    std::string line;
+    while (std::getline(log, line)) {
+        if (line.find("warning:") != std::string::npos) j.warnings.push_back(line);
+        else if (line.find("error:") != std::string::npos && j.error.empty()) j.error = line;
+    }
+    std::error_code ec;
+    fs::remove(j.logPath, ec);
+    if (WIFEXITED(status)) {
+        j.exitCode = WEXITSTATUS(status);
+        j.status = j.exitCode == 0 ? "ok" : (j.exitCode == 130 ? "interrupted" : "failed");
+        if (j.status == "failed" && j.error.empty()) j.error = "exit status " + std::to_string(j.exitCode);
+    } else if (WIFSIGNALED(status)) {
+        int sig = WTERMSIG(status);
+        j.exitCode = 128 + sig;
+        j.status = (sig == SIGINT && g_interrupted) ? "interrupted" : "failed";
+        if (j.status == "failed") j.error = std::string("render process killed by signal ") + strsignal(sig);
+    }
+    j.pid = -1;
+}
+
+int RunBatch(const BatchArgs &a) {
+    if (a.format != "png" && a.format != "exr") throw UsageError("--format must be png or exr");
+    std::vector<std::string> scenes = CollectScenes(a.input);
+    if (scenes.empty()) throw UsageError("no scenes found in \"" + a.input + "\"");
+    std::error_code ec;
+    fs::create_directories(a.outDir, ec);
+    if (!fs::is_directory(a.outDir)) throw UsageError("cannot create output directory \"" + a.outDir + "\"");
+    std::vector<std::string> names = OutputNames(scenes, a.format);
+    std::vector<Job> jobs(scenes.size());
+    for (size_t i = 0; i < scenes.size(); ++i) {
+        jobs[i].scene = scenes[i];
+        jobs[i].output = (fs::path(a.outDir) / names[i]).string();
+        // Up to date: the output is newer than the scene file (included files are not
+        // tracked; use --force after editing them).
+        if (!a.force && fs::exists(jobs[i].output) && fs::exists(scenes[i]) &&
+            fs::last_write_time(jobs[i].output) >= fs::last_write_time(scenes[i]))
+            jobs[i].status = "skipped";
+    }
+    std::string exe = SelfExecutable();
+    int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+    int nJobs = std::max(1, a.jobs);
+    int threadsPerJob = a.threads > 0 ? a.threads : std::max(1, cores / nJobs);
+
+    struct sigaction sa{};
+    sa.sa_handler = OnSigint;
+    sigemptyset(&sa.sa_mask);
+    struct sigaction old{};
+    sigaction(SIGINT, &sa, &old);
+
+    size_t next = 0;
+    int running = 0;
+    WriteReports(a.outDir, jobs);
+    while (true) {
+        while (!g_interrupted && running < nJobs && next < jobs.size()) {
+            Job &j = jobs[next++];
+            if (j.status != "pending") continue;
+            if (!a.quiet) std::fprintf(stderr, "batch: rendering %s\n", j.scene.c_str());
+            Launch(j, a, exe, threadsPerJob);
+            ++running;
+        }
+        if (running == 0) break;
+        int status = 0;
+        pid_t pid = waitpid(-1, &status, 0);
+        if (pid < 0) {
+            if (errno == EINTR) {
+                // Forward the interrupt to running renders; they stop without writing.
+                for (Job &j : jobs)
+                    if (j.pid > 0) kill(j.pid, SIGINT);
+                continue;
+            }
+            break;
+        }
+        for (Job &j : jobs) {
+            if (j.pid != pid) continue;
+            Finish(j, status);
+            --running;
+            if (!a.quiet)
+                std::fprintf(stderr, "batch: %s %s (%.1fs)%s%s\n", j.status.c_str(), j.scene.c_str(),
+                             j.seconds, j.error.empty() ? "" : ": ", j.error.c_str());
+            WriteReports(a.outDir, jobs);
+        }
+    }
+    sigaction(SIGINT, &old, nullptr);
+    WriteReports(a.outDir, jobs);
+    int failed = 0;
+    for (const Job &j : jobs) failed += j.status == "failed";
+    if (!a.quiet) {
+        std::ifstream s(fs::path(a.outDir) / "summary.txt");
+        std::stringstream ss;
+        ss << s.rdbuf();
+        std::fprintf(stderr, "%s", ss.str().c_str());
+    }
+    if (g_interrupted) return 130;
+    return failed > 0 ? ExitBadInput : ExitOk;
+}
+
+}  // namespace
+
+void AddBatchCommand(CLI::App &app, int *exitCode) {
+    auto args = std::make_shared<BatchArgs>();
+    CLI::App *cmd = app.add_subcommand("batch", "Render many scenes; keeps going past failures and writes a report");
+    cmd->add_option("input", args->input, "A directory (searched recursively) or a file listing scenes, one per line")->required();
+    cmd->add_option("-o,--output", args->outDir, "Output directory for images, report.json and summary.txt")->required();
+    cmd->add_option("--jobs", args->jobs, "Scenes rendered at once (cores are shared between them)")->check(CLI::Range(1, 256));
+    cmd->add_flag("--force", args->force, "Re-render scenes whose output is up to date");
+    cmd->add_option("--format", args->format, "Image format: png or exr")->check(CLI::IsMember({"png", "exr"}));
+    cmd->add_option("--spp", args->spp, "Samples per pixel for every scene")->check(CLI::Range(1, 1 << 16));
+    cmd->add_option("--res", args->res, "Resolution WxH for every scene");
+    cmd->add_option("--threads", args->threads, "Threads per scene (default: cores / jobs)")->check(CLI::Range(1, 4096));
+    cmd->add_flag("-q,--quiet", args->quiet, "No progress lines");
+    cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunBatch(*args); }); });
+}
+
+}  // namespace prism

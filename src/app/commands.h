@@ -1,0 +1,25 @@
+// Subcommands of the prism executable. Each returns the process exit status:
+// 0 success, 1 internal failure, 2 bad input (scene, options or files).
+#pragma once
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace prism {
+
+inline constexpr int ExitOk = 0;
+inline constexpr int ExitInternal = 1;
+inline constexpr int ExitBadInput = 2;
+
+// Registers the subcommand's options on `app`; the returned callback runs it.
+void AddRenderCommand(CLI::App &app, int *exitCode);
+void AddTraceCommand(CLI::App &app, int *exitCode);
+void AddInfoCommand(CLI::App &app, int *exitCode);
+void AddBatchCommand(CLI::App &app, int *exitCode);
+// `prism` with no arguments: render the default scene to whitted.png.
+int RenderDefaultScene();
+
+}  // namespace prism

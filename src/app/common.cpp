@@ -1,0 +1,100 @@
+#include "app/common.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace prism {
+
+int RunGuarded(const std::function<int()> &fn) {
+    try {
+        return fn();
+    } catch (const SceneError &e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 2;
+    } catch (const UsageError &e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::bad_alloc &) {
+        std::fprintf(stderr, "error: out of memory\n");
+        return 1;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+}
+
+static std::vector<float> SplitFloats(const std::string &s, char sep) {
+    std::vector<float> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, sep)) {
+        try {
+            size_t used = 0;
+            float v = std::stof(item, &used);
+            if (used != item.size()) throw std::invalid_argument(item);
+            out.push_back(v);
+        } catch (const std::exception &) {
+            throw UsageError("invalid number \"" + item + "\" in \"" + s + "\"");
+        }
+    }
+    return out;
+}
+
+Vec2i ParseResolution(const std::string &s) {
+    std::vector<float> v = SplitFloats(s, 'x');
+    if (v.size() != 2 || v[0] != float(int(v[0])) || v[1] != float(int(v[1])) || v[0] < 1 ||
+        v[1] < 1)
+        throw UsageError("--res expects WxH with positive integers, e.g. 640x480 (got \"" + s + "\")");
+    return {int(v[0]), int(v[1])};
+}
+
+std::array<float, 4> ParseCrop(const std::string &s) {
+    std::vector<float> v = SplitFloats(s, ',');
+    if (v.size() != 4) throw UsageError("--crop expects x0,x1,y0,y1 (got \"" + s + "\")");
+    for (float f : v)
+        if (!(f >= 0 && f <= 1)) throw UsageError("--crop values must lie in [0,1] (got \"" + s + "\")");
+    if (!(v[0] < v[1] && v[2] < v[3])) throw UsageError("--crop window is empty (got \"" + s + "\")");
+    return {v[0], v[1], v[2], v[3]};
+}
+
+std::array<float, 9> ParseLookAt(const std::string &s) {
+    std::vector<float> v = SplitFloats(s, ',');
+    if (v.size() != 9) throw UsageError("--lookat expects ex,ey,ez,lx,ly,lz,ux,uy,uz (got \"" + s + "\")");
+    std::array<float, 9> r;
+    std::copy(v.begin(), v.end(), r.begin());
+    return r;
+}
+
+Precision ParsePrecision(const std::string &s) {
+    if (s == "float") return Precision::Float;
+    if (s == "double") return Precision::Double;
+    throw UsageError("--precision must be float or double");
+}
+
+void CheckOutputPath(const std::string &path) {
+    namespace fs = std::filesystem;
+    std::string ext = fs::path(path).extension().string();
+    for (char &c : ext) c = char(std::tolower(c));
+    static const char *ok[] = {".exr", ".png", ".pfm", ".hdr", ".tga", ".bmp", ".jpg", ".jpeg"};
+    bool known = false;
+    for (const char *e : ok) known |= ext == e;
+    if (!known)
+        throw UsageError("unsupported output format \"" + ext + "\" for \"" + path +
+                         "\" (use .exr or .png)");
+    fs::path dir = fs::path(path).parent_path();
+    if (!dir.empty() && !fs::is_directory(dir))
+        throw UsageError("output directory \"" + dir.string() + "\" does not exist");
+}
+
+std::string FindDefaultScene() {
+    const char *rel = "scenes/whitted.pbrt";
+    if (std::filesystem::exists(rel)) return rel;
+    std::string src = std::string(PRISM_SOURCE_DIR) + "/" + rel;
+    if (std::filesystem::exists(src)) return src;
+    return rel;  // LoadScene reports it missing
+}
+
+}  // namespace prism

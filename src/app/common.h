@@ -1,0 +1,34 @@
+// Helpers shared by the subcommands: option parsing, error handling, paths.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <functional>
+#include <string>
+
+#include "core/vecmath.h"
+#include "geometry/shape.h"
+
+namespace prism {
+
+// Runs a command, turning exceptions into messages and exit statuses: SceneError and
+// UsageError → 2, anything else → 1.
+int RunGuarded(const std::function<int()> &fn);
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+Vec2i ParseResolution(const std::string &s);             // "640x480"
+std::array<float, 4> ParseCrop(const std::string &s);    // "x0,x1,y0,y1"
+Precision ParsePrecision(const std::string &s);
+std::array<float, 9> ParseLookAt(const std::string &s);  // "ex,ey,ez,lx,ly,lz,ux,uy,uz"
+// Fails early (UsageError) if the image format is unsupported or the directory is missing.
+void CheckOutputPath(const std::string &path);
+// scenes/whitted.pbrt relative to the working directory, else to the source tree.
+std::string FindDefaultScene();
+inline double SecondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace prism

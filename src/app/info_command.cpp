@@ -1,0 +1,94 @@
+// `prism info SCENE`: what a scene file contains, without building a BVH.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include "app/commands.h"
+#include "app/common.h"
+#include "render/scene_shapes.h"
+#include "scene/load_scene.h"
+
+namespace prism {
+
+namespace {
+
+struct InfoArgs {
+    std::string scene;
+};
+
+std::string Counts(const std::map<std::string, int> &m) {
+    std::string s;
+    for (const auto &[k, v] : m) s += (s.empty() ? "" : ", ") + k + " " + std::to_string(v);
+    return s.empty() ? "none" : s;
+}
+
+int RunInfo(const InfoArgs &a) {
+    Diagnostics diag(false);
+    auto t0 = std::chrono::steady_clock::now();
+    SceneDescription desc = LoadScene(a.scene, diag);
+    double loadSeconds = SecondsSince(t0);
+
+    std::map<std::string, int> shapes, materials, textures, lights;
+    size_t triangles = 0;
+    Bounds3d bounds;
+    ShapeFactoryContext ctx{desc, diag, Precision::Double};
+    auto account = [&](const ShapeDesc &s, const Transform &worldFromObject) {
+        shapes[s.type]++;
+        ShapeGeometry g = CreateShapeGeometry(s, worldFromObject, ctx);
+        if (g.mesh) {
+            triangles += g.mesh->NumTriangles();
+            Bounds3f b = g.mesh->WorldBounds();
+            if (!b.IsEmpty()) bounds.Expand(Bounds3d(Vec3d(b.pMin), Vec3d(b.pMax)));
+        } else if (g.analytic) {
+            bounds.Expand(worldFromObject.Bounds(g.analytic->ObjectBounds()));
+        }
+    };
+    for (const ShapeDesc &s : desc.shapes) account(s, s.worldFromObject);
+    std::map<std::string, const ObjectDesc *> objects;
+    for (const ObjectDesc &o : desc.objects) objects[o.name] = &o;
+    for (const InstanceDesc &inst : desc.instances) {
+        auto it = objects.find(inst.object);
+        if (it == objects.end()) continue;
+        for (const ShapeDesc &s : it->second->shapes) account(s, inst.worldFromInstance * s.worldFromObject);
+    }
+    for (const MaterialDesc &m : desc.materials) materials[m.type]++;
+    for (const TextureDesc &t : desc.textures) textures[t.type]++;
+    for (const LightDesc &l : desc.lights) lights[l.type]++;
+    int areaShapes = 0;
+    for (const ShapeDesc &s : desc.shapes) areaShapes += s.areaLight >= 0;
+
+    std::printf("scene:      %s (%s), loaded in %.3f s\n", a.scene.c_str(), desc.format.c_str(), loadSeconds);
+    std::printf("shapes:     %zu (%s)\n", desc.shapes.size(), Counts(shapes).c_str());
+    std::printf("triangles:  %zu\n", triangles);
+    std::printf("instances:  %zu of %zu objects\n", desc.instances.size(), desc.objects.size());
+    std::printf("materials:  %zu (%s)\n", desc.materials.size(), Counts(materials).c_str());
+    std::printf("textures:   %zu (%s)\n", desc.textures.size(), Counts(textures).c_str());
+    std::printf("lights:     %zu (%s); %d emissive shapes\n", desc.lights.size(), Counts(lights).c_str(), areaShapes);
+    if (!bounds.IsEmpty())
+        std::printf("bounds:     %s - %s\n", ToString(bounds.pMin).c_str(), ToString(bounds.pMax).c_str());
+    const CameraDesc &cam = desc.camera;
+    Transform worldFromCamera = cam.cameraFromWorld.Inverse();
+    std::printf("camera:     %s, eye %s, looking along %s%s\n", cam.specified ? cam.type.c_str() : "perspective (default)",
+                ToString(worldFromCamera.Point(Vec3d(0, 0, 0))).c_str(),
+                ToString(Normalize(worldFromCamera.Vector(Vec3d(0, 0, 1)))).c_str(),
+                cam.params.Has("fov") ? (", fov " + std::to_string(cam.params.GetFloat("fov", 90))).c_str() : "");
+    std::printf("film:       %dx%d\n", desc.film.params.GetInt("xresolution", 1280), desc.film.params.GetInt("yresolution", 720));
+    std::printf("integrator: %s\n", desc.integrator.type.c_str());
+    std::vector<Warning> w = diag.Warnings();
+    std::printf("warnings:   %zu\n", w.size());
+    for (const Warning &x : w) std::printf("  %s\n", x.ToString().c_str());
+    return ExitOk;
+}
+
+}  // namespace
+
+void AddInfoCommand(CLI::App &app, int *exitCode) {
+    auto args = std::make_shared<InfoArgs>();
+    CLI::App *cmd = app.add_subcommand("info", "Describe what a scene contains (no BVH build)");
+    cmd->add_option("scene", args->scene, "Scene file")->required();
+    cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunInfo(*args); }); });
+}
+
+}  // namespace prism

@@ -1,0 +1,29 @@
+// prism: a Whitted ray tracer on Embree. Subcommands: render (more arrive with their issues).
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+
+int main(int argc, char **argv) {
+    if (argc == 1) return prism::RenderDefaultScene();
+    CLI::App app{"Prism: a CPU Whitted ray tracer on Embree (pbrt-v3, OBJ, glTF scenes)", "prism"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", PRISM_VERSION);
+    int exitCode = 0;
+    prism::AddRenderCommand(app, &exitCode);
+    prism::AddTraceCommand(app, &exitCode);
+    prism::AddInfoCommand(app, &exitCode);
+    prism::AddBatchCommand(app, &exitCode);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp &e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp &e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion &e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError &e) {
+        app.exit(e);
+        return prism::ExitBadInput;
+    }
+    return exitCode;
+}

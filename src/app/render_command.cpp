@@ -1,0 +1,166 @@
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <tbb/global_control.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "app/commands.h"
+#include "app/common.h"
+#include "image/image_io.h"
+#include "render/render_scene.h"
+#include "render/renderer.h"
+#include "scene/load_scene.h"
+
+namespace prism {
+
+namespace {
+
+// SIGINT during a render sets this flag: the renderer stops between tiles and nothing is
+// written. During the final write the signal is deferred, so the output is either complete or
+// absent.
+volatile sig_atomic_t g_cancel = 0;
+void OnInterrupt(int) { g_cancel = 1; }
+
+struct RenderArgs {
+    std::string scene, output, res, crop, precision = "double", lookAt;
+    int spp = 0, threads = 0, maxDepth = -1, lightSamples = 0;
+    float fov = 0;
+    bool quiet = false, noProgress = false;
+};
+
+void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool tty, int *lastQuarter) {
+    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double eta = f > 0 ? elapsed * (1 - f) / f : 0;
+    if (tty) {
+        const int width = 40;
+        int filled = int(f * width + 0.5);
+        std::string bar(size_t(filled), '#');
+        bar += std::string(size_t(width - filled), '.');
+        std::fprintf(stderr, "\r[%s] %3.0f%%  %.1fs elapsed  ETA %.1fs ", bar.c_str(), 100 * f,
+                     elapsed, eta);
+        if (f >= 1) std::fprintf(stderr, "\n");
+    } else {
+        int q = int(f * 4);
+        if (q > *lastQuarter) {
+            *lastQuarter = q;
+            std::fprintf(stderr, "render: %3.0f%% (%.1fs elapsed, ETA %.1fs)\n", 100.0 * q / 4,
+                         elapsed, eta);
+        }
+    }
+}
+
+int RunRender(const RenderArgs &a) {
+    RenderOptions opts;
+    opts.spp = a.spp;
+    opts.maxDepth = a.maxDepth;
+    opts.quiet = a.quiet;
+    opts.threads = a.threads;
+    if (!a.res.empty()) opts.resolution = ParseResolution(a.res);
+    if (!a.crop.empty()) opts.crop = ParseCrop(a.crop);
+    opts.precision = ParsePrecision(a.precision);
+    if (!a.lookAt.empty()) opts.lookAt = ParseLookAt(a.lookAt);
+    opts.fov = a.fov;
+    opts.lightSamples = a.lightSamples;
+
+    std::unique_ptr<tbb::global_control> threadLimit;
+    if (a.threads > 0)
+        threadLimit = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, size_t(a.threads));
+
+    Diagnostics diag(!a.quiet);
+    auto t0 = std::chrono::steady_clock::now();
+    SceneDescription desc = LoadScene(a.scene, diag);
+    double parseSeconds = SecondsSince(t0);
+    RenderScene scene = BuildRenderScene(desc, opts, diag);
+
+    std::string out = a.output;
+    if (out.empty()) out = scene.outputFilename;
+    if (out.empty()) out = std::filesystem::path(a.scene).stem().string() + ".png";
+    CheckOutputPath(out);  // before rendering: a long render must not fail at the end
+
+    auto start = std::chrono::steady_clock::now();
+    int lastQuarter = 0;
+    bool tty = isatty(STDERR_FILENO);
+    ProgressFn progress;
+    if (!a.quiet && !a.noProgress)
+        progress = [&](double f) { PrintProgress(f, start, tty, &lastQuarter); };
+    RenderStats stats;
+    struct sigaction sa{}, old{};
+    sa.sa_handler = OnInterrupt;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old);
+    sigaction(SIGTERM, &sa, nullptr);
+    Image img = Render(scene, &stats, progress, &g_cancel);
+    if (stats.cancelled || g_cancel) {
+        std::fprintf(stderr, "interrupted: no image written\n");
+        return 130;
+    }
+    WriteImage(out, img);
+    sigaction(SIGINT, &old, nullptr);
+
+    if (!a.quiet) {
+        const RayCounters &r = stats.rays;
+        std::fprintf(stderr,
+                     "%s: %dx%d, %d spp, maxdepth %d, %s precision\n"
+                     "time: parse %.3fs, BVH build %.3fs, render %.3fs\n"
+                     "rays: camera %llu, shadow %llu, reflection %llu, refraction %llu, "
+                     "pass-through %llu; %.2f Mrays/s\n",
+                     out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
+                     scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
+                     a.precision.c_str(), parseSeconds, scene.buildSeconds, stats.renderSeconds,
+                     (unsigned long long)r.camera, (unsigned long long)r.shadow,
+                     (unsigned long long)r.reflection, (unsigned long long)r.refraction,
+                     (unsigned long long)r.passThrough,
+                     stats.renderSeconds > 0 ? r.Total() / stats.renderSeconds * 1e-6 : 0.0);
+        const SceneFeatures &f = scene.features;
+        auto yn = [](bool b) { return b ? "on" : "off"; };
+        std::fprintf(stderr,
+                     "effects: specular reflection %s, refraction %s, soft shadows %s, "
+                     "environment %s, textures %s, depth of field %s\n",
+                     yn(f.specularReflection), yn(f.transmission), yn(f.areaLights),
+                     yn(f.environment), yn(f.textures), yn(f.lens));
+        if (stats.nonFiniteSamples > 0)
+            std::fprintf(stderr, "warning: %llu NaN/Inf samples were written as 0 (first at pixel %d,%d)\n",
+                         (unsigned long long)stats.nonFiniteSamples,
+                         stats.firstNonFinitePixel->x, stats.firstNonFinitePixel->y);
+    }
+    return ExitOk;
+}
+
+}  // namespace
+
+void AddRenderCommand(CLI::App &app, int *exitCode) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App *cmd = app.add_subcommand("render", "Render a scene (.pbrt, .obj, .gltf, .glb, .ply) to an image");
+    cmd->add_option("scene", args->scene, "Scene file")->required();
+    cmd->add_option("-o,--output", args->output, "Output image (.exr linear float, .png sRGB); default: the Film's filename");
+    cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the Sampler)")->check(CLI::Range(1, 1 << 16));
+    cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+    cmd->add_option("--res", args->res, "Resolution WxH (overrides the Film)");
+    cmd->add_option("--maxdepth", args->maxDepth, "Maximum specular depth (overrides the Integrator)")->check(CLI::Range(0, 1000));
+    cmd->add_option("--crop", args->crop, "Crop window x0,x1,y0,y1 in [0,1] (like Film \"cropwindow\")");
+    cmd->add_option("--precision", args->precision, "Arithmetic of the analytic intersectors")
+        ->check(CLI::IsMember({"float", "double"}));
+    cmd->add_option("--light-samples", args->lightSamples, "Shadow rays per area/infinite light (overrides nsamples)")
+        ->check(CLI::Range(1, 4096));
+    cmd->add_option("--lookat", args->lookAt, "Camera ex,ey,ez,lx,ly,lz,ux,uy,uz (replaces the scene's camera)");
+    cmd->add_option("--fov", args->fov, "Field of view in degrees on the shorter image axis")
+        ->check(CLI::Range(0.001, 179.999));
+    cmd->add_flag("-q,--quiet", args->quiet, "No progress, statistics or warnings");
+    cmd->add_flag("--no-progress", args->noProgress, "No progress display (statistics and warnings stay)");
+    cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunRender(*args); }); });
+}
+
+int RenderDefaultScene() {
+    RenderArgs a;
+    a.scene = FindDefaultScene();
+    a.output = "whitted.png";
+    return RunGuarded([&] { return RunRender(a); });
+}
+
+}  // namespace prism

@@ -1,0 +1,186 @@
+#include "render/bsdf.h"
+
+#include <cmath>
+
+namespace prism {
+
+float FrDielectric(float cosThetaI, float etaI, float etaT) {
+    cosThetaI = Clamp(cosThetaI, -1.f, 1.f);
+    if (cosThetaI <= 0) {  // leaving the medium: swap the indices
+        std::swap(etaI, etaT);
+        cosThetaI = std::abs(cosThetaI);
+    }
+    float sinThetaI = std::sqrt(std::max(0.f, 1 - cosThetaI * cosThetaI));
+    float sinThetaT = etaI / etaT * sinThetaI;
+    if (sinThetaT >= 1) return 1;  // total internal reflection
+    float cosThetaT = std::sqrt(std::max(0.f, 1 - sinThetaT * sinThetaT));
+    float rParl = ((etaT * cosThetaI) - (etaI * cosThetaT)) / ((etaT * cosThetaI) + (etaI * cosThetaT));
+    float rPerp = ((etaI * cosThetaI) - (etaT * cosThetaT)) / ((etaI * cosThetaI) + (etaT * cosThetaT));
+    return (rParl * rParl + rPerp * rPerp) / 2;
+}
+
+RGB FrConductor(float cosThetaI, const RGB &etai, const RGB &etat, const RGB &k) {
+    cosThetaI = Clamp(cosThetaI, -1.f, 1.f);
+    RGB result;
+    for (int c = 0; c < 3; ++c) {
+        float eta = etat[c] / etai[c], etak = k[c] / etai[c];
+        float cos2 = cosThetaI * cosThetaI, sin2 = 1 - cos2;
+        float eta2 = eta * eta, etak2 = etak * etak;
+        float t0 = eta2 - etak2 - sin2;
+        float a2plusb2 = std::sqrt(t0 * t0 + 4 * eta2 * etak2);
+        float t1 = a2plusb2 + cos2;
+        float a = std::sqrt(std::max(0.f, 0.5f * (a2plusb2 + t0)));
+        float t2 = 2 * cosThetaI * a;
+        float rs = (t1 - t2) / (t1 + t2);
+        float t3 = cos2 * a2plusb2 + sin2 * sin2;
+        float t4 = t2 * sin2;
+        float rp = rs * (t3 - t4) / (t3 + t4);
+        result[c] = 0.5f * (rp + rs);
+    }
+    return result;
+}
+
+float RoughnessToAlpha(float roughness) {
+    roughness = std::max(roughness, 1e-3f);
+    float x = std::log(roughness);
+    return 1.62142f + 0.819955f * x + 0.1734f * x * x + 0.0171201f * x * x * x +
+           0.000640711f * x * x * x * x;
+}
+
+RGB Fresnel::Evaluate(float cosThetaI) const {
+    switch (kind) {
+    case FresnelKind::None: return RGB(1);
+    case FresnelKind::Dielectric: return RGB(FrDielectric(cosThetaI, etaI, etaT));
+    case FresnelKind::Conductor: return FrConductor(std::abs(cosThetaI), RGB(1), eta, k);
+    }
+    return RGB(1);
+}
+
+void BSDF::SetFrame(const Vec3f &shadingNormal, const Vec3f &dpdu, const Vec3f &geometricNormal) {
+    ns = shadingNormal;
+    ng = geometricNormal;
+    Vec3f s = dpdu - ns * Dot(dpdu, ns);
+    float len = Length(s);
+    if (len > 1e-12f && std::isfinite(len)) {
+        ss = s / len;
+        ts = Cross(ns, ss);
+    } else {
+        CoordinateSystem(ns, &ss, &ts);
+    }
+}
+
+namespace {
+
+inline float CosTheta(const Vec3f &w) { return w.z; }
+inline float Cos2Theta(const Vec3f &w) { return w.z * w.z; }
+inline float Sin2Theta(const Vec3f &w) { return std::max(0.f, 1 - Cos2Theta(w)); }
+inline float Tan2Theta(const Vec3f &w) { return Sin2Theta(w) / Cos2Theta(w); }
+inline float Cos2Phi(const Vec3f &w) {
+    float s2 = Sin2Theta(w);
+    return s2 == 0 ? 1.f : Clamp(w.x * w.x / s2, 0.f, 1.f);
+}
+inline float Sin2Phi(const Vec3f &w) {
+    float s2 = Sin2Theta(w);
+    return s2 == 0 ? 0.f : Clamp(w.y * w.y / s2, 0.f, 1.f);
+}
+
+float TrowbridgeReitzD(const Vec3f &wh, float ax, float ay) {
+    float tan2 = Tan2Theta(wh);
+    if (std::isinf(tan2)) return 0;
+    float cos4 = Cos2Theta(wh) * Cos2Theta(wh);
+    float e = (Cos2Phi(wh) / (ax * ax) + Sin2Phi(wh) / (ay * ay)) * tan2;
+    return 1 / (float(Pi) * ax * ay * cos4 * (1 + e) * (1 + e));
+}
+
+float TrowbridgeReitzLambda(const Vec3f &w, float ax, float ay) {
+    float tan2 = Tan2Theta(w);
+    if (std::isinf(tan2)) return 0;
+    float alpha2 = Cos2Phi(w) * ax * ax + Sin2Phi(w) * ay * ay;
+    return (-1 + std::sqrt(1 + alpha2 * tan2)) / 2;
+}
+
+}  // namespace
+
+RGB BSDF::f(const Vec3f &woW, const Vec3f &wiW) const {
+    Vec3f wo = ToLocal(woW), wi = ToLocal(wiW);
+    if (wo.z == 0) return RGB(0);
+    // pbrt BSDF::f: the geometric normal decides whether this is reflection or transmission,
+    // which avoids light leaks through shading normals.
+    bool reflect = Dot(wiW, ng) * Dot(woW, ng) > 0;
+    RGB result;
+    if (reflect) {
+        if (!kd.IsBlack()) {
+            if (!orenNayar) {
+                result += kd * float(InvPi);
+            } else {
+                float sinThetaI = std::sqrt(Sin2Theta(wi)), sinThetaO = std::sqrt(Sin2Theta(wo));
+                float maxCos = 0;
+                if (sinThetaI > 1e-4f && sinThetaO > 1e-4f) {
+                    float sinPhiI = wi.y / sinThetaI, cosPhiI = wi.x / sinThetaI;
+                    float sinPhiO = wo.y / sinThetaO, cosPhiO = wo.x / sinThetaO;
+                    maxCos = std::max(0.f, cosPhiI * cosPhiO + sinPhiI * sinPhiO);
+                }
+                float sinAlpha, tanBeta;
+                if (std::abs(wi.z) > std::abs(wo.z)) {
+                    sinAlpha = sinThetaO;
+                    tanBeta = sinThetaI / std::abs(wi.z);
+                } else {
+                    sinAlpha = sinThetaI;
+                    tanBeta = sinThetaO / std::abs(wo.z);
+                }
+                result += kd * float(InvPi) * (orenNayarA + orenNayarB * maxCos * sinAlpha * tanBeta);
+            }
+        }
+        if (!ks.IsBlack()) {
+            float cosO = std::abs(wo.z), cosI = std::abs(wi.z);
+            Vec3f wh = wi + wo;
+            if (cosI != 0 && cosO != 0 && !(wh.x == 0 && wh.y == 0 && wh.z == 0)) {
+                wh = Normalize(wh);
+                // Fresnel with wh turned to the normal's side so TIR is handled (pbrt-v3).
+                Vec3f whF = wh.z < 0 ? -wh : wh;
+                RGB F = glossyFresnel.Evaluate(Dot(wi, whF));
+                float G = 1 / (1 + TrowbridgeReitzLambda(wo, alphaX, alphaY) +
+                               TrowbridgeReitzLambda(wi, alphaX, alphaY));
+                result += ks * F * (TrowbridgeReitzD(wh, alphaX, alphaY) * G / (4 * cosI * cosO));
+            }
+        }
+    } else if (!kdTransmit.IsBlack()) {
+        result += kdTransmit * float(InvPi);
+    }
+    return result;
+}
+
+bool BSDF::SampleSpecularReflection(const Vec3f &woW, Vec3f *wiW, RGB *weight) const {
+    if (kr.IsBlack()) return false;
+    Vec3f wo = ToLocal(woW);
+    Vec3f wi(-wo.x, -wo.y, wo.z);
+    if (wi.z == 0) return false;
+    // f = F(cos) R / |cos|; the |cos| cancels with the one in the rendering equation.
+    *weight = kr * specularFresnel.Evaluate(CosTheta(wi));
+    *wiW = FromLocal(wi);
+    return !weight->IsBlack();
+}
+
+bool BSDF::SampleSpecularTransmission(const Vec3f &woW, Vec3f *wiW, RGB *weight) const {
+    if (kt.IsBlack()) return false;
+    Vec3f wo = ToLocal(woW);
+    if (wo.z == 0) return false;
+    bool entering = wo.z > 0;
+    float etaI = entering ? 1.f : eta, etaT = entering ? eta : 1.f;
+    // Snell's law about the normal on wo's side.
+    Vec3f n(0, 0, entering ? 1.f : -1.f);
+    float e = etaI / etaT;
+    float cosThetaI = Dot(n, wo);
+    float sin2ThetaI = std::max(0.f, 1 - cosThetaI * cosThetaI);
+    float sin2ThetaT = e * e * sin2ThetaI;
+    if (sin2ThetaT >= 1) return false;  // total internal reflection: all goes to reflection
+    float cosThetaT = std::sqrt(1 - sin2ThetaT);
+    Vec3f wi = -wo * e + n * (e * cosThetaI - cosThetaT);
+    float F = FrDielectric(CosTheta(wi), 1.f, eta);
+    // Radiance is scaled by (etaI/etaT)^2 across the interface (pbrt-v3, TransportMode::Radiance).
+    *weight = kt * (1 - F) * ((etaI * etaI) / (etaT * etaT));
+    *wiW = FromLocal(wi);
+    return !weight->IsBlack();
+}
+
+}  // namespace prism

@@ -1,0 +1,62 @@
+#include "render/camera.h"
+
+#include <cmath>
+
+namespace prism {
+
+Camera::Camera(const CameraParams &p, const Transform &renderFromCamera, Vec2i res,
+               double frame)
+    : ortho_(p.orthographic),
+      lensRadius_(p.lensRadius),
+      focalDistance_(p.focalDistance),
+      res_(res),
+      renderFromCamera_(renderFromCamera) {
+    bool custom = p.screenWindow[0] != 0 || p.screenWindow[1] != 0 || p.screenWindow[2] != 0 ||
+                  p.screenWindow[3] != 0;
+    if (custom) {
+        sx0_ = p.screenWindow[0]; sx1_ = p.screenWindow[1];
+        sy0_ = p.screenWindow[2]; sy1_ = p.screenWindow[3];
+    } else if (frame > 1) {
+        sx0_ = -frame; sx1_ = frame; sy0_ = -1; sy1_ = 1;
+    } else {
+        sx0_ = -1; sx1_ = 1; sy0_ = -1 / frame; sy1_ = 1 / frame;
+    }
+    tanHalf_ = std::tan(Radians(p.fovDeg) / 2);
+}
+
+Ray Camera::GenerateRay(Vec2f pFilm, Vec2f uLens) const {
+    // Raster → screen: raster row 0 is the top of the screen window (pbrt ScreenToRaster).
+    double sx = sx0_ + (double(pFilm.x) / res_.x) * (sx1_ - sx0_);
+    double sy = sy1_ - (double(pFilm.y) / res_.y) * (sy1_ - sy0_);
+    Vec3d o, d;
+    if (ortho_) {
+        o = {sx, sy, 0};
+        d = {0, 0, 1};
+    } else {
+        o = {0, 0, 0};
+        d = Normalize(Vec3d(sx * tanHalf_, sy * tanHalf_, 1));
+    }
+    if (lensRadius_ > 0) {
+        // Thin lens: concentric disk sample, focus on the plane z = focalDistance.
+        double ux = 2.0 * uLens.x - 1, uy = 2.0 * uLens.y - 1, r, theta;
+        if (ux == 0 && uy == 0) {
+            r = 0; theta = 0;
+        } else if (std::abs(ux) > std::abs(uy)) {
+            r = ux; theta = (Pi / 4) * (uy / ux);
+        } else {
+            r = uy; theta = Pi / 2 - (Pi / 4) * (ux / uy);
+        }
+        Vec3d pLens(lensRadius_ * r * std::cos(theta), lensRadius_ * r * std::sin(theta), 0);
+        double ft = focalDistance_ / d.z;
+        Vec3d pFocus = o + d * ft;
+        o = o + pLens;
+        d = Normalize(pFocus - o);
+    }
+    Ray ray;
+    ray.o = Vec3f(renderFromCamera_.Point(o));
+    ray.d = Vec3f(Normalize(renderFromCamera_.Vector(d)));
+    ray.tMax = Infinity;
+    return ray;
+}
+
+}  // namespace prism

@@ -1,0 +1,34 @@
+// pbrt-v3 perspective and orthographic cameras (left-handed camera space, +z forward, raster y
+// down). fov applies to the shorter image axis through the default screen window.
+#pragma once
+
+#include "core/transform.h"
+#include "geometry/ray.h"
+
+namespace prism {
+
+struct CameraParams {
+    bool orthographic = false;
+    double fovDeg = 90;
+    double screenWindow[4] = {0, 0, 0, 0};  // x0 x1 y0 y1; all zero → pbrt default
+    double lensRadius = 0, focalDistance = 1e6;
+};
+
+class Camera {
+public:
+    // renderFromCamera maps camera space to the render space (world translated to the eye).
+    Camera(const CameraParams &params, const Transform &renderFromCamera, Vec2i fullResolution,
+           double frameAspectRatio);
+    // pFilm: continuous raster position; uLens in [0,1)^2 (used only with a lens).
+    Ray GenerateRay(Vec2f pFilm, Vec2f uLens) const;
+    bool HasLens() const { return lensRadius_ > 0; }
+
+private:
+    bool ortho_;
+    double sx0_, sx1_, sy0_, sy1_, tanHalf_;
+    double lensRadius_, focalDistance_;
+    Vec2i res_;
+    Transform renderFromCamera_;
+};
+
+}  // namespace prism

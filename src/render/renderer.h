@@ -1,0 +1,29 @@
+// The tile-parallel render loop: TBB over tiles, each tile filtered into its own buffer, tiles
+// merged in a fixed order so the image is identical for any thread count.
+#pragma once
+
+#include <functional>
+
+#include "image/image.h"
+#include "render/render_scene.h"
+#include "render/whitted.h"
+
+namespace prism {
+
+struct RenderStats {
+    double renderSeconds = 0;
+    RayCounters rays;
+    uint64_t nonFiniteSamples = 0;
+    std::optional<Vec2i> firstNonFinitePixel;
+    bool cancelled = false;  // the cancel flag was raised: the image is incomplete
+};
+
+// Called with the fraction done (0..1), from a single thread.
+using ProgressFn = std::function<void(double fraction)>;
+
+// `cancel`, when given, is polled between tiles; once it reads true the remaining tiles are
+// skipped and stats->cancelled is set.
+Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &progress = {},
+             const volatile int *cancel = nullptr);
+
+}  // namespace prism

@@ -1,0 +1,83 @@
+#include "render/whitted.h"
+
+#include "render/area_light.h"
+#include "render/render_scene.h"
+#include "render/sampler.h"
+
+namespace prism {
+
+namespace {
+// Consecutive invisible-interface crossings allowed before a ray is dropped; guards against
+// stacks of coincident "none" surfaces without changing any real scene.
+constexpr int MaxPassThrough = 256;
+}  // namespace
+
+RGB WhittedIntegrator::Li(const Ray &rayIn, int depth, RayCounters &counters,
+                          const SampleContext &sc) const {
+    Ray ray = rayIn;
+    SurfaceInteraction si;
+    const Material *mat = nullptr;
+    const ShapeInfo *shape = nullptr;
+    for (int pass = 0;; ++pass) {
+        if (!scene_.accel->Intersect(ray, &si)) {
+            RGB L;
+            for (const auto &light : scene_.lights) L += light->Le(ray);
+            return L;
+        }
+        shape = &scene_.Info(si);
+        mat = &scene_.materials[size_t(shape->material)];
+        if (!mat->IsPassThrough()) break;
+        if (pass >= MaxPassThrough) return RGB(0);
+        // pbrt: a surface without a BSDF continues the ray without counting a bounce.
+        ray = si.SpawnRay(ray.d);
+        counters.passThrough++;
+    }
+
+    TextureContext tc{si.uv, si.p};
+    BSDF bsdf = mat->GetBSDF(si, tc);
+    const Vec3f &wo = si.wo;
+    RGB L;
+    // Emission of an area light seen directly or through specular paths.
+    if (shape->areaLight >= 0)
+        L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(shape->areaLight)]).L(si.n, wo);
+
+    // Direct lighting through the non-specular lobes: one shadow ray per delta light, and a
+    // stratified set of shadow rays per area or environment light (distribution ray tracing).
+    if (bsdf.HasNonSpecular()) {
+        for (size_t j = 0; j < scene_.lights.size(); ++j) {
+            const Light &light = *scene_.lights[j];
+            int n = light.NumSamples();
+            uint32_t seed = PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919));
+            RGB Lj;
+            for (int k = 0; k < n; ++k) {
+                Vec2f u = CMJSample(sc.sample * uint32_t(n) + uint32_t(k), sc.spp * uint32_t(n), seed);
+                LightSample ls;
+                if (!light.SampleLi(si, u, &ls) || ls.Li.IsBlack() || !(ls.pdf > 0)) continue;
+                RGB f = bsdf.f(wo, ls.wi);
+                if (f.IsBlack()) continue;
+                Ray shadow = ls.infinite ? si.SpawnRay(ls.wi) : si.SpawnRayTo(ls.pLight);
+                counters.shadow++;
+                if (scene_.accel->Occluded(shadow)) continue;
+                Lj += f * ls.Li * (AbsDot(ls.wi, bsdf.ns) / ls.pdf);
+            }
+            L += n == 1 ? Lj : Lj / float(n);
+        }
+    }
+
+    // Specular recursion.
+    if (depth + 1 < scene_.maxDepth) {
+        Vec3f wi;
+        RGB weight;
+        if (bsdf.SampleSpecularReflection(wo, &wi, &weight)) {
+            counters.reflection++;
+            L += weight * Li(si.SpawnRay(wi), depth + 1, counters, sc);
+        }
+        if (bsdf.SampleSpecularTransmission(wo, &wi, &weight)) {
+            counters.refraction++;
+            L += weight * Li(si.SpawnRay(wi), depth + 1, counters, sc);
+        }
+    }
+    return L;
+}
+
+}  // namespace prism

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Installs Prism's build and test dependencies from Debian 12 packages (needs root or sudo).
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends \
+  g++ cmake ninja-build ccache pkg-config \
+  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools \
+  libtinyobjloader-dev libtinygltf-dev libcli11-dev libfmt-dev \
+  libgtest-dev libbenchmark-dev python3-matplotlib >/dev/null
+echo "dependencies installed"
