@@ -28,6 +28,26 @@ void Diagnostics::Warn(const FileLoc &loc, const std::string &message) {
     if (echo_) std::fprintf(stderr, "%s\n", warnings_.back().ToString().c_str());
 }
 
+void Diagnostics::WarnOnce(const std::string &key, const FileLoc &loc, const std::string &message) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (auto &[k, n] : once_)
+            if (k == key) {
+                ++n;
+                return;
+            }
+        once_.emplace_back(key, 1);
+    }
+    Warn(loc, message);
+}
+
+int Diagnostics::OnceCount(const std::string &key) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto &[k, n] : once_)
+        if (k == key) return n;
+    return 0;
+}
+
 std::vector<Warning> Diagnostics::Warnings() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return warnings_;

@@ -43,6 +43,10 @@ public:
     explicit Diagnostics(bool echo = false) : echo_(echo) {}
     void Warn(const FileLoc &loc, const std::string &message);
     void Warn(const std::string &message) { Warn(FileLoc{}, message); }
+    // Warns only the first time `key` is seen (e.g. one warning per unsupported feature,
+    // at its first location); later occurrences are counted in OnceCount(key).
+    void WarnOnce(const std::string &key, const FileLoc &loc, const std::string &message);
+    int OnceCount(const std::string &key) const;
     std::vector<Warning> Warnings() const;
     size_t Count() const;
     void SetEcho(bool echo) { echo_ = echo; }
@@ -50,6 +54,7 @@ public:
 private:
     mutable std::mutex mutex_;
     std::vector<Warning> warnings_;
+    std::vector<std::pair<std::string, int>> once_;
     bool echo_;
 };
 

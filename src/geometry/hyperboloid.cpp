@@ -49,13 +49,16 @@ Hyperboloid::Hyperboloid(const Transform &worldFromObject, bool reverseOrientati
     }
     if (!fitted)
         throw std::invalid_argument("hyperboloid p1, p2 sweep no hyperboloid (degenerate fit)");
-    if (!(ah_ > 0))
-        throw std::invalid_argument("hyperboloid p1, p2 sweep no hyperboloid of one sheet");
+    // a_h < 0 is a hyperboloid of two sheets (pbrt-v3 renders those too, e.g. in the
+    // all-shapes scene); only a_h == 0 (a degenerate quadric) is rejected.
+    if (ah_ == 0) throw std::invalid_argument("hyperboloid p1, p2 sweep a degenerate quadric");
     // Largest radius over [zmin, zmax]: rho^2 = (1 + c z^2) / a peaks at an end, or at z = 0
     // when c < 0 (an ellipsoid-like fit).
     double r2 = std::max(p1_.x * p1_.x + p1_.y * p1_.y, xy2);
-    for (double z : {zMin_, zMax_, Clamp(0.0, zMin_, zMax_)})
-        r2 = std::max(r2, (1 + ch_ * z * z) / ah_);
+    for (double z : {zMin_, zMax_, Clamp(0.0, zMin_, zMax_)}) {
+        double r = (1 + ch_ * z * z) / ah_;  // negative where a two-sheet fit has no surface
+        if (std::isfinite(r)) r2 = std::max(r2, r);
+    }
     rMax_ = std::sqrt(r2);
 }
 

@@ -329,7 +329,8 @@ struct Builder {
                 scene.lights.push_back(std::make_unique<InfiniteLight>(renderFromLight, L, map, n));
                 scene.features.environment = true;
             } else {
-                diag.Warn(l.loc, "light source " + Quote(l.type) + " is not supported; ignored");
+                diag.WarnOnce("light:" + l.type, l.loc,
+                              "light source " + Quote(l.type) + " is not supported; every such light is ignored");
                 for (const Param &p : ps.Params()) p.lookedUp = true;
             }
             ps.ReportUnused(diag, "light " + Quote(l.type));
@@ -554,7 +555,8 @@ struct Builder {
         const AreaLightDesc &a = desc.areaLights[size_t(s.areaLight)];
         const ParamSet &ps = a.params;
         if (a.type != "diffuse" && a.type != "area") {  // pbrt-v3 accepts both names
-            diag.Warn(a.loc, "area light " + Quote(a.type) + " is not supported; the shape does not emit");
+            diag.WarnOnce("arealight:" + a.type, a.loc,
+                          "area light " + Quote(a.type) + " is not supported; shapes using it do not emit");
             return;
         }
         RGB L = ps.GetRGB("L", RGB(1)) * ScaleParam(ps);

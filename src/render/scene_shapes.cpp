@@ -218,7 +218,8 @@ ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFro
     if (s.type == "torus") return TorusShape(s, renderFromObject);
     if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject, ctx);
     if (s.type == "plymesh") return PlyMeshShape(s, renderFromObject, ctx);
-    ctx.diag.Warn(s.loc, "shape \"" + s.type + "\" is not supported yet; skipped");
+    ctx.diag.WarnOnce("shape:" + s.type, s.loc,
+                      "shape \"" + s.type + "\" is not supported; every such shape is skipped");
     for (const Param &p : s.params.Params()) p.lookedUp = true;
     return {};
 }

@@ -133,6 +133,19 @@ TEST(Cli, BadOptionsExitWithStatus2) {
     EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
 
+TEST(Cli, InfoDescribesScene) {
+    fs::path dir = TempDir("info");
+    RunResult r = RunPrism("info '" + Source + "/scenes/quadrics.pbrt'", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("shapes:     13 ("), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("torus 2"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("triangles:  2"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("lights:     2 (point 1, spot 1)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("bounds:"), std::string::npos);
+    EXPECT_NE(r.out.find("warnings:   0"), std::string::npos);
+    EXPECT_EQ(RunPrism("info missing.pbrt", dir).exitCode, 2);
+}
+
 TEST(Cli, TraceReportsHitsMissesAndLimits) {
     fs::path dir = TempDir("trace");
     std::ofstream(dir / "s.pbrt") << "Camera \"perspective\"\nWorldBegin\n"
