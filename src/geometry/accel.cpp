@@ -263,6 +263,61 @@ bool Accel::Occluded(const Ray &r) const {
     return ray.tfar < 0;
 }
 
+void Accel::IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded) const {
+    PRISM_CHECK(n >= 0 && n <= 16);
+    alignas(64) int valid[16];
+    alignas(64) RTCRayHit16 rh;
+    for (int i = 0; i < 16; ++i) {
+        valid[i] = i < n ? -1 : 0;
+        const Ray &r = rays[i < n ? i : 0];
+        rh.ray.org_x[i] = r.o.x; rh.ray.org_y[i] = r.o.y; rh.ray.org_z[i] = r.o.z;
+        rh.ray.dir_x[i] = r.d.x; rh.ray.dir_y[i] = r.d.y; rh.ray.dir_z[i] = r.d.z;
+        rh.ray.tnear[i] = r.tMin;
+        rh.ray.tfar[i] = r.tMax;
+        rh.ray.time[i] = 0;
+        rh.ray.mask[i] = 0xFFFFFFFFu;
+        rh.ray.id[i] = unsigned(i);
+        rh.ray.flags[i] = 0;
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcIntersect16(valid, impl_->scene, &ctx, &rh);
+    for (int i = 0; i < n; ++i) {
+        RawHit &h = hits[i];
+        h = RawHit{};
+        if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+        unsigned inst = rh.hit.instID[0][i];
+        if (inst != RTC_INVALID_GEOMETRY_ID) {
+            h.shape = impl_->shapeOfGeom[inst];
+            h.instanceShape = impl_->shapes[size_t(h.shape)].prototype->impl_->shapeOfGeom[rh.hit.geomID[i]];
+        } else {
+            h.shape = impl_->shapeOfGeom[rh.hit.geomID[i]];
+        }
+        h.prim = int(rh.hit.primID[i]);
+        h.t = rh.ray.tfar[i];
+        h.u = rh.hit.u[i];
+        h.v = rh.hit.v[i];
+    }
+    if (occluded) {
+        alignas(64) RTCRay16 ray;
+        for (int i = 0; i < 16; ++i) {
+            const Ray &r = rays[i < n ? i : 0];
+            ray.org_x[i] = r.o.x; ray.org_y[i] = r.o.y; ray.org_z[i] = r.o.z;
+            ray.dir_x[i] = r.d.x; ray.dir_y[i] = r.d.y; ray.dir_z[i] = r.d.z;
+            ray.tnear[i] = r.tMin;
+            ray.tfar[i] = r.tMax;
+            ray.time[i] = 0;
+            ray.mask[i] = 0xFFFFFFFFu;
+            ray.id[i] = unsigned(i);
+            ray.flags[i] = 0;
+        }
+        rtcOccluded16(valid, impl_->scene, &ctx, &ray);
+        for (int i = 0; i < n; ++i) occluded[i] = ray.tfar[i] < 0;
+    }
+}
+
 int Accel::NumShapes() const { return int(impl_->shapes.size()); }
 const TriangleMesh *Accel::Mesh(int s) const { return impl_->shapes[s].mesh.get(); }
 const AnalyticShape *Accel::Analytic(int s) const { return impl_->shapes[s].analytic.get(); }

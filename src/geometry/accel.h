@@ -50,6 +50,10 @@ public:
     bool IntersectRaw(const Ray &ray, RawHit *hit) const;
     // Any hit in (0, ray.tMax).
     bool Occluded(const Ray &ray) const;
+    // Up to 16 rays at once through Embree's packet path (rtcIntersect16/rtcOccluded16 with
+    // a valid mask), which exercises the N-wide user-geometry callbacks. hits[i].shape is -1
+    // for a miss; occluded[i] (if given) receives the occlusion answer.
+    void IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded = nullptr) const;
     // Full interaction for a raw hit (same ray).
     SurfaceInteraction Interaction(const Ray &ray, const RawHit &hit) const;
 

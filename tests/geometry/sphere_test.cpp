@@ -157,7 +157,7 @@ TEST(Sphere, PartialSphereShowsItsInside) {
     EXPECT_NEAR(hit.phi, Radians(135), 1e-6);
 }
 
-TEST(Sphere, TinyFarSphereClassification) {
+TEST(Sphere, S1_TinyFarSphereClassification) {
     // S1: r = 1e-3 at distance 1e4; rays aimed over a disk of radius 2r. Hit/miss must match
     // the exact answer away from a thin band around the silhouette.
     for (Precision prec : {Precision::Double, Precision::Float}) {
@@ -187,7 +187,7 @@ TEST(Sphere, TinyFarSphereClassification) {
     }
 }
 
-TEST(Sphere, HugeFloorSphere) {
+TEST(Sphere, S4_HugeFloorSphere) {
     // S4: Whitted's floor, r = 1e5 centred at (0, -1e5, 0); the eye 1 unit above. Rays from
     // 0.1 degrees below the true horizon down to 11.5 degrees.
     double R = 1e5;
@@ -221,6 +221,80 @@ TEST(Sphere, HugeFloorSphere) {
         Vec3f d(Vec3d(std::cos(angle), -std::sin(angle), 0));
         ObjectHit hit;
         EXPECT_FALSE(s.Intersect(Vec3f(0, 1, 0), d, 0, Infinity, Precision::Double, &hit));
+    }
+}
+
+TEST(Sphere, S2_RayOriginOnTheSurface) {
+    struct Case {
+        double r;
+        Vec3d centre;
+    };
+    for (const Case &c : {Case{1, {0, 0, 0}}, Case{1e4, {0, 0, 0}}, Case{1, {1e4, 1e4, 1e4}}}) {
+        SCOPED_TRACE("r " + std::to_string(c.r) + " centre " + ToString(c.centre));
+        Sphere s(Translate(c.centre), false, c.r, -c.r, c.r, 360);
+        PCG32 rng(41);
+        int rawSelfHits = 0, selfHits = 0, farMisses = 0, n = 0;
+        for (int i = 0; i < 4000; ++i) {
+            Vec3d dirToSurface(RandomDir(rng));
+            Vec3f o(c.centre + dirToSurface * (3 * c.r)), d(-dirToSurface);
+            ObjectHit hit;
+            ASSERT_TRUE(s.Intersect(o, d, 0, Infinity, Precision::Double, &hit));
+            SurfaceInteraction si = s.Interaction(hit, d);
+            Vec3f w = RandomDir(rng);
+            bool outward = Dot(w, si.n) > 0;
+            ObjectHit h2;
+            // (a) Without an offset, from the rounded hit point itself: the acne metric.
+            if (outward && s.Intersect(si.p, w, 0, Infinity, Precision::Double, &h2)) ++rawSelfHits;
+            // (b) With the error-bound offset.
+            Ray r = si.SpawnRay(w);
+            double offset = Length(Vec3d(r.o) - Vec3d(si.p));
+            EXPECT_LE(offset, 1e-6 * std::max(Length(Vec3d(si.p)), c.r));
+            bool again = s.Intersect(r.o, r.d, 0, Infinity, Precision::Double, &h2);
+            if (outward) {
+                selfHits += again;
+            } else {
+                // Exactly one hit, on the far side, at t = 2 r cos(theta).
+                if (!again) {
+                    ++farMisses;
+                    continue;
+                }
+                // The far root of the spawned ray, in long double. (At the origin this is
+                // 2 r cos(theta); far from it the float hit point sits up to ulp(|p|) off the
+                // surface, which moves grazing chords, so compare with the exact root.)
+                long double ox = (long double)r.o.x - c.centre.x, oy = (long double)r.o.y - c.centre.y,
+                            oz = (long double)r.o.z - c.centre.z;
+                long double a = (long double)r.d.x * r.d.x + (long double)r.d.y * r.d.y + (long double)r.d.z * r.d.z;
+                long double b = 2 * (ox * r.d.x + oy * r.d.y + oz * r.d.z);
+                long double cc = ox * ox + oy * oy + oz * oz - (long double)c.r * c.r;
+                long double tFar = (-b + std::sqrt(std::max(0.0L, b * b - 4 * a * cc))) / (2 * a);
+                EXPECT_NEAR(h2.t, double(tFar), 1e-9 * (c.r + Length(c.centre)));
+                double cosTheta = -Dot(Vec3d(w), Vec3d(si.n)) / Length(Vec3d(w));
+                if (Length(c.centre) == 0 && cosTheta > 0.1)  // the offset moves grazing chords
+                    EXPECT_NEAR(h2.t, 2 * c.r * cosTheta, 1e-5 * c.r);
+                ObjectHit h3;
+                Ray r2 = s.Interaction(h2, r.d).SpawnRay(r.d);
+                EXPECT_FALSE(s.Intersect(r2.o, r2.d, 0, Infinity, Precision::Double, &h3));
+            }
+            ++n;
+        }
+        EXPECT_EQ(selfHits, 0);
+        EXPECT_EQ(farMisses, 0);
+        RecordProperty("raw_self_hits_r" + std::to_string(int(c.r)), rawSelfHits);
+    }
+    // Two concentric spheres r and r (1 + 1e-5): a ray leaving the inner one outward must
+    // still hit the outer one, so the offset skips no real geometry.
+    Sphere inner(Transform(), false, 1, -1, 1, 360), outer(Transform(), false, 1 + 1e-5, -2, 2, 360);
+    PCG32 rng(43);
+    for (int i = 0; i < 2000; ++i) {
+        Vec3d n(RandomDir(rng));
+        Vec3f o(n * 3.0), d(-n);
+        ObjectHit hit;
+        ASSERT_TRUE(inner.Intersect(o, d, 0, Infinity, Precision::Double, &hit));
+        SurfaceInteraction si = inner.Interaction(hit, d);
+        Vec3f w = FaceForward(RandomDir(rng), si.n);
+        Ray r = si.SpawnRay(w);
+        ObjectHit h2;
+        EXPECT_TRUE(outer.Intersect(r.o, r.d, 0, Infinity, Precision::Double, &h2)) << i;
     }
 }
 

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Renders the scenes of ../shared/pbrt3-reference with Prism (the exact scene files pbrt-v3
+# rendered) and compares box-filtered images: both are downsampled by FACTOR (default 4) and
+# compared with oiiotool --diff (RMSE, PSNR, max error). Side-by-side PNGs go to OUTDIR.
+# Usage: tools/compare_pbrt3.sh [OUTDIR] [FACTOR]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+OUT="${1:-pbrt3-comparison}"
+FACTOR="${2:-4}"
+PRISM="${PRISM:-$PWD/build/prism}"
+REF="${SHARED:-$PWD/../shared}/pbrt3-reference"
+SCENES="${SHARED:-$PWD/../shared}/scenes"
+mkdir -p "$OUT"
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+cp "$REF"/*.pbrt "$WORK/"
+# The texture the spheres scene needs sits with the original scene.
+cp -r "$SCENES/pbrt-spheres-differentials-texfilt/textures" "$WORK/"
+echo "| scene | Prism render (s) | RMSE | PSNR (dB) | max abs error | mean of reference |"
+echo "|---|---|---|---|---|---|"
+for f in "$WORK"/*.pbrt; do
+    name="$(basename "$f" .pbrt)"
+    ref="$REF/$name.exr"
+    [ -f "$ref" ] || continue
+    out=$("$PRISM" render "$f" -o "$WORK/$name.exr" --no-progress 2>&1)
+    secs=$(echo "$out" | grep -o 'render [0-9.]*s' | head -1 | sed 's/render \(.*\)s/\1/')
+    w=$(oiiotool --info "$ref" | sed -n 's/.* \([0-9]*\) x *\([0-9]*\),.*/\1/p')
+    h=$(oiiotool --info "$ref" | sed -n 's/.* \([0-9]*\) x *\([0-9]*\),.*/\2/p')
+    sw=$((w / FACTOR)); sh=$((h / FACTOR))
+    oiiotool "$WORK/$name.exr" --resize:filter=box "${sw}x${sh}" -d float -o "$WORK/a.exr"
+    oiiotool "$ref" --resize:filter=box "${sw}x${sh}" -d float -o "$WORK/b.exr"
+    diff=$(oiiotool "$WORK/a.exr" "$WORK/b.exr" --diff 2>&1 || true)
+    rmse=$(echo "$diff" | sed -n 's/.*RMS error = \([0-9.e+-]*\).*/\1/p')
+    psnr=$(echo "$diff" | sed -n 's/.*Peak SNR = \([0-9.e+-]*\).*/\1/p')
+    maxe=$(echo "$diff" | sed -n 's/.*Max error *= \([0-9.e+-]*\).*/\1/p')
+    mean=$(oiiotool "$WORK/b.exr" --printstats 2>&1 | sed -n 's/.*Stats Avg: \([0-9.e+-]*\) \([0-9.e+-]*\) \([0-9.e+-]*\).*/\1 \2 \3/p' | awk '{printf "%.4f", ($1+$2+$3)/3}')
+    echo "| $name | $secs | $rmse | $psnr | $maxe | $mean |"
+    oiiotool "$WORK/$name.exr" --colorconvert linear sRGB -d uint8 -o "$WORK/p.png"
+    oiiotool "$ref" --colorconvert linear sRGB -d uint8 -o "$WORK/r.png"
+    oiiotool "$WORK/p.png" "$WORK/r.png" --mosaic 2x1 -o "$OUT/$name-prism-vs-pbrt3.png"
+done
