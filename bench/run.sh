@@ -56,3 +56,20 @@ if command -v povray >/dev/null; then
     pov_bench "peers/whitted (quadrics, mirror, glass; maxdepth 5)" "$WORK/whitted.pbrt" "$WORK/whitted.pov"
     pov_bench "knot (1,000,002 triangles)" "$WORK/knot.pbrt" "$WORK/knot.pov"
 fi
+
+echo
+echo "## What accuracy costs: analytic intersectors in float vs double (render seconds, 1 thread; median of $RUNS)"
+echo "| scene | float | double | double / float |"
+echo "|---|---|---|---|"
+prec_bench() {
+    local name="$1" scene="$2" f=() d=()
+    for _ in $(seq "$RUNS"); do
+        f+=("$("$PRISM" render "$scene" -o "$WORK/f.png" --res 400x250 --spp 4 --threads 1 --precision float --no-progress 2>&1 | phase render)")
+        d+=("$("$PRISM" render "$scene" -o "$WORK/d.png" --res 400x250 --spp 4 --threads 1 --precision double --no-progress 2>&1 | phase render)")
+    done
+    local mf md
+    mf=$(printf '%s\n' "${f[@]}" | median); md=$(printf '%s\n' "${d[@]}" | median)
+    printf "| %s | %.3f | %.3f | %.3f |\n" "$name" "$mf" "$md" "$(awk "BEGIN {print $md / $mf}")"
+}
+prec_bench "scenes/quadrics.pbrt (13 analytic shapes)" scenes/quadrics.pbrt
+prec_bench "scenes/whitted.pbrt" scenes/whitted.pbrt

@@ -37,5 +37,5 @@ for f in "$WORK"/*.pbrt; do
     echo "| $name | $secs | $rmse | $psnr | $maxe | $mean |"
     oiiotool "$WORK/$name.exr" --colorconvert linear sRGB -d uint8 -o "$WORK/p.png"
     oiiotool "$ref" --colorconvert linear sRGB -d uint8 -o "$WORK/r.png"
-    oiiotool "$WORK/p.png" "$WORK/r.png" --mosaic 2x1 -o "$OUT/$name-prism-vs-pbrt3.png"
+    oiiotool "$WORK/p.png" "$WORK/r.png" --mosaic 2x1 --resize 50% -o "$OUT/$name-prism-vs-pbrt3.png"
 done

@@ -22,6 +22,7 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/output_file.h"
+#include "core/memory.h"
 
 namespace fs = std::filesystem;
 
@@ -32,7 +33,7 @@ namespace {
 struct BatchArgs {
     std::string input, outDir, format = "png";
     int jobs = 1, spp = 0, threads = 0;
-    std::string res;
+    std::string res, maxMemory;
     bool force = false, quiet = false;
 };
 
@@ -57,12 +58,41 @@ bool IsSceneFile(const fs::path &p) {
     return e == ".pbrt" || e == ".obj" || e == ".gltf" || e == ".glb";
 }
 
+// pbrt files that another .pbrt file in the set Includes (or Imports) are fragments, not
+// scenes: `Include "../geometry/cube.pbrt"`. A plain text scan; the path resolves against the
+// including file's directory, as the parser does for a top-level file.
+std::set<fs::path> IncludedFiles(const std::vector<std::string> &scenes) {
+    std::set<fs::path> included;
+    for (const std::string &s : scenes) {
+        if (fs::path(s).extension() != ".pbrt") continue;
+        std::ifstream in(s);
+        std::string line;
+        while (std::getline(in, line)) {
+            size_t k = line.find_first_not_of(" \t");
+            if (k == std::string::npos || (line.compare(k, 7, "Include") && line.compare(k, 6, "Import")))
+                continue;
+            size_t q0 = line.find('"', k), q1 = q0 == std::string::npos ? q0 : line.find('"', q0 + 1);
+            if (q1 == std::string::npos) continue;
+            fs::path p = fs::path(s).parent_path() / line.substr(q0 + 1, q1 - q0 - 1);
+            std::error_code ec;
+            fs::path c = fs::weakly_canonical(p, ec);
+            included.insert(ec ? p.lexically_normal() : c);
+        }
+    }
+    return included;
+}
+
 std::vector<std::string> CollectScenes(const std::string &input) {
     std::vector<std::string> scenes;
     if (fs::is_directory(input)) {
         for (const auto &e : fs::recursive_directory_iterator(input))
             if (e.is_regular_file() && IsSceneFile(e.path())) scenes.push_back(e.path().string());
         std::sort(scenes.begin(), scenes.end());
+        std::set<fs::path> included = IncludedFiles(scenes);
+        std::erase_if(scenes, [&](const std::string &s) {
+            std::error_code ec;
+            return included.count(fs::weakly_canonical(s, ec)) > 0;
+        });
         return scenes;
     }
     std::ifstream in(input);
@@ -159,6 +189,10 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     std::vector<std::string> args = {exe, "render", j.scene, "-o", j.output, "--no-progress"};
     if (a.spp > 0) { args.push_back("--spp"); args.push_back(std::to_string(a.spp)); }
     if (!a.res.empty()) { args.push_back("--res"); args.push_back(a.res); }
+    // Concurrent renders share the default budget, so together they stay within it.
+    std::string budget = a.maxMemory;
+    if (budget.empty() && a.jobs > 1) budget = std::to_string(DefaultMemoryBudget() / uint64_t(a.jobs));
+    if (!budget.empty()) { args.push_back("--max-memory"); args.push_back(budget); }
     args.push_back("--threads");
     args.push_back(std::to_string(threadsPerJob));
     j.start = std::chrono::steady_clock::now();
@@ -205,6 +239,7 @@ int RunBatch(const BatchArgs &a) {
     if (a.format != "png" && a.format != "exr") throw UsageError("--format must be png or exr");
     std::vector<std::string> scenes = CollectScenes(a.input);
     if (scenes.empty()) throw UsageError("no scenes found in \"" + a.input + "\"");
+    ParseMaxMemory(a.maxMemory);  // a bad value is a usage error now, not one per scene
     std::error_code ec;
     fs::create_directories(a.outDir, ec);
     if (!fs::is_directory(a.outDir)) throw UsageError("cannot create output directory \"" + a.outDir + "\"");
@@ -290,6 +325,7 @@ void AddBatchCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--spp", args->spp, "Samples per pixel for every scene")->check(CLI::Range(1, 1 << 16));
     cmd->add_option("--res", args->res, "Resolution WxH for every scene");
     cmd->add_option("--threads", args->threads, "Threads per scene (default: cores / jobs)")->check(CLI::Range(1, 4096));
+    cmd->add_option("--max-memory", args->maxMemory, "Memory budget of each render, e.g. 4G (default: 75% of RAM)");
     cmd->add_flag("-q,--quiet", args->quiet, "No progress lines");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunBatch(*args); }); });
 }

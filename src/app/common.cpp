@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/memory.h"
 
 namespace prism {
 
@@ -12,7 +13,12 @@ int RunGuarded(const std::function<int()> &fn) {
     try {
         return fn();
     } catch (const SceneError &e) {
-        std::fprintf(stderr, "%s\n", e.what());
+        // A SceneError without a location (e.g. from a command-line override) carries the bare
+        // message; give it the same "error: " prefix as every other error line.
+        std::string what = e.what();
+        if (what.rfind("error: ", 0) != 0 && what.find(": error: ") == std::string::npos)
+            what = "error: " + what;
+        std::fprintf(stderr, "%s\n", what.c_str());
         return 2;
     } catch (const UsageError &e) {
         std::fprintf(stderr, "error: %s\n", e.what());
@@ -66,6 +72,14 @@ std::array<float, 9> ParseLookAt(const std::string &s) {
     std::array<float, 9> r;
     std::copy(v.begin(), v.end(), r.begin());
     return r;
+}
+
+uint64_t ParseMaxMemory(const std::string &s) {
+    if (s.empty()) return 0;
+    uint64_t bytes = 0;
+    if (!ParseMemorySize(s, &bytes))
+        throw UsageError("--max-memory expects a size such as 512M or 8G (got \"" + s + "\")");
+    return bytes;
 }
 
 Precision ParsePrecision(const std::string &s) {

@@ -22,6 +22,8 @@ struct UsageError : std::runtime_error {
 Vec2i ParseResolution(const std::string &s);             // "640x480"
 std::array<float, 4> ParseCrop(const std::string &s);    // "x0,x1,y0,y1"
 Precision ParsePrecision(const std::string &s);
+// --max-memory: "512M", "8G", ... (core/memory.h); "" gives 0, the default budget.
+uint64_t ParseMaxMemory(const std::string &s);
 std::array<float, 9> ParseLookAt(const std::string &s);  // "ex,ey,ez,lx,ly,lz,ux,uy,uz"
 // Fails early (UsageError) if the image format is unsupported or the directory is missing.
 void CheckOutputPath(const std::string &path);

@@ -13,6 +13,7 @@ int main(int argc, char **argv) {
     prism::AddTraceCommand(app, &exitCode);
     prism::AddInfoCommand(app, &exitCode);
     prism::AddBatchCommand(app, &exitCode);
+    prism::AddValidateCommand(app, &exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp &e) {

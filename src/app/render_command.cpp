@@ -27,8 +27,9 @@ volatile sig_atomic_t g_cancel = 0;
 void OnInterrupt(int) { g_cancel = 1; }
 
 struct RenderArgs {
-    std::string scene, output, res, crop, precision = "double", lookAt;
+    std::string scene, output, res, crop, precision = "double", lookAt, maxMemory;
     int spp = 0, threads = 0, maxDepth = -1, lightSamples = 0;
+    int tessellate = 0;  // [validate hook]
     float fov = 0;
     bool quiet = false, noProgress = false;
 };
@@ -66,6 +67,10 @@ int RunRender(const RenderArgs &a) {
     if (!a.lookAt.empty()) opts.lookAt = ParseLookAt(a.lookAt);
     opts.fov = a.fov;
     opts.lightSamples = a.lightSamples;
+    opts.maxMemory = ParseMaxMemory(a.maxMemory);
+    LoadOptions loadOpts;
+    loadOpts.maxMemory = opts.maxMemory;
+    opts.tessellate = a.tessellate;
 
     std::unique_ptr<tbb::global_control> threadLimit;
     if (a.threads > 0)
@@ -74,9 +79,12 @@ int RunRender(const RenderArgs &a) {
 
     Diagnostics diag(!a.quiet);
     auto t0 = std::chrono::steady_clock::now();
-    SceneDescription desc = LoadScene(a.scene, diag);
+    SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
     double parseSeconds = SecondsSince(t0);
+    auto t1 = std::chrono::steady_clock::now();
     RenderScene scene = BuildRenderScene(desc, opts, diag);
+    // Scene setup: meshes read (PLY), textures decoded, materials and lights built.
+    double setupSeconds = SecondsSince(t1) - scene.buildSeconds;
 
     std::string out = a.output;
     if (out.empty()) out = scene.outputFilename;
@@ -107,12 +115,13 @@ int RunRender(const RenderArgs &a) {
         const RayCounters &r = stats.rays;
         std::fprintf(stderr,
                      "%s: %dx%d, %d spp, maxdepth %d, %s precision\n"
-                     "time: parse %.3fs, BVH build %.3fs, render %.3fs\n"
+                     "time: parse %.3fs, setup %.3fs, BVH build %.3fs, render %.3fs\n"
                      "rays: camera %llu, shadow %llu, reflection %llu, refraction %llu, "
                      "pass-through %llu; %.2f Mrays/s\n",
                      out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
                      scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
-                     a.precision.c_str(), parseSeconds, scene.buildSeconds, stats.renderSeconds,
+                     a.precision.c_str(), parseSeconds, setupSeconds, scene.buildSeconds,
+                     stats.renderSeconds,
                      (unsigned long long)r.camera, (unsigned long long)r.shadow,
                      (unsigned long long)r.reflection, (unsigned long long)r.refraction,
                      (unsigned long long)r.passThrough,
@@ -151,6 +160,12 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--lookat", args->lookAt, "Camera ex,ey,ez,lx,ly,lz,ux,uy,uz (replaces the scene's camera)");
     cmd->add_option("--fov", args->fov, "Field of view in degrees on the shorter image axis")
         ->check(CLI::Range(0.001, 179.999));
+    cmd->add_option("--tessellate", args->tessellate,
+                    "Replace every analytic shape by its triangle twin with N segments around the axis")
+        ->check(CLI::Range(3, 4096));
+    cmd->add_option("--max-memory", args->maxMemory,
+                    "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM); larger "
+                    "films, textures and meshes are an error");
     cmd->add_flag("-q,--quiet", args->quiet, "No progress, statistics or warnings");
     cmd->add_flag("--no-progress", args->noProgress, "No progress display (statistics and warnings stay)");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunRender(*args); }); });

@@ -19,7 +19,7 @@ namespace prism {
 namespace {
 
 struct TraceArgs {
-    std::string scene, rays, output, precision = "double";
+    std::string scene, rays, output, precision = "double", maxMemory;
     bool occluded = false, quiet = false;
 };
 
@@ -58,8 +58,11 @@ bool ParseRayLine(const std::string &line, const std::string &file, int lineNo, 
 
 int RunTrace(const TraceArgs &a) {
     Diagnostics diag(!a.quiet);
-    SceneDescription desc = LoadScene(a.scene, diag);
+    LoadOptions loadOpts;
+    loadOpts.maxMemory = ParseMaxMemory(a.maxMemory);
+    SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
     RenderOptions opts;
+    opts.maxMemory = loadOpts.maxMemory;
     opts.precision = ParsePrecision(a.precision);
     opts.cameraRelative = false;  // rays are given in world space
     RenderScene scene = BuildRenderScene(desc, opts, diag);
@@ -111,6 +114,7 @@ void AddTraceCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--rays", args->rays, "Ray file: 'ox oy oz dx dy dz [tmin tmax]' per line")->required();
     cmd->add_option("-o,--output", args->output, "Output file (default: standard output)");
     cmd->add_flag("--occluded", args->occluded, "Occlusion query: print 1 or 0 per ray");
+    cmd->add_option("--max-memory", args->maxMemory, "Memory budget, e.g. 512M or 8G (default: 75% of RAM)");
     cmd->add_option("--precision", args->precision, "Arithmetic of the analytic intersectors")
         ->check(CLI::IsMember({"float", "double"}));
     cmd->add_flag("-q,--quiet", args->quiet, "No warnings");

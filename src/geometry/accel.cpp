@@ -56,15 +56,26 @@ Device &GetDevice() {
     return device;
 }
 
-void InitRay(const Ray &r, RTCRay *ray) {
+void InitRay(const Ray &r, RTCRay *ray, unsigned mask) {
     ray->org_x = r.o.x; ray->org_y = r.o.y; ray->org_z = r.o.z;
     ray->dir_x = r.d.x; ray->dir_y = r.d.y; ray->dir_z = r.d.z;
     ray->tnear = r.tMin;
     ray->tfar = r.tMax;
     ray->time = 0;
-    ray->mask = 0xFFFFFFFFu;  // the default geometry mask; a zero mask would hit nothing
+    ray->mask = mask;  // CameraRays or ShadowRays; a zero mask would hit nothing
     ray->id = 0;
     ray->flags = 0;
+}
+
+void InitRay16(const Ray &r, int i, unsigned mask, RTCRay16 *ray) {
+    ray->org_x[i] = r.o.x; ray->org_y[i] = r.o.y; ray->org_z[i] = r.o.z;
+    ray->dir_x[i] = r.d.x; ray->dir_y[i] = r.d.y; ray->dir_z[i] = r.d.z;
+    ray->tnear[i] = r.tMin;
+    ray->tfar[i] = r.tMax;
+    ray->time[i] = 0;
+    ray->mask[i] = mask;
+    ray->id[i] = unsigned(i);
+    ray->flags[i] = 0;
 }
 
 }  // namespace
@@ -105,7 +116,7 @@ static void MapGeom(std::vector<int> &table, unsigned geomID, int shape) {
     table[geomID] = shape;
 }
 
-int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh) {
+int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask) {
     PRISM_CHECK(!impl_->committed);
     Device &dev = GetDevice();
     RTCGeometry geom = rtcNewGeometry(dev.device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -113,6 +124,7 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh) {
                                mesh->PositionData(), 0, 3 * sizeof(float), mesh->NumVertices());
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                mesh->IndexData(), 0, 3 * sizeof(uint32_t), mesh->NumTriangles());
+    rtcSetGeometryMask(geom, mask);
     rtcCommitGeometry(geom);
     unsigned id = rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);
@@ -144,11 +156,15 @@ int Accel::AddInstance(std::shared_ptr<const Accel> prototype, const Transform &
     return index;
 }
 
-int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape) {
+int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask) {
     PRISM_CHECK(!impl_->committed);
     Device &dev = GetDevice();
     unsigned id = AttachUserGeometry(dev.device, impl_->scene, shape.get(),
                                      impl_->options.precision);
+    if (mask != AllRays) {
+        rtcSetGeometryMask(rtcGetGeometry(impl_->scene, id), mask);
+        rtcCommitGeometry(rtcGetGeometry(impl_->scene, id));
+    }
     dev.ThrowIfError("adding an analytic shape");
     int index = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, index);
@@ -169,7 +185,7 @@ bool Accel::IntersectRaw(const Ray &r, RawHit *hit) const {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     alignas(16) RTCRayHit rh;
-    InitRay(r, &rh.ray);
+    InitRay(r, &rh.ray, CameraRays);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &ctx, &rh);
@@ -258,7 +274,7 @@ bool Accel::Occluded(const Ray &r) const {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     alignas(16) RTCRay ray;
-    InitRay(r, &ray);
+    InitRay(r, &ray, ShadowRays);
     rtcOccluded1(impl_->scene, &ctx, &ray);
     return ray.tfar < 0;
 }
@@ -269,15 +285,7 @@ void Accel::IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded
     alignas(64) RTCRayHit16 rh;
     for (int i = 0; i < 16; ++i) {
         valid[i] = i < n ? -1 : 0;
-        const Ray &r = rays[i < n ? i : 0];
-        rh.ray.org_x[i] = r.o.x; rh.ray.org_y[i] = r.o.y; rh.ray.org_z[i] = r.o.z;
-        rh.ray.dir_x[i] = r.d.x; rh.ray.dir_y[i] = r.d.y; rh.ray.dir_z[i] = r.d.z;
-        rh.ray.tnear[i] = r.tMin;
-        rh.ray.tfar[i] = r.tMax;
-        rh.ray.time[i] = 0;
-        rh.ray.mask[i] = 0xFFFFFFFFu;
-        rh.ray.id[i] = unsigned(i);
-        rh.ray.flags[i] = 0;
+        InitRay16(rays[i < n ? i : 0], i, CameraRays, &rh.ray);
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
@@ -302,17 +310,7 @@ void Accel::IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded
     }
     if (occluded) {
         alignas(64) RTCRay16 ray;
-        for (int i = 0; i < 16; ++i) {
-            const Ray &r = rays[i < n ? i : 0];
-            ray.org_x[i] = r.o.x; ray.org_y[i] = r.o.y; ray.org_z[i] = r.o.z;
-            ray.dir_x[i] = r.d.x; ray.dir_y[i] = r.d.y; ray.dir_z[i] = r.d.z;
-            ray.tnear[i] = r.tMin;
-            ray.tfar[i] = r.tMax;
-            ray.time[i] = 0;
-            ray.mask[i] = 0xFFFFFFFFu;
-            ray.id[i] = unsigned(i);
-            ray.flags[i] = 0;
-        }
+        for (int i = 0; i < 16; ++i) InitRay16(rays[i < n ? i : 0], i, ShadowRays, &ray);
         rtcOccluded16(valid, impl_->scene, &ctx, &ray);
         for (int i = 0; i < n; ++i) occluded[i] = ray.tfar[i] < 0;
     }

@@ -20,6 +20,11 @@ struct AccelOptions {
     bool highQuality = false;   // RTC_BUILD_QUALITY_HIGH (spatial splits)
 };
 
+// Which queries see a shape (Embree geometry masks): camera and specular rays use
+// CameraRays, shadow rays ShadowRays. pbrt's constant "alpha" 0 hides a shape from both,
+// "shadowalpha" 0 from shadow rays only.
+inline constexpr unsigned CameraRays = 1u, ShadowRays = 2u, AllRays = CameraRays | ShadowRays;
+
 struct RawHit {
     int shape = -1;  // shape index (order of Add* calls); for instances, the instance's index
     int instanceShape = -1;  // for instance hits: the shape index within the prototype
@@ -35,8 +40,8 @@ public:
     Accel &operator=(const Accel &) = delete;
 
     // Each returns the shape index. Call before Commit().
-    int AddMesh(std::unique_ptr<TriangleMesh> mesh);
-    int AddAnalytic(std::unique_ptr<AnalyticShape> shape);
+    int AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask = AllRays);
+    int AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask = AllRays);
     // An Embree instance of a committed prototype (pbrt ObjectInstance). Embree 3 allows one
     // instance level: prototypes hold meshes and analytic shapes only, and analytic shapes
     // apply their own object transform inside the instance.

@@ -18,6 +18,7 @@ class Cone final : public AnalyticShapeT<Cone> {
     double Implicit(const Vec3d &p) const override;
     Vec3d ImplicitGradient(const Vec3d &p) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
+    bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 
     template <typename Real>
     bool IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real tSlack,

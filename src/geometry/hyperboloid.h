@@ -20,6 +20,7 @@ class Hyperboloid final : public AnalyticShapeT<Hyperboloid> {
     double Implicit(const Vec3d &p) const override;  // a rho^2 - c z^2 - 1, positive outside
     Vec3d ImplicitGradient(const Vec3d &p) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
+    bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 
     template <typename Real>
     bool IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real tSlack,

@@ -16,6 +16,8 @@
 
 namespace prism {
 
+struct RevolutionProfile;  // geometry/tessellate.h
+
 enum class Precision { Float, Double };
 
 // Result of the root routine, in object space.
@@ -88,6 +90,11 @@ public:
         double pdf;
         return SampleObjectArea(Vec2f(0.5f, 0.5f), &p, &n, &pdf);
     }
+
+    // [validate hook] Every analytic shape is a profile curve swept about z; shapes fill in
+    // that description (defined in tessellate.cpp) for tessellation and `prism validate`.
+    // Returns false for shapes that cannot describe themselves so.
+    virtual bool Revolution(RevolutionProfile *profile) const { return false; }
 
     // World-space bounds, padded by a relative margin: Embree's user-geometry traversal is not
     // robust (REFERENCE.md §0.2), so the box must absorb its rounding.

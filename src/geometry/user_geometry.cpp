@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "geometry/cone.h"
 #include "geometry/cylinder.h"
@@ -28,6 +29,34 @@ void BoundsFunc(const RTCBoundsFunctionArguments *args) {
     o->upper_x = b.pMax.x; o->upper_y = b.pMax.y; o->upper_z = b.pMax.z;
 }
 
+// [validate hook] Shapes outside the list below (test-only intersectors, e.g. the broken
+// sphere that `prism validate`'s tests must catch) are attached as AnalyticShape and reached
+// through the virtual Intersect: one indirect call per candidate, fine for them.
+template <typename S, typename Real>
+bool RootRoutine(const S *shape, const Vec3f &o, const Vec3f &d, float tnear, float tfar,
+                 ObjectHit *hit) {
+    if constexpr (std::is_same_v<S, AnalyticShape>)
+        return shape->Intersect(o, d, tnear, tfar,
+                                std::is_same_v<Real, float> ? Precision::Float : Precision::Double,
+                                hit);
+    else
+        return shape->template IntersectWorld<Real>(o, d, tnear, tfar, hit);
+}
+
+// The shared root routine for lane i of an N-wide ray packet: true with the float t of the
+// nearest valid hit inside the lane's (tnear, tfar).
+template <typename S, typename Real>
+bool LaneHit(const S *shape, RTCRayN *rays, unsigned N, unsigned i, float *tHit) {
+    Vec3f o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
+    Vec3f d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
+    float tnear = RTCRayN_tnear(rays, N, i), tfar = RTCRayN_tfar(rays, N, i);
+    ObjectHit hit;
+    if (!RootRoutine<S, Real>(shape, o, d, tnear, tfar, &hit)) return false;
+    float t = float(hit.t);
+    *tHit = t;
+    return t > tnear && t < tfar;  // rounding to float may leave the interval
+}
+
 template <typename S, typename Real>
 void IntersectFunc(const RTCIntersectFunctionNArguments *args) {
     const auto *shape = static_cast<const S *>(args->geometryUserPtr);
@@ -36,15 +65,9 @@ void IntersectFunc(const RTCIntersectFunctionNArguments *args) {
     RTCHitN *hits = RTCRayHitN_HitN(args->rayhit, N);
     for (unsigned i = 0; i < N; ++i) {
         if (args->valid[i] != -1) continue;
-        Vec3f o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
-        Vec3f d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
-        float tnear = RTCRayN_tnear(rays, N, i);
-        float &tfar = RTCRayN_tfar(rays, N, i);
-        ObjectHit hit;
-        if (!shape->template IntersectWorld<Real>(o, d, tnear, tfar, &hit)) continue;
-        float t = float(hit.t);
-        if (!(t > tnear && t < tfar)) continue;  // rounding to float left the interval
-        tfar = t;
+        float t;
+        if (!LaneHit<S, Real>(shape, rays, N, i, &t)) continue;
+        RTCRayN_tfar(rays, N, i) = t;
         // Ng is not computed here: shading geometry is built once, after traversal.
         RTCHitN_Ng_x(hits, N, i) = 0;
         RTCHitN_Ng_y(hits, N, i) = 0;
@@ -64,15 +87,9 @@ void OccludedFunc(const RTCOccludedFunctionNArguments *args) {
     RTCRayN *rays = args->ray;
     for (unsigned i = 0; i < N; ++i) {
         if (args->valid[i] != -1) continue;
-        Vec3f o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
-        Vec3f d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
-        float tnear = RTCRayN_tnear(rays, N, i);
-        float &tfar = RTCRayN_tfar(rays, N, i);
-        ObjectHit hit;
-        if (!shape->template IntersectWorld<Real>(o, d, tnear, tfar, &hit)) continue;
-        float t = float(hit.t);
-        if (!(t > tnear && t < tfar)) continue;
-        tfar = -std::numeric_limits<float>::infinity();
+        float t;
+        if (LaneHit<S, Real>(shape, rays, N, i, &t))
+            RTCRayN_tfar(rays, N, i) = -std::numeric_limits<float>::infinity();
     }
 }
 
@@ -106,7 +123,7 @@ unsigned AttachUserGeometry(RTCDevice device, RTCScene scene, const AnalyticShap
     if (auto *s = dynamic_cast<const T *>(shape)) return Attach(device, scene, s, precision);
 #include "geometry/shape_list.inc"
 #undef PRISM_ATTACH_SHAPE
-    throw std::logic_error(std::string("no user-geometry registration for shape ") + shape->Name());
+    return Attach(device, scene, shape, precision);  // [validate hook] virtual dispatch
 }
 
 }  // namespace prism

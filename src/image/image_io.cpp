@@ -1,8 +1,11 @@
 // OpenImageIO-backed image reading and atomic image writing.
 #include "image/image_io.h"
 
+#include "core/memory.h"
+
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,6 +17,8 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <mutex>
+#include <optional>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
@@ -84,6 +89,37 @@ std::string LowerExtension(const std::string &path) {
 
 namespace {
 
+// libpng (through OpenImageIO) prints "libpng error: ..." to stderr before OIIO reports the
+// same failure, which would give bad input two error lines. Decoding runs with stderr pointed
+// at /dev/null; the lock serializes decoders (they are not called from render threads).
+class QuietStderr {
+public:
+    QuietStderr() : lock_(Mutex()) {
+        std::fflush(stderr);
+        saved_ = ::dup(2);
+        int null = ::open("/dev/null", O_WRONLY);
+        if (saved_ >= 0 && null >= 0) ::dup2(null, 2);
+        if (null >= 0) ::close(null);
+    }
+    ~QuietStderr() {
+        std::fflush(stderr);
+        if (saved_ >= 0) {
+            ::dup2(saved_, 2);
+            ::close(saved_);
+        }
+    }
+    QuietStderr(const QuietStderr &) = delete;
+    QuietStderr &operator=(const QuietStderr &) = delete;
+
+private:
+    static std::mutex &Mutex() {
+        static std::mutex m;
+        return m;
+    }
+    std::lock_guard<std::mutex> lock_;
+    int saved_ = -1;
+};
+
 // Decodes an opened image into linear float (shared by the file and in-memory readers).
 Image DecodeOpened(OIIO::ImageInput *in, const ReadImageOptions &opts,
                    const std::function<std::runtime_error(const std::string &)> &fail) {
@@ -107,8 +143,10 @@ Image DecodeOpened(OIIO::ImageInput *in, const ReadImageOptions &opts,
     }
     int64_t count = int64_t(spec.width) * int64_t(spec.height) * int64_t(std::max(nRead, nOut));
     if (count > opts.maxPixels)
-        throw fail("image is too large (" + std::to_string(spec.width) + "x" +
-                   std::to_string(spec.height) + "x" + std::to_string(nOut) + " values)");
+        throw fail("image is too large: " + std::to_string(spec.width) + "x" +
+                   std::to_string(spec.height) + "x" + std::to_string(nOut) + " values need " +
+                   FormatBytes(uint64_t(count) * 4) + ", more than the limit of " +
+                   FormatBytes(uint64_t(opts.maxPixels) * 4) + " (--max-memory)");
 
     std::vector<float> buf(size_t(spec.width) * size_t(spec.height) * size_t(nRead));
     if (!in->read_image(0, 0, 0, nRead, OIIO::TypeDesc::FLOAT, buf.data()))
@@ -159,15 +197,102 @@ OIIO::ImageSpec ReadConfig() {
     return config;
 }
 
+// OpenEXR 3.1 allocates whatever an attribute's size field claims before reading the value,
+// so a 100-byte hostile file can cost gigabytes. Walk the header attributes (name\0 type\0
+// int32 size, value) of every part first and reject sizes that exceed the file. Its line and
+// tile buffers are sized from dataWindow x channels before any pixel is read, so those are
+// checked against `maxPixels` here too. `data` holds the first `avail` bytes of a file of
+// `fileSize` bytes; checking stops where `data` ends.
+void CheckExrHeader(const unsigned char *data, size_t avail, uint64_t fileSize, int64_t maxPixels,
+                    const std::function<std::runtime_error(const std::string &)> &fail) {
+    if (avail < 8 || data[0] != 0x76 || data[1] != 0x2f || data[2] != 0x31 || data[3] != 0x01)
+        return;
+    bool multipart = (data[5] & 0x10) != 0;  // version flag bit 12
+    size_t pos = 8;
+    auto i32 = [&](size_t at) {
+        return int32_t(uint32_t(data[at]) | uint32_t(data[at + 1]) << 8 |
+                       uint32_t(data[at + 2]) << 16 | uint32_t(data[at + 3]) << 24);
+    };
+    auto skipString = [&]() {
+        while (pos < avail && data[pos] != 0) ++pos;
+        if (pos >= avail) return false;
+        ++pos;
+        return true;
+    };
+    for (int part = 0; part < (1 << 16); ++part) {
+        if (pos >= avail) return;
+        if (data[pos] == 0) {  // empty header: end of the part list (or of a single part)
+            return;
+        }
+        int64_t width = 0, height = 0, channels = 0, tileW = 0, tileH = 0;
+        while (pos < avail && data[pos] != 0) {
+            size_t nameAt = pos;
+            if (!skipString()) return;
+            size_t typeAt = pos;
+            if (!skipString() || pos + 4 > avail) return;
+            int32_t size = i32(pos);
+            pos += 4;
+            if (size < 0 || uint64_t(size) > fileSize - pos)
+                throw fail("corrupt OpenEXR header (an attribute claims " + std::to_string(size) +
+                           " bytes)");
+            if (pos + size_t(size) > avail) return;
+            std::string name(reinterpret_cast<const char *>(data + nameAt));
+            std::string type(reinterpret_cast<const char *>(data + typeAt));
+            if (name == "dataWindow" && type == "box2i" && size == 16) {
+                width = int64_t(i32(pos + 8)) - i32(pos) + 1;
+                height = int64_t(i32(pos + 12)) - i32(pos + 4) + 1;
+            } else if (name == "tiles" && type == "tiledesc" && size >= 8) {
+                tileW = uint32_t(i32(pos));
+                tileH = uint32_t(i32(pos + 4));
+            } else if (name == "channels" && type == "chlist") {
+                // name\0 then 16 bytes per channel; a lone null byte ends the list
+                for (size_t c = pos, end = pos + size_t(size); c < end && data[c] != 0;) {
+                    while (c < end && data[c] != 0) ++c;
+                    c += 17;
+                    ++channels;
+                }
+            }
+            pos += size_t(size);
+        }
+        ++pos;  // the header's terminating null byte
+        channels = std::max<int64_t>(channels, 1);
+        // Up to 256 scanlines (or one tile) are buffered per block, whatever the image height.
+        int64_t lines = std::min<int64_t>(std::max<int64_t>(height, 1), 256);
+        if (width > 0 && height > 0 &&
+            (width > maxPixels / height / channels || width > maxPixels / lines / channels ||
+             (tileW > 0 && tileH > 0 && tileW > maxPixels / tileH / channels)))
+            throw fail("image is too large (" + std::to_string(width) + "x" +
+                       std::to_string(height) + "x" + std::to_string(channels) + " values)");
+        if (!multipart) return;
+    }
+}
+
 }  // namespace
 
 Image ReadImage(const std::string &path, ReadImageOptions opts) {
     auto fail = [&](const std::string &why) {
         return std::runtime_error("cannot read image " + Quoted(path) + ": " + why);
     };
+    std::optional<QuietStderr> quiet;
+    if (opts.quietDecoders) quiet.emplace();
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) throw fail(fs::exists(path, ec) ? "not a regular file"
                                                                          : "file not found");
+    {
+        // OpenEXR files (by magic number, whatever the extension) get their header checked.
+        std::ifstream f(path, std::ios::binary);
+        unsigned char magic[4] = {};
+        f.read(reinterpret_cast<char *>(magic), 4);
+        uint64_t size = fs::file_size(path, ec);
+        if (f.gcount() == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 &&
+            magic[3] == 0x01 && !ec) {
+            std::vector<unsigned char> head(size_t(std::min<uint64_t>(size, 16u << 20)));
+            f.seekg(0);
+            f.read(reinterpret_cast<char *>(head.data()), std::streamsize(head.size()));
+            head.resize(size_t(f.gcount()));
+            CheckExrHeader(head.data(), head.size(), size, opts.maxPixels, fail);
+        }
+    }
     OIIO::ImageSpec config = ReadConfig();
     auto in = OIIO::ImageInput::open(path, &config);
     if (!in) throw fail(OiioError(static_cast<const OIIO::ImageInput *>(nullptr)));
@@ -180,6 +305,9 @@ Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::st
         return std::runtime_error("cannot read image " + Quoted(name) + ": " + why);
     };
     if (bytes.empty()) throw fail("no data");
+    std::optional<QuietStderr> quiet;
+    if (opts.quietDecoders) quiet.emplace();
+    CheckExrHeader(bytes.data(), bytes.size(), bytes.size(), opts.maxPixels, fail);
     OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
     OIIO::ImageSpec config = ReadConfig();
     auto in = OIIO::ImageInput::open(name, &config, &proxy);

@@ -18,6 +18,10 @@ struct ReadImageOptions {
     Encoding encoding = Encoding::Auto;
     // Upper bound on width * height * channels, checked before any pixel memory is allocated.
     int64_t maxPixels = int64_t(1) << 28;
+    // Silence what decoder libraries print to stderr themselves (libpng's "libpng error: ..."):
+    // the failure is reported once, through the exception. Off under the fuzzer, whose crash
+    // reports go to stderr.
+    bool quietDecoders = true;
 };
 
 // Returns linear float pixels with 1 (gray), 3 (RGB) or 4 (RGBA) channels; gray + alpha becomes

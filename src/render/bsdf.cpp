@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/check.h"
+
 namespace prism {
 
 float FrDielectric(float cosThetaI, float etaI, float etaT) {
@@ -101,12 +103,65 @@ float TrowbridgeReitzLambda(const Vec3f &w, float ax, float ay) {
 
 }  // namespace
 
-RGB BSDF::f(const Vec3f &woW, const Vec3f &wiW) const {
-    Vec3f wo = ToLocal(woW), wi = ToLocal(wiW);
-    if (wo.z == 0) return RGB(0);
-    // pbrt BSDF::f: the geometric normal decides whether this is reflection or transmission,
-    // which avoids light leaks through shading normals.
-    bool reflect = Dot(wiW, ng) * Dot(woW, ng) > 0;
+namespace {
+
+// pbrt-v3 MicrofacetReflection::f with Trowbridge–Reitz D and Smith G.
+RGB MicrofacetReflectionF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    float cosO = std::abs(wo.z), cosI = std::abs(wi.z);
+    Vec3f wh = wi + wo;
+    if (cosI == 0 || cosO == 0 || (wh.x == 0 && wh.y == 0 && wh.z == 0)) return RGB(0);
+    wh = Normalize(wh);
+    // Fresnel with wh turned to the normal's side so TIR is handled (pbrt-v3).
+    Vec3f whF = wh.z < 0 ? -wh : wh;
+    RGB F = l.glossyFresnel.Evaluate(Dot(wi, whF));
+    float G = 1 / (1 + TrowbridgeReitzLambda(wo, l.alphaX, l.alphaY) +
+                   TrowbridgeReitzLambda(wi, l.alphaX, l.alphaY));
+    return l.ks * F * (TrowbridgeReitzD(wh, l.alphaX, l.alphaY) * G / (4 * cosI * cosO));
+}
+
+// pbrt-v3 MicrofacetTransmission::f (TransportMode::Radiance) with FresnelDielectric(1, eta):
+// the generalized half vector of refraction, D, G, and the (1/eta)^2 radiance scaling.
+RGB MicrofacetTransmissionF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    if (wo.z * wi.z > 0) return RGB(0);  // same hemisphere of the shading frame
+    float cosO = wo.z, cosI = wi.z;
+    if (cosI == 0 || cosO == 0) return RGB(0);
+    float eta = cosO > 0 ? l.glossyEta : 1 / l.glossyEta;
+    Vec3f wh = wo + wi * eta;
+    if (wh.x == 0 && wh.y == 0 && wh.z == 0) return RGB(0);
+    wh = Normalize(wh);
+    if (wh.z < 0) wh = -wh;
+    // A half vector with wo and wi on the same side of the microfacet is not a refraction.
+    if (Dot(wo, wh) * Dot(wi, wh) > 0) return RGB(0);
+    float F = FrDielectric(Dot(wo, wh), 1.f, l.glossyEta);
+    float sqrtDenom = Dot(wo, wh) + eta * Dot(wi, wh);
+    float factor = 1 / eta;
+    float G = 1 / (1 + TrowbridgeReitzLambda(wo, l.alphaX, l.alphaY) +
+                   TrowbridgeReitzLambda(wi, l.alphaX, l.alphaY));
+    float v = TrowbridgeReitzD(wh, l.alphaX, l.alphaY) * G * eta * eta * AbsDot(wi, wh) *
+              AbsDot(wo, wh) * factor * factor / (cosI * cosO * sqrtDenom * sqrtDenom);
+    return l.ksTransmit * ((1 - F) * std::abs(v));
+}
+
+// pbrt-v3 FresnelBlend::f (Ashikhmin–Shirley): a Fresnel-weighted diffuse base under a
+// glossy coat with Schlick's Fresnel approximation.
+RGB FresnelBlendF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    auto pow5 = [](float v) { return (v * v) * (v * v) * v; };
+    float cosI = std::abs(wi.z), cosO = std::abs(wo.z);
+    RGB diffuse = l.blendRd * (RGB(1) - l.blendRs) *
+                  (28.f / (23.f * float(Pi)) * (1 - pow5(1 - .5f * cosI)) * (1 - pow5(1 - .5f * cosO)));
+    Vec3f wh = wi + wo;
+    if (wh.x == 0 && wh.y == 0 && wh.z == 0) return RGB(0);
+    wh = Normalize(wh);
+    float cosH = Dot(wi, wh);
+    RGB schlick = l.blendRs + (RGB(1) - l.blendRs) * pow5(1 - cosH);
+    float denom = 4 * std::abs(cosH) * std::max(cosI, cosO);
+    if (denom == 0) return diffuse;
+    return diffuse + schlick * (TrowbridgeReitzD(wh, l.alphaX, l.alphaY) / denom);
+}
+
+}  // namespace
+
+RGB BxDFLobes::f(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     RGB result;
     if (reflect) {
         if (!kd.IsBlack()) {
@@ -131,42 +186,61 @@ RGB BSDF::f(const Vec3f &woW, const Vec3f &wiW) const {
                 result += kd * float(InvPi) * (orenNayarA + orenNayarB * maxCos * sinAlpha * tanBeta);
             }
         }
-        if (!ks.IsBlack()) {
-            float cosO = std::abs(wo.z), cosI = std::abs(wi.z);
-            Vec3f wh = wi + wo;
-            if (cosI != 0 && cosO != 0 && !(wh.x == 0 && wh.y == 0 && wh.z == 0)) {
-                wh = Normalize(wh);
-                // Fresnel with wh turned to the normal's side so TIR is handled (pbrt-v3).
-                Vec3f whF = wh.z < 0 ? -wh : wh;
-                RGB F = glossyFresnel.Evaluate(Dot(wi, whF));
-                float G = 1 / (1 + TrowbridgeReitzLambda(wo, alphaX, alphaY) +
-                               TrowbridgeReitzLambda(wi, alphaX, alphaY));
-                result += ks * F * (TrowbridgeReitzD(wh, alphaX, alphaY) * G / (4 * cosI * cosO));
-            }
-        }
-    } else if (!kdTransmit.IsBlack()) {
-        result += kdTransmit * float(InvPi);
+        if (!ks.IsBlack()) result += MicrofacetReflectionF(*this, wo, wi);
+        if (fresnelBlend) result += FresnelBlendF(*this, wo, wi);
+    } else {
+        if (!kdTransmit.IsBlack()) result += kdTransmit * float(InvPi);
+        if (!ksTransmit.IsBlack()) result += MicrofacetTransmissionF(*this, wo, wi);
     }
     return result;
 }
 
-bool BSDF::SampleSpecularReflection(const Vec3f &woW, Vec3f *wiW, RGB *weight) const {
-    if (kr.IsBlack()) return false;
+BxDFLobes &BSDF::AddPart(const RGB &weight) {
+    PRISM_CHECK(n_ < MaxParts);
+    new (&weight_[n_]) RGB(weight);
+    return *new (&parts_[n_++]) BxDFLobes();
+}
+
+RGB BSDF::f(const Vec3f &woW, const Vec3f &wiW) const {
+    Vec3f wo = ToLocal(woW), wi = ToLocal(wiW);
+    if (wo.z == 0) return RGB(0);
+    // pbrt BSDF::f: the geometric normal decides whether this is reflection or transmission,
+    // which avoids light leaks through shading normals.
+    bool reflect = Dot(wiW, ng) * Dot(woW, ng) > 0;
+    if (n_ == 1) return weight_[0] * parts_[0].f(wo, wi, reflect);
+    RGB result;
+    for (int i = 0; i < n_; ++i)
+        if (!weight_[i].IsBlack() && parts_[i].HasNonSpecular())
+            result += weight_[i] * parts_[i].f(wo, wi, reflect);
+    return result;
+}
+
+bool BSDF::SampleSpecularReflection(int part, const Vec3f &woW, Vec3f *wiW, RGB *weight) const {
+    const BxDFLobes &l = parts_[part];
+    if (l.kr.IsBlack() || weight_[part].IsBlack()) return false;
     Vec3f wo = ToLocal(woW);
     Vec3f wi(-wo.x, -wo.y, wo.z);
     if (wi.z == 0) return false;
     // f = F(cos) R / |cos|; the |cos| cancels with the one in the rendering equation.
-    *weight = kr * specularFresnel.Evaluate(CosTheta(wi));
+    *weight = weight_[part] * l.kr * l.specularFresnel.Evaluate(CosTheta(wi));
     *wiW = FromLocal(wi);
     return !weight->IsBlack();
 }
 
-bool BSDF::SampleSpecularTransmission(const Vec3f &woW, Vec3f *wiW, RGB *weight) const {
-    if (kt.IsBlack()) return false;
+bool BSDF::SampleSpecularTransmission(int part, const Vec3f &woW, Vec3f *wiW, RGB *weight) const {
+    const BxDFLobes &l = parts_[part];
+    if (l.kt.IsBlack() || weight_[part].IsBlack()) return false;
     Vec3f wo = ToLocal(woW);
     if (wo.z == 0) return false;
+    if (l.eta == 1) {
+        // An index-matched interface (uber opacity, mixes with "none"): straight through,
+        // with no Fresnel loss and no radiance scaling.
+        *weight = weight_[part] * l.kt;
+        *wiW = -woW;
+        return !weight->IsBlack();
+    }
     bool entering = wo.z > 0;
-    float etaI = entering ? 1.f : eta, etaT = entering ? eta : 1.f;
+    float etaI = entering ? 1.f : l.eta, etaT = entering ? l.eta : 1.f;
     // Snell's law about the normal on wo's side.
     Vec3f n(0, 0, entering ? 1.f : -1.f);
     float e = etaI / etaT;
@@ -176,9 +250,9 @@ bool BSDF::SampleSpecularTransmission(const Vec3f &woW, Vec3f *wiW, RGB *weight)
     if (sin2ThetaT >= 1) return false;  // total internal reflection: all goes to reflection
     float cosThetaT = std::sqrt(1 - sin2ThetaT);
     Vec3f wi = -wo * e + n * (e * cosThetaI - cosThetaT);
-    float F = FrDielectric(CosTheta(wi), 1.f, eta);
+    float F = FrDielectric(CosTheta(wi), 1.f, l.eta);
     // Radiance is scaled by (etaI/etaT)^2 across the interface (pbrt-v3, TransportMode::Radiance).
-    *weight = kt * (1 - F) * ((etaI * etaI) / (etaT * etaT));
+    *weight = weight_[part] * l.kt * (1 - F) * ((etaI * etaI) / (etaT * etaT));
     *wiW = FromLocal(wi);
     return !weight->IsBlack();
 }

@@ -1,8 +1,10 @@
-// The reflection models of pbrt-v3's Whitted path, as one flat value type per hit:
-// a Lambertian (or Oren–Nayar) lobe, a Trowbridge–Reitz microfacet lobe with dielectric or
-// conductor Fresnel, and delta reflection/transmission lobes. Mirrors pbrt-v3's BxDFs
+// The reflection models of pbrt-v3's Whitted path: Lambertian (or Oren–Nayar) reflection and
+// transmission, Trowbridge–Reitz microfacet reflection and transmission, the Ashikhmin–Shirley
+// FresnelBlend lobe, and delta reflection/transmission. Mirrors pbrt-v3's BxDFs
 // (reflection.cpp, microfacet.cpp) closely so images match the reference renderer.
 #pragma once
+
+#include <new>
 
 #include "core/color.h"
 #include "core/vecmath.h"
@@ -23,30 +25,68 @@ struct Fresnel {
     RGB Evaluate(float cosThetaI) const;
 };
 
-struct BSDF {
-    // Shading frame (ns = z) and the geometric normal that decides reflection vs transmission.
-    Vec3f ss, ts, ns, ng;
-
+// The lobes of one material, in the shading frame. A black scale switches a lobe off, so a
+// default-constructed value scatters nothing.
+struct BxDFLobes {
     // Non-delta lobes, evaluated for light samples.
     RGB kd;                    // Lambertian albedo (f = kd / pi)
     float orenNayarA = 1, orenNayarB = 0;
     bool orenNayar = false;
-    RGB kdTransmit;            // diffuse transmission (translucent)
+    RGB kdTransmit;            // Lambertian transmission (translucent)
     RGB ks;                    // microfacet reflection scale
-    float alphaX = 0, alphaY = 0;
+    float alphaX = 0, alphaY = 0;  // Trowbridge–Reitz roughness of all glossy lobes
     Fresnel glossyFresnel;
+    RGB ksTransmit;            // microfacet transmission scale (translucent)
+    float glossyEta = 1.5f;    // its relative index (outside 1, inside glossyEta)
+    RGB blendRd, blendRs;      // FresnelBlend (substrate): diffuse and specular reflectance
+    bool fresnelBlend = false;
 
     // Delta lobes, followed by recursion.
     RGB kr;                    // specular reflection scale
     Fresnel specularFresnel;   // None: mirror; Dielectric: glass; Conductor: polished metal
     RGB kt;                    // specular transmission scale
-    float eta = 1.5f;          // relative index for transmission
+    float eta = 1.5f;          // relative index for transmission (1: straight through)
 
     bool HasNonSpecular() const {
-        return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack();
+        return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() ||
+               !ksTransmit.IsBlack() || fresnelBlend;
     }
-    bool HasSpecularReflection() const { return !kr.IsBlack(); }
-    bool HasSpecularTransmission() const { return !kt.IsBlack(); }
+    // f for local directions; `reflect` says whether the geometric normal puts wo and wi on
+    // the same side (pbrt BSDF::f picks reflection or transmission lobes with it).
+    RGB f(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
+};
+
+// A surface's scattering at one hit: a shading frame and up to MaxParts weighted sets of lobes.
+// Most materials fill one part; mix materials (and uber's opacity) add more. f and the delta
+// lobes are linear in the parts, which is how pbrt-v3's MixMaterial scales its BxDFs.
+struct BSDF {
+    static constexpr int MaxParts = 8;
+
+    // Shading frame (ns = z) and the geometric normal that decides reflection vs transmission.
+    Vec3f ss, ts, ns, ng;
+
+    BSDF() {}  // parts are constructed on demand by AddPart (a BSDF is built at every hit)
+    BSDF(const BSDF &o) : ss(o.ss), ts(o.ts), ns(o.ns), ng(o.ng), n_(o.n_) {
+        for (int i = 0; i < n_; ++i) {
+            new (&weight_[i]) RGB(o.weight_[i]);
+            new (&parts_[i]) BxDFLobes(o.parts_[i]);
+        }
+    }
+    BSDF &operator=(const BSDF &o) = delete;
+
+    int NumParts() const { return n_; }
+    // A new part with no lobes; the caller must not add more than MaxParts (materials check
+    // their part count when the scene is built).
+    BxDFLobes &AddPart(const RGB &weight = RGB(1));
+    const BxDFLobes &Part(int i) const { return parts_[i]; }
+    BxDFLobes &Part(int i) { return parts_[i]; }
+    const RGB &Weight(int i) const { return weight_[i]; }
+
+    bool HasNonSpecular() const {
+        for (int i = 0; i < n_; ++i)
+            if (parts_[i].HasNonSpecular()) return true;
+        return false;
+    }
 
     Vec3f ToLocal(const Vec3f &v) const { return {Dot(v, ss), Dot(v, ts), Dot(v, ns)}; }
     Vec3f FromLocal(const Vec3f &v) const { return ss * v.x + ts * v.y + ns * v.z; }
@@ -55,10 +95,20 @@ struct BSDF {
     // f(wo, wi) for the non-delta lobes (world directions, both pointing away from the surface).
     RGB f(const Vec3f &woWorld, const Vec3f &wiWorld) const;
 
-    // Delta lobes: the direction and weight f·|cos|/pdf of the specular reflection and
-    // transmission. Return false when the lobe is absent or carries nothing (e.g. TIR).
-    bool SampleSpecularReflection(const Vec3f &woWorld, Vec3f *wi, RGB *weight) const;
-    bool SampleSpecularTransmission(const Vec3f &woWorld, Vec3f *wi, RGB *weight) const;
+    // Delta lobes of one part: the direction and weight (part weight × f·|cos|/pdf) of the
+    // specular reflection and transmission. Return false when the lobe is absent or carries
+    // nothing (e.g. TIR).
+    bool SampleSpecularReflection(int part, const Vec3f &woWorld, Vec3f *wi, RGB *weight) const;
+    bool SampleSpecularTransmission(int part, const Vec3f &woWorld, Vec3f *wi, RGB *weight) const;
+
+private:
+    int n_ = 0;
+    union {
+        RGB weight_[MaxParts];
+    };
+    union {
+        BxDFLobes parts_[MaxParts];
+    };
 };
 
 }  // namespace prism

@@ -7,7 +7,9 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/memory.h"
 #include "geometry/sphere.h"
+#include "geometry/tessellate.h"
 #include "render/area_light.h"
 #include "image/image.h"
 #include "image/image_io.h"
@@ -100,6 +102,7 @@ struct Builder {
         if (it != imageCache.end()) return it->second;
         ReadImageOptions ro;
         ro.encoding = enc;
+        ro.maxPixels = int64_t(EffectiveMemoryBudget(options.maxMemory) / sizeof(float));
         std::shared_ptr<const Image> img;
         try {
             if (embedded >= 0) {
@@ -119,13 +122,70 @@ struct Builder {
         return img;
     }
 
+    // [textures helper region] bilerp, uv, dots, fbm, wrinkled, windy and marble (pbrt-v3
+    // names and defaults); nullptr (after a warning) for the float variants pbrt-v3 lacks.
+    TexturePtr MakeProceduralTexture(const TextureDesc &t) {
+        const ParamSet &ps = t.params;
+        bool f = t.isFloat;
+        auto spectrumOnly = [&]() {
+            diag.Warn(t.loc, "texture class " + Quote(t.type) + " has no float variant (as in pbrt-v3); texture " +
+                                 Quote(t.name) + " is ignored");
+            for (const Param &p : ps.Params()) p.lookedUp = true;
+            return TexturePtr();
+        };
+        auto octaves = [&]() {
+            int n = ps.GetInt("octaves", 8);
+            if (n < 0 || n > 32) {
+                const Param *p = ps.Find("octaves");
+                throw SceneError(p ? p->loc : t.loc, t.type + " octaves must be 0 to 32");
+            }
+            return n;
+        };
+        TextureMapping3D m3{(scene.renderFromWorld * t.worldFromTexture).Inverse()};
+        if (t.type == "bilerp") {
+            auto v = [&](const char *n, float d) {
+                return f ? RGB(ps.GetFloat(n, d)) : ps.GetRGB(n, RGB(d));
+            };
+            return std::make_shared<BilerpTexture>(Mapping(t), v("v00", 0), v("v01", 1),
+                                                   v("v10", 0), v("v11", 1));
+        }
+        if (t.type == "uv") {
+            if (f) return spectrumOnly();
+            return std::make_shared<UVTexture>(Mapping(t));
+        }
+        if (t.type == "dots")
+            return std::make_shared<DotsTexture>(Mapping(t), TexParam(ps, "inside", f, RGB(1)),
+                                                 TexParam(ps, "outside", f, RGB(0)));
+        if (t.type == "fbm" || t.type == "wrinkled") {
+            auto kind = t.type == "fbm" ? NoiseTexture::Kind::FBm : NoiseTexture::Kind::Wrinkled;
+            int n = octaves();
+            return std::make_shared<NoiseTexture>(kind, m3, n, ps.GetFloat("roughness", .5f));
+        }
+        if (t.type == "windy") return std::make_shared<NoiseTexture>(NoiseTexture::Kind::Windy, m3, 0, 0.f);
+        if (t.type == "marble") {
+            if (f) return spectrumOnly();
+            int n = octaves();
+            return std::make_shared<MarbleTexture>(m3, n, ps.GetFloat("roughness", .5f),
+                                                   ps.GetFloat("scale", 1.f),
+                                                   ps.GetFloat("variation", .2f));
+        }
+        return nullptr;
+    }
+    // [end of textures helper region]
+
     TexturePtr MakeTexture(const TextureDesc &t) {
         const ParamSet &ps = t.params;
         bool f = t.isFloat;
         RGB one(1), zero(0);
         if (t.type == "constant") return TexParam(ps, "value", f, one);
-        if (t.type == "scale") return std::make_shared<ScaleTexture>(TexParam(ps, "tex1", f, one),
-                                                                      TexParam(ps, "tex2", f, one));
+        if (t.type == "scale") {
+            if (!ps.Has("tex1") && !ps.Has("tex2") && (ps.Has("tex") || ps.Has("scale")))
+                // pbrt-v4 spelling: "tex" times the float "scale".
+                return std::make_shared<ScaleTexture>(TexParam(ps, "tex", f, one),
+                                                      TexParam(ps, "scale", true, one));
+            return std::make_shared<ScaleTexture>(TexParam(ps, "tex1", f, one),
+                                                  TexParam(ps, "tex2", f, one));
+        }
         if (t.type == "mix")
             return std::make_shared<MixTexture>(TexParam(ps, "tex1", f, zero),
                                                 TexParam(ps, "tex2", f, one),
@@ -162,6 +222,14 @@ struct Builder {
             }
             return std::make_shared<ImageTexture>(Mapping(t), img, wrap, ps.GetFloat("scale", 1.f),
                                                   ps.GetBool("invert", false));
+        }
+        for (const char *c : {"bilerp", "uv", "dots", "fbm", "wrinkled", "windy", "marble"})
+            if (t.type == c) return MakeProceduralTexture(t);
+        if (t.type == "ptex") {
+            diag.Warn(t.loc, "ptex textures are not supported; texture " + Quote(t.name) +
+                                 " is a constant 0.5");
+            for (const Param &p : ps.Params()) p.lookedUp = true;
+            return Constant(RGB(0.5f));
         }
         diag.Warn(t.loc, "texture class " + Quote(t.type) + " is not supported; texture " +
                              Quote(t.name) + " is ignored");
@@ -203,7 +271,78 @@ struct Builder {
         bool Has(const std::string &n) { return (shape && shape->Has(n)) || mat.Has(n); }
     };
 
-    Material MakeMaterial(const SceneEntity &m, const ParamSet *shapeParams, bool *usedShape) {
+    // ---- Materials (uber, substrate, translucent, mix, v4 names: see docs/MATERIALS.md) ----
+    // [materials helper region: MakeMaterial, named-material resolution, MaterialForShape]
+
+    // Named materials referenced by mix materials, built once each (by desc index); the state
+    // detects reference cycles: 0 not built, 1 being built, 2 built.
+    std::vector<std::shared_ptr<const Material>> namedMaterialCache;
+    std::vector<char> namedMaterialState;
+
+    // The material a mix names: the latest definition before the mix (pbrt-v3 resolves names
+    // when the mix is declared), else a later one (pbrt-v4 files may refer forward).
+    int ResolveNamedMaterial(const std::string &name, int from) const {
+        for (int i = std::min(from, int(desc.materials.size())) - 1; i >= 0; --i)
+            if (desc.materials[size_t(i)].name == name) return i;
+        for (size_t i = size_t(std::max(from, 0)); i < desc.materials.size(); ++i)
+            if (desc.materials[i].name == name) return int(i);
+        return -1;
+    }
+
+    std::shared_ptr<const Material> NamedMaterialRef(const std::string &name, int from,
+                                                     const FileLoc &loc, int depth) {
+        int index = ResolveNamedMaterial(name, from);
+        if (index < 0) {
+            diag.Warn(loc, "unknown named material " + Quote(name) + " in mix; using matte");
+            auto m = std::make_shared<Material>();
+            m->typeName = "matte";
+            m->Kd = Constant(RGB(0.5f));
+            m->sigma = Constant(RGB(0));
+            return m;
+        }
+        if (namedMaterialCache.size() < desc.materials.size()) {
+            namedMaterialCache.resize(desc.materials.size());
+            namedMaterialState.resize(desc.materials.size(), 0);
+        }
+        if (namedMaterialState[size_t(index)] == 2) return namedMaterialCache[size_t(index)];
+        if (namedMaterialState[size_t(index)] == 1)
+            throw SceneError(loc, "mix material refers to itself through " + Quote(name));
+        namedMaterialState[size_t(index)] = 1;
+        const MaterialDesc &md = desc.materials[size_t(index)];
+        auto m = std::make_shared<Material>(MakeMaterial(md, index, nullptr, nullptr, depth + 1));
+        md.params.ReportUnused(diag, "material " + Quote(md.type));
+        namedMaterialState[size_t(index)] = 2;
+        namedMaterialCache[size_t(index)] = m;
+        return m;
+    }
+
+    // A spectrum-or-float texture parameter (mix "amount" is a spectrum texture in pbrt-v3 and
+    // a float texture in v4).
+    TexturePtr AnyTex(MaterialParams &mp, const std::string &n, RGB def) {
+        const ParamSet &ps = mp.Src(n);
+        const Param *p = ps.Find(n);
+        if (p && p->type == ParamType::Texture) {
+            std::string tn = ps.GetTexture(n);
+            if (!rgbTextures.count(tn) && floatTextures.count(tn)) return floatTextures[tn];
+            return TexParam(ps, n, false, def);
+        }
+        if (p && (p->type == ParamType::Float || p->type == ParamType::Integer))
+            return Constant(RGB(ps.GetFloat(n, def.r)));
+        return TexParam(ps, n, false, def);
+    }
+
+    // pbrt-v3 `roughness` / `uroughness` / `vroughness` for the materials that have all three.
+    void Roughness(Material &mat, MaterialParams &mp, float def) {
+        mat.roughness = mp.FloatTex("roughness", def);
+        mat.uRoughness = mp.Has("uroughness") ? mp.FloatTex("uroughness", def) : nullptr;
+        mat.vRoughness = mp.Has("vroughness") ? mp.FloatTex("vroughness", def) : nullptr;
+        mat.remapRoughness = mp.Bool("remaproughness", true);
+    }
+
+    // `descIndex` is the material's position in desc.materials (mix names resolve from there);
+    // `depth` counts enclosing mixes.
+    Material MakeMaterial(const MaterialDesc &m, int descIndex, const ParamSet *shapeParams,
+                          bool *usedShape, int depth = 0) {
         MaterialParams mp{*this, shapeParams, m.params};
         Material mat;
         mat.typeName = m.type;
@@ -213,6 +352,7 @@ struct Builder {
         else if (type == "dielectric") type = "glass";
         else if (type == "conductor") type = "metal";
         else if (type == "interface") type = "none";
+        else if (type == "diffusetransmission") type = "translucent";
         mp.mat.MarkUsed("type");
         if (mp.Has("bumpmap") || mp.Has("displacement")) {
             const Param *p = m.params.Find("bumpmap");
@@ -250,21 +390,128 @@ struct Builder {
             mp.Src("remaproughness").MarkUsed("remaproughness");
         } else if (type == "metal") {
             mat.kind = Material::Kind::Metal;
-            // pbrt-v3's default is copper; these are its eta/k spectra reduced to RGB.
-            mat.metalEta = mp.Rgb("eta", RGB(0.200438f, 0.924033f, 1.10221f));
-            mat.metalK = mp.Rgb("k", RGB(3.91295f, 2.45285f, 2.14219f));
-            TexturePtr rough = mp.FloatTex("roughness", 0.01f);
+            if (mp.Has("reflectance") && !mp.Has("eta") && !mp.Has("k")) {
+                // pbrt-v4 conductor given its normal-incidence reflectance r: eta 1 and
+                // k = 2 sqrt(r) / sqrt(1 - r), which reproduces r at normal incidence.
+                RGB r = mp.Rgb("reflectance", RGB(0.9f)).Clamped(0.f, 0.9999f);
+                mat.metalEta = RGB(1);
+                mat.metalK = RGB(2 * std::sqrt(r.r / (1 - r.r)), 2 * std::sqrt(r.g / (1 - r.g)),
+                                 2 * std::sqrt(r.b / (1 - r.b)));
+            } else {
+                // pbrt-v3's default is copper; these are its eta/k spectra reduced to RGB.
+                mat.metalEta = mp.Rgb("eta", RGB(0.200438f, 0.924033f, 1.10221f));
+                mat.metalK = mp.Rgb("k", RGB(3.91295f, 2.45285f, 2.14219f));
+            }
+            // pbrt-v4's conductor defaults to a polished surface; v3's metal to roughness 0.01.
+            float defRough = m.type == "conductor" ? 0.f : 0.01f;
+            TexturePtr rough = mp.FloatTex("roughness", defRough);
             mat.uRoughness = mp.Has("uroughness") ? mp.FloatTex("uroughness", 0.f) : rough;
             mat.vRoughness = mp.Has("vroughness") ? mp.FloatTex("vroughness", 0.f) : rough;
             mat.remapRoughness = mp.Bool("remaproughness", true);
+            if (m.type == "conductor" && mat.remapRoughness) {
+                // pbrt-v4 remaps roughness r to alpha = sqrt(r) (v3 used a polynomial that
+                // never reaches 0); constant values are converted here.
+                auto v4Alpha = [&](TexturePtr &t) {
+                    if (auto *c = dynamic_cast<const ConstantTexture *>(t.get()))
+                        t = Constant(RGB(std::sqrt(std::max(0.f, c->Value().r))));
+                };
+                if (mat.uRoughness->IsConstant() && mat.vRoughness->IsConstant()) {
+                    v4Alpha(mat.uRoughness);
+                    v4Alpha(mat.vRoughness);
+                    mat.remapRoughness = false;
+                }
+            }
+        } else if (type == "uber") {
+            mat.kind = Material::Kind::Uber;
+            mat.Kd = mp.RGBTex("Kd", RGB(0.25f));
+            mat.Ks = mp.RGBTex("Ks", RGB(0.25f));
+            mat.Kr = mp.RGBTex("Kr", RGB(0));
+            mat.Kt = mp.RGBTex("Kt", RGB(0));
+            Roughness(mat, mp, 0.1f);
+            mat.index = mp.Has("eta") ? mp.FloatTex("eta", 1.5f) : mp.FloatTex("index", 1.5f);
+            mat.opacity = mp.RGBTex("opacity", RGB(1));
+        } else if (type == "coateddiffuse") {
+            // pbrt-v4's layered coat, approximated as uber: the diffuse base plus the coat's
+            // dielectric reflection (a highlight when rough, a Fresnel mirror when smooth).
+            mat.kind = Material::Kind::Uber;
+            mat.Kd = mp.RGBTex("reflectance", RGB(0.5f));
+            Roughness(mat, mp, 0.f);
+            auto *c = dynamic_cast<const ConstantTexture *>(
+                (mat.uRoughness ? mat.uRoughness : mat.roughness).get());
+            bool smooth = c && c->Value().r == 0;
+            mat.Ks = Constant(RGB(smooth ? 0.f : 1.f));
+            mat.Kr = Constant(RGB(smooth ? 1.f : 0.f));
+            mat.Kt = Constant(RGB(0));
+            mat.index = mp.FloatTex("eta", 1.5f);
+            for (const char *n : {"thickness", "albedo", "g", "maxdepth", "nsamples", "seed"})
+                mp.Src(n).MarkUsed(n);
+        } else if (type == "substrate") {
+            mat.kind = Material::Kind::Substrate;
+            mat.Kd = mp.RGBTex("Kd", RGB(0.5f));
+            mat.Ks = mp.RGBTex("Ks", RGB(0.5f));
+            mat.uRoughness = mp.FloatTex("uroughness", 0.1f);
+            mat.vRoughness = mp.FloatTex("vroughness", 0.1f);
+            mat.remapRoughness = mp.Bool("remaproughness", true);
+        } else if (type == "translucent") {
+            mat.kind = Material::Kind::Translucent;
+            if (m.type == "diffusetransmission") {
+                // pbrt-v4: Lambertian reflectance and transmittance, times "scale".
+                mat.Kd = Constant(RGB(mp.Src("scale").GetFloat("scale", 1.f)));
+                mat.Ks = Constant(RGB(0));
+                mat.reflect = mp.RGBTex("reflectance", RGB(0.25f));
+                mat.transmit = mp.RGBTex("transmittance", RGB(0.25f));
+            } else {
+                mat.Kd = mp.RGBTex("Kd", RGB(0.25f));
+                mat.Ks = mp.RGBTex("Ks", RGB(0.25f));
+                mat.reflect = mp.RGBTex("reflect", RGB(0.5f));
+                mat.transmit = mp.RGBTex("transmit", RGB(0.5f));
+            }
+            mat.roughness = mp.FloatTex("roughness", 0.1f);
+            mat.remapRoughness = mp.Bool("remaproughness", true);
+        } else if (type == "mix") {
+            mat.kind = Material::Kind::Mix;
+            // Each nesting level adds at least one BSDF part, so deeper nests than this are
+            // over the limit anyway; stopping here also bounds the recursion.
+            if (depth >= BSDF::MaxParts)
+                throw SceneError(m.loc, "mix materials are nested too deeply (more than " +
+                                            std::to_string(BSDF::MaxParts) + " levels)");
+            mat.amount = AnyTex(mp, "amount", RGB(0.5f));
+            std::string n1, n2;
+            FileLoc loc1 = m.loc, loc2 = m.loc;
+            if (mp.Has("materials")) {
+                // pbrt-v4: "string materials" [a b], amount selects b (= v3's namedmaterial1).
+                const Param *p = mp.Src("materials").Find("materials");
+                std::vector<std::string> names = mp.Src("materials").GetStrings("materials");
+                if (names.size() != 2)
+                    throw SceneError(p->loc, "mix \"materials\" must name exactly two materials");
+                n1 = names[1];
+                n2 = names[0];
+                loc1 = loc2 = p->loc;
+            } else {
+                n1 = mp.Src("namedmaterial1").GetString("namedmaterial1", "");
+                n2 = mp.Src("namedmaterial2").GetString("namedmaterial2", "");
+                if (const Param *p = m.params.Find("namedmaterial1")) loc1 = p->loc;
+                if (const Param *p = m.params.Find("namedmaterial2")) loc2 = p->loc;
+            }
+            mat.mix1 = NamedMaterialRef(n1, descIndex, loc1, depth);
+            mat.mix2 = NamedMaterialRef(n2, descIndex, loc2, depth);
+            if (mat.MaxParts() > BSDF::MaxParts)
+                throw SceneError(m.loc, "mix material combines more than " +
+                                            std::to_string(BSDF::MaxParts) + " materials");
         } else if (type == "none" || type.empty()) {
             mat.kind = Material::Kind::None;
         } else {
-            diag.Warn(m.loc, "material " + Quote(m.type) + " is not supported; using matte");
+            // fourier, hair, subsurface, kdsubsurface, disney, ... and unknown types.
+            const char *colour = mp.Has("Kd")            ? "Kd"
+                                 : mp.Has("reflectance") ? "reflectance"
+                                 : mp.Has("color")       ? "color"
+                                                         : nullptr;
+            diag.Warn(m.loc, "material " + Quote(m.type) + " is not supported; using matte" +
+                                 (colour ? std::string(" with its \"") + colour + "\"" : ""));
             mat.kind = Material::Kind::Matte;
-            mat.Kd = mp.RGBTex("Kd", RGB(0.5f));
+            mat.Kd = colour ? mp.RGBTex(colour, RGB(0.5f)) : Constant(RGB(0.5f));
             mat.sigma = Constant(RGB(0));
-            m.params.MarkUsed("Kd");
+            for (const Param &p : m.params.Params()) p.lookedUp = true;
         }
         if (usedShape) *usedShape = mp.usedShape;
         return mat;
@@ -276,7 +523,7 @@ struct Builder {
         if (s.material < 0) return 0;
         const MaterialDesc &md = desc.materials[size_t(s.material)];
         bool usedShape = false;
-        Material m = MakeMaterial(md, &s.params, &usedShape);
+        Material m = MakeMaterial(md, s.material, &s.params, &usedShape);
         if (usedShape) {
             scene.materials.push_back(std::move(m));
             return int(scene.materials.size()) - 1;
@@ -289,6 +536,7 @@ struct Builder {
         }
         return shared;
     }
+    // [end of materials helper region]
 
     // ---- Lights ---------------------------------------------------------------------------
 
@@ -370,6 +618,22 @@ struct Builder {
         if (pb.pMax.x <= pb.pMin.x || pb.pMax.y <= pb.pMin.y)
             throw SceneError(desc.film.loc, "the crop window covers no pixels");
         scene.pixelBounds = pb;
+        {
+            // Film (4 doubles per pixel), tile buffers with filter margins, the float image
+            // and its encoded copy: about 96 bytes per pixel, checked before any is allocated.
+            const uint64_t bytesPerPixel = 96;
+            uint64_t pixels = uint64_t(pb.pMax.x - pb.pMin.x) * uint64_t(pb.pMax.y - pb.pMin.y);
+            uint64_t budget = EffectiveMemoryBudget(options.maxMemory);
+            if (pixels > budget / bytesPerPixel) {
+                std::string msg = "image " + std::to_string(xres) + "x" + std::to_string(yres) +
+                                  " needs about " + FormatBytes(pixels * bytesPerPixel) +
+                                  ", more than the memory budget of " + FormatBytes(budget) +
+                                  " (--max-memory)";
+                if (options.resolution.x > 0) throw SceneError(msg);
+                const Param *p = film.Find("xresolution");
+                throw SceneError(p ? p->loc : desc.film.loc, msg);
+            }
+        }
         scene.outputFilename = film.GetString("filename", "");
         scene.filmScale = film.GetFloat("scale", 1.f);
         scene.maxSampleLuminance = film.GetFloat("maxsampleluminance", Infinity);
@@ -422,7 +686,9 @@ struct Builder {
         const ParamSet &sp = desc.sampler.params;
         int spp;
         if (desc.sampler.type == "stratified") {
-            spp = sp.GetInt("xsamples", 4) * sp.GetInt("ysamples", 4);
+            // In 64 bits: the product of two file values must not overflow.
+            int64_t n = int64_t(sp.GetInt("xsamples", 4)) * sp.GetInt("ysamples", 4);
+            spp = int(std::clamp<int64_t>(n, -(int64_t(1) << 30), int64_t(1) << 30));
             sp.MarkUsed("jitter");
         } else {
             spp = sp.GetInt("pixelsamples", desc.sampler.type == "random" ? 4 : 16);
@@ -487,23 +753,60 @@ struct Builder {
 
     // ---- Shapes ---------------------------------------------------------------------------
 
+    // pbrt's "alpha" / "shadowalpha": a constant 0 removes the shape from all rays / from
+    // shadow rays (pbrt-v3 cuts out only where alpha is exactly 0). Textured alpha is not
+    // supported and treated as opaque.
+    unsigned VisibilityMask(const ShapeDesc &s) {
+        const ParamSet &ps = s.params;
+        float alpha = 1, shadowAlpha = 1;
+        for (const char *n : {"alpha", "shadowalpha"}) {
+            const Param *p = ps.Find(n);
+            if (!p) continue;
+            if (p->type == ParamType::Texture) {
+                diag.WarnOnce(std::string("texalpha:") + n, p->loc,
+                              std::string("textured \"") + n + "\" is not supported; treated as opaque");
+                ps.MarkUsed(n);
+                continue;
+            }
+            (std::string(n) == "alpha" ? alpha : shadowAlpha) = ps.GetFloat(n, 1.f);
+        }
+        if (!ps.Has("shadowalpha") || ps.Find("shadowalpha")->type == ParamType::Texture)
+            shadowAlpha = alpha;
+        unsigned mask = AllRays;
+        if (alpha == 0) mask &= ~CameraRays;
+        if (shadowAlpha == 0) mask &= ~ShadowRays;
+        return mask;
+    }
+
     // Creates the geometry of one shape and adds it to `accel`; records its ShapeInfo in
     // `infos` (by accel shape index). Returns the shape index, or -1 if skipped.
     int AddShapeTo(Accel &accel, std::vector<ShapeInfo> &infos, const ShapeDesc &s,
                    const Transform &renderFromObject) {
-        ShapeFactoryContext ctx{desc, diag, options.precision};
+        ShapeFactoryContext ctx{desc, diag, options.precision, options.maxMemory};
         ShapeGeometry geom = CreateShapeGeometry(s, renderFromObject, ctx);
         if (!geom.mesh && !geom.analytic) return -1;  // skipped with a warning
+        if (options.tessellate > 0 && geom.analytic) {  // [validate hook] --tessellate N
+            try {
+                if (auto twin = MakeTessellatedMesh(*geom.analytic, options.tessellate)) {
+                    geom.mesh = std::move(twin);
+                    geom.analytic.reset();
+                }
+            } catch (const std::length_error &e) {
+                throw SceneError(s.loc, e.what());
+            }
+        }
+        unsigned mask = VisibilityMask(s);
+        if (mask == 0) return -1;  // alpha 0: cut out entirely
         int material = MaterialForShape(s);
         s.params.ReportUnused(diag, "shape " + Quote(s.type));
         int index;
         if (geom.mesh) {
             scene.features.meshes++;
             scene.features.triangles += geom.mesh->NumTriangles();
-            index = accel.AddMesh(std::move(geom.mesh));
+            index = accel.AddMesh(std::move(geom.mesh), mask);
         } else {
             scene.features.analyticShapes++;
-            index = accel.AddAnalytic(std::move(geom.analytic));
+            index = accel.AddAnalytic(std::move(geom.analytic), mask);
         }
         if (int(infos.size()) <= index) infos.resize(size_t(index) + 1);
         infos[size_t(index)] = {material, -1, s.directiveIndex, s.type, -1};

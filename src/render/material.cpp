@@ -4,12 +4,38 @@
 
 namespace prism {
 
-static float EvalFloat(const TexturePtr &t, const TextureContext &tc) { return t->Evaluate(tc).r; }
+namespace {
 
-static float MetalAlpha(const Material &m, const TexturePtr &r, const TextureContext &tc) {
+float EvalFloat(const TexturePtr &t, const TextureContext &tc) { return t->Evaluate(tc).r; }
+
+float Alpha(const Material &m, const TexturePtr &r, const TextureContext &tc) {
     float v = EvalFloat(r, tc);
     return m.remapRoughness ? RoughnessToAlpha(v) : v;
 }
+
+// False only when the texture is a constant black (or absent): the lobe can never appear.
+bool MaybeNonBlack(const TexturePtr &t) {
+    if (!t) return false;
+    auto *c = dynamic_cast<const ConstantTexture *>(t.get());
+    return !c || !c->Value().Clamped(0.f).IsBlack();
+}
+
+// True unless the texture is a constant of at least 1 in every channel.
+bool MaybeBelowOne(const TexturePtr &t) {
+    if (!t) return false;
+    auto *c = dynamic_cast<const ConstantTexture *>(t.get());
+    return !c || c->Value().r < 1 || c->Value().g < 1 || c->Value().b < 1;
+}
+
+Fresnel Dielectric(float etaI, float etaT) {
+    Fresnel f;
+    f.kind = FresnelKind::Dielectric;
+    f.etaI = etaI;
+    f.etaT = etaT;
+    return f;
+}
+
+}  // namespace
 
 bool Material::MayReflectSpecularly() const {
     switch (kind) {
@@ -25,74 +51,177 @@ bool Material::MayReflectSpecularly() const {
         float av = remapRoughness ? RoughnessToAlpha(cv->Value().r) : cv->Value().r;
         return std::max(au, av) <= SpecularMetalAlpha;
     }
+    case Kind::Uber:
+        return MaybeNonBlack(Kr);
+    case Kind::Mix:
+        return mix1->MayReflectSpecularly() || mix2->MayReflectSpecularly();
     default:
         return false;
+    }
+}
+
+bool Material::MayTransmit() const {
+    switch (kind) {
+    case Kind::Glass:
+        return true;
+    case Kind::Uber:
+        return MaybeNonBlack(Kt) || MaybeBelowOne(opacity);
+    case Kind::Mix:
+        // A "none" child lets part of the light straight through.
+        return mix1->MayTransmit() || mix2->MayTransmit() || mix1->IsPassThrough() ||
+               mix2->IsPassThrough();
+    default:
+        return false;
+    }
+}
+
+int Material::MaxParts() const {
+    switch (kind) {
+    case Kind::Mix:
+        return mix1->MaxParts() + mix2->MaxParts();
+    case Kind::Uber:
+        return MaybeBelowOne(opacity) ? 2 : 1;
+    default:
+        return 1;
     }
 }
 
 BSDF Material::GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) const {
     BSDF b;
     b.SetFrame(si.ns, si.dpdu, si.n);
+    AddParts(b, tc, RGB(1));
+    return b;
+}
+
+void Material::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const {
+    if (kind == Kind::Mix) {
+        // pbrt-v3 MixMaterial: m1's BxDFs scaled by amount, m2's by 1 - amount (per channel).
+        RGB s1 = amount->Evaluate(tc).Clamped(0.f, 1.f);
+        RGB s2 = (RGB(1) - s1).Clamped(0.f, 1.f);
+        if (!s1.IsBlack()) mix1->AddParts(b, tc, weight * s1);
+        if (!s2.IsBlack()) mix2->AddParts(b, tc, weight * s2);
+        return;
+    }
+    if (kind == Kind::Uber && opacity) {
+        // pbrt-v3 adds SpecularTransmission(1 - opacity, 1, 1): light passing straight through.
+        RGB op = opacity->Evaluate(tc).Clamped(0.f, 1.f);
+        RGB t = (RGB(1) - op).Clamped(0.f, 1.f);
+        if (!t.IsBlack()) {
+            BxDFLobes &pass = b.AddPart(weight);
+            pass.kt = t;
+            pass.eta = 1;
+        }
+    }
+    BxDFLobes &l = b.AddPart(weight);
     switch (kind) {
     case Kind::Matte: {
-        b.kd = Kd->Evaluate(tc).Clamped(0.f);
+        l.kd = Kd->Evaluate(tc).Clamped(0.f);
         float sig = sigma ? EvalFloat(sigma, tc) : 0.f;
         if (sig > 0) {
             float s = float(Radians(sig));
             float s2 = s * s;
-            b.orenNayar = true;
-            b.orenNayarA = 1 - s2 / (2 * (s2 + 0.33f));
-            b.orenNayarB = 0.45f * s2 / (s2 + 0.09f);
+            l.orenNayar = true;
+            l.orenNayarA = 1 - s2 / (2 * (s2 + 0.33f));
+            l.orenNayarB = 0.45f * s2 / (s2 + 0.09f);
         }
         break;
     }
     case Kind::Plastic: {
-        b.kd = Kd->Evaluate(tc).Clamped(0.f);
-        b.ks = Ks->Evaluate(tc).Clamped(0.f);
-        float r = EvalFloat(roughness, tc);
-        float a = remapRoughness ? RoughnessToAlpha(r) : r;
-        b.alphaX = b.alphaY = std::max(a, 1e-4f);
+        l.kd = Kd->Evaluate(tc).Clamped(0.f);
+        l.ks = Ks->Evaluate(tc).Clamped(0.f);
+        float a = Alpha(*this, roughness, tc);
+        l.alphaX = l.alphaY = std::max(a, 1e-4f);
         // pbrt-v3 plastic.cpp constructs FresnelDielectric(1.5, 1): kept as is so highlights
         // match the reference renderer (it saturates toward grazing angles).
-        b.glossyFresnel.kind = FresnelKind::Dielectric;
-        b.glossyFresnel.etaI = 1.5f;
-        b.glossyFresnel.etaT = 1.f;
+        l.glossyFresnel = Dielectric(1.5f, 1.f);
         break;
     }
     case Kind::Mirror:
-        b.kr = Kr->Evaluate(tc).Clamped(0.f);
-        b.specularFresnel.kind = FresnelKind::None;
+        l.kr = Kr->Evaluate(tc).Clamped(0.f);
+        l.specularFresnel.kind = FresnelKind::None;
         break;
     case Kind::Glass: {
-        b.kr = Kr->Evaluate(tc).Clamped(0.f);
-        b.kt = Kt->Evaluate(tc).Clamped(0.f);
-        b.eta = EvalFloat(index, tc);
-        b.specularFresnel.kind = FresnelKind::Dielectric;
-        b.specularFresnel.etaI = 1.f;
-        b.specularFresnel.etaT = b.eta;
+        l.kr = Kr->Evaluate(tc).Clamped(0.f);
+        l.kt = Kt->Evaluate(tc).Clamped(0.f);
+        l.eta = EvalFloat(index, tc);
+        l.specularFresnel = Dielectric(1.f, l.eta);
         break;
     }
     case Kind::Metal: {
-        float au = MetalAlpha(*this, uRoughness, tc), av = MetalAlpha(*this, vRoughness, tc);
+        float au = Alpha(*this, uRoughness, tc), av = Alpha(*this, vRoughness, tc);
         Fresnel fr;
         fr.kind = FresnelKind::Conductor;
         fr.eta = metalEta;
         fr.k = metalK;
         if (std::max(au, av) <= SpecularMetalAlpha) {
-            b.kr = RGB(1);
-            b.specularFresnel = fr;
+            l.kr = RGB(1);
+            l.specularFresnel = fr;
         } else {
-            b.ks = RGB(1);
-            b.alphaX = std::max(au, 1e-4f);
-            b.alphaY = std::max(av, 1e-4f);
-            b.glossyFresnel = fr;
+            l.ks = RGB(1);
+            l.alphaX = std::max(au, 1e-4f);
+            l.alphaY = std::max(av, 1e-4f);
+            l.glossyFresnel = fr;
+        }
+        break;
+    }
+    case Kind::Uber: {
+        // pbrt-v3 uber.cpp: every lobe is scaled by the opacity.
+        RGB op = opacity ? opacity->Evaluate(tc).Clamped(0.f, 1.f) : RGB(1);
+        float e = EvalFloat(index, tc);
+        l.kd = op * Kd->Evaluate(tc).Clamped(0.f);
+        l.ks = op * Ks->Evaluate(tc).Clamped(0.f);
+        if (!l.ks.IsBlack()) {
+            float au = Alpha(*this, uRoughness ? uRoughness : roughness, tc);
+            float av = vRoughness ? Alpha(*this, vRoughness, tc) : au;
+            l.alphaX = std::max(au, 1e-4f);
+            l.alphaY = std::max(av, 1e-4f);
+            l.glossyFresnel = Dielectric(1.f, e);
+        }
+        l.kr = op * Kr->Evaluate(tc).Clamped(0.f);
+        l.kt = op * Kt->Evaluate(tc).Clamped(0.f);
+        l.specularFresnel = Dielectric(1.f, e);
+        l.eta = e;
+        break;
+    }
+    case Kind::Substrate: {
+        // pbrt-v3 substrate.cpp: one FresnelBlend lobe.
+        RGB d = Kd->Evaluate(tc).Clamped(0.f), s = Ks->Evaluate(tc).Clamped(0.f);
+        if (d.IsBlack() && s.IsBlack()) break;
+        l.fresnelBlend = true;
+        l.blendRd = d;
+        l.blendRs = s;
+        l.alphaX = std::max(Alpha(*this, uRoughness, tc), 1e-4f);
+        l.alphaY = std::max(Alpha(*this, vRoughness, tc), 1e-4f);
+        break;
+    }
+    case Kind::Translucent: {
+        // pbrt-v3 translucent.cpp: Lambertian reflection r·Kd and transmission t·Kd, microfacet
+        // reflection r·Ks and transmission t·Ks through an eta = 1.5 interface.
+        const float eta = 1.5f;
+        RGB r = reflect->Evaluate(tc).Clamped(0.f), t = transmit->Evaluate(tc).Clamped(0.f);
+        if (r.IsBlack() && t.IsBlack()) break;
+        RGB kd = Kd->Evaluate(tc).Clamped(0.f);
+        l.kd = r * kd;
+        l.kdTransmit = t * kd;
+        RGB ks = Ks->Evaluate(tc).Clamped(0.f);
+        if (!ks.IsBlack()) {
+            float a = std::max(Alpha(*this, roughness, tc), 1e-4f);
+            l.alphaX = l.alphaY = a;
+            l.ks = r * ks;
+            l.glossyFresnel = Dielectric(1.f, eta);
+            l.ksTransmit = t * ks;
+            l.glossyEta = eta;
         }
         break;
     }
     case Kind::None:
+        // Only reached inside a mix: the "none" share of the light continues unchanged.
+        l.kt = RGB(1);
+        l.eta = 1;
+        break;
+    case Kind::Mix:
         break;
     }
-    return b;
 }
 
 }  // namespace prism

@@ -1,5 +1,6 @@
 // Whitted materials with pbrt-v3 parameters and semantics: matte, plastic, mirror, glass,
-// metal and "" / none (an invisible interface). Each hit turns a material into a BSDF value.
+// metal, uber, substrate, translucent, mix and "" / none (an invisible interface). Each hit
+// turns a material into a BSDF value; docs/MATERIALS.md says what each one does.
 #pragma once
 
 #include <memory>
@@ -13,18 +14,28 @@ namespace prism {
 
 class Material {
 public:
-    enum class Kind { Matte, Plastic, Mirror, Glass, Metal, None };
+    enum class Kind { Matte, Plastic, Mirror, Glass, Metal, Uber, Substrate, Translucent, Mix, None };
 
     Kind kind = Kind::Matte;
     std::string typeName;  // as written in the scene, for `prism info`
+    // Spectrum textures: Kd, Ks, Kr, Kt, opacity (uber), reflect/transmit (translucent),
+    // amount (mix). Float textures: sigma, roughness, uRoughness/vRoughness (null: use
+    // roughness), index (eta).
     TexturePtr Kd, Ks, Kr, Kt, sigma, roughness, uRoughness, vRoughness, index;
+    TexturePtr opacity, reflect, transmit, amount;
     RGB metalEta, metalK;
     bool remapRoughness = true;
+    // Mix: pbrt-v3 weights mix1 by amount and mix2 by 1 - amount (MixMaterial).
+    std::shared_ptr<const Material> mix1, mix2;
 
     bool IsPassThrough() const { return kind == Kind::None; }
-    bool MayTransmit() const { return kind == Kind::Glass; }
+    bool MayTransmit() const;
     bool MayReflectSpecularly() const;
+    // BSDF parts this material can add (mixes add their children's; uber's opacity adds one).
+    int MaxParts() const;
     BSDF GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) const;
+    // Adds this material's lobes to `bsdf`, scaled by `weight` (used by mix).
+    void AddParts(BSDF &bsdf, const TextureContext &tc, const RGB &weight) const;
 };
 
 // Roughness (after remapping) below which a metal is treated as a polished conductor: a delta

@@ -29,9 +29,15 @@ struct RenderOptions {
     std::optional<std::array<float, 9>> lookAt;  // eye, look, up: replaces the scene's camera
     float fov = 0;                  // degrees on the shorter image axis; 0: the scene's
     bool quiet = false;
+    // Memory budget in bytes for the film and image textures (and PLY meshes); 0: the default,
+    // 75% of physical RAM (core/memory.h). Exceeding it is a SceneError, not an OOM kill.
+    uint64_t maxMemory = 0;
     // Render in camera-centred world space (default). `prism trace` turns it off so that
     // world-space rays are traced without re-rounding.
     bool cameraRelative = true;
+    // [validate hook] > 0: every analytic shape is replaced by its triangle twin with this
+    // many segments around the axis (geometry/tessellate.h).
+    int tessellate = 0;
 };
 
 // What the scene calls for; the renderer simulates only these effects.

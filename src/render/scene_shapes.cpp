@@ -3,10 +3,12 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/memory.h"
 #include "geometry/cone.h"
 #include "geometry/cylinder.h"
 #include "geometry/disk.h"
 #include "geometry/hyperboloid.h"
+#include "geometry/loop_subdiv.h"
 #include "geometry/paraboloid.h"
 #include "geometry/sphere.h"
 #include "geometry/torus.h"
@@ -61,11 +63,6 @@ ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromO
     std::vector<Vec2f> uv = ps.GetPoint2s("uv");
     if (uv.empty()) uv = ps.GetPoint2s("st");
     for (const char *n : {"S", "faceIndices"}) ps.MarkUsed(n);
-    for (const char *n : {"alpha", "shadowalpha"})
-        if (ps.Has(n)) {
-            ctx.diag.Warn(ParamLoc(s, n), std::string("\"") + n + "\" cut-outs are not supported; ignored");
-            ps.MarkUsed(n);
-        }
     ShapeGeometry g;
     g.mesh = MakeMesh(s, renderFromObject, P, indices, N, uv);
     return g;
@@ -75,8 +72,8 @@ ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject
                            const ShapeFactoryContext &ctx) {
     std::string file = s.params.GetString("filename", "");
     if (file.empty()) throw SceneError(s.loc, "plymesh needs a \"filename\"");
-    PlyMesh ply = ReadPly(ResolvePath(ctx.desc, file), ctx.diag);
-    for (const char *n : {"alpha", "shadowalpha", "displacement", "edgelength"})
+    PlyMesh ply = ReadPly(ResolvePath(ctx.desc, file), ctx.diag, EffectiveMemoryBudget(ctx.maxMemory));
+    for (const char *n : {"displacement", "edgelength"})
         if (s.params.Has(n)) {
             ctx.diag.Warn(ParamLoc(s, n), std::string("\"") + n + "\" is not supported; ignored");
             s.params.MarkUsed(n);
@@ -205,6 +202,36 @@ ShapeGeometry TorusShape(const ShapeDesc &s, const Transform &renderFromObject) 
     });
 }
 
+// [loopsubdiv] Loop subdivision on the CPU into a triangle mesh with limit normals.
+ShapeGeometry LoopSubdivShape(const ShapeDesc &s, const Transform &renderFromObject,
+                              const ShapeFactoryContext &ctx) {
+    const ParamSet &ps = s.params;
+    const char *levelsName = ps.Has("levels") || !ps.Has("nlevels") ? "levels" : "nlevels";
+    int levels = ps.GetInt(levelsName, 3);
+    std::vector<Vec3f> P = ps.GetPoint3s("P");
+    std::vector<int> indices = ps.GetInts("indices");
+    if (P.empty()) throw SceneError(s.loc, "loopsubdiv needs vertex positions \"P\"");
+    if (indices.empty()) throw SceneError(s.loc, "loopsubdiv needs \"indices\"");
+    for (const Vec3f &p : P)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw SceneError(ParamLoc(s, "P"), "vertex position is not finite");
+    LoopSubdivResult r;
+    try {
+        r = LoopSubdivide(P, indices, levels);
+    } catch (const std::invalid_argument &e) {
+        bool aboutLevels = std::string(e.what()).find("levels") != std::string::npos;
+        throw SceneError(ParamLoc(s, aboutLevels ? levelsName : "indices"),
+                         std::string("loopsubdiv: ") + e.what());
+    }
+    if (r.droppedFaces > 0)
+        ctx.diag.Warn(ParamLoc(s, "indices"), "loopsubdiv: skipped " + std::to_string(r.droppedFaces) +
+                                                  " degenerate triangle(s)");
+    if (r.indices.empty()) throw SceneError(s.loc, "loopsubdiv has no non-degenerate triangles");
+    ShapeGeometry g;
+    g.mesh = MakeMesh(s, renderFromObject, r.P, r.indices, r.N, {});
+    return g;
+}
+
 }  // namespace
 
 ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFromObject,
@@ -218,6 +245,7 @@ ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFro
     if (s.type == "torus") return TorusShape(s, renderFromObject);
     if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject, ctx);
     if (s.type == "plymesh") return PlyMeshShape(s, renderFromObject, ctx);
+    if (s.type == "loopsubdiv") return LoopSubdivShape(s, renderFromObject, ctx);
     ctx.diag.WarnOnce("shape:" + s.type, s.loc,
                       "shape \"" + s.type + "\" is not supported; every such shape is skipped");
     for (const Param &p : s.params.Params()) p.lookedUp = true;

@@ -15,6 +15,7 @@ struct ShapeFactoryContext {
     const SceneDescription &desc;
     Diagnostics &diag;
     Precision precision;
+    uint64_t maxMemory = 0;  // bytes, for PLY meshes (0: the default budget)
 };
 
 struct ShapeGeometry {

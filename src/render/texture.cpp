@@ -1,8 +1,10 @@
 #include "render/texture.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "image/image.h"
+#include "render/noise.h"
 
 namespace prism {
 
@@ -74,6 +76,79 @@ RGB ImageTexture::Evaluate(const TextureContext &c) const {
     v *= scale_;
     if (invert_) v = (RGB(1) - v).Clamped(0.f);
     return v;
+}
+
+Vec3f TextureMapping3D::Map(const TextureContext &ctx) const {
+    return Vec3f(textureFromRender.Point(Vec3d(ctx.p)));
+}
+
+RGB BilerpTexture::Evaluate(const TextureContext &c) const {
+    Vec2f st = mapping_.Map(c);
+    float s = st.x, t = st.y;
+    return v00_ * ((1 - s) * (1 - t)) + v01_ * ((1 - s) * t) + v10_ * (s * (1 - t)) +
+           v11_ * (s * t);
+}
+
+RGB UVTexture::Evaluate(const TextureContext &c) const {
+    Vec2f st = mapping_.Map(c);
+    if (!std::isfinite(st.x) || !std::isfinite(st.y)) return RGB(0);
+    return RGB(st.x - std::floor(st.x), st.y - std::floor(st.y), 0);
+}
+
+RGB DotsTexture::Evaluate(const TextureContext &c) const {
+    Vec2f st = mapping_.Map(c);
+    if (!std::isfinite(st.x) || !std::isfinite(st.y)) return outside_->Evaluate(c);
+    // Cells are centred on integer (s, t); noise at fixed offsets in the cell decides whether
+    // it has a dot and where, so the pattern is deterministic.
+    float sCell = std::floor(st.x + .5f), tCell = std::floor(st.y + .5f);
+    if (PerlinNoise(sCell + .5f, tCell + .5f, .5f) > 0) {
+        const float radius = .35f, maxShift = 0.5f - radius;
+        float sCenter = sCell + maxShift * PerlinNoise(sCell + 1.5f, tCell + 2.8f, .5f);
+        float tCenter = tCell + maxShift * PerlinNoise(sCell + 4.5f, tCell + 9.8f, .5f);
+        float ds = st.x - sCenter, dt = st.y - tCenter;
+        if (ds * ds + dt * dt < radius * radius) return inside_->Evaluate(c);
+    }
+    return outside_->Evaluate(c);
+}
+
+RGB NoiseTexture::Evaluate(const TextureContext &c) const {
+    Vec3f p = mapping_.Map(c);
+    switch (kind_) {
+    case Kind::FBm:
+        return RGB(FBm(p, omega_, octaves_));
+    case Kind::Wrinkled:
+        return RGB(Turbulence(p, omega_, octaves_));
+    case Kind::Windy: {
+        // Low-frequency wind strength modulating higher-frequency waves (pbrt-v3 WindyTexture).
+        float windStrength = FBm(p * .1f, .5f, 3);
+        float waveHeight = FBm(p, .5f, 6);
+        return RGB(std::abs(windStrength) * waveHeight);
+    }
+    }
+    return RGB(0);
+}
+
+RGB MarbleTexture::Evaluate(const TextureContext &c) const {
+    Vec3f p = mapping_.Map(c) * scale_;
+    float marble = p.y + variation_ * FBm(p, omega_, octaves_);
+    float t = .5f + .5f * std::sin(marble);
+    // pbrt-v3's marble colour spline (linear RGB control points).
+    static const RGB colors[] = {{.58f, .58f, .6f}, {.58f, .58f, .6f}, {.58f, .58f, .6f},
+                                 {.5f, .5f, .5f},   {.6f, .59f, .58f}, {.58f, .58f, .6f},
+                                 {.58f, .58f, .6f}, {.2f, .2f, .33f},  {.58f, .58f, .6f}};
+    const int nSeg = int(sizeof(colors) / sizeof(colors[0])) - 3;
+    // The segment under t, as pbrt-v4 picks it. (pbrt-v3's min(1, floor(t·nSeg)) only ever
+    // used the first two segments and extrapolated the second to t = 5, giving values near 40.)
+    float seg = std::floor(t * nSeg);
+    int first = seg >= 0 ? std::min(int(seg), nSeg - 1) : 0;  // also NaN-safe
+    t = t * nSeg - float(first);
+    const RGB &c0 = colors[first], &c1 = colors[first + 1], &c2 = colors[first + 2],
+              &c3 = colors[first + 3];
+    // Cubic Bézier by de Casteljau's algorithm.
+    RGB s0 = c0 * (1 - t) + c1 * t, s1 = c1 * (1 - t) + c2 * t, s2 = c2 * (1 - t) + c3 * t;
+    s0 = s0 * (1 - t) + s1 * t;
+    s1 = s1 * (1 - t) + s2 * t;
+    return (s0 * (1 - t) + s1 * t) * 1.5f;  // pbrt's extra 1.5 widens the colour range
 }
 
 }  // namespace prism

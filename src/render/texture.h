@@ -1,6 +1,7 @@
-// Textures (pbrt-v3 §10): constant, scale, mix, checkerboard (2-D and 3-D) and imagemap, with
-// the uv / spherical / cylindrical / planar mappings. Float textures are RGB textures whose
-// channels are equal; materials read .r for float parameters.
+// Textures (pbrt-v3 §10): constant, scale, mix, checkerboard (2-D and 3-D), imagemap, bilerp,
+// uv, dots and the noise textures fbm, wrinkled, windy and marble, with the uv / spherical /
+// cylindrical / planar mappings. Float textures are RGB textures whose channels are equal;
+// materials read .r for float parameters.
 #pragma once
 
 #include <memory>
@@ -44,6 +45,13 @@ struct TextureMapping {
     Vec3f v1{1, 0, 0}, v2{0, 1, 0};
     Transform textureFromRender;
     Vec2f Map(const TextureContext &ctx) const;
+};
+
+// 3-D textures read the hit point in texture space: the inverse of the CTM at the Texture
+// directive (as pbrt-v4 does; pbrt-v3 applied the CTM itself), composed with world-from-render.
+struct TextureMapping3D {
+    Transform textureFromRender;
+    Vec3f Map(const TextureContext &ctx) const;
 };
 
 class ScaleTexture final : public Texture {
@@ -96,6 +104,70 @@ private:
     WrapMode wrap_;
     float scale_;
     bool invert_;
+};
+
+// pbrt-v3 BilerpTexture: bilinear interpolation of four corner values over (s, t), which is
+// not wrapped (values extrapolate outside [0, 1]^2).
+class BilerpTexture final : public Texture {
+public:
+    BilerpTexture(TextureMapping mapping, RGB v00, RGB v01, RGB v10, RGB v11)
+        : mapping_(mapping), v00_(v00), v01_(v01), v10_(v10), v11_(v11) {}
+    RGB Evaluate(const TextureContext &c) const override;
+
+private:
+    TextureMapping mapping_;
+    RGB v00_, v01_, v10_, v11_;
+};
+
+// pbrt-v3 UVTexture: (frac(s), frac(t), 0), for checking parameterizations.
+class UVTexture final : public Texture {
+public:
+    explicit UVTexture(TextureMapping mapping) : mapping_(mapping) {}
+    RGB Evaluate(const TextureContext &c) const override;
+
+private:
+    TextureMapping mapping_;
+};
+
+// pbrt-v3 DotsTexture: polka dots of radius 0.35 on the unit (s, t) grid, each cell's dot
+// present and jittered according to Perlin noise.
+class DotsTexture final : public Texture {
+public:
+    DotsTexture(TextureMapping mapping, TexturePtr inside, TexturePtr outside)
+        : mapping_(mapping), inside_(std::move(inside)), outside_(std::move(outside)) {}
+    RGB Evaluate(const TextureContext &c) const override;
+
+private:
+    TextureMapping mapping_;
+    TexturePtr inside_, outside_;
+};
+
+// pbrt-v3's noise textures over the 3-D texture-space point (see render/noise.h).
+class NoiseTexture final : public Texture {
+public:
+    enum class Kind { FBm, Wrinkled, Windy };
+    NoiseTexture(Kind kind, TextureMapping3D mapping, int octaves, float omega)
+        : kind_(kind), mapping_(mapping), octaves_(octaves), omega_(omega) {}
+    RGB Evaluate(const TextureContext &c) const override;
+
+private:
+    Kind kind_;
+    TextureMapping3D mapping_;
+    int octaves_;
+    float omega_;
+};
+
+// pbrt-v3 MarbleTexture: sin(p.y + variation·FBm) through a Bézier spline of marble colours.
+class MarbleTexture final : public Texture {
+public:
+    MarbleTexture(TextureMapping3D mapping, int octaves, float omega, float scale, float variation)
+        : mapping_(mapping), octaves_(octaves), omega_(omega), scale_(scale), variation_(variation) {}
+    RGB Evaluate(const TextureContext &c) const override;
+
+private:
+    TextureMapping3D mapping_;
+    int octaves_;
+    float omega_, scale_, variation_;
 };
 
 }  // namespace prism

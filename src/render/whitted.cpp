@@ -64,17 +64,19 @@ RGB WhittedIntegrator::Li(const Ray &rayIn, int depth, RayCounters &counters,
         }
     }
 
-    // Specular recursion.
+    // Specular recursion, for the delta lobes of every BSDF part (mix materials have several).
     if (depth + 1 < scene_.maxDepth) {
         Vec3f wi;
         RGB weight;
-        if (bsdf.SampleSpecularReflection(wo, &wi, &weight)) {
-            counters.reflection++;
-            L += weight * Li(si.SpawnRay(wi), depth + 1, counters, sc);
-        }
-        if (bsdf.SampleSpecularTransmission(wo, &wi, &weight)) {
-            counters.refraction++;
-            L += weight * Li(si.SpawnRay(wi), depth + 1, counters, sc);
+        for (int part = 0; part < bsdf.NumParts(); ++part) {
+            if (bsdf.SampleSpecularReflection(part, wo, &wi, &weight)) {
+                counters.reflection++;
+                L += weight * Li(si.SpawnRay(wi), depth + 1, counters, sc);
+            }
+            if (bsdf.SampleSpecularTransmission(part, wo, &wi, &weight)) {
+                counters.refraction++;
+                L += weight * Li(si.SpawnRay(wi), depth + 1, counters, sc);
+            }
         }
     }
     return L;

@@ -11,6 +11,7 @@
 
 #include <tiny_gltf.h>
 
+#include "core/memory.h"
 #include "scene/param_builders.h"
 
 namespace prism {
@@ -26,6 +27,32 @@ bool KeepEncodedBytes(tinygltf::Image *image, const int, std::string *, std::str
                       const unsigned char *bytes, int size, void *) {
     if (image->uri.empty() && bytes && size > 0) image->image.assign(bytes, bytes + size);
     return true;
+}
+
+// tinygltf reads the .gltf/.glb file and every external buffer whole. This replacement reads
+// only regular files (not /dev/zero or a FIFO named by a hostile URI) and keeps the total
+// within the memory budget, checked before anything is allocated.
+struct ReadBudget {
+    uint64_t budget, used = 0;
+};
+
+bool ReadWholeFileWithinBudget(std::vector<unsigned char> *out, std::string *err,
+                               const std::string &path, void *user) {
+    namespace fs = std::filesystem;
+    auto *b = static_cast<ReadBudget *>(user);
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        if (err) *err += "not a regular file\n";
+        return false;
+    }
+    uint64_t size = fs::file_size(path, ec);
+    if (ec || size > b->budget - b->used) {
+        if (err)
+            *err += FormatBytes(size) + " exceeds the memory budget of " +
+                    FormatBytes(b->budget) + " (--max-memory)\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, nullptr) && (b->used += out->size(), true);
 }
 
 std::vector<std::string> Lines(const std::string &s) {
@@ -343,6 +370,10 @@ void GltfReader::AddMesh(int meshIndex, const Transform &worldFromObject) {
         s.areaLight = prim.material >= 0 ? areaLightOfMaterial_[size_t(prim.material)] : -1;
         s.directiveIndex = int(desc_.shapes.size());
         s.params = TriangleMeshParams(indices, P, N, uv, loc_);
+        // Blended (transparent) materials cast no shadows, as in real-time glTF viewers; this
+        // keeps lamp housings such as shadows-spot's emissive bulb from blocking their light.
+        if (prim.material >= 0 && model_.materials[size_t(prim.material)].alphaMode == "BLEND")
+            AddFloat(s.params, "shadowalpha", 0, loc_);
         desc_.shapes.push_back(std::move(s));
     }
 }
@@ -663,7 +694,7 @@ void GltfReader::Read() {
 
 }  // namespace
 
-SceneDescription LoadGltf(const std::string &path, Diagnostics &diag) {
+SceneDescription LoadGltf(const std::string &path, Diagnostics &diag, uint64_t maxMemory) {
     namespace fs = std::filesystem;
     FileLoc loc{path};
     std::error_code ec;
@@ -672,6 +703,9 @@ SceneDescription LoadGltf(const std::string &path, Diagnostics &diag) {
     tinygltf::Model model;
     tinygltf::TinyGLTF ctx;
     ctx.SetImageLoader(&KeepEncodedBytes, nullptr);
+    ReadBudget budget{EffectiveMemoryBudget(maxMemory)};
+    ctx.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath,
+                        &ReadWholeFileWithinBudget, &tinygltf::WriteWholeFile, &budget});
     std::string err, warn;
     bool ok;
     std::string ext = fs::path(path).extension().string();

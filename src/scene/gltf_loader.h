@@ -11,6 +11,8 @@ namespace prism {
 // Throws SceneError for unreadable or malformed files (including accessors that reach past
 // their buffers). Embedded images are returned in SceneDescription::embeddedImages and
 // referenced by textures as "embedded:<index>"; nothing is written to disk.
-SceneDescription LoadGltf(const std::string &path, Diagnostics &diag);
+// The .gltf/.glb file and each external buffer must fit in `maxMemory` bytes (0: the default
+// budget of core/memory.h); buffers must be regular files.
+SceneDescription LoadGltf(const std::string &path, Diagnostics &diag, uint64_t maxMemory = 0);
 
 }  // namespace prism

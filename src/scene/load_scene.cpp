@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/memory.h"
 #include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/param_builders.h"
@@ -37,11 +38,12 @@ bool HasEmitters(const SceneDescription &desc) {
     return false;
 }
 
-SceneDescription LoadPlyScene(const std::string &path, Diagnostics &diag, Bounds3f *bounds) {
+SceneDescription LoadPlyScene(const std::string &path, Diagnostics &diag, Bounds3f *bounds,
+                              uint64_t maxMemory) {
     // Read once here for the bounds (and to report a broken file early); the renderer reads it
     // again through the "plymesh" shape. Warnings are left to that second read.
     Diagnostics scratch;
-    PlyMesh mesh = ReadPly(path, scratch);
+    PlyMesh mesh = ReadPly(path, scratch, maxMemory);
     for (const Vec3f &p : mesh.P) bounds->Expand(p);
     SceneDescription desc;
     desc.format = "ply";
@@ -124,6 +126,14 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
     std::string ext = fs::path(path).extension().string();
     for (char &c : ext) c = char(std::tolower((unsigned char)c));
 
+    // Every reader holds the whole file in memory (tinyobjloader, tinygltf, PLY, pbrt).
+    uint64_t budget = EffectiveMemoryBudget(opts.maxMemory);
+    uint64_t fileSize = fs::file_size(path, ec);
+    if (!ec && fileSize > budget)
+        throw SceneError(FileLoc{path}, "file is " + FormatBytes(fileSize) +
+                                            ", more than the memory budget of " +
+                                            FormatBytes(budget) + " (--max-memory)");
+
     if (ext == ".pbrt") return ParsePbrtFile(path, diag, opts.pbrt);
 
     SceneDescription desc;
@@ -132,10 +142,10 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
         desc = LoadObj(path, diag);
         bounds = SceneMeshBounds(desc);
     } else if (ext == ".gltf" || ext == ".glb") {
-        desc = LoadGltf(path, diag);
+        desc = LoadGltf(path, diag, budget);
         bounds = SceneMeshBounds(desc);
     } else if (ext == ".ply") {
-        desc = LoadPlyScene(path, diag, &bounds);
+        desc = LoadPlyScene(path, diag, &bounds, budget);
     } else {
         throw SceneError(FileLoc{path}, "unsupported scene format \"" + ext +
                                             "\" (expected .pbrt, .obj, .gltf, .glb or .ply)");

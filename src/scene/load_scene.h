@@ -16,6 +16,9 @@ struct LoadOptions {
     // when it has neither lights nor emissive materials. (pbrt files keep pbrt's defaults.)
     bool defaultCamera = true;
     bool defaultLights = true;
+    // Memory budget in bytes (0: 75% of physical RAM): scene files, PLY meshes and glTF
+    // buffers that would need more are rejected with a SceneError before they are read.
+    uint64_t maxMemory = 0;
 };
 
 // Throws SceneError: `cannot open file "..."` for a missing file, `unsupported scene format

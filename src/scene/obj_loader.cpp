@@ -163,6 +163,24 @@ void ValidateIndex(const tinyobj::index_t &idx, const tinyobj::attrib_t &a, cons
         Bad("texture coordinate", idx.texcoord_index, nt);
 }
 
+// A material library that is a device or FIFO (a hostile "mtllib ../../dev/zero") would make
+// tinyobjloader read forever; only regular files (or missing ones: a warning later) pass.
+void CheckMaterialLibraries(const std::string &path, const std::string &line, int lineNo) {
+    namespace fs = std::filesystem;
+    std::istringstream names(line.substr(6));
+    std::string name;
+    while (names >> name) {
+        // tinyobjloader joins the OBJ's directory and the name as strings.
+        std::string dir = fs::path(path).parent_path().string();
+        std::string joined = dir.empty() ? name : dir + "/" + name;
+        std::error_code ec;
+        fs::file_status st = fs::status(joined, ec);
+        if (!ec && fs::exists(st) && st.type() != fs::file_type::regular)
+            throw SceneError(FileLoc{path, lineNo, 1},
+                             "material library \"" + name + "\" is not a regular file");
+    }
+}
+
 // tinyobjloader reads a malformed number as 0 without complaint; check the numeric lines
 // first so such files fail with a location instead of rendering wrongly.
 void CheckNumbers(const std::string &path) {
@@ -173,6 +191,8 @@ void CheckNumbers(const std::string &path) {
     while (std::getline(in, line)) {
         ++lineNo;
         size_t i = line.find_first_not_of(" \t");
+        if (i != std::string::npos && line.compare(i, 7, "mtllib ") == 0)
+            CheckMaterialLibraries(path, line.substr(i), lineNo);
         if (i == std::string::npos || line[i] != 'v') continue;
         size_t kwEnd = line.find_first_of(" \t", i);
         if (kwEnd == std::string::npos) continue;

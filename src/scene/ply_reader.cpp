@@ -10,6 +10,8 @@
 #include <fstream>
 #include <limits>
 
+#include "core/memory.h"
+
 namespace prism {
 
 namespace {
@@ -265,13 +267,22 @@ std::string ReadWholeFile(const std::string &path, uint64_t maxBytes) {
     std::streamoff size = in.tellg();
     if (size < 0) throw SceneError(FileLoc{path}, "cannot read file \"" + path + "\"");
     if (uint64_t(size) > maxBytes)
-        throw SceneError(FileLoc{path}, "file is larger than the " + std::to_string(maxBytes) +
-                                            "-byte limit");
+        throw SceneError(FileLoc{path}, "file is " + FormatBytes(uint64_t(size)) +
+                                            ", more than the memory budget of " +
+                                            FormatBytes(maxBytes) + " (--max-memory)");
     std::string buf(size_t(size), '\0');
     in.seekg(0);
     if (size > 0 && !in.read(buf.data(), size))
         throw SceneError(FileLoc{path}, "cannot read file \"" + path + "\"");
     return buf;
+}
+
+// A list count read from the file (as a double, like every value): a non-negative integer
+// small enough to convert. An ascii file can say 1e62, which does not fit any integer type.
+bool ListCount(double n, uint64_t *count) {
+    if (!(n >= 0 && n <= 9007199254740992.0) || n != std::floor(n)) return false;
+    *count = uint64_t(n);
+    return true;
 }
 
 struct FaceStats {
@@ -300,7 +311,8 @@ void ReadVertices(const PlyElement &e, DataReader &r, PlyMesh &mesh) {
             bool ok;
             if (p.isList) {
                 double n;
-                ok = r.Read(p.countType, &n) && n >= 0 && r.Skip(p.valueType, uint64_t(n));
+                uint64_t c;
+                ok = r.Read(p.countType, &n) && ListCount(n, &c) && r.Skip(p.valueType, c);
             } else {
                 double v;
                 ok = r.Read(p.valueType, &v);
@@ -342,13 +354,14 @@ void ReadFaces(const PlyElement &e, DataReader &r, uint64_t nVertices, PlyMesh &
                 continue;
             }
             if (!r.Read(p.countType, &n)) throw Truncated(i);
-            if (!(n >= 0) || n != std::floor(n))
+            uint64_t count;
+            if (!ListCount(n, &count))
                 throw SceneError(r.Loc(), "face " + std::to_string(i) + " has a bad vertex count");
             if (int(k) != listProp) {
-                if (!r.Skip(p.valueType, uint64_t(n))) throw Truncated(i);
+                if (!r.Skip(p.valueType, count)) throw Truncated(i);
                 continue;
             }
-            for (uint64_t j = 0; j < uint64_t(n); ++j) {
+            for (uint64_t j = 0; j < count; ++j) {
                 double idx;
                 if (!r.Read(p.valueType, &idx)) throw Truncated(i);
                 if (!(idx >= 0 && idx < double(nVertices)) || idx != std::floor(idx)) {
@@ -379,8 +392,8 @@ void SkipElement(const PlyElement &e, DataReader &r) {
     for (uint64_t i = 0; i < e.count; ++i)
         for (const PlyProperty &p : e.props) {
             double n;
-            bool ok = p.isList ? r.Read(p.countType, &n) && n >= 0 &&
-                                     r.Skip(p.valueType, uint64_t(n))
+            uint64_t c;
+            bool ok = p.isList ? r.Read(p.countType, &n) && ListCount(n, &c) && r.Skip(p.valueType, c)
                                : r.Read(p.valueType, &n);
             if (!ok)
                 throw SceneError(FileLoc{r.Loc().file}, "file ends after " + std::to_string(i) +
@@ -422,6 +435,17 @@ PlyMesh ReadPly(const std::string &path, Diagnostics &diag, uint64_t maxBytes) {
     if (!vertexElem) throw SceneError(FileLoc{path}, "no vertex element");
     if (vertexElem->count > uint64_t(std::numeric_limits<int>::max()))
         throw SceneError(vertexElem->loc, "too many vertices");
+    // Memory budget: the file plus P, N, uv (32 bytes per vertex) and the indices (a quad is
+    // two triangles: 24 bytes per face); counts are bounded by the file size, so no overflow.
+    {
+        uint64_t need = buf.size() + vertexElem->count * 32;
+        for (const PlyElement &e : h.elements)
+            if (e.name == "face") need += e.count * 24;
+        if (need > maxBytes)
+            throw SceneError(vertexElem->loc, "mesh needs about " + FormatBytes(need) +
+                                                  ", more than the memory budget of " +
+                                                  FormatBytes(maxBytes) + " (--max-memory)");
+    }
 
     PlyMesh mesh;
     DataReader reader(path, buf, h);

@@ -137,23 +137,24 @@ TEST(Whitted, GlassAtNormalIncidenceLosesFresnelTwice) {
 TEST(Whitted, TotalInternalReflectionHasNoTransmission) {
     BSDF b;
     b.SetFrame({0, 0, 1}, {1, 0, 0}, {0, 0, 1});
-    b.kr = RGB(1);
-    b.kt = RGB(1);
-    b.eta = 1.5f;
-    b.specularFresnel.kind = FresnelKind::Dielectric;
-    b.specularFresnel.etaT = 1.5f;
+    BxDFLobes &l = b.AddPart();
+    l.kr = RGB(1);
+    l.kt = RGB(1);
+    l.eta = 1.5f;
+    l.specularFresnel.kind = FresnelKind::Dielectric;
+    l.specularFresnel.etaT = 1.5f;
     // From inside the glass (wo below the surface) at 60 degrees: beyond the critical angle.
     Vec3f wo = Normalize(Vec3f(std::sin(1.047f), 0, -std::cos(1.047f)));
     Vec3f wi;
     RGB w;
-    EXPECT_FALSE(b.SampleSpecularTransmission(wo, &wi, &w));
-    ASSERT_TRUE(b.SampleSpecularReflection(wo, &wi, &w));
+    EXPECT_FALSE(b.SampleSpecularTransmission(0, wo, &wi, &w));
+    ASSERT_TRUE(b.SampleSpecularReflection(0, wo, &wi, &w));
     EXPECT_NEAR(w.r, 1.f, 1e-6f);
     // Energy: at 30 degrees from outside, reflected + transmitted (undoing the eta^2 scale) = 1.
     Vec3f wo2 = Normalize(Vec3f(std::sin(0.5236f), 0, std::cos(0.5236f)));
     RGB wr, wt;
-    ASSERT_TRUE(b.SampleSpecularReflection(wo2, &wi, &wr));
-    ASSERT_TRUE(b.SampleSpecularTransmission(wo2, &wi, &wt));
+    ASSERT_TRUE(b.SampleSpecularReflection(0, wo2, &wi, &wr));
+    ASSERT_TRUE(b.SampleSpecularTransmission(0, wo2, &wi, &wt));
     EXPECT_NEAR(wr.r + wt.r * 1.5f * 1.5f, 1.f, 1e-5f);
 }
 
@@ -170,17 +171,18 @@ TEST(Whitted, MaxDepthLimitsRecursion) {
 TEST(Bsdf, PlasticHighlightPeaksAtMirrorDirection) {
     BSDF b;
     b.SetFrame({0, 0, 1}, {1, 0, 0}, {0, 0, 1});
-    b.ks = RGB(1);
-    b.alphaX = b.alphaY = RoughnessToAlpha(0.1f);
-    b.glossyFresnel.kind = FresnelKind::Dielectric;
-    b.glossyFresnel.etaI = 1.5f;
-    b.glossyFresnel.etaT = 1.f;
+    BxDFLobes &l = b.AddPart();
+    l.ks = RGB(1);
+    l.alphaX = l.alphaY = RoughnessToAlpha(0.1f);
+    l.glossyFresnel.kind = FresnelKind::Dielectric;
+    l.glossyFresnel.etaI = 1.5f;
+    l.glossyFresnel.etaT = 1.f;
     Vec3f wo = Normalize(Vec3f(0.3f, 0, 1));
     float peak = b.f(wo, Normalize(Vec3f(-0.3f, 0, 1))).r;
     float off = b.f(wo, Normalize(Vec3f(0.3f, 0.4f, 1))).r;
     EXPECT_GT(peak, 1.5f * off);
     // The closed form at the peak: D = 1/(pi a^2), G ~ 1, F = Fresnel(1.5 -> 1) at cos 16.7 deg.
-    float a = b.alphaX;
+    float a = l.alphaX;
     float cosI = Normalize(Vec3f(-0.3f, 0, 1)).z;
     float G = 1 / (1 + 2 * (-1 + std::sqrt(1 + a * a * (1 - cosI * cosI) / (cosI * cosI))) / 2);
     float want = float(1 / (Pi * a * a)) * G * FrDielectric(cosI, 1.5f, 1.f) / (4 * cosI * cosI);

@@ -1,0 +1,92 @@
+// Triangle twins of the analytic shapes: every shape is a profile curve (rho(v), z(v)) swept
+// about z, so one tessellator and one set of distance functions serve them all. Used by
+// `prism render --tessellate N` and by `prism validate` (docs/VALIDATION.md).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/vecmath.h"
+#include "geometry/shape.h"
+#include "geometry/triangle_mesh.h"
+
+namespace prism {
+
+// P(phi, v) = (rho(v) cos(phi + alpha(v)), rho(v) sin(phi + alpha(v)), z(v)) for phi in
+// [0, phiMax], v in [0, 1]. alpha is nonzero only for the hyperboloid, whose azimuth pbrt
+// measures from the rotated profile point. v is a geometric parameter chosen for even
+// sampling (not always the shape's uv.v).
+struct RevolutionProfile {
+    enum class Kind { Sphere, Cylinder, Disk, Cone, Paraboloid, Hyperboloid, Torus };
+    Kind kind = Kind::Sphere;
+    double phiMax = 2 * Pi;
+    // Kind-specific parameters:
+    //   Sphere: a = radius, b = theta at v=0, c = theta at v=1 (theta from +z)
+    //   Cylinder: a = radius, b = zmin, c = zmax
+    //   Disk: a = outer radius, b = inner radius, c = height
+    //   Cone: a = radius, b = height
+    //   Paraboloid: a = k (z = k rho^2), b = rho at v=0, c = rho at v=1
+    //   Hyperboloid: a = a_h, b = c_h (a rho^2 - c z^2 = 1), p1, p2 = the profile segment
+    //   Torus: a = R, b = r
+    double a = 0, b = 0, c = 0;
+    Vec3d p1, p2;
+    // Ends of the profile that lie on the axis (one vertex, a triangle fan) and whether the
+    // profile is a closed curve (torus: v = 0 and v = 1 are the same ring).
+    bool poleV0 = false, poleV1 = false, closedV = false;
+
+    Vec2d Point(double v) const;    // (rho, z)
+    Vec2d Tangent(double v) const;  // d(rho, z)/dv
+    double Alpha(double v) const;
+    Vec3d Surface(double phi, double v) const;
+    // Total turning of the profile's tangent over v in [0, 1] (radians): sets the number of
+    // rings so both directions get the same angular resolution.
+    double Turning() const;
+    bool FullCircle() const { return phiMax >= 2 * Pi; }
+};
+
+struct TessellatedMesh {
+    std::vector<Vec3d> P;   // object space, on the surface to double rounding
+    std::vector<Vec3d> N;   // unit, along the analytic normal (pbrt orientation)
+    std::vector<Vec2d> uv;  // the analytic shape's uv
+    std::vector<uint32_t> indices;
+    int nPhi = 0, nV = 0;
+};
+
+// Rings derived from nPhi: max(1, round(nPhi * turning / 2pi)); nPhi/2 for a full sphere.
+int RingsFor(const RevolutionProfile &profile, int nPhi);
+
+// Tessellates with nPhi segments around the axis (nPhi >= 3 for full circles, >= 1 for
+// partial ones). Returns false if the shape has no profile description; throws
+// std::length_error beyond MaxTessellationTriangles (memory stays bounded on any input).
+inline constexpr size_t MaxTessellationTriangles = size_t(1) << 24;
+bool Tessellate(const AnalyticShape &shape, int nPhi, TessellatedMesh *mesh);
+
+// The tessellation as an Embree-ready triangle mesh with the shape's transform and
+// orientation (nullptr if the shape cannot be tessellated).
+std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, int nPhi);
+
+// Distance in the meridian half-plane from (rho, z) to the profile curve (v clipped to
+// [0, 1]); *vClosest receives the closest parameter. Signed: positive on the side of the
+// profile normal (tz, -trho), which is the outward side for the closed shapes.
+double ProfileDistance(const RevolutionProfile &profile, Vec2d q, double *vClosest = nullptr);
+
+// Unsigned distance from an object-space point to the swept surface (phi clipping applied).
+double SurfaceDistance(const RevolutionProfile &profile, const Vec3d &p);
+
+// Maximum distance of the tessellation's triangles from the surface (object space), measured
+// on a dense barycentric grid over one phi column (all columns are congruent).
+double ChordError(const RevolutionProfile &profile, const TessellatedMesh &mesh);
+
+// Distance from the object-space ray o + t d, t in [t0, t1], to the edges of the patch: the
+// rims at v = 0 and v = 1 (unless poles or closed) and the phi = 0, phiMax cuts.
+double DistanceToBoundary(const RevolutionProfile &profile, const Vec3d &o, const Vec3d &d,
+                          double t0, double t1);
+
+// Distance of the ray to tangency with the surface: the smallest |signed distance| at a
+// local extremum of the signed distance along the ray (a near miss or a shallow graze).
+// Transversal crossings have no extremum and do not count.
+double DistanceToTangency(const RevolutionProfile &profile, const Vec3d &o, const Vec3d &d,
+                          double t0, double t1);
+
+}  // namespace prism

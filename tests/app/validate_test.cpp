@@ -1,0 +1,201 @@
+// `prism validate`: every canonical shape agrees with its tessellated twin up to the
+// chord-error band, and a deliberately broken intersector (built only here) is caught.
+#include "render/validate.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "geometry/quadric_util.h"
+#include "geometry/sphere.h"
+#include "geometry/tessellate.h"
+#include "render/render_scene.h"
+#include "scene/load_scene.h"
+
+namespace prism {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A sphere whose intersector solves for a radius 0.1% too large, while its description
+// (implicit function, normals, profile for the tessellation) is the true sphere's: the kind of
+// bug the validation exists to find.
+class InflatedSphere final : public AnalyticShapeT<InflatedSphere> {
+  public:
+    InflatedSphere(const Transform &w, double r, double factor)
+        : AnalyticShapeT(w, false), truth_(w, false, r, -r, r, 360), r_(r), factor_(factor) {}
+    const char *Name() const override { return "inflated-sphere"; }
+    Bounds3d ObjectBounds() const override {
+        double R = r_ * factor_;
+        return Bounds3d(Vec3d(-R, -R, -R), Vec3d(R, R, R));
+    }
+    double Implicit(const Vec3d &p) const override { return truth_.Implicit(p); }
+    Vec3d ImplicitGradient(const Vec3d &p) const override { return truth_.ImplicitGradient(p); }
+    LocalGeometry Geometry(const ObjectHit &hit) const override { return truth_.Geometry(hit); }
+    bool Revolution(RevolutionProfile *p) const override { return truth_.Revolution(p); }
+
+    template <typename Real>
+    bool IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real, ObjectHit *hit) const {
+        double R = r_ * factor_;
+        Vec3d od(o), dd(d);
+        double a = Dot(dd, dd), b = 2 * Dot(dd, od), c = Dot(od, od) - R * R;
+        double disc = b * b - 4 * a * c, t0, t1, q;
+        if (!SolveQuadratic(a, b, c, disc, &t0, &t1, &q)) return false;
+        for (double t : {t0, t1}) {
+            if (!(t > double(tMin)) || !(t < double(tMax))) continue;
+            Vec3d p = od + dd * t;
+            hit->t = t;
+            hit->p = p;
+            hit->pError = Abs(p) * 1e-15;
+            hit->phi = Azimuth(p.x, p.y);
+            return true;
+        }
+        return false;
+    }
+
+  private:
+    Sphere truth_;
+    double r_, factor_;
+};
+
+TEST(Validate, EveryShapeAgreesWithinTheBand) {
+    auto start = std::chrono::steady_clock::now();
+    ValidateOptions opt;
+    opt.levels = {16, 64};
+    opt.rays = 20000;
+    std::vector<ShapeReport> reports;
+    for (const std::string &name : CanonicalShapeNames()) {
+        ShapeReport r = ValidateShape(name, MakeCanonicalShape(name), {}, opt);
+        ASSERT_EQ(r.levels.size(), 2u) << name << ": " << r.note;
+        EXPECT_EQ(r.OutOfBand(), 0) << FormatReport(r);
+        EXPECT_EQ(r.Leaks(), 0) << name;
+        for (const LevelStats &l : r.levels) {
+            EXPECT_GT(l.analyticHits, 1000) << name;  // the rays do exercise the shape
+            EXPECT_EQ(l.flippedNormals, 0) << name;
+            // The band shrinks 16x from n = 16 to 64, and so does the disagreement.
+            EXPECT_LE(l.disagree, l.inBand) << name;
+        }
+        EXPECT_LT(r.levels[1].disagree, r.levels[0].disagree) << name;
+        EXPECT_LT(r.levels[1].h, r.levels[0].h / 10) << name;
+        if (r.slopeApplicable) {
+            EXPECT_LT(r.levels[1].dtMean, r.levels[0].dtMean / 8) << name;
+        } else {
+            EXPECT_EQ(name, "disk");  // exact in its plane: |dt| at rounding level
+        }
+        reports.push_back(std::move(r));
+    }
+    EXPECT_EQ(ValidationStatus(reports), 0);
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 30);
+    std::string csv = ResultsCsv(reports);
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 8);
+}
+
+TEST(Validate, BrokenIntersectorIsCaught) {
+    ValidateOptions opt;
+    opt.levels = {64, 256};
+    opt.rays = 20000;
+    Transform w = Translate(Vec3d(0.3, 0.1, -0.2)) * Scale(1.2, 1.2, 1.2);
+    ShapeReport r =
+        ValidateShape("inflated", std::make_unique<InflatedSphere>(w, 1, 1.001), {}, opt);
+    ASSERT_EQ(r.levels.size(), 2u);
+    EXPECT_GT(r.OutOfBand(), 0) << FormatReport(r);
+    EXPECT_EQ(ValidationStatus({r}), ExitOutOfBand);
+    // The same code with the true radius passes.
+    ShapeReport ok = ValidateShape("exact", std::make_unique<InflatedSphere>(w, 1, 1.0), {}, opt);
+    EXPECT_EQ(ok.OutOfBand(), 0) << FormatReport(ok);
+    EXPECT_EQ(ValidationStatus({ok}), 0);
+}
+
+TEST(Validate, TooSmallTwinShowsAsMeshLeaks) {
+    // The description (and so the twin) is 2% smaller than what the intersector hits: rays
+    // through that shell hit the analytic shape far inside the twin's silhouette and miss
+    // every triangle, which is what a hole in a mesh looks like.
+    ValidateOptions opt;
+    opt.levels = {256};
+    opt.rays = 20000;
+    ShapeReport r = ValidateShape(
+        "leaky", std::make_unique<InflatedSphere>(Transform(), 0.98, 1 / 0.98), {}, opt);
+    ASSERT_EQ(r.levels.size(), 1u);
+    EXPECT_GT(r.levels[0].leaks, 0) << FormatReport(r);
+    EXPECT_GT(r.levels[0].deepLeaks, 0);
+    EXPECT_NE(FormatReport(r).find("mesh leaks: " + std::to_string(r.Leaks())), std::string::npos);
+    EXPECT_EQ(ValidationStatus({r}), ExitOutOfBand);
+}
+
+TEST(Validate, ShrunkIntersectorIsCaughtAsPhantoms) {
+    // Too small a radius: rays through the shell between the two spheres hit the mesh but
+    // not the analytic shape, and a shrink much wider than h shows up far inside.
+    ValidateOptions opt;
+    opt.levels = {256};
+    opt.rays = 20000;
+    ShapeReport r =
+        ValidateShape("shrunk", std::make_unique<InflatedSphere>(Transform(), 1, 0.99), {}, opt);
+    ASSERT_EQ(r.levels.size(), 1u);
+    EXPECT_GT(r.levels[0].phantoms, 0) << FormatReport(r);
+    EXPECT_EQ(ValidationStatus({r}), ExitOutOfBand);
+}
+
+// `prism render --tessellate N`: every analytic shape becomes a mesh, the image stays close.
+TEST(Validate, TessellateOptionReplacesAnalyticShapes) {
+    Diagnostics diag(false);
+    SceneDescription desc =
+        LoadScene(std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt", diag);
+    RenderOptions plain, tess;
+    tess.tessellate = 48;
+    RenderScene a = BuildRenderScene(desc, plain, diag), t = BuildRenderScene(desc, tess, diag);
+    ASSERT_GT(a.features.analyticShapes, 5);
+    EXPECT_EQ(t.features.analyticShapes, 0);
+    EXPECT_EQ(t.features.meshes, a.features.meshes + a.features.analyticShapes);
+    EXPECT_GT(t.features.triangles, a.features.triangles + 1000);
+    // Camera rays agree on what they hit except near silhouettes.
+    int differ = 0, total = 0;
+    for (int y = 0; y < a.resolution.y; y += 8)
+        for (int x = 0; x < a.resolution.x; x += 8) {
+            Ray r = a.camera->GenerateRay(Vec2f(x + 0.5f, y + 0.5f), Vec2f(0.5f, 0.5f));
+            RawHit ha, ht;
+            ++total;
+            if (a.accel->IntersectRaw(r, &ha) != t.accel->IntersectRaw(r, &ht)) ++differ;
+        }
+    EXPECT_LT(differ, total / 100);
+    tess.tessellate = 100000;  // far beyond the triangle budget: bad input, not an allocation
+    EXPECT_THROW(BuildRenderScene(desc, tess, diag), SceneError);
+}
+
+TEST(Validate, CommandWritesCsvAndExitStatus) {
+    fs::path dir = fs::temp_directory_path() / ("prism_validate_cli_" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    std::string cmd = "'" + std::string(PRISM_BINARY) +
+                      "' validate --shape torus --levels 8,32 "
+                      "--rays 3000 --out '" +
+                      dir.string() + "' > '" + (dir.string() + ".log") + "' 2>&1";
+    int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    std::ifstream csv(dir / "results.csv");
+    ASSERT_TRUE(csv);
+    std::string header, row;
+    std::getline(csv, header);
+    EXPECT_EQ(header.rfind("shape,level,", 0), 0u);
+    int rows = 0;
+    while (std::getline(csv, row)) rows += row.rfind("torus,", 0) == 0;
+    EXPECT_EQ(rows, 2);
+    std::ifstream log(dir.string() + ".log");
+    std::stringstream text;
+    text << log.rdbuf();
+    EXPECT_NE(text.str().find("mesh leaks: 0"), std::string::npos) << text.str();
+    EXPECT_NE(text.str().find("convergence slope"), std::string::npos);
+    // Unknown shape: bad input.
+    status = std::system(
+        ("'" + std::string(PRISM_BINARY) + "' validate --shape teapot >/dev/null 2>&1").c_str());
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
+}  // namespace
+}  // namespace prism

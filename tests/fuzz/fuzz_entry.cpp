@@ -1,0 +1,147 @@
+// The readers under fuzzing. Readers that only take a path get the input through a file in a
+// private per-process directory; the pbrt parser reads from memory and its includes are
+// confined to that directory (which holds the input itself, so self-inclusion is reachable).
+#include "fuzz_entry.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include "core/error.h"
+#include "image/image_io.h"
+#include "scene/gltf_loader.h"
+#include "scene/obj_loader.h"
+#include "scene/pbrt_parser.h"
+#include "scene/ply_reader.h"
+
+namespace fs = std::filesystem;
+
+namespace prism::fuzz {
+
+namespace {
+
+// Created on first use, removed at exit.
+struct ScratchDir {
+    fs::path path;
+    ScratchDir() {
+        path = fs::temp_directory_path() / ("prism-fuzz-" + std::to_string(getpid()));
+        fs::create_directories(path);
+    }
+    ~ScratchDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+const fs::path &Scratch() {
+    static ScratchDir dir;
+    return dir.path;
+}
+
+std::string WriteInput(const std::string &name, const uint8_t *data, size_t size) {
+    fs::path p = Scratch() / name;
+    FILE *f = std::fopen(p.c_str(), "wb");
+    if (!f) throw std::logic_error("fuzz: cannot write " + p.string());
+    if (size) std::fwrite(data, 1, size, f);
+    std::fclose(f);
+    return p.string();
+}
+
+}  // namespace
+
+void FuzzPbrt(const uint8_t *data, size_t size) {
+    std::string text(reinterpret_cast<const char *>(data), size);
+    // The input is also on disk under its own name, so `Include "main.pbrt"` exercises the
+    // cycle check and `Include "other.pbrt"` a missing file.
+    std::string path = WriteInput("main.pbrt", data, size);
+    PbrtParseOptions opts;
+    opts.confineIncludes = true;
+    opts.maxIncludeDepth = 8;
+    Diagnostics diag;
+    try {
+        ParsePbrtString(text, path, diag, opts);
+    } catch (const SceneError &) {
+    }
+}
+
+void FuzzPly(const uint8_t *data, size_t size) {
+    std::string path = WriteInput("mesh.ply", data, size);
+    Diagnostics diag;
+    try {
+        ReadPly(path, diag);
+    } catch (const SceneError &) {
+    }
+}
+
+void FuzzObj(const uint8_t *data, size_t size) {
+    // Everything after a line "#%MTL" is the material library "m.mtl"; seeds say "mtllib m.mtl".
+    std::string text(reinterpret_cast<const char *>(data), size);
+    std::string obj = text, mtl;
+    size_t cut = text.find("#%MTL\n");
+    if (cut != std::string::npos) {
+        obj = text.substr(0, cut);
+        mtl = text.substr(cut + 6);
+    }
+    WriteInput("m.mtl", reinterpret_cast<const uint8_t *>(mtl.data()), mtl.size());
+    std::string path =
+        WriteInput("scene.obj", reinterpret_cast<const uint8_t *>(obj.data()), obj.size());
+    Diagnostics diag;
+    try {
+        LoadObj(path, diag);
+    } catch (const SceneError &) {
+    }
+}
+
+void FuzzGltf(const uint8_t *data, size_t size) {
+    bool glb = size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' && data[3] == 'F';
+    std::string path = WriteInput(glb ? "scene.glb" : "scene.gltf", data, size);
+    Diagnostics diag;
+    try {
+        LoadGltf(path, diag);
+    } catch (const SceneError &) {
+    }
+}
+
+void FuzzImage(const uint8_t *data, size_t size) {
+    // The name's extension picks OpenImageIO's reader; choose it from the magic bytes so the
+    // fuzzer reaches each decoder, and fall back to TGA, which has no magic.
+    auto starts = [&](const char *m) {
+        size_t n = std::char_traits<char>::length(m);
+        return size >= n && std::equal(m, m + n, reinterpret_cast<const char *>(data));
+    };
+    const char *ext = ".tga";
+    if (starts("\x89PNG")) ext = ".png";
+    else if (starts("\xff\xd8")) ext = ".jpg";
+    else if (starts("v/1\x01")) ext = ".exr";
+    else if (starts("#?")) ext = ".hdr";
+    else if (starts("PF") || starts("Pf")) ext = ".pfm";
+    else if (starts("BM")) ext = ".bmp";
+    // Only the reader the extension names: OpenImageIO otherwise retries every format plugin
+    // on a malformed file, which slows every run without reaching more of Prism's code.
+    static const bool once = OIIO::attribute("try_all_readers", 0);
+    (void)once;
+    std::vector<unsigned char> bytes(data, data + size);
+    ReadImageOptions opts;
+    opts.maxPixels = int64_t(1) << 20;  // keeps each run fast; the check itself is under test
+    opts.quietDecoders = false;         // sanitizer reports must reach stderr
+    try {
+        ReadImageFromMemory(bytes, std::string("texture") + ext, opts);
+    } catch (const std::runtime_error &) {
+    }
+}
+
+bool FuzzByName(const std::string &target, const uint8_t *data, size_t size) {
+    if (target == "pbrt") FuzzPbrt(data, size);
+    else if (target == "ply") FuzzPly(data, size);
+    else if (target == "obj") FuzzObj(data, size);
+    else if (target == "gltf") FuzzGltf(data, size);
+    else if (target == "image") FuzzImage(data, size);
+    else return false;
+    return true;
+}
+
+}  // namespace prism::fuzz

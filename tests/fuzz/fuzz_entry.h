@@ -1,0 +1,23 @@
+// Entry points shared by the libFuzzer targets (tests/fuzz/fuzz_*.cpp) and the regression test
+// that replays tests/fuzz/regressions/ in the ordinary build: one function per reader.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace prism::fuzz {
+
+// Each feeds `data` to one reader. Expected rejections (SceneError, and the runtime_error the
+// image reader documents) are swallowed; anything else — a crash, a sanitizer report, another
+// exception type such as std::bad_alloc — escapes and is a bug.
+void FuzzPbrt(const uint8_t *data, size_t size);   // ParsePbrtString, includes confined
+void FuzzPly(const uint8_t *data, size_t size);    // ReadPly
+void FuzzObj(const uint8_t *data, size_t size);    // LoadObj (+ MTL after a "#%MTL" line)
+void FuzzGltf(const uint8_t *data, size_t size);   // LoadGltf: .glb if it starts with "glTF"
+void FuzzImage(const uint8_t *data, size_t size);  // ReadImageFromMemory
+
+// Dispatch by target name ("pbrt", "ply", "obj", "gltf", "image"); false if unknown.
+bool FuzzByName(const std::string &target, const uint8_t *data, size_t size);
+
+}  // namespace prism::fuzz

@@ -1,0 +1,265 @@
+// Uber, substrate, translucent and mix against closed forms, and the scene-level material
+// plumbing (named mixes, cycles, fallbacks, v4 names).
+#include "render/material.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/render_scene.h"
+#include "scene/pbrt_parser.h"
+
+namespace prism {
+namespace {
+
+TexturePtr Const(RGB v) { return std::make_shared<ConstantTexture>(v); }
+TexturePtr Const(float v) { return Const(RGB(v)); }
+
+SurfaceInteraction FlatHit() {
+    SurfaceInteraction si;
+    si.n = si.ns = {0, 0, 1};
+    si.dpdu = {1, 0, 0};
+    return si;
+}
+
+Material Uber(float kd, float ks, float kr, float kt, float opacity) {
+    Material m;
+    m.kind = Material::Kind::Uber;
+    m.Kd = Const(kd);
+    m.Ks = Const(ks);
+    m.Kr = Const(kr);
+    m.Kt = Const(kt);
+    m.roughness = Const(0.1f);
+    m.index = Const(1.5f);
+    m.opacity = Const(opacity);
+    return m;
+}
+
+std::shared_ptr<Material> Matte(RGB kd) {
+    auto m = std::make_shared<Material>();
+    m->kind = Material::Kind::Matte;
+    m->Kd = Const(kd);
+    m->sigma = Const(0.f);
+    return m;
+}
+
+TEST(Material, UberWithOnlyKrIsAFresnelMirror) {
+    Material m = Uber(0, 0, 1, 0, 1);
+    BSDF b = m.GetBSDF(FlatHit(), {});
+    EXPECT_FALSE(b.HasNonSpecular());
+    for (float theta : {0.f, 0.5f, 1.0f, 1.4f}) {
+        Vec3f wo(std::sin(theta), 0, std::cos(theta)), wi;
+        RGB w;
+        ASSERT_TRUE(b.SampleSpecularReflection(0, wo, &wi, &w));
+        EXPECT_NEAR(wi.x, -wo.x, 1e-6f);
+        EXPECT_NEAR(wi.z, wo.z, 1e-6f);
+        EXPECT_NEAR(w.g, FrDielectric(std::cos(theta), 1.f, 1.5f), 1e-6f);
+        EXPECT_FALSE(b.SampleSpecularTransmission(0, wo, &wi, &w));
+    }
+}
+
+TEST(Material, UberOpacityAddsAStraightPassThrough) {
+    Material m = Uber(0.5f, 0, 0, 0, 0.25f);
+    EXPECT_EQ(m.MaxParts(), 2);
+    EXPECT_TRUE(m.MayTransmit());
+    BSDF b = m.GetBSDF(FlatHit(), {});
+    ASSERT_EQ(b.NumParts(), 2);
+    Vec3f wo = Normalize(Vec3f(0.3f, 0.2f, 1)), wi;
+    RGB w;
+    ASSERT_TRUE(b.SampleSpecularTransmission(0, wo, &wi, &w));
+    EXPECT_EQ(wi, -wo);
+    EXPECT_NEAR(w.r, 0.75f, 1e-6f);
+    // The diffuse lobe is scaled by the opacity.
+    Vec3f light = Normalize(Vec3f(-0.2f, 0.1f, 1));
+    EXPECT_NEAR(b.f(wo, light).r, 0.25f * 0.5f * float(InvPi), 1e-6f);
+}
+
+TEST(Material, SubstrateAtNormalIncidence) {
+    Material m;
+    m.kind = Material::Kind::Substrate;
+    m.Kd = Const(RGB(0.6f, 0.4f, 0.2f));
+    m.Ks = Const(0.05f);
+    m.uRoughness = m.vRoughness = Const(0.1f);
+    BSDF b = m.GetBSDF(FlatHit(), {});
+    Vec3f n(0, 0, 1);
+    RGB f = b.f(n, n);
+    float alpha = RoughnessToAlpha(0.1f);
+    float k = 1 - std::pow(0.5f, 5.f);
+    float diffuseScale = 28.f / (23.f * float(Pi)) * (1 - 0.05f) * k * k;
+    // D(normal) = 1 / (pi alpha^2); Schlick's Fresnel at cos 1 is Rs; denominator 4·1·1.
+    float specular = float(1 / (Pi * alpha * alpha)) / 4 * 0.05f;
+    EXPECT_NEAR(f.r, 0.6f * diffuseScale + specular, 1e-4f * f.r);
+    EXPECT_NEAR(f.b, 0.2f * diffuseScale + specular, 1e-4f * f.b);
+    // Grazing light: the Fresnel-weighted diffuse term vanishes as cos → 0.
+    EXPECT_LT(b.f(n, Normalize(Vec3f(1, 0, 1e-4f))).r, 0.2f * f.r);
+}
+
+Material Translucent(float ks) {
+    Material m;
+    m.kind = Material::Kind::Translucent;
+    m.Kd = Const(RGB(0.8f, 0.6f, 0.4f));
+    m.Ks = Const(ks);
+    m.reflect = Const(0.3f);
+    m.transmit = Const(0.7f);
+    m.roughness = Const(0.1f);
+    return m;
+}
+
+TEST(Material, TranslucentTransmitsLightFromTheBack) {
+    BSDF b = Translucent(0).GetBSDF(FlatHit(), {});
+    Vec3f wo = Normalize(Vec3f(0.2f, 0, 1));
+    Vec3f back = Normalize(Vec3f(0.5f, 0.3f, -1)), front = Normalize(Vec3f(-0.4f, 0, 1));
+    RGB t = b.f(wo, back), r = b.f(wo, front);
+    EXPECT_NEAR(t.r, 0.7f * 0.8f * float(InvPi), 1e-6f);
+    EXPECT_NEAR(r.r, 0.3f * 0.8f * float(InvPi), 1e-6f);
+    // With a glossy part, transmission peaks along the refracted direction (eta 1.5).
+    BSDF g = Translucent(1).GetBSDF(FlatHit(), {});
+    Vec3f woT = Normalize(Vec3f(0.5f, 0, 1));
+    float sinT = woT.x / 1.5f;
+    Vec3f refracted(-sinT, 0, -std::sqrt(1 - sinT * sinT));
+    RGB peak = g.f(woT, refracted) - b.f(woT, refracted);
+    RGB off = g.f(woT, Normalize(Vec3f(0.6f, 0.4f, -1))) - b.f(woT, Normalize(Vec3f(0.6f, 0.4f, -1)));
+    EXPECT_GT(peak.r, 1.f);
+    EXPECT_GT(peak.r, 20 * off.r);
+    EXPECT_TRUE(peak.IsFinite());
+}
+
+TEST(Material, MixOfMattesIsTheBlendedMatte) {
+    // pbrt-v3 MixMaterial: namedmaterial1 weighted by amount, namedmaterial2 by 1 - amount.
+    RGB A(0.8f, 0.1f, 0.3f), B(0.2f, 0.9f, 0.5f);
+    float a = 0.3f;
+    Material mix;
+    mix.kind = Material::Kind::Mix;
+    mix.mix1 = Matte(A);
+    mix.mix2 = Matte(B);
+    mix.amount = Const(a);
+    BSDF b = mix.GetBSDF(FlatHit(), {});
+    Material blended = *Matte(A * a + B * (1 - a));
+    BSDF want = blended.GetBSDF(FlatHit(), {});
+    Vec3f wo = Normalize(Vec3f(0.1f, 0.3f, 1)), wi = Normalize(Vec3f(-0.5f, 0.2f, 1));
+    RGB got = b.f(wo, wi), exp = want.f(wo, wi);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], exp[c], 1e-6f);
+}
+
+TEST(Material, MixWeightsDeltaLobes) {
+    Material mirror;
+    mirror.kind = Material::Kind::Mirror;
+    mirror.Kr = Const(1.f);
+    Material mix;
+    mix.kind = Material::Kind::Mix;
+    mix.mix1 = std::make_shared<Material>(mirror);
+    mix.mix2 = Matte(RGB(0.5f));
+    mix.amount = Const(RGB(0.25f, 0.5f, 1.f));  // per-channel weights, as pbrt's Spectrum
+    EXPECT_TRUE(mix.MayReflectSpecularly());
+    BSDF b = mix.GetBSDF(FlatHit(), {});
+    Vec3f wo = Normalize(Vec3f(0.3f, 0, 1)), wi;
+    RGB w;
+    ASSERT_TRUE(b.SampleSpecularReflection(0, wo, &wi, &w));
+    EXPECT_EQ(w, RGB(0.25f, 0.5f, 1.f));
+    // The matte share is 1 - amount (blue: none).
+    RGB f = b.f(wo, Normalize(Vec3f(-0.3f, 0.1f, 1)));
+    EXPECT_NEAR(f.r, 0.75f * 0.5f * float(InvPi), 1e-6f);
+    EXPECT_EQ(f.b, 0.f);
+}
+
+// ---- Through the scene builder ----------------------------------------------------------
+
+RenderScene Build(const std::string &world, Diagnostics &diag) {
+    SceneDescription d = ParsePbrtString(
+        "Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n" + world,
+        "test.pbrt", diag);
+    RenderOptions o;
+    o.resolution = {8, 8};
+    return BuildRenderScene(d, o, diag);
+}
+
+const Material &ShapeMaterial(const RenderScene &s) { return s.materials[size_t(s.shapes[0].material)]; }
+
+TEST(MaterialScene, NamedMixResolvesAndBlends) {
+    Diagnostics diag;
+    RenderScene s = Build(
+        "MakeNamedMaterial \"red\" \"string type\" \"matte\" \"rgb Kd\" [1 0 0]\n"
+        "MakeNamedMaterial \"blue\" \"string type\" \"matte\" \"rgb Kd\" [0 0 1]\n"
+        "MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string namedmaterial1\" \"red\"\n"
+        "  \"string namedmaterial2\" \"blue\" \"rgb amount\" [0.25 0.25 0.25]\n"
+        "NamedMaterial \"m\"\nShape \"sphere\"\n",
+        diag);
+    const Material &m = ShapeMaterial(s);
+    ASSERT_EQ(m.kind, Material::Kind::Mix);
+    BSDF b = m.GetBSDF(FlatHit(), {});
+    Vec3f n(0, 0, 1);
+    RGB f = b.f(n, n);
+    EXPECT_NEAR(f.r, 0.25f * float(InvPi), 1e-6f);
+    EXPECT_NEAR(f.b, 0.75f * float(InvPi), 1e-6f);
+    EXPECT_EQ(diag.Count(), size_t(0));
+}
+
+TEST(MaterialScene, MixCycleIsAnErrorWithLocation) {
+    Diagnostics diag;
+    try {
+        Build("MakeNamedMaterial \"a\" \"string type\" \"mix\" \"string namedmaterial1\" \"b\"\n"
+              "  \"string namedmaterial2\" \"b\"\n"
+              "MakeNamedMaterial \"b\" \"string type\" \"mix\" \"string namedmaterial1\" \"a\"\n"
+              "  \"string namedmaterial2\" \"a\"\n"
+              "NamedMaterial \"a\"\nShape \"sphere\"\n",
+              diag);
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError &e) {
+        std::string msg = e.what();
+        EXPECT_NE(msg.find("refers to itself"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("test.pbrt:"), std::string::npos) << msg;
+    }
+    Diagnostics d2;
+    EXPECT_THROW(Build("MakeNamedMaterial \"s\" \"string type\" \"mix\" \"string namedmaterial1\" \"s\"\n"
+                       "  \"string namedmaterial2\" \"s\"\nNamedMaterial \"s\"\nShape \"sphere\"\n",
+                       d2),
+                 SceneError);
+}
+
+TEST(MaterialScene, UnsupportedMaterialFallsBackToMatteWithItsColour) {
+    Diagnostics diag;
+    RenderScene s = Build("Material \"disney\" \"rgb color\" [0.2 0.4 0.6] \"float metallic\" 1\n"
+                          "Shape \"sphere\"\n",
+                          diag);
+    const Material &m = ShapeMaterial(s);
+    EXPECT_EQ(m.kind, Material::Kind::Matte);
+    EXPECT_EQ(m.Kd->Evaluate({}), RGB(0.2f, 0.4f, 0.6f));
+    ASSERT_EQ(diag.Count(), size_t(1));
+    EXPECT_NE(diag.Warnings()[0].message.find("disney"), std::string::npos);
+}
+
+TEST(MaterialScene, V4Names) {
+    Diagnostics diag;
+    RenderScene s = Build("Material \"conductor\" \"rgb reflectance\" [0.9 0.5 0.2]\nShape \"sphere\"\n", diag);
+    const Material &m = ShapeMaterial(s);
+    ASSERT_EQ(m.kind, Material::Kind::Metal);
+    EXPECT_TRUE(m.MayReflectSpecularly());  // v4 conductors default to roughness 0
+    RGB r0 = FrConductor(1.f, RGB(1), m.metalEta, m.metalK);
+    EXPECT_NEAR(r0.r, 0.9f, 1e-4f);
+    EXPECT_NEAR(r0.b, 0.2f, 1e-4f);
+    Diagnostics d2;
+    RenderScene t = Build("Material \"diffusetransmission\" \"rgb transmittance\" [0.5 0.5 0.5]\n"
+                          "Shape \"sphere\"\n",
+                          d2);
+    EXPECT_EQ(ShapeMaterial(t).kind, Material::Kind::Translucent);
+    BSDF b = ShapeMaterial(t).GetBSDF(FlatHit(), {});
+    EXPECT_NEAR(b.f({0, 0, 1}, {0, 0, -1}).r, 0.5f * float(InvPi), 1e-6f);
+    EXPECT_EQ(d2.Count(), size_t(0));
+}
+
+TEST(MaterialScene, LoopSubdivShapeBecomesAMesh) {
+    Diagnostics diag;
+    RenderScene s = Build("Shape \"loopsubdiv\" \"integer levels\" [2] \"integer indices\" "
+                          "[0 1 2 0 3 1 0 2 3 1 3 2] \"point3 P\" [1 1 1 1 -1 -1 -1 1 -1 -1 -1 1]\n",
+                          diag);
+    EXPECT_EQ(s.features.triangles, size_t(4 * 16));
+    EXPECT_EQ(diag.Count(), size_t(0));
+    Diagnostics d2;
+    EXPECT_THROW(Build("Shape \"loopsubdiv\" \"integer nlevels\" [30] \"integer indices\" [0 1 2] "
+                       "\"point3 P\" [0 0 0 1 0 0 0 1 0]\n",
+                       d2),
+                 SceneError);
+}
+
+}  // namespace
+}  // namespace prism
