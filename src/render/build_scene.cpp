@@ -23,12 +23,6 @@ namespace {
 
 std::string Quote(const std::string &s) { return "\"" + s + "\""; }
 
-std::string ResolvePath(const SceneDescription &desc, const std::string &file) {
-    std::filesystem::path p(file);
-    if (p.is_absolute() || desc.baseDir.empty()) return file;
-    return (std::filesystem::path(desc.baseDir) / p).string();
-}
-
 // pbrt-v3 reads "scale" as a spectrum; v4 files write a float. Accept both.
 RGB ScaleParam(const ParamSet &ps) {
     const Param *p = ps.Find("scale");
@@ -96,7 +90,7 @@ struct Builder {
     std::shared_ptr<const Image> LoadImage(const SceneEntity &t, const std::string &file,
                                            ReadImageOptions::Encoding enc, const char *param) {
         int embedded = EmbeddedImageIndex(file);
-        std::string path = embedded >= 0 ? file : ResolvePath(desc, file);
+        std::string path = embedded >= 0 ? file : ResolveScenePath(desc, file);
         std::string key = path + "#" + std::to_string(int(enc));
         auto it = imageCache.find(key);
         if (it != imageCache.end()) return it->second;

@@ -18,12 +18,6 @@ namespace prism {
 
 namespace {
 
-std::string ResolvePath(const SceneDescription &desc, const std::string &file) {
-    std::filesystem::path p(file);
-    if (p.is_absolute() || desc.baseDir.empty()) return file;
-    return (std::filesystem::path(desc.baseDir) / p).string();
-}
-
 const FileLoc &ParamLoc(const ShapeDesc &s, const char *name) {
     const Param *p = s.params.Find(name);
     return p ? p->loc : s.loc;
@@ -72,7 +66,7 @@ ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject
                            const ShapeFactoryContext &ctx) {
     std::string file = s.params.GetString("filename", "");
     if (file.empty()) throw SceneError(s.loc, "plymesh needs a \"filename\"");
-    PlyMesh ply = ReadPly(ResolvePath(ctx.desc, file), ctx.diag, EffectiveMemoryBudget(ctx.maxMemory));
+    PlyMesh ply = ReadPly(ResolveScenePath(ctx.desc, file), ctx.diag, EffectiveMemoryBudget(ctx.maxMemory));
     for (const char *n : {"displacement", "edgelength"})
         if (s.params.Has(n)) {
             ctx.diag.Warn(ParamLoc(s, n), std::string("\"") + n + "\" is not supported; ignored");

@@ -162,4 +162,10 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
     return desc;
 }
 
+std::string ResolveScenePath(const SceneDescription &desc, const std::string &file) {
+    std::filesystem::path p(file);
+    if (p.is_absolute() || desc.baseDir.empty()) return file;
+    return (std::filesystem::path(desc.baseDir) / p).string();
+}
+
 }  // namespace prism

@@ -107,4 +107,8 @@ struct SceneDescription {
     std::vector<std::string> notes;
 };
 
+// A path from the scene (texture, PLY, ...) resolved against the top-level file's directory
+// (pbrt-v3 semantics); absolute paths are returned unchanged.
+std::string ResolveScenePath(const SceneDescription &desc, const std::string &file);
+
 }  // namespace prism
