@@ -160,11 +160,7 @@ int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask) {
     PRISM_CHECK(!impl_->committed);
     Device &dev = GetDevice();
     unsigned id = AttachUserGeometry(dev.device, impl_->scene, shape.get(),
-                                     impl_->options.precision);
-    if (mask != AllRays) {
-        rtcSetGeometryMask(rtcGetGeometry(impl_->scene, id), mask);
-        rtcCommitGeometry(rtcGetGeometry(impl_->scene, id));
-    }
+                                     impl_->options.precision, mask);
     dev.ThrowIfError("adding an analytic shape");
     int index = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, index);

@@ -94,7 +94,8 @@ void OccludedFunc(const RTCOccludedFunctionNArguments *args) {
 }
 
 template <typename S>
-unsigned Attach(RTCDevice device, RTCScene scene, const S *shape, Precision precision) {
+unsigned Attach(RTCDevice device, RTCScene scene, const S *shape, Precision precision,
+                unsigned mask) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, const_cast<S *>(shape));
@@ -106,6 +107,7 @@ unsigned Attach(RTCDevice device, RTCScene scene, const S *shape, Precision prec
         rtcSetGeometryIntersectFunction(geom, IntersectFunc<S, float>);
         rtcSetGeometryOccludedFunction(geom, OccludedFunc<S, float>);
     }
+    rtcSetGeometryMask(geom, mask);
     rtcCommitGeometry(geom);
     unsigned id = rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);
@@ -115,15 +117,15 @@ unsigned Attach(RTCDevice device, RTCScene scene, const S *shape, Precision prec
 }  // namespace
 
 unsigned AttachUserGeometry(RTCDevice device, RTCScene scene, const AnalyticShape *shape,
-                            Precision precision) {
+                            Precision precision, unsigned mask) {
     // The concrete type is resolved once here so the callbacks call the root routine
     // directly (no virtual dispatch per candidate).
-    if (auto *s = dynamic_cast<const Sphere *>(shape)) return Attach(device, scene, s, precision);
+    if (auto *s = dynamic_cast<const Sphere *>(shape)) return Attach(device, scene, s, precision, mask);
 #define PRISM_ATTACH_SHAPE(T) \
-    if (auto *s = dynamic_cast<const T *>(shape)) return Attach(device, scene, s, precision);
+    if (auto *s = dynamic_cast<const T *>(shape)) return Attach(device, scene, s, precision, mask);
 #include "geometry/shape_list.inc"
 #undef PRISM_ATTACH_SHAPE
-    return Attach(device, scene, shape, precision);  // [validate hook] virtual dispatch
+    return Attach(device, scene, shape, precision, mask);  // [validate hook] virtual dispatch
 }
 
 }  // namespace prism

@@ -9,7 +9,8 @@ namespace prism {
 
 // Creates, commits and attaches a one-primitive user geometry whose callbacks forward to the
 // shape's root routine in the given precision. Returns the geomID.
+// `mask` is the Embree geometry mask (which ray kinds see the shape).
 unsigned AttachUserGeometry(RTCDevice device, RTCScene scene, const AnalyticShape *shape,
-                            Precision precision);
+                            Precision precision, unsigned mask);
 
 }  // namespace prism

@@ -700,23 +700,22 @@ struct Builder {
         const ParamSet &fp = desc.filter.params;
         Filter f;
         std::string ft = desc.filter.type;
+        bool known = ft == "box" || ft == "gaussian" || ft == "triangle" || ft == "mitchell";
+        if (known) {
+            // pbrt-v3 radii: 0.5 for the box, 2 for the others.
+            float defaultRadius = ft == "box" ? 0.5f : 2.f;
+            f.radiusX = fp.GetFloat("xwidth", defaultRadius);
+            f.radiusY = fp.GetFloat("ywidth", defaultRadius);
+        }
         if (ft == "box") {
             f.kind = Filter::Kind::Box;
-            f.radiusX = fp.GetFloat("xwidth", 0.5f);
-            f.radiusY = fp.GetFloat("ywidth", 0.5f);
         } else if (ft == "gaussian") {
             f.kind = Filter::Kind::Gaussian;
-            f.radiusX = fp.GetFloat("xwidth", 2.f);
-            f.radiusY = fp.GetFloat("ywidth", 2.f);
             f.alpha = fp.GetFloat("alpha", 2.f);
         } else if (ft == "triangle") {
             f.kind = Filter::Kind::Triangle;
-            f.radiusX = fp.GetFloat("xwidth", 2.f);
-            f.radiusY = fp.GetFloat("ywidth", 2.f);
         } else if (ft == "mitchell") {
             f.kind = Filter::Kind::Mitchell;
-            f.radiusX = fp.GetFloat("xwidth", 2.f);
-            f.radiusY = fp.GetFloat("ywidth", 2.f);
             f.B = fp.GetFloat("B", 1.f / 3);
             f.C = fp.GetFloat("C", 1.f / 3);
         } else {

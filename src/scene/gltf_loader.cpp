@@ -55,17 +55,6 @@ bool ReadWholeFileWithinBudget(std::vector<unsigned char> *out, std::string *err
     return tinygltf::ReadWholeFile(out, err, path, nullptr) && (b->used += out->size(), true);
 }
 
-std::vector<std::string> Lines(const std::string &s) {
-    std::vector<std::string> out;
-    std::istringstream in(s);
-    std::string line;
-    while (std::getline(in, line)) {
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-        if (!line.empty()) out.push_back(line);
-    }
-    return out;
-}
-
 // glTF URIs are percent-encoded ("my%20texture.png").
 std::string DecodeUri(const std::string &uri) {
     std::string out;
@@ -716,9 +705,9 @@ SceneDescription LoadGltf(const std::string &path, Diagnostics &diag, uint64_t m
     } catch (const std::exception &e) {
         throw SceneError(loc, std::string("cannot parse glTF file: ") + e.what());
     }
-    for (const std::string &w : Lines(warn)) diag.Warn(loc, w);
+    for (const std::string &w : MessageLines(warn)) diag.Warn(loc, w);
     if (!ok) {
-        std::vector<std::string> errs = Lines(err);
+        std::vector<std::string> errs = MessageLines(err);
         throw SceneError(loc, errs.empty() ? std::string("cannot parse glTF file")
                                            : "cannot parse glTF file: " + errs.front());
     }

@@ -25,18 +25,6 @@ using namespace loader;
 
 bool NonZero(const tinyobj::real_t c[3]) { return c[0] > 0 || c[1] > 0 || c[2] > 0; }
 
-// tinyobjloader reports several messages in one newline-separated string.
-std::vector<std::string> Lines(const std::string &s) {
-    std::vector<std::string> out;
-    std::istringstream in(s);
-    std::string line;
-    while (std::getline(in, line)) {
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-        if (!line.empty()) out.push_back(line);
-    }
-    return out;
-}
-
 // MTL texture paths are often written on Windows (".\tex.jpg"); they are relative to the OBJ's
 // directory, which is the scene's baseDir.
 std::string NormalizeTexturePath(std::string p) {
@@ -232,8 +220,8 @@ SceneDescription LoadObj(const std::string &path, Diagnostics &diag) {
     config.vertex_color = false;
     tinyobj::ObjReader reader;
     bool ok = reader.ParseFromFile(path, config);
-    for (const std::string &w : Lines(reader.Warning())) diag.Warn(fileLoc, w);
-    std::vector<std::string> errors = Lines(reader.Error());
+    for (const std::string &w : MessageLines(reader.Warning())) diag.Warn(fileLoc, w);
+    std::vector<std::string> errors = MessageLines(reader.Error());
     if (!ok || !errors.empty())
         throw SceneError(fileLoc, errors.empty() ? std::string("cannot parse OBJ file")
                                                  : "cannot parse OBJ file: " + errors.front());

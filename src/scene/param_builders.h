@@ -2,6 +2,7 @@
 // if they had been written in a .pbrt file, so the renderer reads every format the same way.
 #pragma once
 
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -97,5 +98,18 @@ inline ParamSet TriangleMeshParams(const std::vector<int> &indices, const std::v
 
 // Parent directory of a path ("" for a bare file name).
 std::string DirectoryOf(const std::string &path);
+
+// The loader libraries (tinyobjloader, tinygltf) report several messages in one
+// newline-separated string: one trimmed, non-empty line per message.
+inline std::vector<std::string> MessageLines(const std::string &s) {
+    std::vector<std::string> out;
+    std::istringstream in(s);
+    std::string line;
+    while (std::getline(in, line)) {
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+        if (!line.empty()) out.push_back(line);
+    }
+    return out;
+}
 
 }  // namespace prism::loader
