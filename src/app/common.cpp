@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_io.h"
 #include "core/memory.h"
 
 namespace prism {
@@ -90,8 +91,7 @@ Precision ParsePrecision(const std::string &s) {
 
 void CheckOutputPath(const std::string &path) {
     namespace fs = std::filesystem;
-    std::string ext = fs::path(path).extension().string();
-    for (char &c : ext) c = char(std::tolower(c));
+    std::string ext = LowerExtension(path);
     static const char *ok[] = {".exr", ".png", ".pfm", ".hdr", ".tga", ".bmp", ".jpg", ".jpeg"};
     bool known = false;
     for (const char *e : ok) known |= ext == e;

@@ -7,9 +7,18 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace prism {
+
+// `s` in double quotes, as names are shown in messages: unknown directive "Sphere".
+inline std::string Quote(std::string_view s) {
+    std::string r;
+    r.reserve(s.size() + 2);
+    r.append(1, '"').append(s).append(1, '"');
+    return r;
+}
 
 struct FileLoc {
     std::string file;  // shared by every token of one file; empty for command-line input

@@ -1,6 +1,7 @@
 // OpenImageIO-backed image reading and atomic image writing.
 #include "image/image_io.h"
 
+#include "core/file_io.h"
 #include "core/memory.h"
 
 #include <OpenImageIO/filesystem.h>
@@ -68,8 +69,6 @@ std::string OiioError(const OIIO::ImageOutput *out) {
     return msg;
 }
 
-std::string Quoted(const std::string &s) { return "\"" + s + "\""; }
-
 const std::array<float, 256> &Srgb8Table() {
     static const std::array<float, 256> table = [] {
         std::array<float, 256> t{};
@@ -77,12 +76,6 @@ const std::array<float, 256> &Srgb8Table() {
         return t;
     }();
     return table;
-}
-
-std::string LowerExtension(const std::string &path) {
-    std::string ext = fs::path(path).extension().string();
-    for (char &c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
 }
 
 }  // namespace
@@ -271,7 +264,7 @@ void CheckExrHeader(const unsigned char *data, size_t avail, uint64_t fileSize, 
 
 Image ReadImage(const std::string &path, ReadImageOptions opts) {
     auto fail = [&](const std::string &why) {
-        return std::runtime_error("cannot read image " + Quoted(path) + ": " + why);
+        return std::runtime_error("cannot read image " + Quote(path) + ": " + why);
     };
     std::optional<QuietStderr> quiet;
     if (opts.quietDecoders) quiet.emplace();
@@ -302,7 +295,7 @@ Image ReadImage(const std::string &path, ReadImageOptions opts) {
 Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::string &name,
                           ReadImageOptions opts) {
     auto fail = [&](const std::string &why) {
-        return std::runtime_error("cannot read image " + Quoted(name) + ": " + why);
+        return std::runtime_error("cannot read image " + Quote(name) + ": " + why);
     };
     if (bytes.empty()) throw fail("no data");
     std::optional<QuietStderr> quiet;
@@ -405,12 +398,12 @@ void WritePfm(const std::string &path, int width, int height, int channels, cons
 
 void WriteImage(const std::string &path, const Image &img) {
     auto fail = [&](const std::string &why) -> std::runtime_error {
-        return std::runtime_error("cannot write image " + Quoted(path) + ": " + why);
+        return std::runtime_error("cannot write image " + Quote(path) + ": " + why);
     };
     std::string ext = LowerExtension(path);
     OutputFormat format;
     if (!LookupOutputFormat(ext, &format))
-        throw std::runtime_error("unsupported output format " + Quoted(ext) +
+        throw std::runtime_error("unsupported output format " + Quote(ext) +
                                  " (use .exr or .png)");
     if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4 ||
         img.pixels.size() != size_t(img.width) * size_t(img.height) * size_t(img.channels))
@@ -470,7 +463,7 @@ void WriteImage(const std::string &path, const Image &img) {
     std::error_code dirEc;
     fs::path dir = target.parent_path();
     if (!dir.empty() && !fs::is_directory(dir, dirEc))
-        throw fail("directory " + Quoted(dir.string()) + " does not exist");
+        throw fail("directory " + Quote(dir.string()) + " does not exist");
     TempFileGuard tmp{TempPathFor(target)};
     std::string tmpName = tmp.path.string();
     if (ext == ".pfm") {

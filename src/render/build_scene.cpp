@@ -21,7 +21,6 @@ namespace prism {
 
 namespace {
 
-std::string Quote(const std::string &s) { return "\"" + s + "\""; }
 
 // pbrt-v3 reads "scale" as a spectrum; v4 files write a float. Accept both.
 RGB ScaleParam(const ParamSet &ps) {
