@@ -23,6 +23,7 @@
 #include "app/common.h"
 #include "app/output_file.h"
 #include "core/memory.h"
+#include "scene/load_scene.h"
 
 namespace fs = std::filesystem;
 
@@ -52,11 +53,7 @@ struct Job {
 volatile sig_atomic_t g_interrupted = 0;
 void OnSigint(int) { g_interrupted = 1; }
 
-bool IsSceneFile(const fs::path &p) {
-    std::string e = p.extension().string();
-    std::transform(e.begin(), e.end(), e.begin(), ::tolower);
-    return e == ".pbrt" || e == ".obj" || e == ".gltf" || e == ".glb";
-}
+bool IsSceneFile(const fs::path &p) { return IsSceneExtension(p.extension().string()); }
 
 // pbrt files that another .pbrt file in the set Includes (or Imports) are fragments, not
 // scenes: `Include "../geometry/cube.pbrt"`. A plain text scan; the path resolves against the

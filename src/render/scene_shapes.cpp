@@ -66,7 +66,7 @@ ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject
                            const ShapeFactoryContext &ctx) {
     std::string file = s.params.GetString("filename", "");
     if (file.empty()) throw SceneError(s.loc, "plymesh needs a \"filename\"");
-    PlyMesh ply = ReadPly(ResolveScenePath(ctx.desc, file), ctx.diag, EffectiveMemoryBudget(ctx.maxMemory));
+    PlyMesh ply = ReadPlyFile(ResolveScenePath(ctx.desc, file), ctx.diag, EffectiveMemoryBudget(ctx.maxMemory));
     for (const char *n : {"displacement", "edgelength"})
         if (s.params.Has(n)) {
             ctx.diag.Warn(ParamLoc(s, n), std::string("\"") + n + "\" is not supported; ignored");

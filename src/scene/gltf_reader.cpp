@@ -1,7 +1,7 @@
 // glTF 2.0 → SceneDescription. tinygltf (Debian's shared library) parses the JSON and loads
 // buffers; image decoding is replaced by a callback that only keeps the encoded bytes. Every
 // accessor is bounds-checked here because tinygltf does not validate them.
-#include "scene/gltf_loader.h"
+#include "scene/gltf_reader.h"
 
 #include <cmath>
 #include <cstring>
@@ -9,16 +9,27 @@
 #include <set>
 #include <sstream>
 
-#include <tiny_gltf.h>
-
+#include "core/file_io.h"
 #include "core/memory.h"
+#include "scene/gltf_converter.h"
 #include "scene/param_builders.h"
 
 namespace prism {
 
-namespace {
+namespace gltf_internal {
 
-using namespace loader;
+using namespace reader;
+
+double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const char *key,
+                 double def, bool *present) {
+    auto it = ext.find(extName);
+    if (present) *present = it != ext.end();
+    if (it == ext.end() || !it->second.IsObject() || !it->second.Has(key)) return def;
+    const tinygltf::Value &v = it->second.Get(key);
+    return v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : def;
+}
+
+namespace {
 
 // Replaces tinygltf's stb_image decoding: images without an external URI (data URIs and .glb
 // bufferViews) keep their encoded bytes in Image::image; external files are referenced by
@@ -38,45 +49,18 @@ struct ReadBudget {
 
 bool ReadWholeFileWithinBudget(std::vector<unsigned char> *out, std::string *err,
                                const std::string &path, void *user) {
-    namespace fs = std::filesystem;
     auto *b = static_cast<ReadBudget *>(user);
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-        if (err) *err += "not a regular file\n";
-        return false;
-    }
-    uint64_t size = fs::file_size(path, ec);
-    if (ec || size > b->budget - b->used) {
-        if (err)
-            *err += FormatBytes(size) + " exceeds the memory budget of " +
+    FileReadError error;
+    if (!ReadFileContents(path, out, &error, b->budget - b->used)) {
+        if (err && error.tooLarge)
+            *err += FormatBytes(error.size) + " exceeds the memory budget of " +
                     FormatBytes(b->budget) + " (--max-memory)\n";
+        else if (err)
+            *err += error.reason + "\n";
         return false;
     }
-    return tinygltf::ReadWholeFile(out, err, path, nullptr) && (b->used += out->size(), true);
-}
-
-// glTF URIs are percent-encoded ("my%20texture.png").
-std::string DecodeUri(const std::string &uri) {
-    std::string out;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
-            std::isxdigit((unsigned char)uri[i + 2])) {
-            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
-}
-
-double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const char *key,
-                 double def, bool *present = nullptr) {
-    auto it = ext.find(extName);
-    if (present) *present = it != ext.end();
-    if (it == ext.end() || !it->second.IsObject() || !it->second.Has(key)) return def;
-    const tinygltf::Value &v = it->second.Get(key);
-    return v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : def;
+    b->used += out->size();
+    return true;
 }
 
 // Column-major glTF 4x4 → Matrix4 (row-major m[row][col]).
@@ -123,14 +107,6 @@ Matrix4 NodeLocalMatrix(const tinygltf::Node &n, const FileLoc &loc) {
     return m;
 }
 
-// Validated view of one accessor's elements.
-struct AccessorView {
-    const unsigned char *data = nullptr;
-    size_t count = 0, stride = 0;
-    int componentType = 0, components = 0;
-    bool normalized = false;
-};
-
 int ComponentSize(int type) {
     switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
@@ -155,42 +131,9 @@ int ComponentCount(int type) {
     }
 }
 
-class GltfReader {
-public:
-    GltfReader(const tinygltf::Model &model, const std::string &path, Diagnostics &diag,
-               SceneDescription &desc)
-        : model_(model), loc_{path}, diag_(diag), desc_(desc) {}
+}  // namespace
 
-    void Read();
-
-private:
-    AccessorView View(int accessorIndex, const std::string &what);
-    std::vector<Vec3f> ReadVec3(int accessor, const std::string &what);
-    std::vector<Vec2f> ReadTexcoords(int accessor);
-    std::vector<int> ReadIndices(int accessor, size_t vertexCount);
-
-    void Traverse(int node, const Matrix4 &parent, std::vector<int> &path);
-    void AddMesh(int meshIndex, const Transform &worldFromObject);
-    void AddCamera(const tinygltf::Node &node, const Matrix4 &world);
-    void AddLight(const tinygltf::Node &node, const Matrix4 &world);
-    void ConvertMaterials();
-    std::string TextureFor(int textureIndex);
-    std::string ImageFilename(int imageIndex);
-
-    [[noreturn]] void Fail(const std::string &msg) const { throw SceneError(loc_, msg); }
-
-    const tinygltf::Model &model_;
-    FileLoc loc_;
-    Diagnostics &diag_;
-    SceneDescription &desc_;
-    std::vector<int> areaLightOfMaterial_;
-    std::map<int, std::string> textureNames_;
-    std::map<int, std::string> imageFilenames_;
-    std::set<int> warnedModes_;
-    bool haveCamera_ = false;
-};
-
-AccessorView GltfReader::View(int index, const std::string &what) {
+AccessorView GltfConverter::View(int index, const std::string &what) {
     if (index < 0 || size_t(index) >= model_.accessors.size())
         Fail(what + " refers to accessor " + std::to_string(index) + ", which does not exist");
     const tinygltf::Accessor &a = model_.accessors[size_t(index)];
@@ -261,7 +204,7 @@ double Component(const AccessorView &v, size_t i, int c) {
     return 0;
 }
 
-std::vector<Vec3f> GltfReader::ReadVec3(int accessor, const std::string &what) {
+std::vector<Vec3f> GltfConverter::ReadVec3(int accessor, const std::string &what) {
     AccessorView v = View(accessor, what);
     if (v.components != 3) Fail(what + " accessor must be VEC3");
     if (v.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
@@ -276,7 +219,7 @@ std::vector<Vec3f> GltfReader::ReadVec3(int accessor, const std::string &what) {
     return out;
 }
 
-std::vector<Vec2f> GltfReader::ReadTexcoords(int accessor) {
+std::vector<Vec2f> GltfConverter::ReadTexcoords(int accessor) {
     AccessorView v = View(accessor, "TEXCOORD_0");
     if (v.components != 2) Fail("TEXCOORD_0 accessor must be VEC2");
     bool ok = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
@@ -290,7 +233,7 @@ std::vector<Vec2f> GltfReader::ReadTexcoords(int accessor) {
     return out;
 }
 
-std::vector<int> GltfReader::ReadIndices(int accessor, size_t vertexCount) {
+std::vector<int> GltfConverter::ReadIndices(int accessor, size_t vertexCount) {
     AccessorView v = View(accessor, "indices");
     if (v.components != 1) Fail("indices accessor must be SCALAR");
     if (v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
@@ -309,7 +252,7 @@ std::vector<int> GltfReader::ReadIndices(int accessor, size_t vertexCount) {
     return out;
 }
 
-void GltfReader::AddMesh(int meshIndex, const Transform &worldFromObject) {
+void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
     if (meshIndex < 0 || size_t(meshIndex) >= model_.meshes.size())
         Fail("node refers to mesh " + std::to_string(meshIndex) + ", which does not exist");
     const tinygltf::Mesh &mesh = model_.meshes[size_t(meshIndex)];
@@ -383,7 +326,7 @@ Matrix4 RigidPart(const Matrix4 &m) {
     return r;
 }
 
-void GltfReader::AddCamera(const tinygltf::Node &node, const Matrix4 &world) {
+void GltfConverter::AddCamera(const tinygltf::Node &node, const Matrix4 &world) {
     if (node.camera < 0 || size_t(node.camera) >= model_.cameras.size())
         Fail("node refers to camera " + std::to_string(node.camera) + ", which does not exist");
     const tinygltf::Camera &cam = model_.cameras[size_t(node.camera)];
@@ -431,7 +374,7 @@ void GltfReader::AddCamera(const tinygltf::Node &node, const Matrix4 &world) {
 // KHR_lights_punctual. Units: glTF gives candela (point/spot) and lux (directional); Prism is
 // radiometric RGB, and we take 1 cd as I = 1 and 1 lx as L = 1 (no 683 lm/W factor), so
 // I = color * intensity and L = color * intensity. "range" is ignored (pbrt lights have none).
-void GltfReader::AddLight(const tinygltf::Node &node, const Matrix4 &world) {
+void GltfConverter::AddLight(const tinygltf::Node &node, const Matrix4 &world) {
     auto it = node.extensions.find("KHR_lights_punctual");
     if (it == node.extensions.end() || !it->second.IsObject() || !it->second.Has("light")) return;
     const tinygltf::Value &li = it->second.Get("light");
@@ -478,7 +421,7 @@ void GltfReader::AddLight(const tinygltf::Node &node, const Matrix4 &world) {
     desc_.lights.push_back(std::move(ld));
 }
 
-void GltfReader::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<int> &path) {
+void GltfConverter::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<int> &path) {
     if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size())
         Fail("reference to node " + std::to_string(nodeIndex) + ", which does not exist");
     for (int p : path)
@@ -503,157 +446,7 @@ void GltfReader::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<int>
     path.pop_back();
 }
 
-std::string GltfReader::ImageFilename(int imageIndex) {
-    auto it = imageFilenames_.find(imageIndex);
-    if (it != imageFilenames_.end()) return it->second;
-    const tinygltf::Image &img = model_.images[size_t(imageIndex)];
-    std::string filename;
-    if (!img.uri.empty() && img.uri.compare(0, 5, "data:") != 0) {
-        filename = DecodeUri(img.uri);
-    } else if (!img.image.empty()) {
-        EmbeddedImage e;
-        e.name = img.name.empty() ? "image " + std::to_string(imageIndex) : img.name;
-        e.mimeType = img.mimeType;
-        e.bytes = img.image;
-        filename = "embedded:" + std::to_string(desc_.embeddedImages.size());
-        desc_.embeddedImages.push_back(std::move(e));
-    }
-    imageFilenames_[imageIndex] = filename;
-    return filename;
-}
-
-// An "imagemap" texture for a glTF texture, shared by every material that uses it; "" if the
-// texture has no usable image.
-std::string GltfReader::TextureFor(int textureIndex) {
-    auto it = textureNames_.find(textureIndex);
-    if (it != textureNames_.end()) return it->second;
-    std::string name;
-    if (textureIndex >= 0 && size_t(textureIndex) < model_.textures.size()) {
-        const tinygltf::Texture &tex = model_.textures[size_t(textureIndex)];
-        if (tex.source >= 0 && size_t(tex.source) < model_.images.size()) {
-            std::string file = ImageFilename(tex.source);
-            if (!file.empty()) {
-                TextureDesc t;
-                t.type = "imagemap";
-                t.name = "gltf:texture" + std::to_string(textureIndex);
-                t.loc = loc_;
-                AddString(t.params, "filename", file, loc_);
-                if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size() &&
-                    model_.samplers[size_t(tex.sampler)].wrapS ==
-                        TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
-                    AddString(t.params, "wrap", "clamp", loc_);
-                name = t.name;
-                desc_.textures.push_back(std::move(t));
-            }
-        }
-    }
-    if (name.empty())
-        diag_.Warn(loc_, "texture " + std::to_string(textureIndex) +
-                             " has no usable image; ignored");
-    textureNames_[textureIndex] = name;
-    return name;
-}
-
-// Metallic-roughness → pbrt-v3 materials (Whitted approximations):
-//  - KHR_materials_transmission > 0 → "glass" (index = KHR_materials_ior, default 1.5;
-//    Kt = base colour factor).
-//  - metallic >= 0.5 → "metal" with eta = 1 and k = 2 sqrt(F0) / sqrt(1 - F0) per channel,
-//    F0 = base colour factor clamped below 0.999: for eta = 1 the conductor Fresnel at normal
-//    incidence is k² / (4 + k²), which this choice makes equal to F0. roughness = glTF
-//    roughness² (alpha), remaproughness false. Base colour textures are not used for metals.
-//    A metal whose metalness comes from a metallicRoughnessTexture and whose colour comes
-//    from a baseColorTexture (e.g. DamagedHelmet) is treated as plastic instead: per-texel
-//    metalness cannot be expressed, and an untextured tinted metal would hide the texture.
-//  - otherwise → "plastic": Kd = base colour (texture × factor), Ks = 1, roughness = glTF
-//    roughness², remaproughness false. Ks is 1, not 0.04, because pbrt's plastic already
-//    multiplies Ks by a dielectric Fresnel term with eta 1.5, which is 0.04 at normal incidence.
-//  - emissiveFactor × KHR_materials_emissive_strength → a "diffuse" area light on every shape
-//    with the material, unless an emissiveTexture modulates it (not supported: a full-strength
-//    emitter would be far brighter than intended, so emission is dropped with a warning).
-void GltfReader::ConvertMaterials() {
-    for (size_t mi = 0; mi < model_.materials.size(); ++mi) {
-        const tinygltf::Material &m = model_.materials[mi];
-        const auto &pbr = m.pbrMetallicRoughness;
-        MaterialDesc md;
-        md.name = m.name.empty() ? "material " + std::to_string(mi) : m.name;
-        md.loc = loc_;
-        ParamSet &ps = md.params;
-        double base[3] = {1, 1, 1};
-        if (pbr.baseColorFactor.size() >= 3)
-            for (int i = 0; i < 3; ++i) base[i] = Clamp(pbr.baseColorFactor[size_t(i)], 0.0, 1.0);
-        double rough = Clamp(pbr.roughnessFactor, 0.0, 1.0);
-        double alpha = rough * rough;
-        double metallic = Clamp(pbr.metallicFactor, 0.0, 1.0);
-        double transmission =
-            ExtNumber(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0);
-        if (transmission > 0) {
-            md.type = "glass";
-            AddFloat(ps, "index", ExtNumber(m.extensions, "KHR_materials_ior", "ior", 1.5), loc_);
-            AddRGB(ps, "Kr", 1, 1, 1, loc_);
-            AddRGB(ps, "Kt", base[0], base[1], base[2], loc_);
-        } else if (metallic >= 0.5 && !(pbr.metallicRoughnessTexture.index >= 0 &&
-                                         pbr.baseColorTexture.index >= 0)) {
-            md.type = "metal";
-            double k[3];
-            for (int i = 0; i < 3; ++i) {
-                double f0 = std::min(base[i], 0.999);
-                k[i] = 2 * std::sqrt(f0) / std::sqrt(1 - f0);
-            }
-            AddRGB(ps, "eta", 1, 1, 1, loc_);
-            AddRGB(ps, "k", k[0], k[1], k[2], loc_);
-            AddFloat(ps, "roughness", alpha, loc_);
-            AddBool(ps, "remaproughness", false, loc_);
-        } else {
-            md.type = "plastic";
-            std::string tex;
-            if (pbr.baseColorTexture.index >= 0) tex = TextureFor(pbr.baseColorTexture.index);
-            if (tex.empty()) {
-                AddRGB(ps, "Kd", base[0], base[1], base[2], loc_);
-            } else if (base[0] == 1 && base[1] == 1 && base[2] == 1) {
-                AddTexture(ps, "Kd", tex, loc_);
-            } else {
-                // pbrt's imagemap has no tint: multiply with a "scale" texture.
-                TextureDesc sc;
-                sc.type = "scale";
-                sc.name = "gltf:material" + std::to_string(mi) + ":baseColor";
-                sc.loc = loc_;
-                AddTexture(sc.params, "tex1", tex, loc_);
-                AddRGB(sc.params, "tex2", base[0], base[1], base[2], loc_);
-                AddTexture(ps, "Kd", sc.name, loc_);
-                desc_.textures.push_back(std::move(sc));
-            }
-            AddRGB(ps, "Ks", 1, 1, 1, loc_);
-            AddFloat(ps, "roughness", alpha, loc_);
-            AddBool(ps, "remaproughness", false, loc_);
-        }
-        desc_.materials.push_back(std::move(md));
-
-        int light = -1;
-        double e[3] = {0, 0, 0};
-        if (m.emissiveFactor.size() >= 3)
-            for (int i = 0; i < 3; ++i) e[i] = std::max(0.0, m.emissiveFactor[size_t(i)]);
-        double strength =
-            ExtNumber(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1);
-        if (e[0] > 0 || e[1] > 0 || e[2] > 0) {
-            if (m.emissiveTexture.index >= 0) {
-                diag_.Warn(loc_, "material \"" + desc_.materials.back().name +
-                                     "\": emissive textures are not supported; emission ignored");
-            } else {
-                AreaLightDesc al;
-                al.type = "diffuse";
-                al.loc = loc_;
-                AddRGB(al.params, "L", e[0] * strength, e[1] * strength, e[2] * strength, loc_);
-                // OBJ/glTF carry no sample count: 16 stratified shadow rays give clean soft shadows.
-                AddInts(al.params, "nsamples", {16}, loc_);
-                light = int(desc_.areaLights.size());
-                desc_.areaLights.push_back(std::move(al));
-            }
-        }
-        areaLightOfMaterial_.push_back(light);
-    }
-}
-
-void GltfReader::Read() {
+void GltfConverter::Read() {
     static const std::set<std::string> supported = {
         "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
         "KHR_materials_emissive_strength"};
@@ -681,13 +474,14 @@ void GltfReader::Read() {
     for (int n : model_.scenes[size_t(sceneIndex)].nodes) Traverse(n, Matrix4::Identity(), path);
 }
 
-}  // namespace
+}  // namespace gltf_internal
 
-SceneDescription LoadGltf(const std::string &path, Diagnostics &diag, uint64_t maxMemory) {
-    namespace fs = std::filesystem;
+SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, uint64_t maxMemory) {
+    using namespace gltf_internal;
     FileLoc loc{path};
     std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw SceneError(loc, "cannot open file \"" + path + "\"");
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw SceneError(loc, "cannot open file \"" + path + "\"");
 
     tinygltf::Model model;
     tinygltf::TinyGLTF ctx;
@@ -697,10 +491,8 @@ SceneDescription LoadGltf(const std::string &path, Diagnostics &diag, uint64_t m
                         &ReadWholeFileWithinBudget, &tinygltf::WriteWholeFile, &budget});
     std::string err, warn;
     bool ok;
-    std::string ext = fs::path(path).extension().string();
-    for (char &c : ext) c = char(std::tolower((unsigned char)c));
     try {
-        ok = ext == ".glb" ? ctx.LoadBinaryFromFile(&model, &err, &warn, path)
+        ok = LowerExtension(path) == ".glb" ? ctx.LoadBinaryFromFile(&model, &err, &warn, path)
                            : ctx.LoadASCIIFromFile(&model, &err, &warn, path);
     } catch (const std::exception &e) {
         throw SceneError(loc, std::string("cannot parse glTF file: ") + e.what());
@@ -716,7 +508,7 @@ SceneDescription LoadGltf(const std::string &path, Diagnostics &diag, uint64_t m
     desc.format = "gltf";
     desc.sourceFile = path;
     desc.baseDir = DirectoryOf(path);
-    GltfReader(model, path, diag, desc).Read();
+    GltfConverter(model, path, diag, desc).Read();
     return desc;
 }
 

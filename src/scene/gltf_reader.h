@@ -1,4 +1,4 @@
-// glTF 2.0 loader (.gltf and .glb, via tinygltf): the default scene's node hierarchy, triangle
+// glTF 2.0 reader (.gltf and .glb, via tinygltf): the default scene's node hierarchy, triangle
 // primitives, the first camera, KHR_lights_punctual lights and approximate pbrt-v3 materials.
 #pragma once
 
@@ -13,6 +13,6 @@ namespace prism {
 // referenced by textures as "embedded:<index>"; nothing is written to disk.
 // The .gltf/.glb file and each external buffer must fit in `maxMemory` bytes (0: the default
 // budget of core/memory.h); buffers must be regular files.
-SceneDescription LoadGltf(const std::string &path, Diagnostics &diag, uint64_t maxMemory = 0);
+SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, uint64_t maxMemory = 0);
 
 }  // namespace prism

@@ -2,24 +2,24 @@
 // scenes need because those formats usually carry neither.
 #include "scene/load_scene.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 
+#include "core/file_io.h"
 #include "core/memory.h"
-#include "scene/gltf_loader.h"
-#include "scene/obj_loader.h"
+#include "scene/gltf_reader.h"
+#include "scene/obj_reader.h"
 #include "scene/param_builders.h"
 #include "scene/ply_reader.h"
 
 namespace prism {
 
-std::string loader::DirectoryOf(const std::string &path) {
-    return std::filesystem::path(path).parent_path().string();
-}
-
 namespace {
 
-using namespace loader;
+using namespace reader;
 
 void ExpandMesh(const ShapeDesc &s, const Transform &worldFromObject, Bounds3f &b) {
     if (s.type != "trianglemesh") return;
@@ -43,7 +43,7 @@ SceneDescription LoadPlyScene(const std::string &path, Diagnostics &diag, Bounds
     // Read once here for the bounds (and to report a broken file early); the renderer reads it
     // again through the "plymesh" shape. Warnings are left to that second read.
     Diagnostics scratch;
-    PlyMesh mesh = ReadPly(path, scratch, maxMemory);
+    PlyMesh mesh = ReadPlyFile(path, scratch, maxMemory);
     for (const Vec3f &p : mesh.P) bounds->Expand(p);
     SceneDescription desc;
     desc.format = "ply";
@@ -58,6 +58,25 @@ SceneDescription LoadPlyScene(const std::string &path, Diagnostics &diag, Bounds
 }
 
 }  // namespace
+
+// Every format LoadScene reads, in the order messages list them.
+constexpr const char *kSceneExtensions[] = {".pbrt", ".obj", ".gltf", ".glb", ".ply"};
+
+bool IsSceneExtension(const std::string &extension) {
+    for (const char *e : kSceneExtensions)
+        if (std::equal(extension.begin(), extension.end(), e, e + std::strlen(e),
+                       [](char a, char b) { return std::tolower((unsigned char)a) == b; }))
+            return true;
+    return false;
+}
+
+std::string SceneExtensionList() {
+    std::string list;
+    const size_t n = std::size(kSceneExtensions);
+    for (size_t i = 0; i < n; ++i)
+        list += std::string(i == 0 ? "" : i + 1 == n ? " or " : ", ") + kSceneExtensions[i];
+    return list;
+}
 
 Bounds3f SceneMeshBounds(const SceneDescription &desc) {
     Bounds3f b;
@@ -100,8 +119,8 @@ void FrameDefaultCamera(SceneDescription &desc, const Bounds3f &bounds) {
 // left, slightly behind the viewer (a white Lambertian surface facing it reflects
 // 2.5 / pi ≈ 0.8), and a fill of L = 0.8 from the right at a low angle so surfaces facing away
 // from the key are not black. Camera space has +x to the image's right, +y up and +z ahead
-// for every camera Prism builds (see FrameDefaultCamera and the glTF loader).
-void AddDefaultLight(SceneDescription &desc, const Bounds3f &) {
+// for every camera Prism builds (see FrameDefaultCamera and the glTF reader).
+void AddDefaultLight(SceneDescription &desc) {
     FileLoc loc{desc.sourceFile};
     Transform worldFromCamera = desc.camera.cameraFromWorld.Inverse();
     auto Add = [&](Vec3d towardLightCamera, double L) {
@@ -123,8 +142,10 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
         throw SceneError(FileLoc{path}, "cannot open file \"" + path + "\"");
-    std::string ext = fs::path(path).extension().string();
-    for (char &c : ext) c = char(std::tolower((unsigned char)c));
+    const std::string ext = LowerExtension(path);
+    if (!IsSceneExtension(ext))
+        throw SceneError(FileLoc{path}, "unsupported scene format \"" + ext + "\" (expected " +
+                                            SceneExtensionList() + ")");
 
     // Every reader holds the whole file in memory (tinyobjloader, tinygltf, PLY, pbrt).
     uint64_t budget = EffectiveMemoryBudget(opts.maxMemory);
@@ -139,16 +160,13 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
     SceneDescription desc;
     Bounds3f bounds;
     if (ext == ".obj") {
-        desc = LoadObj(path, diag);
+        desc = ReadObjFile(path, diag);
         bounds = SceneMeshBounds(desc);
     } else if (ext == ".gltf" || ext == ".glb") {
-        desc = LoadGltf(path, diag, budget);
+        desc = ReadGltfFile(path, diag, budget);
         bounds = SceneMeshBounds(desc);
-    } else if (ext == ".ply") {
-        desc = LoadPlyScene(path, diag, &bounds, budget);
     } else {
-        throw SceneError(FileLoc{path}, "unsupported scene format \"" + ext +
-                                            "\" (expected .pbrt, .obj, .gltf, .glb or .ply)");
+        desc = LoadPlyScene(path, diag, &bounds, budget);
     }
     if (bounds.IsEmpty()) desc.notes.push_back("the scene contains no triangles");
     if (opts.defaultCamera && !desc.camera.specified) {
@@ -156,16 +174,10 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
         desc.notes.push_back("no camera in file: framed the bounding box");
     }
     if (opts.defaultLights && !HasEmitters(desc)) {
-        AddDefaultLight(desc, bounds);
+        AddDefaultLight(desc);
         desc.notes.push_back("no lights in file: added a default key and fill light");
     }
     return desc;
-}
-
-std::string ResolveScenePath(const SceneDescription &desc, const std::string &file) {
-    std::filesystem::path p(file);
-    if (p.is_absolute() || desc.baseDir.empty()) return file;
-    return (std::filesystem::path(desc.baseDir) / p).string();
 }
 
 }  // namespace prism

@@ -23,8 +23,16 @@ struct LoadOptions {
 
 // Throws SceneError: `cannot open file "..."` for a missing file, `unsupported scene format
 // ".xyz" (...)` for an unknown extension, and whatever the format's reader reports.
+// LoadScene dispatches on the extension to ParsePbrtFile (pbrt_parser.h), ReadObjFile
+// (obj_reader.h), ReadGltfFile (gltf_reader.h) or ReadPlyFile (ply_reader.h).
 SceneDescription LoadScene(const std::string &path, Diagnostics &diag,
                            const LoadOptions &opts = {});
+
+// Whether LoadScene reads files with this extension (".pbrt", ".obj", ".gltf", ".glb",
+// ".ply"; any case). The one list of scene formats: `prism batch` collects scenes with it.
+bool IsSceneExtension(const std::string &extension);
+// The same list for messages: ".pbrt, .obj, .gltf, .glb or .ply".
+std::string SceneExtensionList();
 
 // World-space bounds of the scene's "trianglemesh" shapes (P through worldFromObject, for
 // top-level shapes and object instances). Other shape types are not included.
@@ -36,6 +44,6 @@ void FrameDefaultCamera(SceneDescription &desc, const Bounds3f &bounds);
 
 // Adds a distant key light from the camera's upper left (from the viewer's side) and a weaker
 // fill from the right; directions follow desc.camera, so call it after the camera is final.
-void AddDefaultLight(SceneDescription &desc, const Bounds3f &bounds);
+void AddDefaultLight(SceneDescription &desc);
 
 }  // namespace prism

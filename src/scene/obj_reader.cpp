@@ -1,27 +1,27 @@
 // OBJ/MTL → SceneDescription. tinyobjloader does the parsing (negative indices, groups,
 // triangulation); this file validates its output, regroups faces by material and maps MTL
 // illumination models onto pbrt-v3 materials.
-#include "scene/obj_loader.h"
+#include "scene/obj_reader.h"
 
 #include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <unordered_map>
 
 #include <tiny_obj_loader.h>
 
+#include "core/file_io.h"
 #include "scene/param_builders.h"
 
 namespace prism {
 
 namespace {
 
-using namespace loader;
+using namespace reader;
 
 bool NonZero(const tinyobj::real_t c[3]) { return c[0] > 0 || c[1] > 0 || c[2] > 0; }
 
@@ -171,9 +171,8 @@ void CheckMaterialLibraries(const std::string &path, const std::string &line, in
 
 // tinyobjloader reads a malformed number as 0 without complaint; check the numeric lines
 // first so such files fail with a location instead of rendering wrongly.
-void CheckNumbers(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError(FileLoc{path}, "cannot open file \"" + path + "\"");
+void CheckNumbers(const std::string &path, const std::string &text) {
+    std::istringstream in(text);
     std::string line;
     int lineNo = 0;
     while (std::getline(in, line)) {
@@ -205,28 +204,50 @@ void CheckNumbers(const std::string &path) {
     }
 }
 
+// tinyobjloader's MaterialFileReader, reading through the shared file reader: MTL files are
+// looked up in the OBJ's directory; one that cannot be read is a warning, as in tinyobjloader.
+class MtlReader : public tinyobj::MaterialReader {
+public:
+    explicit MtlReader(std::string dir) : dir_(std::move(dir)) {}
+    bool operator()(const std::string &name, std::vector<tinyobj::material_t> *materials,
+                    std::map<std::string, int> *matMap, std::string *warn,
+                    std::string *err) override {
+        std::string text;
+        FileReadError error;
+        if (!ReadFileContents(dir_.empty() ? name : dir_ + "/" + name, &text, &error)) {
+            if (warn) *warn += "Material file [ " + name + " ] not found in a path : " + dir_ + "\n";
+            return false;
+        }
+        std::istringstream in(text);
+        tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+        return true;
+    }
+
+private:
+    std::string dir_;
+};
+
 }  // namespace
 
-SceneDescription LoadObj(const std::string &path, Diagnostics &diag) {
-    namespace fs = std::filesystem;
+SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag) {
     FileLoc fileLoc{path};
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec))
-        throw SceneError(fileLoc, "cannot open file \"" + path + "\"");
+    std::string text = ReadFileOrThrow(path, fileLoc);
+    CheckNumbers(path, text);
 
-    CheckNumbers(path);
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    bool ok = reader.ParseFromFile(path, config);
-    for (const std::string &w : MessageLines(reader.Warning())) diag.Warn(fileLoc, w);
-    std::vector<std::string> errors = MessageLines(reader.Error());
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warn, err;
+    MtlReader mtlReader(DirectoryOf(path));
+    std::istringstream in(std::move(text));
+    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtlReader,
+                               /*triangulate=*/true, /*default_vcols_fallback=*/false);
+    for (const std::string &w : MessageLines(warn)) diag.Warn(fileLoc, w);
+    std::vector<std::string> errors = MessageLines(err);
     if (!ok || !errors.empty())
         throw SceneError(fileLoc, errors.empty() ? std::string("cannot parse OBJ file")
                                                  : "cannot parse OBJ file: " + errors.front());
 
-    const tinyobj::attrib_t &attrib = reader.GetAttrib();
     for (tinyobj::real_t x : attrib.vertices)
         if (!std::isfinite(x)) throw SceneError(fileLoc, "vertex position is not a finite number");
 
@@ -237,7 +258,7 @@ SceneDescription LoadObj(const std::string &path, Diagnostics &diag) {
 
     // Materials map 1:1 onto desc.materials; emissive ones get an area light.
     std::vector<int> areaLightOf;
-    for (const tinyobj::material_t &m : reader.GetMaterials()) {
+    for (const tinyobj::material_t &m : materials) {
         desc.materials.push_back(ConvertMaterial(m, fileLoc, desc));
         int light = -1;
         if (NonZero(m.emission)) {
@@ -254,7 +275,7 @@ SceneDescription LoadObj(const std::string &path, Diagnostics &diag) {
     }
     const int nMaterials = int(desc.materials.size());
 
-    for (const tinyobj::shape_t &shape : reader.GetShapes()) {
+    for (const tinyobj::shape_t &shape : shapes) {
         const tinyobj::mesh_t &mesh = shape.mesh;
         std::map<int, MeshBuilder> byMaterial;  // ordered: deterministic output
         size_t offset = 0;

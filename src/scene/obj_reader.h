@@ -1,4 +1,4 @@
-// Wavefront OBJ + MTL loader (via tinyobjloader): one "trianglemesh" per (OBJ shape, material)
+// Wavefront OBJ + MTL reader (via tinyobjloader): one "trianglemesh" per (OBJ shape, material)
 // and MTL materials mapped onto pbrt-v3 material types (matte/plastic/mirror/glass).
 #pragma once
 
@@ -10,6 +10,6 @@ namespace prism {
 
 // Throws SceneError when the file cannot be read or is malformed; a missing .mtl file is a
 // warning (the default material is used). The camera is left unspecified.
-SceneDescription LoadObj(const std::string &path, Diagnostics &diag);
+SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag);
 
 }  // namespace prism

@@ -1,4 +1,4 @@
-// Helpers for the non-pbrt loaders (OBJ, glTF, PLY): build typed pbrt parameters in code, as
+// Helpers for the non-pbrt readers (OBJ, glTF, PLY): build typed pbrt parameters in code, as
 // if they had been written in a .pbrt file, so the renderer reads every format the same way.
 #pragma once
 
@@ -10,7 +10,7 @@
 #include "core/vecmath.h"
 #include "scene/paramset.h"
 
-namespace prism::loader {
+namespace prism::reader {
 
 inline Param MakeParam(ParamType type, const std::string &name, const FileLoc &loc) {
     Param p;
@@ -96,9 +96,6 @@ inline ParamSet TriangleMeshParams(const std::vector<int> &indices, const std::v
     return ps;
 }
 
-// Parent directory of a path ("" for a bare file name).
-std::string DirectoryOf(const std::string &path);
-
 // The loader libraries (tinyobjloader, tinygltf) report several messages in one
 // newline-separated string: one trimmed, non-empty line per message.
 inline std::vector<std::string> MessageLines(const std::string &s) {
@@ -112,4 +109,4 @@ inline std::vector<std::string> MessageLines(const std::string &s) {
     return out;
 }
 
-}  // namespace prism::loader
+}  // namespace prism::reader

@@ -2,6 +2,9 @@
 
 #include <climits>
 #include <cmath>
+#include <cstdio>
+
+#include "scene/spectrum.h"
 
 namespace prism {
 
@@ -176,6 +179,10 @@ void ParamSet::MarkUsed(const std::string &name) const {
     if (const Param *p = Find(name)) p->lookedUp = true;
 }
 
+void ParamSet::MarkAllUsed() const {
+    for (const Param &p : params_) p.lookedUp = true;
+}
+
 void ParamSet::ReportUnused(Diagnostics &diag, const std::string &context) const {
     for (const Param &p : params_) {
         if (p.lookedUp) continue;
@@ -183,6 +190,128 @@ void ParamSet::ReportUnused(Diagnostics &diag, const std::string &context) const
         if (!context.empty()) msg += " (" + context + ")";
         diag.Warn(p.loc, msg);
     }
+}
+
+static Param ConvertParameter(ParsedParameter &in, const SpectrumFileReader &spectrumFile) {
+    Param p;
+    p.name = std::move(in.name);
+    p.loc = std::move(in.loc);
+    p.spelledType = std::move(in.type);
+    const std::string &type = p.spelledType;
+    std::vector<double> &numbers = in.numbers;
+    std::vector<std::string> &strings = in.strings;
+    const std::string qname = Quote(p.name);
+    auto needNumbers = [&] {
+        if (!strings.empty())
+            throw SceneError(p.loc, "parameter " + qname + ": expected numbers, got strings");
+    };
+    auto needStrings = [&] {
+        if (!numbers.empty())
+            throw SceneError(p.loc, "parameter " + qname + ": expected strings, got numbers");
+    };
+    auto needMultiple = [&](size_t k) {
+        if (numbers.size() % k != 0)
+            throw SceneError(p.loc, "parameter " + qname + ": expected a multiple of " +
+                                        std::to_string(k) + " values, got " +
+                                        std::to_string(numbers.size()));
+    };
+    auto numeric = [&](ParamType t, size_t multiple) {
+        needNumbers();
+        needMultiple(multiple);
+        p.type = t;
+        p.numbers = std::move(numbers);
+    };
+
+    if (type == "float") {
+        numeric(ParamType::Float, 1);
+    } else if (type == "integer") {
+        numeric(ParamType::Integer, 1);
+        for (double v : p.numbers) {
+            if (v != std::floor(v) || v < double(INT_MIN) || v > double(INT_MAX)) {
+                char buf[64];
+                std::snprintf(buf, sizeof(buf), "%g", v);
+                throw SceneError(p.loc, "parameter " + qname + ": expected integers, got " + buf);
+            }
+        }
+    } else if (type == "point2") {
+        numeric(ParamType::Point2, 2);
+    } else if (type == "vector2") {
+        numeric(ParamType::Vector2, 2);
+    } else if (type == "point" || type == "point3") {
+        numeric(ParamType::Point3, 3);
+    } else if (type == "vector" || type == "vector3") {
+        numeric(ParamType::Vector3, 3);
+    } else if (type == "normal" || type == "normal3") {
+        numeric(ParamType::Normal, 3);
+    } else if (type == "rgb" || type == "color") {
+        numeric(ParamType::RGB, 3);
+    } else if (type == "xyz") {
+        numeric(ParamType::RGB, 3);
+        for (size_t i = 0; i < p.numbers.size(); i += 3) {
+            RGB c = XYZToRGB(p.numbers[i], p.numbers[i + 1], p.numbers[i + 2]);
+            for (int k = 0; k < 3; ++k) p.numbers[i + k] = c[k];
+        }
+    } else if (type == "blackbody") {
+        needNumbers();
+        p.type = ParamType::RGB;
+        // v3 writes [T scale] pairs; v4 a single temperature (normalized, scale 1).
+        if (numbers.size() == 1) numbers.push_back(1.0);
+        needMultiple(2);
+        for (size_t i = 0; i < numbers.size(); i += 2) {
+            if (!(numbers[i] > 0))
+                throw SceneError(p.loc, "parameter " + qname +
+                                            ": blackbody temperature must be positive");
+            RGB c = BlackbodyToRGB(numbers[i], numbers[i + 1]);
+            p.numbers.insert(p.numbers.end(), {c.r, c.g, c.b});
+        }
+    } else if (type == "spectrum") {
+        p.type = ParamType::RGB;
+        RGB c;
+        if (!strings.empty()) {
+            if (strings.size() != 1)
+                throw SceneError(p.loc, "parameter " + qname +
+                                            ": expected one spectrum file name, got " +
+                                            std::to_string(strings.size()));
+            c = spectrumFile(strings[0], p.loc);
+        } else {
+            if (numbers.size() < 2)
+                throw SceneError(p.loc, "parameter " + qname +
+                                            ": expected (wavelength, value) pairs");
+            needMultiple(2);
+            std::vector<std::pair<double, double>> samples(numbers.size() / 2);
+            for (size_t i = 0; i < samples.size(); ++i)
+                samples[i] = {numbers[2 * i], numbers[2 * i + 1]};
+            c = SampledToRGB(std::move(samples));
+        }
+        p.numbers = {c.r, c.g, c.b};
+    } else if (type == "bool") {
+        needStrings();
+        p.type = ParamType::Bool;
+        for (const std::string &s : strings) {
+            if (s == "true") p.bools.push_back(true);
+            else if (s == "false") p.bools.push_back(false);
+            else
+                throw SceneError(p.loc, "parameter " + qname +
+                                            ": expected \"true\" or \"false\", got " + Quote(s));
+        }
+    } else if (type == "string") {
+        needStrings();
+        p.type = ParamType::String;
+        p.strings = std::move(strings);
+    } else if (type == "texture") {
+        needStrings();
+        p.type = ParamType::Texture;
+        p.strings = std::move(strings);
+    } else {
+        throw SceneError(p.loc, "unknown parameter type " + Quote(type));
+    }
+    return p;
+}
+
+ParamSet MakeParamSet(ParsedParameterVector params, const SpectrumFileReader &spectrumFile) {
+    ParamSet ps;
+    for (ParsedParameter &pp : params) ps.Add(ConvertParameter(pp, spectrumFile));
+    return ps;
 }
 
 }  // namespace prism

@@ -1,9 +1,10 @@
 // Typed pbrt parameter lists ("float radius" [1]) with source locations and use tracking.
-// Spectral types (rgb/color, blackbody, spectrum, xyz) are converted to linear sRGB when the
-// list is parsed, so lookups only ever see RGB.
+// The parser hands over parameters as written (ParsedParameter: a type name and untyped
+// values); MakeParamSet checks and converts them. Spectral types (rgb/color, blackbody,
+// spectrum, xyz) become linear sRGB there, so lookups only ever see RGB.
 #pragma once
 
-#include <optional>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,8 @@ public:
 
     // Marks a parameter used without reading it (e.g. parameters Prism accepts and ignores).
     void MarkUsed(const std::string &name) const;
+    // Marks every parameter used (an entity that is ignored as a whole).
+    void MarkAllUsed() const;
     // Warns (with location) for every parameter never looked up: "unused parameter "foo"".
     void ReportUnused(Diagnostics &diag, const std::string &context) const;
 
@@ -71,5 +74,25 @@ private:
                            const char *want) const;
     std::vector<Param> params_;
 };
+
+// A parameter as the parser read it: `"type name" values`, before the type is interpreted.
+struct ParsedParameter {
+    std::string type, name;            // "float", "radius"
+    FileLoc loc;                       // location of the "type name" string
+    std::vector<double> numbers;       // numeric values, or
+    std::vector<std::string> strings;  // string values (and the bare words true / false)
+};
+using ParsedParameterVector = std::vector<ParsedParameter>;
+
+// Reads a spectrum file named by a `"spectrum name" "file.spd"` parameter (the name as
+// written, located at `loc`) and returns its RGB value.
+using SpectrumFileReader = std::function<RGB(const std::string &name, const FileLoc &loc)>;
+
+// Converts parsed parameters by their type names ("float", "integer", "point2", "point"/
+// "point3", "vector"/"vector3", "normal"/"normal3", "rgb"/"color", "xyz", "blackbody",
+// "spectrum", "bool", "string", "texture"). Throws SceneError at the parameter for an unknown
+// type, values of the wrong kind or count, non-integral integers, ... A later parameter of the
+// same name replaces an earlier one, as in pbrt.
+ParamSet MakeParamSet(ParsedParameterVector params, const SpectrumFileReader &spectrumFile);
 
 }  // namespace prism

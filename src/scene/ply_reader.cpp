@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 
+#include "core/file_io.h"
 #include "core/memory.h"
 
 namespace prism {
@@ -261,22 +261,6 @@ private:
     int line_;
 };
 
-std::string ReadWholeFile(const std::string &path, uint64_t maxBytes) {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw SceneError(FileLoc{path}, "cannot open file \"" + path + "\"");
-    std::streamoff size = in.tellg();
-    if (size < 0) throw SceneError(FileLoc{path}, "cannot read file \"" + path + "\"");
-    if (uint64_t(size) > maxBytes)
-        throw SceneError(FileLoc{path}, "file is " + FormatBytes(uint64_t(size)) +
-                                            ", more than the memory budget of " +
-                                            FormatBytes(maxBytes) + " (--max-memory)");
-    std::string buf(size_t(size), '\0');
-    in.seekg(0);
-    if (size > 0 && !in.read(buf.data(), size))
-        throw SceneError(FileLoc{path}, "cannot read file \"" + path + "\"");
-    return buf;
-}
-
 // A list count read from the file (as a double, like every value): a non-negative integer
 // small enough to convert. An ascii file can say 1e62, which does not fit any integer type.
 bool ListCount(double n, uint64_t *count) {
@@ -404,8 +388,8 @@ void SkipElement(const PlyElement &e, DataReader &r) {
 
 }  // namespace
 
-PlyMesh ReadPly(const std::string &path, Diagnostics &diag, uint64_t maxBytes) {
-    std::string buf = ReadWholeFile(path, maxBytes);
+PlyMesh ReadPlyFile(const std::string &path, Diagnostics &diag, uint64_t maxBytes) {
+    std::string buf = ReadFileOrThrow(path, FileLoc{path}, maxBytes);
     PlyHeader h = ParseHeader(path, buf);
 
     // Check every element count against the bytes that remain before allocating anything.

@@ -21,6 +21,6 @@ struct PlyMesh {
 // Throws SceneError for unreadable or malformed files (header errors carry file:line:col).
 // `maxBytes` is a memory budget: a file larger than it, or whose mesh would need more (file
 // plus arrays, estimated from the header), is rejected before the arrays are allocated.
-PlyMesh ReadPly(const std::string &path, Diagnostics &diag, uint64_t maxBytes = 8ull << 30);
+PlyMesh ReadPlyFile(const std::string &path, Diagnostics &diag, uint64_t maxBytes = 8ull << 30);
 
 }  // namespace prism

@@ -22,7 +22,7 @@ struct SceneEntity {
 
 struct CameraDesc : SceneEntity {
     Transform cameraFromWorld;  // CTM at the Camera directive
-    bool specified = false;     // false → loader default (perspective, identity)
+    bool specified = false;     // false → reader default (perspective, identity)
 };
 
 struct TextureDesc : SceneEntity {
@@ -102,13 +102,21 @@ struct SceneDescription {
     std::string sourceFile;   // the top-level file
     std::string format;       // "pbrt", "obj", "gltf", "ply"
     std::vector<EmbeddedImage> embeddedImages;
-    // Informational notes from the loader about what it supplied or interpreted, e.g. "no
+    // Informational notes from the reader about what it supplied or interpreted, e.g. "no
     // camera in file: framed the bounding box" (not warnings: nothing is wrong with the file).
     std::vector<std::string> notes;
 };
 
-// A path from the scene (texture, PLY, ...) resolved against the top-level file's directory
-// (pbrt-v3 semantics); absolute paths are returned unchanged.
-std::string ResolveScenePath(const SceneDescription &desc, const std::string &file);
+// A path from a scene file (Include, .spd, texture, PLY, ...) resolved against `baseDir`, the
+// directory of the top-level file (pbrt-v3 semantics); absolute paths are returned unchanged.
+// Every reader and the renderer resolve scene paths here.
+std::string ResolveScenePath(const std::string &baseDir, const std::string &file);
+inline std::string ResolveScenePath(const SceneDescription &desc, const std::string &file) {
+    return ResolveScenePath(desc.baseDir, file);
+}
+
+// Whether `canonicalPath` (see CanonicalPath in core/file_io.h) lies inside the directory
+// `dir` ("" is the current directory): the confinement of PbrtParseOptions::confineIncludes.
+bool IsInsideDirectory(const std::string &canonicalPath, const std::string &dir);
 
 }  // namespace prism

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <charconv>
 #include <cmath>
+
+#include "core/file_io.h"
 
 namespace prism {
 
@@ -109,6 +113,43 @@ RGB BlackbodyToRGB(double temperatureK, double scale) {
     if (!(peak > 0) || !std::isfinite(peak)) return RGB(0.f);
     RGB rgb = IntegrateToRGB([&](double l) { return Planck(l, temperatureK) / peak; });
     return rgb * float(scale);
+}
+
+std::optional<RGB> ReadSpdFile(const std::string &path, const std::string &displayName,
+                               std::string *error) {
+    std::string text;
+    FileReadError readError;
+    if (!ReadFileContents(path, &text, &readError)) {
+        *error = "cannot open spectrum file " + Quote(displayName) + ": " + readError.reason;
+        return std::nullopt;
+    }
+    std::vector<double> values;
+    bool ok = true;
+    size_t i = 0;
+    while (i < text.size() && ok) {
+        char c = text[i];
+        if (c == '#') {
+            while (i < text.size() && text[i] != '\n') ++i;
+        } else if (std::isspace(static_cast<unsigned char>(c)) || c == ',') {
+            ++i;
+        } else {
+            const char *first = text.data() + i, *last = text.data() + text.size();
+            if (*first == '+') ++first;
+            double v;
+            auto [ptr, ec] = std::from_chars(first, last, v);
+            if (ec != std::errc() || !std::isfinite(v)) ok = false;
+            else values.push_back(v);
+            i = size_t(ptr - text.data());
+        }
+    }
+    if (!ok || values.size() < 2 || values.size() % 2 != 0) {
+        *error = "cannot read spectrum file " + Quote(displayName) +
+                 ": expected (wavelength, value) pairs";
+        return std::nullopt;
+    }
+    std::vector<std::pair<double, double>> samples(values.size() / 2);
+    for (size_t k = 0; k < samples.size(); ++k) samples[k] = {values[2 * k], values[2 * k + 1]};
+    return SampledToRGB(std::move(samples));
 }
 
 }  // namespace prism

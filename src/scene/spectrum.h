@@ -1,7 +1,10 @@
-// Conversion of pbrt's spectral parameter types (xyz, blackbody, sampled spectra) to the
-// linear sRGB (Rec.709 primaries, D65 white) values the renderer works in.
+// Conversion of pbrt's spectral parameter types (xyz, blackbody, sampled spectra and .spd
+// spectrum files) to the linear sRGB (Rec.709 primaries, D65 white) values the renderer
+// works in.
 #pragma once
 
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -30,5 +33,13 @@ RGB SampledToRGB(std::vector<std::pair<double, double>> samples);
 // (at Wien's wavelength, as pbrt-v3 BlackbodyNormalized) is 1, converted as SampledToRGB and
 // multiplied by scale. T <= 0 or non-finite gives black.
 RGB BlackbodyToRGB(double temperatureK, double scale = 1.0);
+
+// Reads a .spd spectrum file (whitespace- or comma-separated (lambda nm, value) pairs, '#'
+// comments) through the shared file reader and converts it as SampledToRGB. On failure returns
+// nothing and sets *error to what went wrong, naming the file as `displayName`:
+// `cannot open spectrum file "NAME": REASON` or
+// `cannot read spectrum file "NAME": expected (wavelength, value) pairs`.
+std::optional<RGB> ReadSpdFile(const std::string &path, const std::string &displayName,
+                               std::string *error);
 
 }  // namespace prism

@@ -13,8 +13,8 @@
 
 #include "core/error.h"
 #include "image/image_io.h"
-#include "scene/gltf_loader.h"
-#include "scene/obj_loader.h"
+#include "scene/gltf_reader.h"
+#include "scene/obj_reader.h"
 #include "scene/pbrt_parser.h"
 #include "scene/ply_reader.h"
 
@@ -72,7 +72,7 @@ void FuzzPly(const uint8_t *data, size_t size) {
     std::string path = WriteInput("mesh.ply", data, size);
     Diagnostics diag;
     try {
-        ReadPly(path, diag);
+        ReadPlyFile(path, diag);
     } catch (const SceneError &) {
     }
 }
@@ -91,7 +91,7 @@ void FuzzObj(const uint8_t *data, size_t size) {
         WriteInput("scene.obj", reinterpret_cast<const uint8_t *>(obj.data()), obj.size());
     Diagnostics diag;
     try {
-        LoadObj(path, diag);
+        ReadObjFile(path, diag);
     } catch (const SceneError &) {
     }
 }
@@ -101,7 +101,7 @@ void FuzzGltf(const uint8_t *data, size_t size) {
     std::string path = WriteInput(glb ? "scene.glb" : "scene.gltf", data, size);
     Diagnostics diag;
     try {
-        LoadGltf(path, diag);
+        ReadGltfFile(path, diag);
     } catch (const SceneError &) {
     }
 }

@@ -12,9 +12,9 @@ namespace prism::fuzz {
 // image reader documents) are swallowed; anything else — a crash, a sanitizer report, another
 // exception type such as std::bad_alloc — escapes and is a bug.
 void FuzzPbrt(const uint8_t *data, size_t size);   // ParsePbrtString, includes confined
-void FuzzPly(const uint8_t *data, size_t size);    // ReadPly
-void FuzzObj(const uint8_t *data, size_t size);    // LoadObj (+ MTL after a "#%MTL" line)
-void FuzzGltf(const uint8_t *data, size_t size);   // LoadGltf: .glb if it starts with "glTF"
+void FuzzPly(const uint8_t *data, size_t size);    // ReadPlyFile
+void FuzzObj(const uint8_t *data, size_t size);    // ReadObjFile (+ MTL after a "#%MTL" line)
+void FuzzGltf(const uint8_t *data, size_t size);   // ReadGltfFile: .glb if it starts with "glTF"
 void FuzzImage(const uint8_t *data, size_t size);  // ReadImageFromMemory
 
 // Dispatch by target name ("pbrt", "ply", "obj", "gltf", "image"); false if unknown.

@@ -1,6 +1,6 @@
-// glTF loader: node transforms, primitives, camera conventions, KHR lights, materials,
+// glTF reader: node transforms, primitives, camera conventions, KHR lights, materials,
 // embedded images, and clean errors for malformed accessors.
-#include "scene/gltf_loader.h"
+#include "scene/gltf_reader.h"
 
 #include <cmath>
 #include <cstring>
@@ -160,9 +160,9 @@ const TextureDesc *FindTexture(const SceneDescription &d, const std::string &nam
     return nullptr;
 }
 
-TEST(GltfLoader, NodesPrimitivesAndWarnings) {
+TEST(GltfReader, NodesPrimitivesAndWarnings) {
     Diagnostics diag;
-    SceneDescription d = LoadGltf(WriteGltf("gltft_main", 0), diag);
+    SceneDescription d = ReadGltfFile(WriteGltf("gltft_main", 0), diag);
     EXPECT_EQ(d.format, "gltf");
     ASSERT_EQ(d.shapes.size(), 5u);  // 1 indexed quad + 4 non-indexed triangles
 
@@ -195,9 +195,9 @@ TEST(GltfLoader, NodesPrimitivesAndWarnings) {
     EXPECT_EQ(extWarnings, 1);
 }
 
-TEST(GltfLoader, PerspectiveCameraConvention) {
+TEST(GltfReader, PerspectiveCameraConvention) {
     Diagnostics diag;
-    SceneDescription d = LoadGltf(WriteGltf("gltft_cam", 0), diag);
+    SceneDescription d = ReadGltfFile(WriteGltf("gltft_cam", 0), diag);
     const CameraDesc &c = d.camera;
     ASSERT_TRUE(c.specified);
     EXPECT_EQ(c.type, "perspective");
@@ -214,15 +214,15 @@ TEST(GltfLoader, PerspectiveCameraConvention) {
     EXPECT_GT(Apply(cw, Vec3d(1, 3, 8)).y, 0);            // up stays up
 }
 
-TEST(GltfLoader, OrthographicAndPortraitCameras) {
+TEST(GltfReader, OrthographicAndPortraitCameras) {
     Diagnostics diag;
-    SceneDescription d = LoadGltf(WriteGltf("gltft_ortho", 1), diag);
+    SceneDescription d = ReadGltfFile(WriteGltf("gltft_ortho", 1), diag);
     ASSERT_TRUE(d.camera.specified);
     EXPECT_EQ(d.camera.type, "orthographic");
     EXPECT_EQ(d.camera.params.GetFloats("screenwindow"), (std::vector<float>{-2, 2, -1.5, 1.5}));
     EXPECT_TRUE(d.shapes.empty());
 
-    SceneDescription p = LoadGltf(WriteGltf("gltft_portrait", 2), diag);
+    SceneDescription p = ReadGltfFile(WriteGltf("gltft_portrait", 2), diag);
     // aspect 0.5: the horizontal axis is shorter; its fov is 2 atan(tan(yfov/2) * aspect).
     double expect = 2 * std::atan(std::tan(0.4) * 0.5) * 180 / Pi;
     EXPECT_NEAR(p.camera.params.GetFloat("fov", 0), expect, 1e-4);
@@ -230,9 +230,9 @@ TEST(GltfLoader, OrthographicAndPortraitCameras) {
     EXPECT_EQ(p.film.params.GetInt("yresolution", 0), 1280);
 }
 
-TEST(GltfLoader, SpotLight) {
+TEST(GltfReader, SpotLight) {
     Diagnostics diag;
-    SceneDescription d = LoadGltf(WriteGltf("gltft_light", 0), diag);
+    SceneDescription d = ReadGltfFile(WriteGltf("gltft_light", 0), diag);
     ASSERT_EQ(d.lights.size(), 1u);
     const LightDesc &l = d.lights[0];
     EXPECT_EQ(l.type, "spot");
@@ -248,9 +248,9 @@ TEST(GltfLoader, SpotLight) {
     ExpectNear(Normalize(to - from), Vec3d(0, -1, 0), 1e-6);  // rotated to point down
 }
 
-TEST(GltfLoader, Materials) {
+TEST(GltfReader, Materials) {
     Diagnostics diag;
-    SceneDescription d = LoadGltf(WriteGltf("gltft_mat", 0, /*dataUriBuffer=*/true), diag);
+    SceneDescription d = ReadGltfFile(WriteGltf("gltft_mat", 0, /*dataUriBuffer=*/true), diag);
     ASSERT_EQ(d.materials.size(), 5u);
 
     const MaterialDesc &tex = d.materials[0];
@@ -308,18 +308,18 @@ TEST(GltfLoader, Materials) {
               "PNGDATA");
 }
 
-TEST(GltfLoader, MalformedFilesAreSceneErrors) {
+TEST(GltfReader, MalformedFilesAreSceneErrors) {
     Diagnostics diag;
     // TEXCOORD_0 accessor claims 100 elements in a 32-byte view.
     std::string path = WriteGltf("gltft_bad", 0, true, "100");
     try {
-        LoadGltf(path, diag);
+        ReadGltfFile(path, diag);
         ADD_FAILURE() << "expected SceneError";
     } catch (const SceneError &e) {
         EXPECT_NE(std::string(e.what()).find("reaches past"), std::string::npos) << e.what();
     }
     // Huge counts must not overflow the bounds arithmetic.
-    EXPECT_THROW(LoadGltf(WriteGltf("gltft_bad2", 0, true, "4611686018427387904"), diag),
+    EXPECT_THROW(ReadGltfFile(WriteGltf("gltft_bad2", 0, true, "4611686018427387904"), diag),
                  SceneError);
     // A buffer view that reaches past its buffer.
     std::string json = Replace(kGltf, "\"byteOffset\": 108, \"byteLength\": 32",
@@ -327,11 +327,11 @@ TEST(GltfLoader, MalformedFilesAreSceneErrors) {
     json = Replace(Replace(Replace(json, "SCENE", "0"), "POSCOUNT", "4"), "IMAGE64", "AAAA");
     json = Replace(json, "BUFFERURI",
                    "data:application/octet-stream;base64," + Base64(QuadBuffer()));
-    EXPECT_THROW(LoadGltf(WriteFile("gltft_bad3.gltf", json), diag), SceneError);
-    EXPECT_THROW(LoadGltf(WriteFile("gltft_bad4.gltf", "{ \"asset\": "), diag), SceneError);
-    EXPECT_THROW(LoadGltf(WriteFile("gltft_bad5.glb", "glTF\x02\x00\x00\x00garbage"), diag),
+    EXPECT_THROW(ReadGltfFile(WriteFile("gltft_bad3.gltf", json), diag), SceneError);
+    EXPECT_THROW(ReadGltfFile(WriteFile("gltft_bad4.gltf", "{ \"asset\": "), diag), SceneError);
+    EXPECT_THROW(ReadGltfFile(WriteFile("gltft_bad5.glb", "glTF\x02\x00\x00\x00garbage"), diag),
                  SceneError);
-    EXPECT_THROW(LoadGltf(::testing::TempDir() + "gltft_missing.gltf", diag), SceneError);
+    EXPECT_THROW(ReadGltfFile(::testing::TempDir() + "gltft_missing.gltf", diag), SceneError);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// Resource limits of the scene readers: the memory budget (LoadOptions::maxMemory, ReadPly's
-// maxBytes, LoadGltf's maxMemory), sizes that do not fit the file, and include depth/cycles.
+// Resource limits of the scene readers: the memory budget (LoadOptions::maxMemory, ReadPlyFile's
+// maxBytes, ReadGltfFile's maxMemory), sizes that do not fit the file, and include depth/cycles.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "scene/gltf_loader.h"
+#include "scene/gltf_reader.h"
 #include "scene/load_scene.h"
 #include "scene/pbrt_parser.h"
 #include "scene/ply_reader.h"
@@ -49,12 +49,12 @@ std::string AsciiPly(int nv) {
 TEST(Limits, PlyMeshMustFitTheMemoryBudget) {
     std::string path = Write("budget.ply", AsciiPly(1000));
     Diagnostics diag;
-    EXPECT_EQ(ReadPly(path, diag, 1 << 20).P.size(), 1000u);
-    std::string err = ErrorOf([&] { ReadPly(path, diag, 20000); });
+    EXPECT_EQ(ReadPlyFile(path, diag, 1 << 20).P.size(), 1000u);
+    std::string err = ErrorOf([&] { ReadPlyFile(path, diag, 20000); });
     EXPECT_NE(err.find("budget.ply:3:1: error: mesh needs about"), std::string::npos) << err;
     EXPECT_NE(err.find("more than the memory budget of 20 KiB (--max-memory)"), std::string::npos) << err;
     // The file itself larger than the budget.
-    err = ErrorOf([&] { ReadPly(path, diag, 1000); });
+    err = ErrorOf([&] { ReadPlyFile(path, diag, 1000); });
     EXPECT_NE(err.find("more than the memory budget of 1000 bytes"), std::string::npos) << err;
 }
 
@@ -64,7 +64,7 @@ TEST(Limits, PlyHeaderClaimingATrillionVertices) {
                              "property float x\nproperty float y\nproperty float z\nend_header\n" +
                                  std::string(24, '\0'));
     Diagnostics diag;
-    std::string err = ErrorOf([&] { ReadPly(path, diag); });
+    std::string err = ErrorOf([&] { ReadPlyFile(path, diag); });
     EXPECT_NE(err.find("file ends after 2 of 1000000000000 vertices"), std::string::npos) << err;
 }
 
@@ -92,16 +92,16 @@ TEST(Limits, GltfBuffersMustFitTheBudgetAndBeRegularFiles) {
     Write("tri.bin", std::string(36, '\0'));
     std::string path = Write("tri.gltf", TriangleGltf("tri.bin", 36));
     Diagnostics diag;
-    EXPECT_NO_THROW(LoadGltf(path, diag, 1 << 20));
+    EXPECT_NO_THROW(ReadGltfFile(path, diag, 1 << 20));
     // The .gltf itself fits but the buffer does not.
     uint64_t gltfSize = fs::file_size(path);
-    std::string err = ErrorOf([&] { LoadGltf(path, diag, gltfSize + 10); });
+    std::string err = ErrorOf([&] { ReadGltfFile(path, diag, gltfSize + 10); });
     EXPECT_NE(err.find("exceeds the memory budget"), std::string::npos) << err;
     // A buffer that is a device (hostile URI) is refused before it is read.
     std::string rel;
     for (fs::path p = Dir(); p.has_relative_path() && p != p.root_path(); p = p.parent_path()) rel += "../";
     path = Write("zero.gltf", TriangleGltf(rel + "dev/zero", 36));
-    err = ErrorOf([&] { LoadGltf(path, diag); });
+    err = ErrorOf([&] { ReadGltfFile(path, diag); });
     EXPECT_NE(err.find("not a regular file"), std::string::npos) << err;
 }
 
@@ -109,7 +109,7 @@ TEST(Limits, GltfAccessorPastItsBuffer) {
     Write("short.bin", std::string(24, '\0'));
     std::string path = Write("short.gltf", TriangleGltf("short.bin", 24));
     Diagnostics diag;
-    std::string err = ErrorOf([&] { LoadGltf(path, diag); });
+    std::string err = ErrorOf([&] { ReadGltfFile(path, diag); });
     EXPECT_NE(err.find("reaches past the end of its buffer"), std::string::npos) << err;
 }
 

@@ -241,7 +241,7 @@ TEST(SharedSceneDetails, SpiderTexturesAndDamagedHelmetImages) {
 
     SceneDescription h = LoadScene(helmet, diag);
     ASSERT_EQ(h.materials.size(), 1u);
-    // Metalness from a texture + a base colour texture → textured plastic (see gltf_loader).
+    // Metalness from a texture + a base colour texture → textured plastic (see gltf_reader).
     EXPECT_EQ(h.materials[0].type, "plastic");
     EXPECT_FALSE(h.materials[0].params.GetTexture("Kd").empty());
     EXPECT_EQ(h.embeddedImages.size(), 1u);  // only the base colour image is referenced

@@ -1,5 +1,5 @@
-// OBJ loader: grouping by material, index forms, normals, and the MTL → pbrt material mapping.
-#include "scene/obj_loader.h"
+// OBJ reader: grouping by material, index forms, normals, and the MTL → pbrt material mapping.
+#include "scene/obj_reader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +28,7 @@ bool Near(const RGB &c, float r, float g, float b) {
     return std::abs(c.r - r) < 1e-5f && std::abs(c.g - g) < 1e-5f && std::abs(c.b - b) < 1e-5f;
 }
 
-TEST(ObjLoader, GroupsNegativeIndicesAndMissingNormals) {
+TEST(ObjReader, GroupsNegativeIndicesAndMissingNormals) {
     WriteFile("objt_groups.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n");
     std::string path = WriteFile("objt_groups.obj",
                                  "mtllib objt_groups.mtl\r\n"
@@ -43,7 +43,7 @@ TEST(ObjLoader, GroupsNegativeIndicesAndMissingNormals) {
                                  "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nv 0.5 1.5 1\n"
                                  "g penta\nusemtl blue\nf -5 -4 -3 -1 -2\n");
     Diagnostics diag;
-    SceneDescription d = LoadObj(path, diag);
+    SceneDescription d = ReadObjFile(path, diag);
     EXPECT_EQ(d.format, "obj");
     EXPECT_FALSE(d.camera.specified);
     ASSERT_EQ(d.materials.size(), 2u);
@@ -80,7 +80,7 @@ TEST(ObjLoader, GroupsNegativeIndicesAndMissingNormals) {
     EXPECT_EQ(diag.Count(), 0u);
 }
 
-TEST(ObjLoader, MaterialMapping) {
+TEST(ObjReader, MaterialMapping) {
     WriteFile("objt_mats.mtl",
               "newmtl dull\nKd 0.5 0.25 0.125\nKs 0 0 0\nillum 2\n"
               "newmtl shiny\nKd 0.2 0.2 0.2\nKs 0.5 0.5 0.5\nNs 98\nillum 2\n"
@@ -97,7 +97,7 @@ TEST(ObjLoader, MaterialMapping) {
         obj += std::string("usemtl ") + m + "\nf 1 2 3\n";
     std::string path = WriteFile("objt_mats.obj", obj);
     Diagnostics diag;
-    SceneDescription d = LoadObj(path, diag);
+    SceneDescription d = ReadObjFile(path, diag);
     ASSERT_EQ(d.materials.size(), 9u);
 
     const MaterialDesc *m = FindMaterial(d, "dull");
@@ -151,12 +151,12 @@ TEST(ObjLoader, MaterialMapping) {
     EXPECT_EQ(d.baseDir + "/", ::testing::TempDir());
 }
 
-TEST(ObjLoader, MissingMtlIsAWarning) {
+TEST(ObjReader, MissingMtlIsAWarning) {
     std::string path = WriteFile("objt_nomtl.obj",
                                  "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
                                  "usemtl ghost\nf 1 2 3\n");
     Diagnostics diag;
-    SceneDescription d = LoadObj(path, diag);
+    SceneDescription d = ReadObjFile(path, diag);
     ASSERT_EQ(d.shapes.size(), 1u);
     EXPECT_EQ(d.shapes[0].material, -1);  // the default material
     EXPECT_GE(diag.Count(), 1u);
@@ -166,30 +166,30 @@ TEST(ObjLoader, MissingMtlIsAWarning) {
     EXPECT_TRUE(mentions);
 }
 
-TEST(ObjLoader, Errors) {
+TEST(ObjReader, Errors) {
     Diagnostics diag;
     try {
-        LoadObj(::testing::TempDir() + "objt_missing.obj", diag);
+        ReadObjFile(::testing::TempDir() + "objt_missing.obj", diag);
         ADD_FAILURE() << "expected SceneError";
     } catch (const SceneError &e) {
         EXPECT_NE(std::string(e.what()).find("cannot open file"), std::string::npos) << e.what();
     }
     // A face that refers to a vertex that does not exist.
     std::string path = WriteFile("objt_badidx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
-    EXPECT_THROW(LoadObj(path, diag), SceneError);
+    EXPECT_THROW(ReadObjFile(path, diag), SceneError);
     path = WriteFile("objt_badidx2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n");
-    EXPECT_THROW(LoadObj(path, diag), SceneError);
+    EXPECT_THROW(ReadObjFile(path, diag), SceneError);
     // Malformed numbers: tinyobjloader would read them as 0.
     path = WriteFile("objt_badnum.obj", "v 0 0 0\nv 1 abc 0\nv 0 1 0\nf 1 2 3\n");
     try {
-        LoadObj(path, diag);
+        ReadObjFile(path, diag);
         ADD_FAILURE() << "expected SceneError";
     } catch (const SceneError &e) {
         EXPECT_NE(std::string(e.what()).find("objt_badnum.obj:2:5"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("bad number \"abc\""), std::string::npos) << e.what();
     }
     path = WriteFile("objt_nan.obj", "v 0 0 0\nv 1 0 0\nvn 0 nan 1\nf 1 2 3\n");
-    EXPECT_THROW(LoadObj(path, diag), SceneError);
+    EXPECT_THROW(ReadObjFile(path, diag), SceneError);
 }
 
 }  // namespace

@@ -36,7 +36,7 @@ struct Bytes {
 
 std::string ExpectError(const std::string &path, Diagnostics &diag) {
     try {
-        ReadPly(path, diag);
+        ReadPlyFile(path, diag);
     } catch (const SceneError &e) {
         return e.what();
     }
@@ -57,7 +57,7 @@ TEST(PlyReader, AsciiTriangleAndQuadWithNormalsAndUV) {
                                  "0 1 0 0 0 1 0 1\n"
                                  "3 0 1 2\n4 0 1 2 3\n");
     Diagnostics diag;
-    PlyMesh m = ReadPly(path, diag);
+    PlyMesh m = ReadPlyFile(path, diag);
     ASSERT_EQ(m.P.size(), 4u);
     EXPECT_EQ(m.P[2], Vec3f(1, 1, 0));
     ASSERT_EQ(m.N.size(), 4u);
@@ -90,7 +90,7 @@ TEST(PlyReader, BinaryLittleEndianSkipsOtherElements) {
         "element face 1\nproperty int flags\nproperty list uint8 uint vertex_index\n"
         "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n";
     Diagnostics diag;
-    PlyMesh m = ReadPly(WriteFile("le.ply", header + b.data), diag);
+    PlyMesh m = ReadPlyFile(WriteFile("le.ply", header + b.data), diag);
     ASSERT_EQ(m.P.size(), 3u);
     EXPECT_EQ(m.P[2], Vec3f(2, 4, -1));
     EXPECT_TRUE(m.N.empty());
@@ -113,7 +113,7 @@ TEST(PlyReader, BinaryBigEndianDoublesAndTextureUV) {
         "property float texture_u\nproperty float texture_v\n"
         "element face 1\nproperty list int ushort vertex_indices\nend_header\n";
     Diagnostics diag;
-    PlyMesh m = ReadPly(WriteFile("be.ply", header + b.data), diag);
+    PlyMesh m = ReadPlyFile(WriteFile("be.ply", header + b.data), diag);
     ASSERT_EQ(m.P.size(), 4u);
     EXPECT_EQ(m.P[3], Vec3f(0, 1, 5));
     ASSERT_EQ(m.uv.size(), 4u);
@@ -129,7 +129,7 @@ TEST(PlyReader, UVAliasesTextureST) {
                                  "property list uchar int vertex_indices\nend_header\n"
                                  "0 0 0 0.5 0.25\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n");
     Diagnostics diag;
-    PlyMesh m = ReadPly(path, diag);
+    PlyMesh m = ReadPlyFile(path, diag);
     ASSERT_EQ(m.uv.size(), 3u);
     EXPECT_EQ(m.uv[0], Vec2f(0.5f, 0.25f));
 }
@@ -142,7 +142,7 @@ TEST(PlyReader, PentagonsAreFannedWithOneWarning) {
                                  "0 0 0\n1 0 0\n2 1 0\n1 2 0\n0 1 0\n"
                                  "5 0 1 2 3 4\n5 4 3 2 1 0\n2 0 1\n3 0 1 2\n");
     Diagnostics diag;
-    PlyMesh m = ReadPly(path, diag);
+    PlyMesh m = ReadPlyFile(path, diag);
     EXPECT_EQ(m.indices.size(), (3u + 3u + 1u) * 3u);
     EXPECT_EQ(std::vector<int>(m.indices.begin(), m.indices.begin() + 9),
               (std::vector<int>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
@@ -209,7 +209,7 @@ TEST(PlyReader, HugeHeaderCountIsRejectedWithoutAllocating) {
     header = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
              "property float z\nelement empty 999999999999\nend_header\n0 0 0\n";
     Diagnostics d2;
-    PlyMesh m = ReadPly(WriteFile("huge3.ply", header), d2);
+    PlyMesh m = ReadPlyFile(WriteFile("huge3.ply", header), d2);
     EXPECT_EQ(m.P.size(), 1u);
 }
 

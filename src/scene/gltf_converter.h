@@ -1,0 +1,65 @@
+// Internal to the glTF reader (gltf_reader.cpp, gltf_materials.cpp): the converter from a
+// tinygltf model to a SceneDescription.
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "core/transform.h"
+#include "scene/scene_description.h"
+
+namespace prism::gltf_internal {
+
+// Validated view of one accessor's elements.
+struct AccessorView {
+    const unsigned char *data = nullptr;
+    size_t count = 0, stride = 0;
+    int componentType = 0, components = 0;
+    bool normalized = false;
+};
+
+// A number in a material's glTF extension object (`def` if absent).
+double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const char *key,
+                 double def, bool *present = nullptr);
+
+class GltfConverter {
+public:
+    GltfConverter(const tinygltf::Model &model, const std::string &path, Diagnostics &diag,
+               SceneDescription &desc)
+        : model_(model), loc_{path}, diag_(diag), desc_(desc) {}
+
+    void Read();
+
+private:
+    AccessorView View(int accessorIndex, const std::string &what);
+    std::vector<Vec3f> ReadVec3(int accessor, const std::string &what);
+    std::vector<Vec2f> ReadTexcoords(int accessor);
+    std::vector<int> ReadIndices(int accessor, size_t vertexCount);
+
+    void Traverse(int node, const Matrix4 &parent, std::vector<int> &path);
+    void AddMesh(int meshIndex, const Transform &worldFromObject);
+    void AddCamera(const tinygltf::Node &node, const Matrix4 &world);
+    void AddLight(const tinygltf::Node &node, const Matrix4 &world);
+    void ConvertMaterials();
+    std::string TextureFor(int textureIndex);
+    std::string ImageFilename(int imageIndex);
+
+    [[noreturn]] void Fail(const std::string &msg) const { throw SceneError(loc_, msg); }
+
+    const tinygltf::Model &model_;
+    FileLoc loc_;
+    Diagnostics &diag_;
+    SceneDescription &desc_;
+    std::vector<int> areaLightOfMaterial_;
+    std::map<int, std::string> textureNames_;
+    std::map<int, std::string> imageFilenames_;
+    std::set<int> warnedModes_;
+    bool haveCamera_ = false;
+};
+
+
+}  // namespace prism::gltf_internal

@@ -1,0 +1,430 @@
+#include "scene/scene_builder.h"
+
+#include <stdexcept>
+
+#include "core/file_io.h"
+#include "scene/spectrum.h"
+
+namespace prism {
+
+namespace {
+
+const char *FrameName(int kind) {
+    static const char *names[] = {"AttributeBegin", "TransformBegin", "ObjectBegin"};
+    return names[kind];
+}
+
+// Transform constructors reject degenerate input (a zero scale, LookAt along "up") with
+// std::invalid_argument; in a scene file that is an error at the directive.
+template <typename F>
+prism::Transform TransformOrThrow(const char *directive, const FileLoc &loc, F &&make) {
+    try {
+        return make();
+    } catch (const std::invalid_argument &e) {
+        throw SceneError(loc, std::string(directive) + ": " + e.what());
+    }
+}
+
+}  // namespace
+
+SceneBuilder::SceneBuilder(const std::string &filename, Diagnostics &diag,
+                           const PbrtParseOptions &opts)
+    : diag_(diag), opts_(opts) {
+    scene_.format = "pbrt";
+    scene_.sourceFile = filename;
+    scene_.baseDir = DirectoryOf(filename);
+}
+
+// Parameters and entities.
+
+ParamSet SceneBuilder::Params(ParsedParameterVector params) {
+    return MakeParamSet(std::move(params), [this](const std::string &name, const FileLoc &loc) {
+        return SpectrumFile(name, loc);
+    });
+}
+
+SceneEntity SceneBuilder::Entity(const std::string &type, ParsedParameterVector params,
+                                 const FileLoc &loc) {
+    return SceneEntity{type, Params(std::move(params)), loc};
+}
+
+RGB SceneBuilder::SpectrumFile(const std::string &name, const FileLoc &loc) {
+    std::string path = ResolveScenePath(scene_.baseDir, name);
+    auto cached = spdCache_.find(path);
+    if (cached != spdCache_.end()) return cached->second;
+    RGB result(1.f);
+    std::string error;
+    if (opts_.confineIncludes && !IsInsideDirectory(CanonicalPath(path), scene_.baseDir)) {
+        diag_.Warn(loc, "spectrum file " + Quote(name) +
+                            " is outside the scene directory; using a constant 1");
+    } else if (std::optional<RGB> rgb = ReadSpdFile(path, name, &error)) {
+        result = *rgb;
+    } else {
+        diag_.Warn(loc, error + "; using a constant 1");
+    }
+    spdCache_[path] = result;
+    return result;
+}
+
+void SceneBuilder::CheckWorld(const char *directive, const FileLoc &loc) {
+    if (!inWorld_) diag_.Warn(loc, std::string(directive) + " before WorldBegin");
+}
+
+bool SceneBuilder::OptionAllowed(const char *directive, const FileLoc &loc) {
+    if (!inWorld_) return true;
+    diag_.Warn(loc, std::string(directive) + " inside the world block is ignored");
+    return false;
+}
+
+// Transforms and scopes.
+
+void SceneBuilder::ApplyTransform(const prism::Transform &t, bool replace) {
+    // With ActiveTransform EndTime only the (unused) end transform would change.
+    if (!applyToStart_) return;
+    ctm_ = replace ? t : ctm_ * t;
+}
+
+std::unordered_map<std::string, int> &SceneBuilder::Names(Namespace ns) {
+    switch (ns) {
+    case Namespace::Material: return namedMaterials_;
+    case Namespace::FloatTexture: return floatTextures_;
+    case Namespace::SpectrumTexture: return spectrumTextures_;
+    }
+    return namedMaterials_;
+}
+
+void SceneBuilder::DefineNamed(Namespace ns, const std::string &name, int index) {
+    auto &map = Names(ns);
+    auto it = map.find(name);
+    std::optional<int> previous;
+    if (it != map.end()) previous = it->second;
+    // Only scoped definitions need undoing; top-level ones live to the end of the file.
+    if (!frames_.empty()) undo_.push_back({ns, name, previous});
+    map[name] = index;
+}
+
+void SceneBuilder::PushFrame(FrameKind kind, const FileLoc &loc) {
+    frames_.push_back({kind, loc, ctm_, applyToStart_, gs_, undo_.size()});
+}
+
+void SceneBuilder::PopFrame(FrameKind kind, const char *directive, const FileLoc &loc) {
+    if (frames_.empty())
+        throw SceneError(loc, std::string(directive) + " without matching " +
+                                  FrameName(int(kind)));
+    if (frames_.back().kind != kind) {
+        const Frame &top = frames_.back();
+        throw SceneError(loc, std::string(directive) + " does not match " +
+                                  FrameName(int(top.kind)) + " at " + top.loc.ToString());
+    }
+    Frame f = std::move(frames_.back());
+    frames_.pop_back();
+    ctm_ = f.ctm;
+    applyToStart_ = f.applyToStart;
+    if (kind == FrameKind::Transform) return;
+    gs_ = f.gs;
+    while (undo_.size() > f.undoMark) {
+        UndoEntry &u = undo_.back();
+        auto &map = Names(u.ns);
+        if (u.previous) map[u.name] = *u.previous;
+        else map.erase(u.name);
+        undo_.pop_back();
+    }
+}
+
+void SceneBuilder::WarnUnclosedFrames() {
+    for (const Frame &f : frames_)
+        if (f.kind != FrameKind::Object)
+            diag_.Warn(f.loc, std::string(FrameName(int(f.kind))) + " without matching " +
+                                  (f.kind == FrameKind::Attribute ? "AttributeEnd"
+                                                                  : "TransformEnd"));
+}
+
+void SceneBuilder::WarnMotion(const FileLoc &loc) {
+    if (!warnedMotion_) diag_.Warn(loc, "motion blur is not supported; using the start transform");
+    warnedMotion_ = true;
+}
+
+void SceneBuilder::AttributeBegin(const FileLoc &loc) { PushFrame(FrameKind::Attribute, loc); }
+
+void SceneBuilder::AttributeEnd(const FileLoc &loc) {
+    PopFrame(FrameKind::Attribute, "AttributeEnd", loc);
+}
+
+void SceneBuilder::TransformBegin(const FileLoc &loc) { PushFrame(FrameKind::Transform, loc); }
+
+void SceneBuilder::TransformEnd(const FileLoc &loc) {
+    PopFrame(FrameKind::Transform, "TransformEnd", loc);
+}
+
+void SceneBuilder::Translate(double dx, double dy, double dz, const FileLoc &) {
+    ApplyTransform(prism::Translate({dx, dy, dz}), false);
+}
+
+void SceneBuilder::Scale(double sx, double sy, double sz, const FileLoc &loc) {
+    ApplyTransform(TransformOrThrow("Scale", loc, [&] { return prism::Scale(sx, sy, sz); }),
+                   false);
+}
+
+void SceneBuilder::Rotate(double angle, double ax, double ay, double az, const FileLoc &loc) {
+    if (ax == 0 && ay == 0 && az == 0) throw SceneError(loc, "Rotate axis must not be zero");
+    ApplyTransform(prism::Rotate(angle, {ax, ay, az}), false);
+}
+
+void SceneBuilder::LookAt(double ex, double ey, double ez, double lx, double ly, double lz,
+                          double ux, double uy, double uz, const FileLoc &loc) {
+    ApplyTransform(TransformOrThrow("LookAt", loc,
+                                    [&] {
+                                        return prism::LookAt({ex, ey, ez}, {lx, ly, lz},
+                                                             {ux, uy, uz});
+                                    }),
+                   false);
+}
+
+void SceneBuilder::Transform(const double m[16], const FileLoc &loc) {
+    ApplyTransform(TransformOrThrow("Transform", loc, [&] { return FromPbrtMatrix(m); }), true);
+}
+
+void SceneBuilder::ConcatTransform(const double m[16], const FileLoc &loc) {
+    ApplyTransform(TransformOrThrow("ConcatTransform", loc, [&] { return FromPbrtMatrix(m); }),
+                   false);
+}
+
+void SceneBuilder::Identity(const FileLoc &) { ApplyTransform(prism::Transform(), true); }
+
+void SceneBuilder::CoordinateSystem(const std::string &name, const FileLoc &) {
+    namedCoordSys_[name] = ctm_;
+}
+
+void SceneBuilder::CoordSysTransform(const std::string &name, const FileLoc &loc) {
+    auto cs = namedCoordSys_.find(name);
+    if (cs == namedCoordSys_.end())
+        throw SceneError(loc, "unknown coordinate system " + Quote(name));
+    ApplyTransform(cs->second, true);
+}
+
+void SceneBuilder::ActiveTransform(ActiveTransformKind kind, const FileLoc &loc) {
+    applyToStart_ = kind != ActiveTransformKind::EndTime;
+    WarnMotion(loc);
+}
+
+void SceneBuilder::TransformTimes(double, double, const FileLoc &loc) { WarnMotion(loc); }
+
+void SceneBuilder::ReverseOrientation(const FileLoc &) {
+    gs_.reverseOrientation = !gs_.reverseOrientation;
+}
+
+// Options block.
+
+void SceneBuilder::Camera(const std::string &type, ParsedParameterVector params,
+                          const FileLoc &loc) {
+    SceneEntity e = Entity(type, std::move(params), loc);
+    if (!OptionAllowed("Camera", loc)) return;
+    CameraDesc &cam = scene_.camera;
+    static_cast<SceneEntity &>(cam) = std::move(e);
+    cam.cameraFromWorld = ctm_;
+    cam.specified = true;
+    // As pbrt-v3 pbrtCamera: "camera" names the camera-to-world frame.
+    namedCoordSys_["camera"] = ctm_.Inverse();
+}
+
+void SceneBuilder::Film(const std::string &type, ParsedParameterVector params,
+                        const FileLoc &loc) {
+    SceneEntity e = Entity(type, std::move(params), loc);
+    if (OptionAllowed("Film", loc)) scene_.film = std::move(e);
+}
+
+void SceneBuilder::Sampler(const std::string &type, ParsedParameterVector params,
+                           const FileLoc &loc) {
+    SceneEntity e = Entity(type, std::move(params), loc);
+    if (OptionAllowed("Sampler", loc)) scene_.sampler = std::move(e);
+}
+
+void SceneBuilder::PixelFilter(const std::string &type, ParsedParameterVector params,
+                               const FileLoc &loc) {
+    SceneEntity e = Entity(type, std::move(params), loc);
+    if (OptionAllowed("PixelFilter", loc)) scene_.filter = std::move(e);
+}
+
+void SceneBuilder::Integrator(const std::string &type, ParsedParameterVector params,
+                              const FileLoc &loc) {
+    SceneEntity e = Entity(type, std::move(params), loc);
+    if (OptionAllowed("Integrator", loc)) scene_.integrator = std::move(e);
+}
+
+void SceneBuilder::Accelerator(const std::string &type, ParsedParameterVector params,
+                               const FileLoc &loc) {
+    // Embree builds its own BVH: the parameters are checked and dropped.
+    Entity(type, std::move(params), loc);
+    OptionAllowed("Accelerator", loc);
+}
+
+void SceneBuilder::Option(ParsedParameterVector params, const FileLoc &) {
+    ParamSet ps = Params(std::move(params));
+    for (const Param &p : ps.Params())
+        diag_.Warn(p.loc, "Option " + Quote(p.name) + " is not supported; ignored");
+}
+
+void SceneBuilder::ColorSpace(const std::string &, const FileLoc &loc) {
+    diag_.Warn(loc, "ColorSpace is not supported; using sRGB");
+}
+
+// World block.
+
+void SceneBuilder::WorldBegin(const FileLoc &loc) {
+    if (inWorld_) throw SceneError(loc, "WorldBegin inside the world block");
+    inWorld_ = true;
+    applyToStart_ = true;
+    ctm_ = prism::Transform();
+    namedCoordSys_["world"] = ctm_;
+}
+
+void SceneBuilder::WorldEnd(const FileLoc &) {
+    WarnUnclosedFrames();
+    worldEnded_ = true;
+}
+
+void SceneBuilder::Material(const std::string &type, ParsedParameterVector params,
+                            const FileLoc &loc) {
+    CheckWorld("Material", loc);
+    MaterialDesc m;
+    static_cast<SceneEntity &>(m) = Entity(type, std::move(params), loc);
+    gs_.material = int(scene_.materials.size());
+    scene_.materials.push_back(std::move(m));
+}
+
+void SceneBuilder::MakeNamedMaterial(const std::string &name, ParsedParameterVector params,
+                                     const FileLoc &loc) {
+    CheckWorld("MakeNamedMaterial", loc);
+    MaterialDesc m;
+    m.name = name;
+    m.params = Params(std::move(params));
+    m.loc = loc;
+    const Param *type = m.params.Find("type");
+    if (!type || type->type != ParamType::String || type->strings.size() != 1)
+        throw SceneError(loc, "MakeNamedMaterial " + Quote(m.name) +
+                                  " needs a \"string type\" parameter");
+    m.type = type->strings[0];
+    m.params.MarkUsed("type");
+    if (namedMaterials_.count(m.name))
+        diag_.Warn(loc, "named material " + Quote(m.name) + " redefined");
+    DefineNamed(Namespace::Material, m.name, int(scene_.materials.size()));
+    scene_.materials.push_back(std::move(m));
+}
+
+void SceneBuilder::NamedMaterial(const std::string &name, const FileLoc &loc) {
+    auto nm = namedMaterials_.find(name);
+    if (nm == namedMaterials_.end())
+        throw SceneError(loc, "unknown named material " + Quote(name));
+    gs_.material = nm->second;
+}
+
+void SceneBuilder::Texture(const std::string &name, const std::string &kind,
+                           const std::string &type, ParsedParameterVector params,
+                           const FileLoc &loc) {
+    CheckWorld("Texture", loc);
+    TextureDesc t;
+    t.name = name;
+    if (kind == "float") t.isFloat = true;
+    else if (kind != "spectrum" && kind != "color" && kind != "rgb")
+        throw SceneError(loc, "texture " + Quote(t.name) + ": unknown texture type " +
+                                  Quote(kind) + " (expected \"float\" or \"spectrum\")");
+    t.type = type;
+    t.params = Params(std::move(params));
+    t.loc = loc;
+    t.worldFromTexture = ctm_;
+    Namespace ns = t.isFloat ? Namespace::FloatTexture : Namespace::SpectrumTexture;
+    if (Names(ns).count(t.name)) diag_.Warn(loc, "texture " + Quote(t.name) + " redefined");
+    DefineNamed(ns, t.name, int(scene_.textures.size()));
+    scene_.textures.push_back(std::move(t));
+}
+
+void SceneBuilder::LightSource(const std::string &type, ParsedParameterVector params,
+                               const FileLoc &loc) {
+    CheckWorld("LightSource", loc);
+    LightDesc l;
+    static_cast<SceneEntity &>(l) = Entity(type, std::move(params), loc);
+    l.worldFromLight = ctm_;
+    scene_.lights.push_back(std::move(l));
+}
+
+void SceneBuilder::AreaLightSource(const std::string &type, ParsedParameterVector params,
+                                   const FileLoc &loc) {
+    CheckWorld("AreaLightSource", loc);
+    AreaLightDesc a;
+    static_cast<SceneEntity &>(a) = Entity(type, std::move(params), loc);
+    gs_.areaLight = int(scene_.areaLights.size());
+    scene_.areaLights.push_back(std::move(a));
+}
+
+void SceneBuilder::Shape(const std::string &type, ParsedParameterVector params,
+                         const FileLoc &loc) {
+    CheckWorld("Shape", loc);
+    ShapeDesc s;
+    static_cast<SceneEntity &>(s) = Entity(type, std::move(params), loc);
+    s.worldFromObject = ctm_;
+    s.reverseOrientation = gs_.reverseOrientation;
+    s.material = gs_.material;
+    s.areaLight = gs_.areaLight;
+    if (currentObject_) {
+        s.directiveIndex = int(currentObject_->shapes.size());
+        currentObject_->shapes.push_back(std::move(s));
+    } else {
+        s.directiveIndex = shapeCount_++;
+        scene_.shapes.push_back(std::move(s));
+    }
+}
+
+void SceneBuilder::ObjectBegin(const std::string &name, const FileLoc &loc) {
+    CheckWorld("ObjectBegin", loc);
+    if (currentObject_)
+        throw SceneError(loc, "ObjectBegin inside ObjectBegin " + Quote(currentObject_->name) +
+                                  " (started at " + currentObject_->loc.ToString() + ")");
+    if (objectIndex_.count(name)) throw SceneError(loc, "object " + Quote(name) + " redefined");
+    // pbrt-v3 pbrtObjectBegin also begins an attribute scope.
+    PushFrame(FrameKind::Object, loc);
+    currentObject_ = ObjectDesc{name, loc, {}};
+}
+
+void SceneBuilder::ObjectEnd(const FileLoc &loc) {
+    if (!currentObject_) throw SceneError(loc, "ObjectEnd without matching ObjectBegin");
+    PopFrame(FrameKind::Object, "ObjectEnd", loc);
+    objectIndex_[currentObject_->name] = int(scene_.objects.size());
+    scene_.objects.push_back(std::move(*currentObject_));
+    currentObject_.reset();
+}
+
+void SceneBuilder::ObjectInstance(const std::string &name, const FileLoc &loc) {
+    CheckWorld("ObjectInstance", loc);
+    if (currentObject_)
+        throw SceneError(loc, "ObjectInstance inside ObjectBegin " + Quote(currentObject_->name));
+    if (!objectIndex_.count(name)) throw SceneError(loc, "unknown object " + Quote(name));
+    scene_.instances.push_back({name, ctm_, loc});
+}
+
+void SceneBuilder::MakeNamedMedium(const std::string &, ParsedParameterVector params,
+                                   const FileLoc &loc) {
+    Params(std::move(params));
+    diag_.Warn(loc, "participating media are not supported");
+}
+
+void SceneBuilder::MediumInterface(const std::string &, const std::string &, const FileLoc &loc) {
+    diag_.Warn(loc, "participating media are not supported");
+}
+
+void SceneBuilder::Attribute(const std::string &, ParsedParameterVector params,
+                             const FileLoc &loc) {
+    Params(std::move(params));
+    diag_.Warn(loc, "Attribute is not supported; ignored");
+}
+
+void SceneBuilder::EndOfFiles() {
+    if (currentObject_) {
+        diag_.Warn(currentObject_->loc, "ObjectBegin without matching ObjectEnd");
+        objectIndex_[currentObject_->name] = int(scene_.objects.size());
+        scene_.objects.push_back(std::move(*currentObject_));
+        currentObject_.reset();
+    }
+    if (!worldEnded_) WarnUnclosedFrames();
+}
+
+}  // namespace prism

@@ -1,0 +1,145 @@
+// The pbrt graphics state, as pbrt-v4's BasicSceneBuilder: receives the directives of a pbrt
+// file from the parser (pbrt_parser.h) and records them as a plain SceneDescription. It keeps
+// the current transform, material, area light and ReverseOrientation, the AttributeBegin/End
+// and TransformBegin/End scopes, named materials, textures and coordinate systems, and the
+// ObjectBegin/End definitions; typed parameters are converted by MakeParamSet (paramset.h).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "scene/pbrt_parser.h"
+
+namespace prism {
+
+class SceneBuilder final : public PbrtTarget {
+public:
+    // `filename` is the top-level file: it names the scene and its directory is the base of
+    // relative paths (.spd files here; Include in the parser).
+    SceneBuilder(const std::string &filename, Diagnostics &diag,
+                 const PbrtParseOptions &opts = {});
+
+    // The scene, once the parser has called EndOfFiles().
+    SceneDescription Result() { return std::move(scene_); }
+
+    void AttributeBegin(const FileLoc &loc) override;
+    void AttributeEnd(const FileLoc &loc) override;
+    void TransformBegin(const FileLoc &loc) override;
+    void TransformEnd(const FileLoc &loc) override;
+    void Translate(double dx, double dy, double dz, const FileLoc &loc) override;
+    void Scale(double sx, double sy, double sz, const FileLoc &loc) override;
+    void Rotate(double angle, double ax, double ay, double az, const FileLoc &loc) override;
+    void LookAt(double ex, double ey, double ez, double lx, double ly, double lz, double ux,
+                double uy, double uz, const FileLoc &loc) override;
+    void Transform(const double m[16], const FileLoc &loc) override;
+    void ConcatTransform(const double m[16], const FileLoc &loc) override;
+    void Identity(const FileLoc &loc) override;
+    void CoordinateSystem(const std::string &name, const FileLoc &loc) override;
+    void CoordSysTransform(const std::string &name, const FileLoc &loc) override;
+    void ActiveTransform(ActiveTransformKind kind, const FileLoc &loc) override;
+    void TransformTimes(double start, double end, const FileLoc &loc) override;
+    void ReverseOrientation(const FileLoc &loc) override;
+
+    void Camera(const std::string &type, ParsedParameterVector params,
+                const FileLoc &loc) override;
+    void Film(const std::string &type, ParsedParameterVector params, const FileLoc &loc) override;
+    void Sampler(const std::string &type, ParsedParameterVector params,
+                 const FileLoc &loc) override;
+    void PixelFilter(const std::string &type, ParsedParameterVector params,
+                     const FileLoc &loc) override;
+    void Integrator(const std::string &type, ParsedParameterVector params,
+                    const FileLoc &loc) override;
+    void Accelerator(const std::string &type, ParsedParameterVector params,
+                     const FileLoc &loc) override;
+    void Option(ParsedParameterVector params, const FileLoc &loc) override;
+    void ColorSpace(const std::string &name, const FileLoc &loc) override;
+
+    void WorldBegin(const FileLoc &loc) override;
+    void WorldEnd(const FileLoc &loc) override;
+    void Material(const std::string &type, ParsedParameterVector params,
+                  const FileLoc &loc) override;
+    void MakeNamedMaterial(const std::string &name, ParsedParameterVector params,
+                           const FileLoc &loc) override;
+    void NamedMaterial(const std::string &name, const FileLoc &loc) override;
+    void Texture(const std::string &name, const std::string &kind, const std::string &type,
+                 ParsedParameterVector params, const FileLoc &loc) override;
+    void LightSource(const std::string &type, ParsedParameterVector params,
+                     const FileLoc &loc) override;
+    void AreaLightSource(const std::string &type, ParsedParameterVector params,
+                         const FileLoc &loc) override;
+    void Shape(const std::string &type, ParsedParameterVector params,
+               const FileLoc &loc) override;
+    void ObjectBegin(const std::string &name, const FileLoc &loc) override;
+    void ObjectEnd(const FileLoc &loc) override;
+    void ObjectInstance(const std::string &name, const FileLoc &loc) override;
+    void MakeNamedMedium(const std::string &name, ParsedParameterVector params,
+                         const FileLoc &loc) override;
+    void MediumInterface(const std::string &inside, const std::string &outside,
+                         const FileLoc &loc) override;
+    void Attribute(const std::string &target, ParsedParameterVector params,
+                   const FileLoc &loc) override;
+
+    void EndOfFiles() override;
+
+private:
+    // What AttributeBegin/End saves besides the transform and the named definitions.
+    struct GraphicsState {
+        int material = -1;
+        int areaLight = -1;
+        bool reverseOrientation = false;
+    };
+    enum class FrameKind { Attribute, Transform, Object };
+    struct Frame {
+        FrameKind kind;
+        FileLoc loc;
+        prism::Transform ctm;
+        bool applyToStart;
+        GraphicsState gs;
+        size_t undoMark;  // size of the named-definition undo log when the frame was pushed
+    };
+    // Named materials and textures are scoped by AttributeBegin/End. Instead of copying the
+    // maps at every AttributeBegin (real scenes have tens of thousands), definitions are
+    // logged and undone when their scope closes.
+    enum class Namespace { Material, FloatTexture, SpectrumTexture };
+    struct UndoEntry {
+        Namespace ns;
+        std::string name;
+        std::optional<int> previous;
+    };
+
+    ParamSet Params(ParsedParameterVector params);
+    SceneEntity Entity(const std::string &type, ParsedParameterVector params,
+                       const FileLoc &loc);
+    RGB SpectrumFile(const std::string &name, const FileLoc &loc);
+    // An options-block entity (Camera, Film, ...): false, with a warning, inside the world.
+    bool OptionAllowed(const char *directive, const FileLoc &loc);
+    void CheckWorld(const char *directive, const FileLoc &loc);
+    void ApplyTransform(const prism::Transform &t, bool replace);
+    void PushFrame(FrameKind kind, const FileLoc &loc);
+    void PopFrame(FrameKind kind, const char *directive, const FileLoc &loc);
+    void DefineNamed(Namespace ns, const std::string &name, int index);
+    std::unordered_map<std::string, int> &Names(Namespace ns);
+    void WarnUnclosedFrames();
+    void WarnMotion(const FileLoc &loc);
+
+    SceneDescription scene_;
+    Diagnostics &diag_;
+    PbrtParseOptions opts_;
+
+    prism::Transform ctm_;
+    bool applyToStart_ = true;
+    GraphicsState gs_;
+    std::vector<Frame> frames_;
+    std::vector<UndoEntry> undo_;
+    std::unordered_map<std::string, int> namedMaterials_, floatTextures_, spectrumTextures_;
+    std::unordered_map<std::string, prism::Transform> namedCoordSys_;
+    std::unordered_map<std::string, int> objectIndex_;
+    std::optional<ObjectDesc> currentObject_;
+    std::unordered_map<std::string, RGB> spdCache_;
+    bool inWorld_ = false, worldEnded_ = false, warnedMotion_ = false;
+    int shapeCount_ = 0;
+};
+
+}  // namespace prism

@@ -1,0 +1,21 @@
+#include "scene/scene_description.h"
+
+#include <filesystem>
+
+#include "core/file_io.h"
+
+namespace prism {
+
+std::string ResolveScenePath(const std::string &baseDir, const std::string &file) {
+    std::filesystem::path p(file);
+    if (p.is_absolute() || baseDir.empty()) return file;
+    return (std::filesystem::path(baseDir) / p).string();
+}
+
+bool IsInsideDirectory(const std::string &canonicalPath, const std::string &dir) {
+    std::filesystem::path base = CanonicalPath(dir.empty() ? "." : dir);
+    std::filesystem::path rel = std::filesystem::path(canonicalPath).lexically_relative(base);
+    return !rel.empty() && *rel.begin() != "..";
+}
+
+}  // namespace prism
