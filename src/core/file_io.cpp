@@ -117,8 +117,10 @@ std::string DirectoryOf(const std::string &path) {
 std::string CanonicalPath(const std::string &path) {
     namespace fs = std::filesystem;
     std::error_code ec;
-    fs::path c = fs::weakly_canonical(path, ec);
-    if (ec) c = fs::absolute(path, ec).lexically_normal();
+    fs::path absolute = fs::absolute(path, ec);
+    if (ec) absolute = path;
+    fs::path c = fs::weakly_canonical(absolute, ec);
+    if (ec) c = absolute.lexically_normal();
     return c.string();
 }
 

@@ -24,7 +24,7 @@ struct AccessorView {
 
 // A number in a material's glTF extension object (`def` if absent).
 double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const char *key,
-                 double def, bool *present = nullptr);
+                 double def);
 
 class GltfConverter {
 public:

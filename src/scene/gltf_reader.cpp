@@ -21,9 +21,8 @@ namespace gltf_internal {
 using namespace reader;
 
 double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const char *key,
-                 double def, bool *present) {
+                 double def) {
     auto it = ext.find(extName);
-    if (present) *present = it != ext.end();
     if (it == ext.end() || !it->second.IsObject() || !it->second.Has(key)) return def;
     const tinygltf::Value &v = it->second.Get(key);
     return v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : def;

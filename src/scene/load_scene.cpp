@@ -38,7 +38,7 @@ bool HasEmitters(const SceneDescription &desc) {
     return false;
 }
 
-SceneDescription LoadPlyScene(const std::string &path, Diagnostics &diag, Bounds3f *bounds,
+SceneDescription LoadPlyScene(const std::string &path, Bounds3f *bounds,
                               uint64_t maxMemory) {
     // Read once here for the bounds (and to report a broken file early); the renderer reads it
     // again through the "plymesh" shape. Warnings are left to that second read.
@@ -166,7 +166,7 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
         desc = ReadGltfFile(path, diag, budget);
         bounds = SceneMeshBounds(desc);
     } else {
-        desc = LoadPlyScene(path, diag, &bounds, budget);
+        desc = LoadPlyScene(path, &bounds, budget);
     }
     if (bounds.IsEmpty()) desc.notes.push_back("the scene contains no triangles");
     if (opts.defaultCamera && !desc.camera.specified) {

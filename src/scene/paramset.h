@@ -38,7 +38,6 @@ public:
     bool Has(const std::string &name) const { return Find(name) != nullptr; }
     const Param *Find(const std::string &name) const;
     const std::vector<Param> &Params() const { return params_; }
-    bool Empty() const { return params_.empty(); }
 
     // Single-value lookups. Absent → default. Present with the wrong type → SceneError at the
     // parameter's location ("parameter "radius" must be float, not string").

@@ -39,8 +39,6 @@ public:
     // Returns the token Next() would return, without consuming it.
     const Token &Peek();
 
-    const std::string &Filename() const { return filename_; }
-
     // The value of a String token with escapes (\" \\ \n \t \r \b \f \') resolved.
     static std::string StringValue(const Token &t);
 

@@ -1,0 +1,89 @@
+// The shared file reader: regular files only (never blocking on a device or FIFO), the OS
+// reason on failure, and the size limit checked before reading.
+#include "core/file_io.h"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace prism {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string TempPath(const std::string &name) {
+    return (fs::path(::testing::TempDir()) / ("file_io_" + name)).string();
+}
+
+TEST(FileIo, ReadsRegularFilesWhole) {
+    std::string path = TempPath("text.txt");
+    std::string data(200000, 'x');
+    data[123] = '\0';  // binary-safe
+    std::ofstream(path, std::ios::binary) << data;
+    std::string text;
+    FileReadError err;
+    ASSERT_TRUE(ReadFileContents(path, &text, &err)) << err.reason;
+    EXPECT_EQ(text, data);
+    std::vector<unsigned char> bytes;
+    ASSERT_TRUE(ReadFileContents(path, &bytes, &err));
+    EXPECT_EQ(bytes.size(), data.size());
+    EXPECT_EQ(ReadFileOrThrow(path, FileLoc{path}), data);
+}
+
+TEST(FileIo, RefusesWhatIsNotARegularFile) {
+    std::string text;
+    FileReadError err;
+    EXPECT_FALSE(ReadFileContents("/dev/zero", &text, &err));  // would never end
+    EXPECT_EQ(err.reason, "not a regular file");
+    EXPECT_FALSE(ReadFileContents(::testing::TempDir(), &text, &err));
+    EXPECT_EQ(err.reason, "Is a directory");
+    EXPECT_FALSE(ReadFileContents(TempPath("does-not-exist"), &text, &err));
+    EXPECT_EQ(err.reason, "No such file or directory");
+
+    // A FIFO without a writer: opening it must not block.
+    std::string fifo = TempPath("fifo");
+    ::unlink(fifo.c_str());
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_FALSE(ReadFileContents(fifo, &text, &err));
+    EXPECT_EQ(err.reason, "not a regular file");
+    ::unlink(fifo.c_str());
+
+    try {
+        ReadFileOrThrow("/dev/zero", FileLoc{"s.pbrt", 3, 1});
+        FAIL() << "no error";
+    } catch (const SceneError &e) {
+        EXPECT_STREQ(e.what(), "s.pbrt:3:1: error: cannot open file \"/dev/zero\": not a regular file");
+    }
+}
+
+TEST(FileIo, SizeLimitIsCheckedBeforeReading) {
+    std::string path = TempPath("limit.txt");
+    std::ofstream(path) << std::string(5000, 'a');
+    std::string text;
+    FileReadError err;
+    EXPECT_TRUE(ReadFileContents(path, &text, &err, 5000));
+    EXPECT_FALSE(ReadFileContents(path, &text, &err, 4999));
+    EXPECT_TRUE(err.tooLarge);
+    EXPECT_EQ(err.size, 5000u);
+    try {
+        ReadFileOrThrow(path, FileLoc{path}, 1024);
+        FAIL() << "no error";
+    } catch (const SceneError &e) {
+        EXPECT_EQ(e.Message(), "file is 4.9 KiB, more than the memory budget of 1.0 KiB (--max-memory)");
+    }
+}
+
+TEST(FileIo, PathHelpers) {
+    EXPECT_EQ(LowerExtension("a/Scene.PBRT"), ".pbrt");
+    EXPECT_EQ(LowerExtension("a.b/noext"), "");
+    EXPECT_EQ(DirectoryOf("scenes/a.pbrt"), "scenes");
+    EXPECT_EQ(DirectoryOf("a.pbrt"), "");
+    EXPECT_EQ(CanonicalPath("/tmp/../tmp/./x"), CanonicalPath("/tmp/x"));
+    EXPECT_TRUE(fs::path(CanonicalPath("relative")).is_absolute());
+}
+
+}  // namespace
+}  // namespace prism
