@@ -216,14 +216,17 @@ double Piecewise(double l, double mu, double s1, double s2) {
     return std::exp(-0.5 * t * t);
 }
 double WymanX(double l) {
-    return 1.056 * Piecewise(l, 599.8, 0.0264, 0.0323) + 0.362 * Piecewise(l, 442.0, 0.0624, 0.0374) -
+    return 1.056 * Piecewise(l, 599.8, 0.0264, 0.0323) +
+           0.362 * Piecewise(l, 442.0, 0.0624, 0.0374) -
            0.065 * Piecewise(l, 501.1, 0.0490, 0.0382);
 }
 double WymanY(double l) {
-    return 0.821 * Piecewise(l, 568.8, 0.0213, 0.0247) + 0.286 * Piecewise(l, 530.9, 0.0613, 0.0322);
+    return 0.821 * Piecewise(l, 568.8, 0.0213, 0.0247) +
+           0.286 * Piecewise(l, 530.9, 0.0613, 0.0322);
 }
 double WymanZ(double l) {
-    return 1.217 * Piecewise(l, 437.0, 0.0845, 0.0278) + 0.681 * Piecewise(l, 459.0, 0.0385, 0.0725);
+    return 1.217 * Piecewise(l, 437.0, 0.0845, 0.0278) +
+           0.681 * Piecewise(l, 459.0, 0.0385, 0.0725);
 }
 double PlanckLaw(double nm, double T) {
     const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23, l = nm * 1e-9;
