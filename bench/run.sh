@@ -4,11 +4,25 @@
 # Runs are interleaved (Prism, POV-Ray, Prism, ...) and medians reported, so that the ratio
 # comes from one session on a shared, noisy machine.
 # Usage: bench/run.sh [RUNS]   (needs: build/prism, povray, python3 for gen_knot.py)
+#        bench/run.sh --paths     (prints the prism binary and shared folder it would use)
+# Paths resolve from the repository root (the folder above this script), whatever the current
+# directory: the shared data is the folder `shared` beside the clone ($SHARED overrides it).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)"
+cd "$ROOT"
+PRISM="${PRISM:-$ROOT/build/prism}"
+SHARED="${SHARED:-$ROOT/../shared}"
+if [ ! -d "$SHARED/peers" ]; then
+    echo "bench/run.sh: no peers folder in $SHARED (clone the repository beside shared/, or set SHARED)" >&2
+    exit 2
+fi
+SHARED="$(cd "$SHARED" && pwd -P)"
+if [ "${1:-}" = "--paths" ]; then
+    echo "prism: $PRISM"
+    echo "shared: $SHARED"
+    exit 0
+fi
 RUNS="${1:-5}"
-PRISM="${PRISM:-$PWD/build/prism}"
-SHARED="${SHARED:-$PWD/../shared}"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 
@@ -71,5 +85,5 @@ prec_bench() {
     mf=$(printf '%s\n' "${f[@]}" | median); md=$(printf '%s\n' "${d[@]}" | median)
     printf "| %s | %.3f | %.3f | %.3f |\n" "$name" "$mf" "$md" "$(awk "BEGIN {print $md / $mf}")"
 }
-prec_bench "scenes/quadrics.pbrt (13 analytic shapes)" scenes/quadrics.pbrt
+prec_bench "scenes/quadrics.pbrt (12 analytic shapes)" scenes/quadrics.pbrt
 prec_bench "scenes/whitted.pbrt" scenes/whitted.pbrt

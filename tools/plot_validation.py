@@ -20,7 +20,7 @@ def main():
     shapes = {}
     for r in rows:
         shapes.setdefault(r["shape"], []).append(r)
-    fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(13, 5.2))
+    fig, (ax0, axs, ax1) = plt.subplots(1, 3, figsize=(19, 5.2))
     ref_drawn = False
     for name, rs in shapes.items():
         n = [int(r["level"]) for r in rs]
@@ -42,6 +42,13 @@ def main():
             ax0.loglog([n0, n[-1]], [d0 * 1.5, d0 * 1.5 * (n[-1] / n0) ** -2], "k--",
                        label="O(n^-2) reference")
             ref_drawn = True
+        # Shading-normal error (mean, degrees); the disk's sits at float rounding.
+        sh = [(a, float(r["shading_err_deg_mean"])) for a, r in zip(n, rs)]
+        sh = [p for p in sh if p[1] > 0]
+        sslope = rs[0].get("shading_slope", "")
+        if sh:
+            axs.loglog([p[0] for p in sh], [p[1] for p in sh], "o-", color=color,
+                       label=name + (f" (slope {float(sslope):.2f})" if sslope else ""))
         l2, = ax1.loglog(n, ns_mesh, "o-", color=color, label=name + " triangles")
         ax1.axhline(ns_an, color=l2.get_color(), ls="--", alpha=0.6)
     ax0.set_xlabel("n_phi (segments around the axis)")
@@ -49,6 +56,11 @@ def main():
     ax0.set_title("Tessellation error against n")
     ax0.grid(True, which="both", alpha=0.3)
     ax0.legend(fontsize=7)
+    axs.set_xlabel("n_phi")
+    axs.set_ylabel("mean shading-normal error (degrees)")
+    axs.set_title("Interpolated vertex normals against n")
+    axs.grid(True, which="both", alpha=0.3)
+    axs.legend(fontsize=7)
     ax1.set_xlabel("n_phi")
     ax1.set_ylabel("ns per ray (dashed: analytic)")
     ax1.set_title("Time per ray (1 thread, rtcIntersect1)")

@@ -1,4 +1,5 @@
-// prism: a Whitted ray tracer on Embree. Subcommands: render (more arrive with their issues).
+// prism: a Whitted ray tracer on Embree. Subcommands: render, info, trace, validate and batch
+// (with no arguments: render scenes/whitted.pbrt).
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"

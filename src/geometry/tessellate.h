@@ -51,6 +51,9 @@ struct TessellatedMesh {
     std::vector<Vec2d> uv;  // the analytic shape's uv
     std::vector<uint32_t> indices;
     int nPhi = 0, nV = 0;
+    // The cone's apex, which has no normal of its own (each generator has one): N holds the
+    // axis there; MakeTessellatedMesh gives it a zero shading normal. -1 for other shapes.
+    int apexVertex = -1;
 };
 
 // Rings derived from nPhi: max(1, round(nPhi * turning / 2pi)); nPhi/2 for a full sphere.

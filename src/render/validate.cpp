@@ -319,6 +319,22 @@ ShapeReport ValidateShape(const std::string &name, std::unique_ptr<AnalyticShape
         rep.levels.push_back(L);
     }
 
+    // ---- Convergence of the mean shading-normal error with n (degrees; below 1e-3 at every
+    // level is rounding: float normals).
+    {
+        std::vector<double> sx, sy;
+        for (const LevelStats &l : rep.levels)
+            if (l.shadingErrMean > 1e-3) {
+                sx.push_back(std::log(double(l.nPhi)));
+                sy.push_back(std::log(l.shadingErrMean));
+            }
+        rep.shadingSlopeApplicable = sx.size() >= 2;
+        if (rep.shadingSlopeApplicable) {
+            rep.shadingSlope = Slope(sx, sy, nullptr);
+            rep.shadingSlopeOk = rep.shadingSlope <= -1.7;
+        }
+    }
+
     // ---- Convergence of mean |dt| with n.
     std::vector<double> lx, ly;
     double h0 = rep.levels.empty() ? 0 : rep.levels.front().h;
@@ -446,6 +462,12 @@ std::string FormatReport(const ShapeReport &r) {
     } else {
         s += "  convergence slope: n/a: " + r.note + "\n";
     }
+    if (r.shadingSlopeApplicable) {
+        std::snprintf(buf, sizeof(buf),
+                      "  convergence slope of mean shading-normal error: %.3f (%s, want <= -1.7)\n",
+                      r.shadingSlope, r.shadingSlopeOk ? "ok" : "FAIL");
+        s += buf;
+    }
     if (r.OutOfBand() > 0)
         s += "  FAIL: " + std::to_string(r.OutOfBand()) +
              " disagreements outside the chord-error band\n";
@@ -458,7 +480,8 @@ std::string ResultsCsv(const std::vector<ShapeReport> &reports) {
         "out_of_band,leaks,deep_leaks,phantoms,sheet_switch,dt_mean,dt_p99,dt_max,dt_bound,"
         "dt_over_bound,dt_ratio_max,normal_err_deg_mean,normal_err_deg_max,shading_err_deg_mean,"
         "shading_err_deg_max,ns_per_ray_analytic,ns_per_ray_mesh,mrays_analytic,mrays_mesh,"
-        "build_ms,analytic_dt_bound,slope,equal_accuracy_level,equal_accuracy_ns_per_ray\n";
+        "build_ms,analytic_dt_bound,slope,equal_accuracy_level,equal_accuracy_ns_per_ray,"
+        "shading_slope\n";
     char buf[1024];
     for (const ShapeReport &r : reports)
         for (const LevelStats &l : r.levels) {
@@ -466,7 +489,7 @@ std::string ResultsCsv(const std::vector<ShapeReport> &reports) {
                 buf, sizeof(buf),
                 "%s,%d,%d,%zu,%lld,%.6g,%lld,%lld,%.6g,%lld,%lld,%lld,%lld,%lld,%lld,%.6g,%.6g,"
                 "%.6g,%.6g,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%.6g,%."
-                "6g\n",
+                "6g,%s\n",
                 r.name.c_str(), l.nPhi, l.nV, l.triangles, (long long)r.rays, l.h,
                 (long long)l.analyticHits, (long long)l.meshHits,
                 r.rays ? double(l.disagree) / double(r.rays) : 0.0, (long long)l.inBand,
@@ -477,7 +500,8 @@ std::string ResultsCsv(const std::vector<ShapeReport> &reports) {
                 l.nsPerRayMesh, r.nsPerRayAnalytic > 0 ? 1e3 / r.nsPerRayAnalytic : 0.0,
                 l.nsPerRayMesh > 0 ? 1e3 / l.nsPerRayMesh : 0.0, l.buildMs, r.analyticDtBound,
                 r.slopeApplicable ? std::to_string(r.slope).c_str() : "", r.equalAccuracyLevel,
-                r.equalAccuracyNsPerRay);
+                r.equalAccuracyNsPerRay,
+                r.shadingSlopeApplicable ? std::to_string(r.shadingSlope).c_str() : "");
             s += buf;
         }
     return s;
@@ -488,6 +512,7 @@ int ValidationStatus(const std::vector<ShapeReport> &reports) {
     for (const ShapeReport &r : reports) {
         if (r.OutOfBand() > 0) return ExitOutOfBand;
         if (r.slopeApplicable && !r.slopeOk) slopeBad = true;
+        if (r.shadingSlopeApplicable && !r.shadingSlopeOk) slopeBad = true;
     }
     return slopeBad ? ExitBadSlope : 0;
 }

@@ -57,6 +57,12 @@ struct ShapeReport {
     bool slopeApplicable = true;  // false when |dt| sits at rounding level (the disk)
     bool slopeOk = true;
     std::string note;
+    // Least-squares slope of log(mean shading-normal error) against log(n_phi): interpolated
+    // vertex normals converge as O(n^-2) too. Not applicable when the error sits at rounding
+    // level at every level (the disk's normal is constant).
+    double shadingSlope = 0;
+    bool shadingSlopeApplicable = false;
+    bool shadingSlopeOk = true;
     // Level (possibly extrapolated) where mean |dt| falls below analyticDtBound, and the
     // time per ray there.
     double equalAccuracyLevel = 0, equalAccuracyNsPerRay = 0;
@@ -85,7 +91,8 @@ std::string FormatReport(const ShapeReport &report);
 std::string ResultsCsv(const std::vector<ShapeReport> &reports);
 
 // Exit statuses of `prism validate`: 0 all good, 3 an out-of-band disagreement (one of the two
-// intersectors has a bug), 4 only a convergence slope outside [-2.3, -1.7].
+// intersectors has a bug), 4 only a convergence slope outside [-2.3, -1.7]: of mean |dt|, or
+// of the mean shading-normal error (which must fall at least as fast as n^-1.7).
 inline constexpr int ExitOutOfBand = 3;
 inline constexpr int ExitBadSlope = 4;
 int ValidationStatus(const std::vector<ShapeReport> &reports);

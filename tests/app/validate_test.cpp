@@ -27,8 +27,12 @@ namespace fs = std::filesystem;
 // bug the validation exists to find.
 class InflatedSphere final : public AnalyticShapeT<InflatedSphere> {
   public:
-    InflatedSphere(const Transform &w, double r, double factor)
-        : AnalyticShapeT(w, false), truth_(w, false, r, -r, r, 360), r_(r), factor_(factor) {}
+    // vertexTiltDeg turns the normals the tessellator asks for (with t = 0: a vertex, not a
+    // hit) about the axis: a twin whose shading normals are off by a fixed angle at every n, as
+    // the cone's apex normal was.
+    InflatedSphere(const Transform &w, double r, double factor, double vertexTiltDeg = 0)
+        : AnalyticShapeT(w, false), truth_(w, false, r, -r, r, 360), r_(r), factor_(factor),
+          tilt_(Radians(vertexTiltDeg)) {}
     const char *Name() const override { return "inflated-sphere"; }
     Bounds3d ObjectBounds() const override {
         double R = r_ * factor_;
@@ -36,7 +40,14 @@ class InflatedSphere final : public AnalyticShapeT<InflatedSphere> {
     }
     double Implicit(const Vec3d &p) const override { return truth_.Implicit(p); }
     Vec3d ImplicitGradient(const Vec3d &p) const override { return truth_.ImplicitGradient(p); }
-    LocalGeometry Geometry(const ObjectHit &hit) const override { return truth_.Geometry(hit); }
+    LocalGeometry Geometry(const ObjectHit &hit) const override {
+        LocalGeometry g = truth_.Geometry(hit);
+        if (tilt_ != 0 && hit.t == 0) {
+            double c = std::cos(tilt_), s = std::sin(tilt_);
+            g.n = Vec3d(c * g.n.x - s * g.n.y, s * g.n.x + c * g.n.y, g.n.z);
+        }
+        return g;
+    }
     bool Revolution(RevolutionProfile *p) const override { return truth_.Revolution(p); }
 
     template <typename Real>
@@ -60,7 +71,7 @@ class InflatedSphere final : public AnalyticShapeT<InflatedSphere> {
 
   private:
     Sphere truth_;
-    double r_, factor_;
+    double r_, factor_, tilt_;
 };
 
 TEST(Validate, EveryShapeAgreesWithinTheBand) {
@@ -82,6 +93,24 @@ TEST(Validate, EveryShapeAgreesWithinTheBand) {
         }
         EXPECT_LT(r.levels[1].disagree, r.levels[0].disagree) << name;
         EXPECT_LT(r.levels[1].h, r.levels[0].h / 10) << name;
+        // Closed form of the band where the twin is exact along v: the chord of a circle of
+        // radius 1 over an angle a is 1 - cos(a / 2) from the arc (the cylinder's columns,
+        // the disk's rim over 300 degrees), plus a float-rounding term below 1e-6.
+        if (name == "cylinder" || name == "disk") {
+            double phiMax = name == "disk" ? Radians(300) : 2 * Pi;
+            auto chord = [&](int n) { return 1 - std::cos(0.5 * phiMax / n); };
+            for (const LevelStats &l : r.levels)
+                EXPECT_NEAR(l.h, chord(l.nPhi), 1e-6) << name << " n=" << l.nPhi;
+            EXPECT_NEAR(r.levels[0].h / r.levels[1].h, chord(16) / chord(64),
+                        1e-3 * chord(16) / chord(64))
+                << name;
+        }
+        // Shading normals converge as well (the cone's apex normal did not: 18 degrees mean
+        // at every level); the disk's constant normal is exact.
+        if (name != "disk") {
+            EXPECT_TRUE(r.shadingSlopeApplicable) << name;
+            EXPECT_LT(r.levels[1].shadingErrMean, r.levels[0].shadingErrMean / 8) << name;
+        }
         if (r.slopeApplicable) {
             EXPECT_LT(r.levels[1].dtMean, r.levels[0].dtMean / 8) << name;
         } else {
@@ -110,6 +139,29 @@ TEST(Validate, BrokenIntersectorIsCaught) {
     // The same code with the true radius passes.
     ShapeReport ok = ValidateShape("exact", std::make_unique<InflatedSphere>(w, 1, 1.0), {}, opt);
     EXPECT_EQ(ok.OutOfBand(), 0) << FormatReport(ok);
+    EXPECT_EQ(ValidationStatus({ok}), 0);
+}
+
+// Shading normals that do not converge fail the run (exit status 4), as the cone's axis apex
+// normal did (18 degrees mean at every level); the same shape with true vertex normals passes
+// with a slope near -2.
+TEST(Validate, NonConvergingShadingNormalsFail) {
+    ValidateOptions opt;
+    opt.levels = {16, 64, 256};
+    opt.rays = 5000;
+    ShapeReport bad = ValidateShape(
+        "tilted", std::make_unique<InflatedSphere>(Transform(), 1, 1.0, 10.0), {}, opt);
+    ASSERT_EQ(bad.levels.size(), 3u);
+    EXPECT_EQ(bad.OutOfBand(), 0) << FormatReport(bad);  // t and hit/miss are unaffected
+    EXPECT_TRUE(bad.shadingSlopeApplicable);
+    EXPECT_FALSE(bad.shadingSlopeOk) << FormatReport(bad);
+    EXPECT_GT(bad.shadingSlope, -0.5);
+    EXPECT_EQ(ValidationStatus({bad}), ExitBadSlope);
+    EXPECT_NE(FormatReport(bad).find("shading-normal error: "), std::string::npos);
+    ShapeReport ok =
+        ValidateShape("true", std::make_unique<InflatedSphere>(Transform(), 1, 1.0), {}, opt);
+    EXPECT_TRUE(ok.shadingSlopeApplicable);
+    EXPECT_NEAR(ok.shadingSlope, -2, 0.15) << FormatReport(ok);
     EXPECT_EQ(ValidationStatus({ok}), 0);
 }
 

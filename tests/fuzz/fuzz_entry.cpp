@@ -53,7 +53,7 @@ std::string WriteInput(const std::string &name, const uint8_t *data, size_t size
 
 }  // namespace
 
-void FuzzPbrt(const uint8_t *data, size_t size) {
+void FuzzPbrt(const uint8_t *data, size_t size, std::string *rejected) {
     std::string text(reinterpret_cast<const char *>(data), size);
     // The input is also on disk under its own name, so `Include "main.pbrt"` exercises the
     // cycle check and `Include "other.pbrt"` a missing file.
@@ -64,20 +64,22 @@ void FuzzPbrt(const uint8_t *data, size_t size) {
     Diagnostics diag;
     try {
         ParsePbrtString(text, path, diag, opts);
-    } catch (const SceneError &) {
+    } catch (const SceneError &e) {
+        if (rejected) *rejected = e.what();
     }
 }
 
-void FuzzPly(const uint8_t *data, size_t size) {
+void FuzzPly(const uint8_t *data, size_t size, std::string *rejected) {
     std::string path = WriteInput("mesh.ply", data, size);
     Diagnostics diag;
     try {
         ReadPlyFile(path, diag);
-    } catch (const SceneError &) {
+    } catch (const SceneError &e) {
+        if (rejected) *rejected = e.what();
     }
 }
 
-void FuzzObj(const uint8_t *data, size_t size) {
+void FuzzObj(const uint8_t *data, size_t size, std::string *rejected) {
     // Everything after a line "#%MTL" is the material library "m.mtl"; seeds say "mtllib m.mtl".
     std::string text(reinterpret_cast<const char *>(data), size);
     std::string obj = text, mtl;
@@ -92,21 +94,23 @@ void FuzzObj(const uint8_t *data, size_t size) {
     Diagnostics diag;
     try {
         ReadObjFile(path, diag);
-    } catch (const SceneError &) {
+    } catch (const SceneError &e) {
+        if (rejected) *rejected = e.what();
     }
 }
 
-void FuzzGltf(const uint8_t *data, size_t size) {
+void FuzzGltf(const uint8_t *data, size_t size, std::string *rejected) {
     bool glb = size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' && data[3] == 'F';
     std::string path = WriteInput(glb ? "scene.glb" : "scene.gltf", data, size);
     Diagnostics diag;
     try {
         ReadGltfFile(path, diag);
-    } catch (const SceneError &) {
+    } catch (const SceneError &e) {
+        if (rejected) *rejected = e.what();
     }
 }
 
-void FuzzImage(const uint8_t *data, size_t size) {
+void FuzzImage(const uint8_t *data, size_t size, std::string *rejected) {
     // The name's extension picks OpenImageIO's reader; choose it from the magic bytes so the
     // fuzzer reaches each decoder, and fall back to TGA, which has no magic.
     auto starts = [&](const char *m) {
@@ -130,16 +134,18 @@ void FuzzImage(const uint8_t *data, size_t size) {
     opts.quietDecoders = false;         // sanitizer reports must reach stderr
     try {
         ReadImageFromMemory(bytes, std::string("texture") + ext, opts);
-    } catch (const std::runtime_error &) {
+    } catch (const std::runtime_error &e) {
+        if (rejected) *rejected = e.what();
     }
 }
 
-bool FuzzByName(const std::string &target, const uint8_t *data, size_t size) {
-    if (target == "pbrt") FuzzPbrt(data, size);
-    else if (target == "ply") FuzzPly(data, size);
-    else if (target == "obj") FuzzObj(data, size);
-    else if (target == "gltf") FuzzGltf(data, size);
-    else if (target == "image") FuzzImage(data, size);
+bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
+                std::string *rejected) {
+    if (target == "pbrt") FuzzPbrt(data, size, rejected);
+    else if (target == "ply") FuzzPly(data, size, rejected);
+    else if (target == "obj") FuzzObj(data, size, rejected);
+    else if (target == "gltf") FuzzGltf(data, size, rejected);
+    else if (target == "image") FuzzImage(data, size, rejected);
     else return false;
     return true;
 }

@@ -9,15 +9,21 @@
 namespace prism::fuzz {
 
 // Each feeds `data` to one reader. Expected rejections (SceneError, and the runtime_error the
-// image reader documents) are swallowed; anything else — a crash, a sanitizer report, another
+// image reader documents) are caught, their message stored in *rejected if given (which is
+// left alone when the input is accepted); anything else — a crash, a sanitizer report, another
 // exception type such as std::bad_alloc — escapes and is a bug.
-void FuzzPbrt(const uint8_t *data, size_t size);   // ParsePbrtString, includes confined
-void FuzzPly(const uint8_t *data, size_t size);    // ReadPlyFile
-void FuzzObj(const uint8_t *data, size_t size);    // ReadObjFile (+ MTL after a "#%MTL" line)
-void FuzzGltf(const uint8_t *data, size_t size);   // ReadGltfFile: .glb if it starts with "glTF"
-void FuzzImage(const uint8_t *data, size_t size);  // ReadImageFromMemory
+void FuzzPbrt(const uint8_t *data, size_t size,
+              std::string *rejected = nullptr);  // ParsePbrtString, includes confined
+void FuzzPly(const uint8_t *data, size_t size, std::string *rejected = nullptr);  // ReadPlyFile
+void FuzzObj(const uint8_t *data, size_t size,
+             std::string *rejected = nullptr);  // ReadObjFile (+ MTL after a "#%MTL" line)
+void FuzzGltf(const uint8_t *data, size_t size,
+              std::string *rejected = nullptr);  // ReadGltfFile: .glb if it starts with "glTF"
+void FuzzImage(const uint8_t *data, size_t size,
+               std::string *rejected = nullptr);  // ReadImageFromMemory
 
 // Dispatch by target name ("pbrt", "ply", "obj", "gltf", "image"); false if unknown.
-bool FuzzByName(const std::string &target, const uint8_t *data, size_t size);
+bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
+                std::string *rejected = nullptr);
 
 }  // namespace prism::fuzz

@@ -1,7 +1,8 @@
 // Replays every input that once crashed a fuzzer (tests/fuzz/regressions/<target>/) and the
 // seed corpora (tests/fuzz/corpus/<target>/) through the same entry points as the fuzzers, in
 // the ordinary build. A regression shows up as a crash, a sanitizer report in the sanitizer
-// build, or an unexpected exception (which fails the test).
+// build, or an unexpected exception (which fails the test). Seeds must also be accepted by
+// their reader, except those named "invalid-*" (which must be rejected).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +11,9 @@
 #include <iterator>
 #include <vector>
 
+#include "core/error.h"
 #include "fuzz_entry.h"
+#include "scene/pbrt_parser.h"
 
 namespace fs = std::filesystem;
 
@@ -29,7 +32,9 @@ std::vector<fs::path> InputsUnder(const fs::path &dir) {
     return files;
 }
 
-size_t Replay(const std::string &kind) {
+// Replays kind/<target>/*. With checkSeeds, an input must be accepted (no SceneError or
+// image-reader error), or rejected if its name starts with "invalid-".
+size_t Replay(const std::string &kind, bool checkSeeds = false) {
     size_t n = 0;
     for (const char *target : Targets) {
         for (const fs::path &p : InputsUnder(fs::path(PRISM_TEST_DATA_DIR) / kind / target)) {
@@ -38,7 +43,13 @@ size_t Replay(const std::string &kind) {
                                        std::istreambuf_iterator<char>());
             SCOPED_TRACE(p.string());
             try {
-                EXPECT_TRUE(FuzzByName(target, bytes.data(), bytes.size()));
+                std::string rejected;
+                EXPECT_TRUE(FuzzByName(target, bytes.data(), bytes.size(), &rejected));
+                bool invalid = p.filename().string().rfind("invalid-", 0) == 0;
+                if (checkSeeds && invalid)
+                    EXPECT_FALSE(rejected.empty()) << p << ": a seed marked invalid was accepted";
+                else if (checkSeeds)
+                    EXPECT_EQ(rejected, "") << p << ": the seed does not parse";
             } catch (const std::exception &e) {
                 ADD_FAILURE() << p << ": unexpected exception: " << e.what();
             }
@@ -55,9 +66,40 @@ TEST(FuzzRegressions, ReplayWithoutFailure) {
 }
 
 TEST(FuzzRegressions, SeedCorporaParse) {
-    size_t n = Replay("corpus");
+    size_t n = Replay("corpus", true);
     std::printf("replayed %zu seed inputs\n", n);
     EXPECT_GE(n, 5u);
+}
+
+// The seed check itself: a seed that does not parse fails it.
+TEST(FuzzRegressions, SeedCheckSeesRejections) {
+    std::string bad = "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n", rejected;
+    ASSERT_TRUE(FuzzByName("pbrt", reinterpret_cast<const uint8_t *>(bad.data()), bad.size(),
+                           &rejected));
+    EXPECT_NE(rejected, "");
+    std::string good = "WorldBegin\nShape \"sphere\"\nWorldEnd\n";
+    rejected.clear();
+    FuzzByName("pbrt", reinterpret_cast<const uint8_t *>(good.data()), good.size(), &rejected);
+    EXPECT_EQ(rejected, "");
+}
+
+// regressions/pbrt/include-dev-zero is refused by the fuzz entry's include confinement (/dev is
+// outside its directory) before the file reader's own device check. This reaches that check:
+// with confinement off, an Include of a device must be refused as not a regular file. /dev/null
+// rather than /dev/zero: without the check it reads as an empty file and parses, so the test
+// fails instead of hanging.
+TEST(FuzzRegressions, IncludeOfADeviceIsRefusedByTheReader) {
+    PbrtParseOptions opts;
+    opts.confineIncludes = false;
+    Diagnostics diag(false);
+    try {
+        ParsePbrtString("WorldBegin\nInclude \"/dev/null\"\nWorldEnd\n",
+                        (fs::temp_directory_path() / "main.pbrt").string(), diag, opts);
+        ADD_FAILURE() << "an Include of /dev/null was read";
+    } catch (const SceneError &e) {
+        EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(FuzzRegressions, UnknownTargetIsRejected) {

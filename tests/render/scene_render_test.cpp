@@ -13,6 +13,7 @@
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 
@@ -226,7 +227,7 @@ Shape "trianglemesh" "integer indices" [0 1 2 0 2 3] "point3 P" [-5 -1 -5 5 -1 -
 // always named, by design); pbrt-all-shapes warns once per unsupported feature.
 TEST(SceneRender, SharedScenesRender) {
     fs::path shared = PRISM_SHARED_DIR;
-    if (!fs::exists(shared / "scenes")) GTEST_SKIP() << "no shared scenes";
+    PRISM_REQUIRE_SHARED(shared / "scenes");
     const std::vector<std::string> scenes = {
         "pbrt-spheres-differentials-texfilt/spheres-differentials-texfilt.pbrt",
         "pbrt-teapot-area-light/teapot-area-light.pbrt",

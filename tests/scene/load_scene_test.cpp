@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 namespace prism {
 namespace {
 
@@ -171,7 +173,7 @@ class SharedScenes : public ::testing::TestWithParam<SharedScene> {};
 
 TEST_P(SharedScenes, LoadsWithManifestTriangleCount) {
     std::string path = std::string(PRISM_SHARED_DIR) + "/scenes/" + GetParam().file;
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+    PRISM_REQUIRE_SHARED(path);
     Diagnostics diag;
     SceneDescription d;
     ASSERT_NO_THROW(d = LoadScene(path, diag)) << path;
@@ -218,7 +220,7 @@ std::string Shared(const std::string &rel) {
 
 TEST(SharedSceneDetails, CornellBoxMaterials) {
     std::string path = Shared("obj-cornellbox-mirror/CornellBox-Mirror.obj");
-    if (!std::filesystem::exists(path)) GTEST_SKIP();
+    PRISM_REQUIRE_SHARED(path);
     Diagnostics diag;
     SceneDescription d = LoadScene(path, diag);
     int mirrors = 0;
@@ -231,7 +233,8 @@ TEST(SharedSceneDetails, CornellBoxMaterials) {
 TEST(SharedSceneDetails, SpiderTexturesAndDamagedHelmetImages) {
     std::string spider = Shared("obj-spider/spider.obj");
     std::string helmet = Shared("gltf-damagedhelmet/DamagedHelmet.glb");
-    if (!std::filesystem::exists(spider) || !std::filesystem::exists(helmet)) GTEST_SKIP();
+    PRISM_REQUIRE_SHARED(spider);
+    PRISM_REQUIRE_SHARED(helmet);
     Diagnostics diag;
     SceneDescription s = LoadScene(spider, diag);
     EXPECT_EQ(s.textures.size(), 5u);
@@ -255,7 +258,7 @@ TEST(SharedSceneDetails, SpiderTexturesAndDamagedHelmetImages) {
 
 TEST(SharedSceneDetails, ShadowsSpotLightAndCamera) {
     std::string path = Shared("gltf-shadows-spot/shadows-spot.gltf");
-    if (!std::filesystem::exists(path)) GTEST_SKIP();
+    PRISM_REQUIRE_SHARED(path);
     Diagnostics diag;
     SceneDescription d = LoadScene(path, diag);
     ASSERT_EQ(d.lights.size(), 1u);

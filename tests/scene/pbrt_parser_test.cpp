@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "test_util.h"
+
 namespace prism {
 namespace {
 
@@ -604,7 +606,7 @@ TEST(PbrtParser, MutatedInputNeverCrashes) {
 
 TEST(PbrtParser, SharedScenesParse) {
     fs::path shared(PRISM_SHARED_DIR);
-    if (!fs::is_directory(shared / "scenes")) GTEST_SKIP() << "no shared scenes";
+    PRISM_REQUIRE_SHARED(shared / "scenes");
     std::vector<fs::path> files;
     for (const auto &e : fs::recursive_directory_iterator(shared / "scenes"))
         if (e.path().extension() == ".pbrt") files.push_back(e.path());

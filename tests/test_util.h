@@ -1,0 +1,36 @@
+// Helpers shared by the test binaries (tests/ is on every test binary's include path).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+namespace prism::test {
+
+// True under continuous integration (the environment variable CI is "true", as GitHub Actions,
+// GitLab CI and most others set it).
+inline bool InCI() {
+    const char *ci = std::getenv("CI");
+    return ci && std::strcmp(ci, "true") == 0;
+}
+
+// Whether `path` (a file or folder of ../shared, the external scenes and references) exists.
+// When it does not, a developer's checkout may simply lack ../shared and the caller skips; in
+// CI a missing ../shared means the suite would silently test less, so this records a failure.
+inline bool SharedPathPresent(const std::filesystem::path &path) {
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec)) return true;
+    if (InCI()) ADD_FAILURE() << path << " is missing and CI=true: ../shared must be present in CI";
+    return false;
+}
+
+}  // namespace prism::test
+
+// In a test body: skips the test when `path` under ../shared is missing, and fails it instead in
+// CI (CI=true).
+#define PRISM_REQUIRE_SHARED(where)                                            \
+    if (!::prism::test::SharedPathPresent(where))                              \
+    GTEST_SKIP() << std::filesystem::path(where).string() << " not present"
