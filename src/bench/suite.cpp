@@ -49,7 +49,10 @@ std::string ShellQuote(const std::string &s) {
 std::string GitCommit(const std::string &sourceDir) {
     std::string c = CommandOutput("git -C " + ShellQuote(sourceDir) +
                                   " rev-parse --short HEAD 2>/dev/null");
-    return c.empty() ? "unknown" : c;
+    if (c.empty()) return "unknown";
+    std::string dirty = CommandOutput("git -C " + ShellQuote(sourceDir) +
+                                      " status --porcelain --untracked-files=no 2>/dev/null");
+    return dirty.empty() ? c : c + " (with uncommitted changes)";
 }
 
 void WriteText(const std::string &path, const std::string &text) {
@@ -194,7 +197,9 @@ int RunSuite(const SuiteOptions &options) {
         WriteText(options.outDir + "/report.md", report);
         std::fprintf(stderr, "wrote %s and report.md\n", csv.c_str());
         std::string script = ctx.sourceDir + "/tools/plot_bench.py";
-        std::string cmd = "python3 " + ShellQuote(script) + " " + ShellQuote(csv) + " " +
+        // Debian's python3 (python3-matplotlib), as prism validate uses; else PATH's.
+        std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+        std::string cmd = python + " " + ShellQuote(script) + " " + ShellQuote(csv) + " " +
                           ShellQuote(options.outDir);
         if (std::system(cmd.c_str()) != 0)
             std::fprintf(stderr, "warning: plotting failed (%s); results.csv is complete\n",
