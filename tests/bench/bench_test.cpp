@@ -84,6 +84,16 @@ TEST(Knot, PlyReadableAndSceneBuilds) {
     EXPECT_EQ(scene.resolution, Vec2i(800, 600));
 }
 
+TEST(Knot, EmptySceneRenders) {
+    fs::path dir = TempDir("empty");
+    std::string empty = WriteEmptyScene(dir.string());
+    ChildRun r = RunChild({PRISM_BINARY, "render", empty, "--res", "8x6", "-o",
+                           (dir / "x.png").string(), "--quiet"});
+    EXPECT_EQ(r.exitStatus, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "x.png"));
+    EXPECT_GT(r.maxRssKiB, 0);
+}
+
 // The generator is a port of ../shared/peers/gen_knot.py: run the script in a scratch copy and
 // compare the pbrt text and the PLY bytes.
 TEST(Knot, MatchesGenKnotPy) {
