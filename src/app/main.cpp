@@ -15,6 +15,7 @@ int main(int argc, char **argv) {
     prism::AddInfoCommand(app, &exitCode);
     prism::AddBatchCommand(app, &exitCode);
     prism::AddValidateCommand(app, &exitCode);
+    prism::AddBenchCommand(app, &exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp &e) {

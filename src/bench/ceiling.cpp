@@ -1,0 +1,203 @@
+#include "bench/ceiling.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <xmmintrin.h>
+#include <pmmintrin.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "render/render_scene.h"
+#include "render/renderer.h"
+#include "render/sampler.h"
+#include "scene/load_scene.h"
+
+namespace prism {
+
+namespace {
+
+// The renderer's tile size and sample purposes (render/renderer.cpp), so both passes trace the
+// same rays in the same order of tiles.
+constexpr int TileSize = 16;
+enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1 };
+
+struct PassCounters {
+    uint64_t camera = 0, hits = 0, shadow = 0, occluded = 0;
+};
+
+struct Scratch {
+    std::vector<Ray> rays;
+    std::vector<RawHit> hits;
+};
+
+// One shadow ray from p toward each light (one sample for area and infinite lights). The
+// origin is not offset along the normal (that needs the shading geometry the pass skips): a
+// tiny tMin keeps the ray off its own surface instead.
+inline void TraceShadowRays(const RenderScene &scene, const Ray &ray, float t, PassCounters &pc) {
+    SurfaceInteraction si;
+    si.p = ray.At(t);
+    Vec3f w = -Normalize(ray.d);
+    si.n = si.ns = si.wo = w;
+    si.t = t;
+    for (const auto &light : scene.lights) {
+        LightSample ls;
+        if (!light->SampleLi(si, Vec2f(0.5f, 0.5f), &ls)) continue;
+        Ray s;
+        s.o = si.p;
+        if (ls.infinite) {
+            s.d = ls.wi;
+            s.tMax = Infinity;
+            s.tMin = 1e-4f * (1 + std::max({std::abs(si.p.x), std::abs(si.p.y), std::abs(si.p.z)}));
+        } else {
+            s.d = ls.pLight - si.p;
+            s.tMax = 1 - ShadowEpsilon;
+            s.tMin = 1e-4f;
+        }
+        pc.shadow++;
+        pc.occluded += scene.accel->Occluded(s);
+    }
+}
+
+// The ceiling pass: the render loop's tiles and camera rays, traversal only.
+PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) {
+    const Bounds2i &pb = scene.pixelBounds;
+    int nx = (pb.pMax.x - pb.pMin.x + TileSize - 1) / TileSize;
+    int ny = (pb.pMax.y - pb.pMin.y + TileSize - 1) / TileSize;
+    int nTiles = nx * ny;
+    tbb::enumerable_thread_specific<PassCounters> counters;
+    tbb::enumerable_thread_specific<Scratch> scratch;
+    const Accel &accel = *scene.accel;
+    tbb::parallel_for(tbb::blocked_range<int>(0, nTiles, 1), [&](const tbb::blocked_range<int> &r) {
+        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+        PassCounters &pc = counters.local();
+        Scratch &sc = scratch.local();
+        for (int t = r.begin(); t != r.end(); ++t) {
+            int tx = t % nx, ty = t / nx;
+            int x0 = pb.pMin.x + tx * TileSize, y0 = pb.pMin.y + ty * TileSize;
+            int x1 = std::min(x0 + TileSize, pb.pMax.x), y1 = std::min(y0 + TileSize, pb.pMax.y);
+            const uint32_t spp = uint32_t(scene.spp);
+            sc.rays.clear();
+            for (int y = y0; y < y1; ++y) {
+                for (int x = x0; x < x1; ++x) {
+                    uint32_t filmSeed = PatternSeed(x, y, FilmPurpose);
+                    uint32_t lensSeed = PatternSeed(x, y, LensPurpose);
+                    for (uint32_t s = 0; s < spp; ++s) {
+                        Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : CMJSample(s, spp, filmSeed);
+                        Vec2f pFilm(float(x) + u.x, float(y) + u.y);
+                        Vec2f uLens = scene.features.lens ? CMJSample(s, spp, lensSeed)
+                                                          : Vec2f(0.5f, 0.5f);
+                        sc.rays.push_back(scene.camera->GenerateRay(pFilm, uLens));
+                    }
+                }
+            }
+            size_t n = sc.rays.size();
+            pc.camera += n;
+            if (traversal == CeilingTraversal::Packet16) {
+                sc.hits.resize(n);
+                for (size_t i = 0; i < n; i += 16)
+                    accel.IntersectPacket(&sc.rays[i], int(std::min<size_t>(16, n - i)), &sc.hits[i]);
+                for (size_t i = 0; i < n; ++i) {
+                    if (sc.hits[i].shape < 0) continue;
+                    pc.hits++;
+                    TraceShadowRays(scene, sc.rays[i], sc.hits[i].t, pc);
+                }
+            } else {
+                for (size_t i = 0; i < n; ++i) {
+                    RawHit hit;
+                    if (!accel.IntersectRaw(sc.rays[i], &hit)) continue;
+                    pc.hits++;
+                    TraceShadowRays(scene, sc.rays[i], hit.t, pc);
+                }
+            }
+        }
+    });
+    PassCounters total;
+    for (const PassCounters &c : counters) {
+        total.camera += c.camera;
+        total.hits += c.hits;
+        total.shadow += c.shadow;
+        total.occluded += c.occluded;
+    }
+    return total;
+}
+
+}  // namespace
+
+double Median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    size_t m = v.size() / 2;
+    return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+CeilingResult RunCeiling(const CeilingOptions &o, std::FILE *log) {
+    std::unique_ptr<tbb::global_control> threadLimit;
+    if (o.threads > 0)
+        threadLimit = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+    RenderOptions ro;
+    ro.spp = o.spp;
+    ro.resolution = Vec2i(o.width, o.height);
+    ro.threads = o.threads;
+    ro.quiet = true;
+    Diagnostics diag(false);
+    SceneDescription desc = LoadScene(o.scene, diag);
+    RenderScene scene = BuildRenderScene(desc, ro, diag);
+
+    CeilingResult res;
+    res.width = scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x;
+    res.height = scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y;
+    res.spp = scene.spp;
+    res.threads = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    res.triangles = scene.features.triangles;
+    if (log)
+        std::fprintf(log, "%s: %dx%d, %d spp, %d threads, %zu triangles, %zu lights, %s\n",
+                     o.scene.c_str(), res.width, res.height, res.spp, res.threads, res.triangles,
+                     scene.lights.size(),
+                     o.traversal == CeilingTraversal::Packet16
+                         ? "ceiling: camera rays in 16-ray packets, shadow rays rtcOccluded1"
+                         : "ceiling: rtcIntersect1 + rtcOccluded1 per ray");
+    std::vector<double> ceil, rend;
+    for (int k = 0; k < std::max(1, o.repeats); ++k) {
+        CeilingRepeat rep;
+        RenderStats stats;
+        Render(scene, &stats);
+        rep.renderSeconds = stats.renderSeconds;
+        rep.renderRays = stats.rays.Total();
+
+        auto t0 = std::chrono::steady_clock::now();
+        PassCounters pc = TraceCeiling(scene, o.traversal);
+        rep.ceilingSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        rep.ceilingRays = pc.camera + pc.shadow;
+        res.hitFraction = pc.camera ? double(pc.hits) / double(pc.camera) : 0;
+        if (log)
+            std::fprintf(log,
+                         "repeat %d: ceiling %.2f Mrays/s (%llu rays, %.3f s, %.0f%% hit), "
+                         "render %.2f Mrays/s (%llu rays, %.3f s)\n",
+                         k + 1, rep.CeilingMrays(), (unsigned long long)rep.ceilingRays,
+                         rep.ceilingSeconds, 100 * res.hitFraction, rep.RenderMrays(),
+                         (unsigned long long)rep.renderRays, rep.renderSeconds);
+        ceil.push_back(rep.CeilingMrays());
+        rend.push_back(rep.RenderMrays());
+        res.repeats.push_back(rep);
+    }
+    res.ceilingMrays = Median(ceil);
+    res.renderMrays = Median(rend);
+    return res;
+}
+
+std::string CeilingSummary(const CeilingResult &r) {
+    char buf[160];
+    std::snprintf(buf, sizeof(buf), "ceiling %.2f Mrays/s, render %.2f Mrays/s, ratio %.2f",
+                  r.ceilingMrays, r.renderMrays, r.Ratio());
+    return buf;
+}
+
+}  // namespace prism
