@@ -68,7 +68,7 @@ TEST(Knot, PlyReadableAndSceneBuilds) {
     EXPECT_TRUE(fs::exists(kf.pov));
     EXPECT_TRUE(fs::exists(kf.povInclude));
     Diagnostics diag;
-    PlyMesh ply = ReadPly(kf.ply, diag);
+    PlyMesh ply = ReadPlyFile(kf.ply, diag);
     EXPECT_EQ(ply.P.size(), 180u);
     EXPECT_EQ(ply.N.size(), 180u);
     EXPECT_EQ(ply.indices.size(), 3u * 360);
