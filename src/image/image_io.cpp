@@ -11,9 +11,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <bit>
-#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -64,8 +61,9 @@ const std::array<float, 256> &Srgb8Table() {
 
 namespace {
 
-// libpng (through OpenImageIO) prints "libpng error: ..." to stderr before OIIO reports the
-// same failure, which would give bad input two error lines. Decoding runs with stderr pointed
+// Decoder libraries under OpenImageIO (libpng, libjpeg, ...) print errors such as "libpng
+// error: ..." to stderr before OIIO reports the same failure, which would give bad input two
+// error lines (the direct PNG reader silences libpng itself). Decoding runs with stderr pointed
 // at /dev/null; the lock serializes decoders (they are not called from render threads).
 class QuietStderr {
 public:

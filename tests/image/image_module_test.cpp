@@ -72,19 +72,19 @@ Image Noise(int w, int h, int c, float lo, float hi, uint32_t seed) {
 const std::string Prism = PRISM_BINARY;
 const std::string Whitted = std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/whitted.pbrt";
 
-// A scene whose only image is a TGA texture (a format only OpenImageIO reads).
-std::string WriteTexturedScene(const fs::path &dir) {
+// A scene whose only image is a texture t.EXT (TGA is a format only OpenImageIO reads).
+std::string WriteTexturedScene(const fs::path &dir, const std::string &ext = "tga") {
     Image tex = Noise(4, 4, 3, 0.f, 1.f, 5);
-    WriteImage((dir / "t.tga").string(), tex);
-    std::ofstream f(dir / "textured.pbrt");
+    WriteImage((dir / ("t." + ext)).string(), tex);
+    std::ofstream f(dir / ("textured_" + ext + ".pbrt"));
     f << "Film \"image\" \"integer xresolution\" [8] \"integer yresolution\" [6]\n"
          "Camera \"perspective\"\n"
          "WorldBegin\n"
-         "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t.tga\"\n"
+         "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t." << ext << "\"\n"
          "Material \"matte\" \"texture Kd\" \"t\"\n"
          "Shape \"sphere\"\n"
          "WorldEnd\n";
-    return (dir / "textured.pbrt").string();
+    return (dir / ("textured_" + ext + ".pbrt")).string();
 }
 
 TEST(ImageModule, PrismDoesNotLinkOpenImageIO) {
@@ -102,17 +102,26 @@ TEST_F(ImageModuleTest, RenderWithoutImagesNeverMapsOpenImageIO) {
     EXPECT_NE(r.output.find("libpng16"), std::string::npos) << "LD_DEBUG output missing";
     EXPECT_EQ(r.output.find("libOpenImageIO"), std::string::npos);
     EXPECT_EQ(r.output.find("libprism_oiio"), std::string::npos);
-    r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + Whitted + "' --res 8x6 --quiet -o '" +
-            Path("w.exr") + "'");
+    r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + Whitted +
+                   "' --res 8x6 --quiet -o '" + Path("w.exr") + "'");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.output.find("libOpenImageIO"), std::string::npos);
     EXPECT_TRUE(fs::is_regular_file(Path("w.exr")));
 }
 
-TEST_F(ImageModuleTest, ReadingATextureLoadsTheModule) {
+TEST_F(ImageModuleTest, OnlyOtherFormatsLoadTheModule) {
+    // PNG and EXR textures are read directly.
+    for (const char *ext : {"png", "exr"}) {
+        std::string scene = WriteTexturedScene(dir_, ext);
+        RunResult r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + scene +
+                                 "' --quiet -o '" + Path("out.png") + "'");
+        ASSERT_EQ(r.status, 0) << r.output;
+        EXPECT_EQ(r.output.find("libOpenImageIO"), std::string::npos) << ext;
+    }
+    // A TGA texture loads the module.
     std::string scene = WriteTexturedScene(dir_);
-    RunResult r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + scene + "' --quiet -o '" +
-                      Path("t.png") + "'");
+    RunResult r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + scene +
+                             "' --quiet -o '" + Path("out.png") + "'");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("libprism_oiio"), std::string::npos);
     EXPECT_NE(r.output.find("libOpenImageIO"), std::string::npos);
@@ -135,8 +144,8 @@ TEST_F(ImageModuleTest, MissingModuleIsAClearError) {
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("fake.so: "), std::string::npos) << r.output;
     // PNG and EXR output need no module.
-    r = RunCommand("PRISM_OIIO_MODULE='" + Path("no-such-module.so") + "' '" + Prism + "' render '" +
-            Whitted + "' --res 8x6 --quiet -o '" + Path("w.exr") + "'");
+    r = RunCommand("PRISM_OIIO_MODULE='" + Path("no-such-module.so") + "' '" + Prism +
+                   "' render '" + Whitted + "' --res 8x6 --quiet -o '" + Path("w.exr") + "'");
     EXPECT_EQ(r.status, 0) << r.output;
 }
 
