@@ -1,7 +1,8 @@
 // Reading and writing image files, plus the sRGB transfer curves. Files are converted to and
-// from linear float Images; writes are atomic (temp file + rename). PNG is written with libpng,
-// EXR with OpenEXR and PFM by hand; everything else (and all reading) goes through OpenImageIO,
-// which lives in a shared module (libprism_oiio.so) loaded only when it is first needed.
+// from linear float Images; writes are atomic (temp file + rename). PNG and EXR are read and
+// written with libpng and OpenEXR, PFM is written by hand; every other format goes through
+// OpenImageIO, which lives in a shared module (libprism_oiio.so) loaded only when a file in
+// such a format is first read or written.
 #pragma once
 
 #include <cstdint>
@@ -38,8 +39,8 @@ Image ReadImage(const std::string &path, ReadImageOptions opts = {});
 Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::string &name,
                           ReadImageOptions opts = {});
 
-// The format follows the extension: .exr (32-bit float, ZIP), .pfm/.hdr (float), .png/.jpg/.jpeg/
-// .tga/.bmp (8-bit sRGB, rounded, clamped to [0,1]). The file is first written to a temporary
+// The format follows the extension: .exr (32-bit float, ZIP), .pfm/.hdr (float), .png/.jpg/
+// .jpeg/.tga/.bmp (8-bit sRGB, rounded, clamped to [0,1]). The file is first written to a temporary
 // file in the same directory and renamed over `path` only after a successful close, so `path`
 // is never left partially written. Throws std::runtime_error on any failure.
 void WriteImage(const std::string &path, const Image &img);

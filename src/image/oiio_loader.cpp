@@ -38,10 +38,13 @@ std::vector<std::string> Candidates() {
 
 const PrismOiioModule *Load(std::string *error) {
     std::string tried;
+    auto note = [&](const std::string &path, const std::string &why) {
+        tried += (tried.empty() ? " " : "; ") + path + ": " + why;
+    };
     for (const std::string &path : Candidates()) {
         std::error_code ec;
         if (!fs::exists(path, ec)) {
-            tried += "\n  " + path + ": not found";
+            note(path, "not found");
             continue;
         }
         // RTLD_LOCAL keeps OpenImageIO's symbols out of the global namespace. The handle is
@@ -49,20 +52,20 @@ const PrismOiioModule *Load(std::string *error) {
         void *handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (!handle) {
             const char *why = dlerror();
-            tried += "\n  " + path + ": " + (why ? why : "dlopen failed");
+            note(path, why ? why : "dlopen failed");
             continue;
         }
         auto entry = reinterpret_cast<PrismOiioModuleEntryFn>(
             dlsym(handle, PRISM_OIIO_MODULE_ENTRY));
         const PrismOiioModule *module = entry ? entry() : nullptr;
         if (!module || module->version != PRISM_OIIO_MODULE_VERSION) {
-            tried += "\n  " + path + ": not a compatible Prism OpenImageIO module";
+            note(path, "not a compatible Prism OpenImageIO module");
             continue;
         }
         return module;
     }
     *error = "the OpenImageIO module " PRISM_OIIO_MODULE_NAME
-             " could not be loaded; tried:" +
+             " could not be loaded; tried" +
              tried;
     return nullptr;
 }

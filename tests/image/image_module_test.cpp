@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -136,6 +137,7 @@ TEST_F(ImageModuleTest, MissingModuleIsAClearError) {
     EXPECT_NE(r.output.find("libprism_oiio.so could not be loaded"), std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("no-such-module.so: not found"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one error line";
     EXPECT_FALSE(fs::exists(Path("t.png")));
     // A file that is not a shared library is reported with dlopen's reason.
     { std::ofstream(Path("fake.so")) << "not a library\n"; }
