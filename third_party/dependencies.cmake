@@ -3,6 +3,9 @@
 find_package(embree 3 REQUIRED)          # libembree-dev 3.13.5 — target: embree
 find_package(TBB REQUIRED)               # libtbb-dev 2021.8 — TBB::tbb
 find_package(OpenImageIO REQUIRED)       # libopenimageio-dev 2.4 — OpenImageIO::OpenImageIO
+                                         # (only in the dlopen'ed module libprism_oiio.so)
+find_package(OpenEXR 3 REQUIRED CONFIG)  # libopenexr-dev 3.1 — OpenEXR::OpenEXR (EXR output)
+find_package(PNG REQUIRED)               # libpng-dev 1.6 — PNG::PNG (PNG output)
 find_package(fmt REQUIRED)               # libfmt-dev 9 — fmt::fmt
 find_package(CLI11 REQUIRED)             # libcli11-dev 2.3 — CLI11::CLI11
 find_package(tinyobjloader REQUIRED)     # libtinyobjloader-dev 2.0rc10 — tinyobjloader::tinyobjloader

@@ -1,19 +1,17 @@
-// OpenImageIO-backed image reading and atomic image writing.
+// Image reading (through the OpenImageIO module, loaded at first use) and the sRGB curves.
+// Writing lives in image_write.cpp.
 #include "image/image_io.h"
 
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "image/image_decoder.h"
+#include "image/oiio_loader.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <bit>
-#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -49,25 +47,6 @@ uint8_t LinearToSrgb8(float v) {
 
 namespace {
 
-// OIIO keeps error messages per object and globally; fetch whichever is set (this also clears
-// them, so OIIO does not print them on destruction) and keep the first line only.
-std::string OiioError(const OIIO::ImageInput *in) {
-    std::string msg = in ? in->geterror() : std::string();
-    if (msg.empty()) msg = OIIO::geterror();
-    if (msg.empty()) msg = "unknown error";
-    size_t nl = msg.find('\n');
-    if (nl != std::string::npos) msg.resize(nl);
-    return msg;
-}
-
-std::string OiioError(const OIIO::ImageOutput *out) {
-    std::string msg = out ? out->geterror() : std::string();
-    if (msg.empty()) msg = OIIO::geterror();
-    if (msg.empty()) msg = "unknown error";
-    size_t nl = msg.find('\n');
-    if (nl != std::string::npos) msg.resize(nl);
-    return msg;
-}
 
 const std::array<float, 256> &Srgb8Table() {
     static const std::array<float, 256> table = [] {
@@ -82,8 +61,9 @@ const std::array<float, 256> &Srgb8Table() {
 
 namespace {
 
-// libpng (through OpenImageIO) prints "libpng error: ..." to stderr before OIIO reports the
-// same failure, which would give bad input two error lines. Decoding runs with stderr pointed
+// Decoder libraries under OpenImageIO (libpng, libjpeg, ...) print errors such as "libpng
+// error: ..." to stderr before OIIO reports the same failure, which would give bad input two
+// error lines (the direct PNG reader silences libpng itself). Decoding runs with stderr pointed
 // at /dev/null; the lock serializes decoders (they are not called from render threads).
 class QuietStderr {
 public:
@@ -113,10 +93,33 @@ private:
     int saved_ = -1;
 };
 
+// An image opened by the OpenImageIO module.
+class OiioDecoder : public ImageDecoder {
+public:
+    OiioDecoder(const PrismOiioModule &module, PrismOiioInput *in) : module_(module), in_(in) {}
+    ~OiioDecoder() override { module_.close(in_); }
+    OiioDecoder(const OiioDecoder &) = delete;
+    OiioDecoder &operator=(const OiioDecoder &) = delete;
+    PrismOiioSpec Spec() const override {
+        PrismOiioSpec spec{};
+        module_.getSpec(in_, &spec);
+        return spec;
+    }
+    void ReadFloat(int nchannels, float *out) override {
+        char err[512] = "";
+        if (!module_.readFloat(in_, nchannels, out, err, sizeof(err)))
+            throw std::runtime_error(err);
+    }
+
+private:
+    const PrismOiioModule &module_;
+    PrismOiioInput *in_;
+};
+
 // Decodes an opened image into linear float (shared by the file and in-memory readers).
-Image DecodeOpened(OIIO::ImageInput *in, const ReadImageOptions &opts,
+Image DecodeOpened(ImageDecoder &in, const ReadImageOptions &opts,
                    const std::function<std::runtime_error(const std::string &)> &fail) {
-    const OIIO::ImageSpec &spec = in->spec();
+    PrismOiioSpec spec = in.Spec();
     if (spec.deep) throw fail("deep images are not supported");
     if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels <= 0)
         throw fail("invalid image dimensions");
@@ -129,7 +132,7 @@ Image DecodeOpened(OIIO::ImageInput *in, const ReadImageOptions &opts,
     } else if (nFile == 2) {
         nRead = 2;  // gray + alpha
         nOut = 4;
-    } else if (nFile == 3 || spec.alpha_channel != 3) {
+    } else if (nFile == 3 || spec.alphaChannel != 3) {
         nRead = nOut = 3;
     } else {
         nRead = nOut = 4;
@@ -142,14 +145,16 @@ Image DecodeOpened(OIIO::ImageInput *in, const ReadImageOptions &opts,
                    FormatBytes(uint64_t(opts.maxPixels) * 4) + " (--max-memory)");
 
     std::vector<float> buf(size_t(spec.width) * size_t(spec.height) * size_t(nRead));
-    if (!in->read_image(0, 0, 0, nRead, OIIO::TypeDesc::FLOAT, buf.data()))
-        throw fail(OiioError(in));
-    in->close();
+    try {
+        in.ReadFloat(nRead, buf.data());
+    } catch (const std::runtime_error &e) {
+        throw fail(e.what());
+    }
 
-    bool integer = !spec.format.is_floating_point();
+    bool integer = !spec.isFloat;
     bool srgb = opts.encoding == ReadImageOptions::Encoding::SRGB ||
                 (opts.encoding == ReadImageOptions::Encoding::Auto && integer);
-    bool eightBit = spec.format.basetype == OIIO::TypeDesc::UINT8;
+    bool eightBit = spec.isUint8 != 0;
     int nColor = nRead == 2 || nRead == 4 ? nRead - 1 : nRead;
     if (srgb) {
         const std::array<float, 256> &table = Srgb8Table();
@@ -180,14 +185,6 @@ Image DecodeOpened(OIIO::ImageInput *in, const ReadImageOptions &opts,
         }
     }
     return img;
-}
-
-// Ask for unassociated alpha: PNG/TGA store straight alpha and the sRGB decode must apply to
-// the stored colour, not to colour premultiplied by alpha.
-OIIO::ImageSpec ReadConfig() {
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    return config;
 }
 
 // OpenEXR 3.1 allocates whatever an attribute's size field claims before reading the value,
@@ -260,9 +257,21 @@ void CheckExrHeader(const unsigned char *data, size_t avail, uint64_t fileSize, 
     }
 }
 
+// The OpenImageIO module, or the reason it cannot be loaded as a read error.
+const PrismOiioModule &LoadModule(
+    const std::function<std::runtime_error(const std::string &)> &fail) {
+    try {
+        return OiioModule();
+    } catch (const std::runtime_error &e) {
+        throw fail(e.what());
+    }
+}
+
 }  // namespace
 
-Image ReadImage(const std::string &path, ReadImageOptions opts) {
+namespace {
+
+Image ReadImageFile(const std::string &path, const ReadImageOptions &opts, bool direct) {
     auto fail = [&](const std::string &why) {
         return std::runtime_error("cannot read image " + Quote(path) + ": " + why);
     };
@@ -286,10 +295,30 @@ Image ReadImage(const std::string &path, ReadImageOptions opts) {
             CheckExrHeader(head.data(), head.size(), size, opts.maxPixels, fail);
         }
     }
-    OIIO::ImageSpec config = ReadConfig();
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) throw fail(OiioError(static_cast<const OIIO::ImageInput *>(nullptr)));
-    return DecodeOpened(in.get(), opts, fail);
+    // PNG and OpenEXR are decoded directly; only other formats load OpenImageIO.
+    std::unique_ptr<ImageDecoder> decoder;
+    try {
+        if (direct) decoder = OpenDirectDecoder(path, nullptr, 0);
+    } catch (const std::runtime_error &e) {
+        throw fail(e.what());
+    }
+    if (decoder) return DecodeOpened(*decoder, opts, fail);
+    const PrismOiioModule &module = LoadModule(fail);
+    char err[512] = "";
+    PrismOiioInput *in = module.openFile(path.c_str(), opts.tryAllFormats, err, sizeof(err));
+    if (!in) throw fail(err);
+    OiioDecoder oiio(module, in);
+    return DecodeOpened(oiio, opts, fail);
+}
+
+}  // namespace
+
+Image ReadImage(const std::string &path, ReadImageOptions opts) {
+    return ReadImageFile(path, opts, true);
+}
+
+Image ReadImageWithOiio(const std::string &path, ReadImageOptions opts) {
+    return ReadImageFile(path, opts, false);
 }
 
 Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::string &name,
@@ -301,11 +330,21 @@ Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::st
     std::optional<QuietStderr> quiet;
     if (opts.quietDecoders) quiet.emplace();
     CheckExrHeader(bytes.data(), bytes.size(), bytes.size(), opts.maxPixels, fail);
-    OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
-    OIIO::ImageSpec config = ReadConfig();
-    auto in = OIIO::ImageInput::open(name, &config, &proxy);
-    if (in) return DecodeOpened(in.get(), opts, fail);
-    OIIO::geterror();  // clear
+    std::unique_ptr<ImageDecoder> direct;
+    try {
+        direct = OpenDirectDecoder(name, bytes.data(), bytes.size());
+    } catch (const std::runtime_error &e) {
+        throw fail(e.what());
+    }
+    if (direct) return DecodeOpened(*direct, opts, fail);
+    const PrismOiioModule &module = LoadModule(fail);
+    char err[512] = "";
+    PrismOiioInput *in = module.openMemory(bytes.data(), bytes.size(), name.c_str(),
+                                           opts.tryAllFormats, err, sizeof(err));
+    if (in) {
+        OiioDecoder decoder(module, in);
+        return DecodeOpened(decoder, opts, fail);
+    }
     // Some of OIIO's readers (JPEG in 2.4) cannot read from memory: decode through a private
     // temporary file that is removed straight away.
     std::string ext = fs::path(name).extension().string();
@@ -319,10 +358,10 @@ Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::st
     ::close(fd);
     try {
         if (!ok) throw fail("cannot write a temporary file to decode it");
-        auto fin = OIIO::ImageInput::open(tmp, &config);
-        if (!fin) throw fail(OiioError(static_cast<const OIIO::ImageInput *>(nullptr)));
-        Image img = DecodeOpened(fin.get(), opts, fail);
-        fin->close();
+        PrismOiioInput *fin = module.openFile(tmp.c_str(), opts.tryAllFormats, err, sizeof(err));
+        if (!fin) throw fail(err);
+        OiioDecoder decoder(module, fin);
+        Image img = DecodeOpened(decoder, opts, fail);
         std::error_code ec;
         fs::remove(tmp, ec);
         return img;
@@ -331,166 +370,6 @@ Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::st
         fs::remove(tmp, ec);
         throw;
     }
-}
-
-namespace {
-
-enum class OutKind { Float, Srgb8 };
-
-struct OutputFormat {
-    OutKind kind;
-    bool allowGray, allowAlpha;  // channel layouts the format can store
-};
-
-bool LookupOutputFormat(const std::string &ext, OutputFormat *f) {
-    if (ext == ".exr") *f = {OutKind::Float, true, true};
-    else if (ext == ".pfm") *f = {OutKind::Float, true, false};
-    else if (ext == ".hdr") *f = {OutKind::Float, false, false};
-    else if (ext == ".png" || ext == ".tga" || ext == ".bmp") *f = {OutKind::Srgb8, true, true};
-    else if (ext == ".jpg" || ext == ".jpeg") *f = {OutKind::Srgb8, true, false};
-    else return false;
-    return true;
-}
-
-// Temporary name in the target's directory; the real extension stays last so OIIO picks the
-// same format. pid + counter keep concurrent writers (threads or processes) apart.
-fs::path TempPathFor(const fs::path &target) {
-    static std::atomic<uint64_t> counter{0};
-    std::string name = ".";
-    name += target.stem().string();
-    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
-    name += target.extension().string();
-    return target.parent_path() / name;
-}
-
-// Removes the temporary file unless released (after the rename succeeded).
-struct TempFileGuard {
-    fs::path path;
-    bool armed = true;
-    ~TempFileGuard() {
-        if (armed) {
-            std::error_code ec;
-            fs::remove(path, ec);
-        }
-    }
-};
-
-// PFM: "PF" (RGB) or "Pf" (gray), size, scale (negative = little-endian), then float rows from
-// the bottom of the image to the top. Throws std::runtime_error on an I/O error.
-void WritePfm(const std::string &path, int width, int height, int channels, const float *data) {
-    std::ofstream f(path, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error("could not create the file");
-    f << (channels == 1 ? "Pf" : "PF") << "\n" << width << " " << height << "\n-1.0\n";
-    size_t rowValues = size_t(width) * size_t(channels);
-    std::vector<uint32_t> row(rowValues);
-    for (int y = height - 1; y >= 0; --y) {
-        std::memcpy(row.data(), data + size_t(y) * rowValues, rowValues * sizeof(float));
-        if constexpr (std::endian::native == std::endian::big)
-            for (uint32_t &v : row) v = __builtin_bswap32(v);
-        f.write(reinterpret_cast<const char *>(row.data()),
-                std::streamsize(rowValues * sizeof(float)));
-    }
-    f.close();
-    if (!f) throw std::runtime_error("write error");
-}
-
-}  // namespace
-
-void WriteImage(const std::string &path, const Image &img) {
-    auto fail = [&](const std::string &why) -> std::runtime_error {
-        return std::runtime_error("cannot write image " + Quote(path) + ": " + why);
-    };
-    std::string ext = LowerExtension(path);
-    OutputFormat format;
-    if (!LookupOutputFormat(ext, &format))
-        throw std::runtime_error("unsupported output format " + Quote(ext) +
-                                 " (use .exr or .png)");
-    if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4 ||
-        img.pixels.size() != size_t(img.width) * size_t(img.height) * size_t(img.channels))
-        throw fail("invalid image (size " + std::to_string(img.width) + "x" +
-                   std::to_string(img.height) + "x" + std::to_string(img.channels) + ")");
-
-    // Map the image's channels onto what the format can store: gray -> RGB if gray is not
-    // supported, alpha dropped if alpha is not supported.
-    bool gray = img.channels <= 2, alpha = img.HasAlpha();
-    if (gray && !format.allowGray) gray = false;
-    if (alpha && !format.allowAlpha) alpha = false;
-    int nOut = (gray ? 1 : 3) + (alpha ? 1 : 0);
-    int srcAlpha = img.channels - 1;
-    auto source = [&](size_t pixel, int c) -> float {
-        const float *p = &img.pixels[pixel * size_t(img.channels)];
-        if (alpha && c == nOut - 1) return p[srcAlpha];
-        return img.channels >= 3 ? p[c] : p[0];
-    };
-
-    size_t nPixels = size_t(img.width) * size_t(img.height);
-    OIIO::ImageSpec spec(img.width, img.height, nOut,
-                         format.kind == OutKind::Float ? OIIO::TypeDesc::FLOAT
-                                                       : OIIO::TypeDesc::UINT8);
-    if (alpha) spec.alpha_channel = nOut - 1;
-    spec.attribute("oiio:UnassociatedAlpha", 1);  // do not let OIIO un-premultiply
-    spec.attribute("oiio:ColorSpace", format.kind == OutKind::Float ? "Linear" : "sRGB");
-    if (ext == ".jpg" || ext == ".jpeg") spec.attribute("Compression", "jpeg:95");
-
-    std::vector<float> floats;
-    std::vector<uint8_t> bytes;
-    const void *data;
-    if (format.kind == OutKind::Float) {
-        if (nOut == img.channels) {
-            data = img.pixels.data();
-        } else {
-            floats.resize(nPixels * size_t(nOut));
-            for (size_t i = 0; i < nPixels; ++i)
-                for (int c = 0; c < nOut; ++c) floats[i * size_t(nOut) + size_t(c)] = source(i, c);
-            data = floats.data();
-        }
-    } else {
-        bytes.resize(nPixels * size_t(nOut));
-        for (size_t i = 0; i < nPixels; ++i) {
-            for (int c = 0; c < nOut; ++c) {
-                float v = source(i, c);
-                uint8_t &b = bytes[i * size_t(nOut) + size_t(c)];
-                if (alpha && c == nOut - 1)
-                    b = v > 0 ? uint8_t(std::lround(std::min(v, 1.f) * 255.f)) : 0;  // linear
-                else
-                    b = LinearToSrgb8(v);
-            }
-        }
-        data = bytes.data();
-    }
-
-    fs::path target(path);
-    std::error_code dirEc;
-    fs::path dir = target.parent_path();
-    if (!dir.empty() && !fs::is_directory(dir, dirEc))
-        throw fail("directory " + Quote(dir.string()) + " does not exist");
-    TempFileGuard tmp{TempPathFor(target)};
-    std::string tmpName = tmp.path.string();
-    if (ext == ".pfm") {
-        // OIIO 2.4 reads PFM but cannot write it; the format is simple enough to write here.
-        try {
-            WritePfm(tmpName, img.width, img.height, nOut, static_cast<const float *>(data));
-        } catch (const std::runtime_error &e) {
-            throw fail(e.what());
-        }
-    } else {
-        auto out = OIIO::ImageOutput::create(tmpName);
-        if (!out) throw fail(OiioError(static_cast<const OIIO::ImageOutput *>(nullptr)));
-        if (!out->open(tmpName, spec)) throw fail(OiioError(out.get()));
-        OIIO::TypeDesc type =
-            format.kind == OutKind::Float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
-        if (!out->write_image(type, data)) {
-            std::string msg = OiioError(out.get());
-            out->close();
-            throw fail(msg);
-        }
-        if (!out->close()) throw fail(OiioError(out.get()));
-    }
-
-    std::error_code ec;
-    fs::rename(tmp.path, target, ec);
-    if (ec) throw fail(ec.message());
-    tmp.armed = false;
 }
 
 }  // namespace prism

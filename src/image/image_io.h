@@ -1,5 +1,8 @@
-// Reading and writing image files through OpenImageIO, plus the sRGB transfer curves.
-// Files are converted to and from linear float Images; writes are atomic (temp file + rename).
+// Reading and writing image files, plus the sRGB transfer curves. Files are converted to and
+// from linear float Images; writes are atomic (temp file + rename). PNG and EXR are read and
+// written with libpng and OpenEXR, PFM is written by hand; every other format goes through
+// OpenImageIO, which lives in a shared module (libprism_oiio.so) loaded only when a file in
+// such a format is first read or written.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +25,9 @@ struct ReadImageOptions {
     // the failure is reported once, through the exception. Off under the fuzzer, whose crash
     // reports go to stderr.
     bool quietDecoders = true;
+    // When the reader the extension names fails, let OpenImageIO try its other readers. Off
+    // under the fuzzer, so that each run exercises one decoder.
+    bool tryAllFormats = true;
 };
 
 // Returns linear float pixels with 1 (gray), 3 (RGB) or 4 (RGBA) channels; gray + alpha becomes
@@ -33,8 +39,8 @@ Image ReadImage(const std::string &path, ReadImageOptions opts = {});
 Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::string &name,
                           ReadImageOptions opts = {});
 
-// The format follows the extension: .exr (32-bit float), .pfm/.hdr (float), .png/.jpg/.jpeg/
-// .tga/.bmp (8-bit sRGB, rounded, clamped to [0,1]). The file is first written to a temporary
+// The format follows the extension: .exr (32-bit float, ZIP), .pfm/.hdr (float), .png/.jpg/
+// .jpeg/.tga/.bmp (8-bit sRGB, rounded, clamped to [0,1]). The file is first written to a temporary
 // file in the same directory and renamed over `path` only after a successful close, so `path`
 // is never left partially written. Throws std::runtime_error on any failure.
 void WriteImage(const std::string &path, const Image &img);

@@ -3,7 +3,6 @@
 // confined to that directory (which holds the input itself, so self-inclusion is reachable).
 #include "fuzz_entry.h"
 
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -124,14 +123,13 @@ void FuzzImage(const uint8_t *data, size_t size, std::string *rejected) {
     else if (starts("#?")) ext = ".hdr";
     else if (starts("PF") || starts("Pf")) ext = ".pfm";
     else if (starts("BM")) ext = ".bmp";
-    // Only the reader the extension names: OpenImageIO otherwise retries every format plugin
-    // on a malformed file, which slows every run without reaching more of Prism's code.
-    static const bool once = OIIO::attribute("try_all_readers", 0);
-    (void)once;
     std::vector<unsigned char> bytes(data, data + size);
     ReadImageOptions opts;
     opts.maxPixels = int64_t(1) << 20;  // keeps each run fast; the check itself is under test
     opts.quietDecoders = false;         // sanitizer reports must reach stderr
+    // Only the reader the extension names: OpenImageIO otherwise retries every format plugin
+    // on a malformed file, which slows every run without reaching more of Prism's code.
+    opts.tryAllFormats = false;
     try {
         ReadImageFromMemory(bytes, std::string("texture") + ext, opts);
     } catch (const std::runtime_error &e) {

@@ -1,0 +1,162 @@
+// Atomic image writing: PNG through libpng, EXR through OpenEXR, PFM by hand, and the other
+// formats (HDR, TGA, BMP, JPEG) through the OpenImageIO module.
+#include "image/image_io.h"
+
+#include "core/error.h"
+#include "core/file_io.h"
+#include "image/image_write_formats.h"
+#include "image/oiio_loader.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+namespace prism {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+enum class OutKind { Float, Srgb8 };
+
+struct OutputFormat {
+    OutKind kind;
+    bool allowGray, allowAlpha;  // channel layouts the format can store
+};
+
+bool LookupOutputFormat(const std::string &ext, OutputFormat *f) {
+    if (ext == ".exr") *f = {OutKind::Float, true, true};
+    else if (ext == ".pfm") *f = {OutKind::Float, true, false};
+    else if (ext == ".hdr") *f = {OutKind::Float, false, false};
+    else if (ext == ".png" || ext == ".tga" || ext == ".bmp") *f = {OutKind::Srgb8, true, true};
+    else if (ext == ".jpg" || ext == ".jpeg") *f = {OutKind::Srgb8, true, false};
+    else return false;
+    return true;
+}
+
+// Temporary name in the target's directory; the real extension stays last so OIIO picks the
+// same format. pid + counter keep concurrent writers (threads or processes) apart.
+fs::path TempPathFor(const fs::path &target) {
+    static std::atomic<uint64_t> counter{0};
+    std::string name = ".";
+    name += target.stem().string();
+    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
+    name += target.extension().string();
+    return target.parent_path() / name;
+}
+
+// Removes the temporary file unless released (after the rename succeeded).
+struct TempFileGuard {
+    fs::path path;
+    bool armed = true;
+    ~TempFileGuard() {
+        if (armed) {
+            std::error_code ec;
+            fs::remove(path, ec);
+        }
+    }
+};
+
+}  // namespace
+
+void WriteImage(const std::string &path, const Image &img) {
+    auto fail = [&](const std::string &why) -> std::runtime_error {
+        return std::runtime_error("cannot write image " + Quote(path) + ": " + why);
+    };
+    std::string ext = LowerExtension(path);
+    OutputFormat format;
+    if (!LookupOutputFormat(ext, &format))
+        throw std::runtime_error("unsupported output format " + Quote(ext) +
+                                 " (use .exr or .png)");
+    if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4 ||
+        img.pixels.size() != size_t(img.width) * size_t(img.height) * size_t(img.channels))
+        throw fail("invalid image (size " + std::to_string(img.width) + "x" +
+                   std::to_string(img.height) + "x" + std::to_string(img.channels) + ")");
+
+    // Map the image's channels onto what the format can store: gray -> RGB if gray is not
+    // supported, alpha dropped if alpha is not supported.
+    bool gray = img.channels <= 2, alpha = img.HasAlpha();
+    if (gray && !format.allowGray) gray = false;
+    if (alpha && !format.allowAlpha) alpha = false;
+    int nOut = (gray ? 1 : 3) + (alpha ? 1 : 0);
+    int srcAlpha = img.channels - 1;
+    auto source = [&](size_t pixel, int c) -> float {
+        const float *p = &img.pixels[pixel * size_t(img.channels)];
+        if (alpha && c == nOut - 1) return p[srcAlpha];
+        return img.channels >= 3 ? p[c] : p[0];
+    };
+
+    size_t nPixels = size_t(img.width) * size_t(img.height);
+
+    std::vector<float> floats;
+    std::vector<uint8_t> bytes;
+    const void *data;
+    if (format.kind == OutKind::Float) {
+        if (nOut == img.channels) {
+            data = img.pixels.data();
+        } else {
+            floats.resize(nPixels * size_t(nOut));
+            for (size_t i = 0; i < nPixels; ++i)
+                for (int c = 0; c < nOut; ++c) floats[i * size_t(nOut) + size_t(c)] = source(i, c);
+            data = floats.data();
+        }
+    } else {
+        bytes.resize(nPixels * size_t(nOut));
+        for (size_t i = 0; i < nPixels; ++i) {
+            for (int c = 0; c < nOut; ++c) {
+                float v = source(i, c);
+                uint8_t &b = bytes[i * size_t(nOut) + size_t(c)];
+                if (alpha && c == nOut - 1)
+                    b = v > 0 ? uint8_t(std::lround(std::min(v, 1.f) * 255.f)) : 0;  // linear
+                else
+                    b = LinearToSrgb8(v);
+            }
+        }
+        data = bytes.data();
+    }
+
+    fs::path target(path);
+    std::error_code dirEc;
+    fs::path dir = target.parent_path();
+    if (!dir.empty() && !fs::is_directory(dir, dirEc))
+        throw fail("directory " + Quote(dir.string()) + " does not exist");
+    TempFileGuard tmp{TempPathFor(target)};
+    std::string tmpName = tmp.path.string();
+    try {
+        if (ext == ".pfm") {
+            // OIIO 2.4 reads PFM but cannot write it; the format is simple enough to write here.
+            WritePfm(tmpName, img.width, img.height, nOut, static_cast<const float *>(data));
+        } else if (ext == ".png") {
+            WritePng(tmpName, img.width, img.height, nOut, alpha,
+                     static_cast<const uint8_t *>(data));
+        } else if (ext == ".exr") {
+            WriteExr(tmpName, img.width, img.height, nOut, alpha,
+                     static_cast<const float *>(data));
+        } else {
+            const PrismOiioModule &module = OiioModule();
+            bool isFloat = format.kind == OutKind::Float;
+            const char *compression = ext == ".jpg" || ext == ".jpeg" ? "jpeg:95" : "";
+            char err[512] = "";
+            if (!module.write(tmpName.c_str(), img.width, img.height, nOut, alpha ? nOut - 1 : -1,
+                              isFloat ? 1 : 0, data, isFloat ? "Linear" : "sRGB", compression,
+                              err, sizeof(err)))
+                throw std::runtime_error(err);
+        }
+    } catch (const std::runtime_error &e) {
+        throw fail(e.what());
+    }
+
+    std::error_code ec;
+    fs::rename(tmp.path, target, ec);
+    if (ec) throw fail(ec.message());
+    tmp.armed = false;
+}
+
+}  // namespace prism
