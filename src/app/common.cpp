@@ -19,6 +19,11 @@ int RunGuarded(const std::function<int()> &fn) {
         std::string what = e.what();
         if (what.rfind("error: ", 0) != 0 && what.find(": error: ") == std::string::npos)
             what = "error: " + what;
+        // The libraries report a limit without naming the flag that sets it.
+        const std::string flag = " (--max-memory)";
+        if (dynamic_cast<const MemoryBudgetError *>(&e) &&
+            (what.size() < flag.size() || what.compare(what.size() - flag.size(), flag.size(), flag) != 0))
+            what += flag;
         std::fprintf(stderr, "%s\n", what.c_str());
         return 2;
     } catch (const UsageError &e) {

@@ -164,8 +164,8 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
                     "Replace every analytic shape by its triangle twin with N segments around the axis")
         ->check(CLI::Range(3, 4096));
     cmd->add_option("--max-memory", args->maxMemory,
-                    "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM); larger "
-                    "films, textures and meshes are an error");
+                    "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM), for scene "
+                    "files, meshes, BVH, textures and film together; more is an error");
     cmd->add_flag("-q,--quiet", args->quiet, "No progress, statistics or warnings");
     cmd->add_flag("--no-progress", args->noProgress, "No progress display (statistics and warnings stay)");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunRender(*args); }); });

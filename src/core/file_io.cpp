@@ -98,9 +98,28 @@ std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc, uint64_
     FileReadError err;
     if (ReadFileContents(path, &text, &err, maxBytes)) return text;
     if (err.tooLarge)
-        throw SceneError(loc, "file is " + FormatBytes(err.size) +
-                                  ", more than the memory budget of " + FormatBytes(maxBytes) +
-                                  " (--max-memory)");
+        throw MemoryBudgetError(loc,
+                                "file is " + FormatBytes(err.size) +
+                                    ", more than the memory budget of " + FormatBytes(maxBytes),
+                                err.size, 0, maxBytes);
+    throw SceneError(loc, "cannot open file " + Quote(path) + ": " + err.reason);
+}
+
+std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc, MemoryBudget &budget,
+                            std::string_view what) {
+    std::string text;
+    FileReadError err;
+    if (ReadFileContents(path, &text, &err, budget.Remaining())) {
+        budget.Charge(text.size(), what, loc);
+        return text;
+    }
+    if (err.tooLarge) {
+        budget.Check(err.size, what, loc);
+        // Only reached when another thread released memory since Remaining() was read.
+        uint64_t used = budget.Used();
+        throw MemoryBudgetError(loc, budget.ExceededMessage(err.size, used, what), err.size, used,
+                                budget.Limit());
+    }
     throw SceneError(loc, "cannot open file " + Quote(path) + ": " + err.reason);
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/error.h"
@@ -31,11 +32,18 @@ bool ReadFileContents(const std::string &path, std::vector<unsigned char> *out,
                       FileReadError *error,
                       uint64_t maxBytes = std::numeric_limits<uint64_t>::max());
 
+class MemoryBudget;
+
 // ReadFileContents for readers that report errors as SceneError at `loc`:
-// `cannot open file "PATH": REASON`, or for a file over `maxBytes`
-// `file is SIZE, more than the memory budget of MAX (--max-memory)`.
+// `cannot open file "PATH": REASON`, or for a file over `maxBytes` a MemoryBudgetError
+// (core/memory.h) `file is SIZE, more than the memory budget of MAX`.
 std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc,
                             uint64_t maxBytes = std::numeric_limits<uint64_t>::max());
+// As above, charging the file's size to `budget` as `what` ("scene file", "included file
+// \"b.pbrt\""): a file larger than what remains of the budget is refused before it is read,
+// with MemoryBudget::Charge's MemoryBudgetError at `loc`. The charge is kept.
+std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc, MemoryBudget &budget,
+                            std::string_view what);
 
 // The extension of `path` with its dot, in lower case: "scene.PBRT" -> ".pbrt", "a/b" -> "".
 std::string LowerExtension(const std::string &path);

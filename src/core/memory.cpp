@@ -2,10 +2,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 namespace prism {
 
@@ -55,6 +57,77 @@ std::string FormatBytes(uint64_t bytes) {
     char buf[32];
     std::snprintf(buf, sizeof buf, v < 10 ? "%.1f %s" : "%.0f %s", v, units[u]);
     return buf;
+}
+
+std::string MemoryBudget::ExceededMessage(uint64_t bytes, uint64_t committed,
+                                          std::string_view what) const {
+    std::string msg(what);
+    msg += " needs about " + FormatBytes(bytes);
+    if (bytes > limit_ || committed == 0)
+        return msg + ", more than the memory budget of " + FormatBytes(limit_);
+    return msg + "; with " + FormatBytes(committed) +
+           " already committed that exceeds the memory budget of " + FormatBytes(limit_);
+}
+
+void MemoryBudget::Check(uint64_t bytes, std::string_view what, const FileLoc &loc) const {
+    uint64_t used = Used();
+    if (bytes > limit_ || used > limit_ - bytes)
+        throw MemoryBudgetError(loc, ExceededMessage(bytes, used, what), bytes, used, limit_);
+}
+
+void MemoryBudget::Charge(uint64_t bytes, std::string_view what, const FileLoc &loc) {
+    uint64_t used = used_.load(std::memory_order_relaxed);
+    while (true) {
+        if (bytes > limit_ || used > limit_ - bytes)
+            throw MemoryBudgetError(loc, ExceededMessage(bytes, used, what), bytes, used, limit_);
+        if (used_.compare_exchange_weak(used, used + bytes, std::memory_order_relaxed)) return;
+    }
+}
+
+void MemoryBudget::Release(uint64_t bytes) {
+    uint64_t used = used_.load(std::memory_order_relaxed);
+    while (!used_.compare_exchange_weak(used, used > bytes ? used - bytes : 0,
+                                        std::memory_order_relaxed)) {
+    }
+}
+
+namespace {
+
+__extension__ typedef unsigned __int128 u128;  // GCC/Clang; exact 64x64-bit products
+
+uint64_t Saturate(u128 v) {
+    constexpr uint64_t kMax = std::numeric_limits<uint64_t>::max();
+    return v > u128(kMax) ? kMax : uint64_t(v);
+}
+
+}  // namespace
+
+uint64_t EstimateBvhBytes(uint64_t triangles, uint64_t userPrims) {
+    return Saturate(u128(triangles) * kBvhBytesPerTriangle + u128(userPrims) * kBvhBytesPerUserPrim +
+                    kBvhFixedBytes);
+}
+
+uint64_t EstimateFilmBytes(uint64_t width, uint64_t height, double filterRadiusX,
+                           double filterRadiusY, int tileSize) {
+    const u128 kFilmPixelBytes = 32, kImageBytes = 12, kEncodedBytes = 12;
+    if (tileSize < 1) tileSize = 1;
+    // Pixels of all tiles along one axis: the extent plus each tile's two margins.
+    auto tileExtent = [&](uint64_t extent, double r) {
+        if (!(r > 0)) r = 0;
+        r = std::min(r, 1e9);
+        u128 before = u128(std::max(0.0, std::ceil(r + 0.5) - 1));
+        u128 after = u128(std::max(0.0, std::floor(r - 0.5) + 1));
+        u128 tiles = (u128(extent) + u128(tileSize) - 1) / u128(tileSize);
+        return u128(extent) + tiles * (before + after);
+    };
+    // Every factor below 2^63 keeps each product below 2^126 and the sum below 2^128.
+    const u128 kLarge = u128(1) << 63;
+    u128 tileX = tileExtent(width, filterRadiusX), tileY = tileExtent(height, filterRadiusY);
+    if (tileX >= kLarge || tileY >= kLarge) return std::numeric_limits<uint64_t>::max();
+    u128 pixels = u128(width) * u128(height), tilePixels = tileX * tileY;
+    if (pixels >= kLarge || tilePixels >= kLarge) return std::numeric_limits<uint64_t>::max();
+    return Saturate(pixels * (kFilmPixelBytes + kImageBytes + kEncodedBytes) +
+                    tilePixels * kFilmPixelBytes);
 }
 
 }  // namespace prism

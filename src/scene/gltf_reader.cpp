@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -30,35 +31,50 @@ double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const c
 
 namespace {
 
+// The memory budget seen from tinygltf's callbacks, which must not throw: a refused charge is
+// kept here and rethrown once tinygltf returns.
+struct ReadBudget {
+    MemoryBudget &budget;
+    std::string topFile;
+    std::optional<MemoryBudgetError> refused;
+};
+
 // Replaces tinygltf's stb_image decoding: images without an external URI (data URIs and .glb
 // bufferViews) keep their encoded bytes in Image::image; external files are referenced by
-// path and decoded later by the renderer.
+// path and decoded later by the renderer (which charges the decoded texture), so the bytes
+// tinygltf read for them are given back to the budget.
 bool KeepEncodedBytes(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
-                      const unsigned char *bytes, int size, void *) {
+                      const unsigned char *bytes, int size, void *user) {
+    auto *b = static_cast<ReadBudget *>(user);
+    if (!image->uri.empty() && image->uri.compare(0, 5, "data:") != 0 && size > 0)
+        b->budget.Release(uint64_t(size));
     if (image->uri.empty() && bytes && size > 0) image->image.assign(bytes, bytes + size);
     return true;
 }
 
-// tinygltf reads the .gltf/.glb file and every external buffer whole. This replacement reads
-// only regular files (not /dev/zero or a FIFO named by a hostile URI) and keeps the total
-// within the memory budget, checked before anything is allocated.
-struct ReadBudget {
-    uint64_t budget, used = 0;
-};
-
+// tinygltf reads the .gltf/.glb file, every external buffer and every external image whole.
+// This replacement reads only regular files (not /dev/zero or a FIFO named by a hostile URI)
+// and charges each to the memory budget, checked before anything is allocated.
 bool ReadWholeFileWithinBudget(std::vector<unsigned char> *out, std::string *err,
                                const std::string &path, void *user) {
     auto *b = static_cast<ReadBudget *>(user);
     FileReadError error;
-    if (!ReadFileContents(path, out, &error, b->budget - b->used)) {
-        if (err && error.tooLarge)
-            *err += FormatBytes(error.size) + " exceeds the memory budget of " +
-                    FormatBytes(b->budget) + " (--max-memory)\n";
-        else if (err)
-            *err += error.reason + "\n";
+    const std::string what = path == b->topFile
+                                 ? std::string("scene file")
+                                 : "file " + Quote(std::filesystem::path(path).filename().string());
+    try {
+        if (!ReadFileContents(path, out, &error, b->budget.Remaining())) {
+            if (error.tooLarge) b->budget.Check(error.size, what, FileLoc{b->topFile});
+            if (err) *err += (error.tooLarge ? "file grew while read" : error.reason) + "\n";
+            return false;
+        }
+        b->budget.Charge(out->size(), what, FileLoc{b->topFile});
+    } catch (const MemoryBudgetError &e) {
+        if (!b->refused) b->refused = e;
+        if (err) *err += e.Message() + "\n";
+        out->clear();
         return false;
     }
-    b->used += out->size();
     return true;
 }
 
@@ -476,6 +492,11 @@ void GltfConverter::Read() {
 }  // namespace gltf_internal
 
 SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, uint64_t maxMemory) {
+    MemoryBudget budget(maxMemory);
+    return ReadGltfFile(path, diag, budget);
+}
+
+SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, MemoryBudget &memory) {
     using namespace gltf_internal;
     FileLoc loc{path};
     std::error_code ec;
@@ -484,8 +505,8 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, uint64
 
     tinygltf::Model model;
     tinygltf::TinyGLTF ctx;
-    ctx.SetImageLoader(&KeepEncodedBytes, nullptr);
-    ReadBudget budget{EffectiveMemoryBudget(maxMemory)};
+    ReadBudget budget{memory, path, std::nullopt};
+    ctx.SetImageLoader(&KeepEncodedBytes, &budget);
     ctx.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath,
                         &ReadWholeFileWithinBudget, &tinygltf::WriteWholeFile, &budget});
     std::string err, warn;
@@ -496,6 +517,7 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, uint64
     } catch (const std::exception &e) {
         throw SceneError(loc, std::string("cannot parse glTF file: ") + e.what());
     }
+    if (budget.refused) throw *budget.refused;
     for (const std::string &w : MessageLines(warn)) diag.Warn(loc, w);
     if (!ok) {
         std::vector<std::string> errs = MessageLines(err);
@@ -508,6 +530,14 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, uint64
     desc.sourceFile = path;
     desc.baseDir = DirectoryOf(path);
     GltfConverter(model, path, diag, desc).Read();
+    // What the description keeps after the model is freed: mesh parameters and embedded images.
+    uint64_t geometry = 0, images = 0;
+    for (const ShapeDesc &s : desc.shapes) geometry += ParamStorageBytes(s.params);
+    for (const ObjectDesc &o : desc.objects)
+        for (const ShapeDesc &s : o.shapes) geometry += ParamStorageBytes(s.params);
+    for (const EmbeddedImage &e : desc.embeddedImages) images += e.bytes.size();
+    memory.Charge(geometry, "glTF geometry", loc);
+    memory.Charge(images, "embedded images", loc);
     return desc;
 }
 

@@ -8,11 +8,17 @@
 
 namespace prism {
 
+class MemoryBudget;
+
 // Throws SceneError for unreadable or malformed files (including accessors that reach past
 // their buffers). Embedded images are returned in SceneDescription::embeddedImages and
 // referenced by textures as "embedded:<index>"; nothing is written to disk.
-// The .gltf/.glb file and each external buffer must fit in `maxMemory` bytes (0: the default
-// budget of core/memory.h); buffers must be regular files.
+// Charged to `budget` (core/memory.h), each refused with a MemoryBudgetError before it is
+// read: the .gltf/.glb file, each external buffer, and after conversion the mesh parameters
+// and embedded images the description keeps (external images are read by tinygltf and given
+// back; the renderer charges them when it decodes them). Buffers must be regular files.
+SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, MemoryBudget &budget);
+// The same with a budget of its own of `maxMemory` bytes (0: the default budget).
 SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, uint64_t maxMemory = 0);
 
 }  // namespace prism

@@ -38,13 +38,17 @@ bool HasEmitters(const SceneDescription &desc) {
     return false;
 }
 
-SceneDescription LoadPlyScene(const std::string &path, Bounds3f *bounds,
-                              uint64_t maxMemory) {
-    // Read once here for the bounds (and to report a broken file early); the renderer reads it
-    // again through the "plymesh" shape. Warnings are left to that second read.
+SceneDescription LoadPlyScene(const std::string &path, Bounds3f *bounds, MemoryBudget &budget) {
+    // Read once here for the bounds (and to report a broken file early, or one that does not
+    // fit in the budget); the renderer reads it again through the "plymesh" shape and charges
+    // it then, so this read's charge is given back. Warnings are left to that second read.
     Diagnostics scratch;
-    PlyMesh mesh = ReadPlyFile(path, scratch, maxMemory);
-    for (const Vec3f &p : mesh.P) bounds->Expand(p);
+    uint64_t usedBefore = budget.Used();
+    {
+        PlyMesh mesh = ReadPlyFile(path, scratch, budget);
+        for (const Vec3f &p : mesh.P) bounds->Expand(p);
+    }
+    budget.Release(budget.Used() - usedBefore);
     SceneDescription desc;
     desc.format = "ply";
     desc.sourceFile = path;
@@ -147,20 +151,21 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
         throw SceneError(FileLoc{path}, "unsupported scene format \"" + ext + "\" (expected " +
                                             SceneExtensionList() + ")");
 
-    // Every reader holds the whole file in memory (tinyobjloader, tinygltf, PLY, pbrt).
-    uint64_t budget = EffectiveMemoryBudget(opts.maxMemory);
-    uint64_t fileSize = fs::file_size(path, ec);
-    if (!ec && fileSize > budget)
-        throw SceneError(FileLoc{path}, "file is " + FormatBytes(fileSize) +
-                                            ", more than the memory budget of " +
-                                            FormatBytes(budget) + " (--max-memory)");
+    // Every reader holds the whole file in memory (tinyobjloader, tinygltf, PLY, pbrt) and
+    // charges it, and what it builds from it, to the budget.
+    MemoryBudget ownBudget(opts.budget ? 1 : opts.maxMemory);
+    MemoryBudget &budget = opts.budget ? *opts.budget : ownBudget;
 
-    if (ext == ".pbrt") return ParsePbrtFile(path, diag, opts.pbrt);
+    if (ext == ".pbrt") {
+        PbrtParseOptions pbrtOpts = opts.pbrt;
+        pbrtOpts.budget = &budget;
+        return ParsePbrtFile(path, diag, pbrtOpts);
+    }
 
     SceneDescription desc;
     Bounds3f bounds;
     if (ext == ".obj") {
-        desc = ReadObjFile(path, diag);
+        desc = ReadObjFile(path, diag, &budget);
         bounds = SceneMeshBounds(desc);
     } else if (ext == ".gltf" || ext == ".glb") {
         desc = ReadGltfFile(path, diag, budget);

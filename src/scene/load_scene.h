@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "core/memory.h"
 #include "core/vecmath.h"
 #include "scene/pbrt_parser.h"
 #include "scene/scene_description.h"
@@ -16,8 +17,15 @@ struct LoadOptions {
     // when it has neither lights nor emissive materials. (pbrt files keep pbrt's defaults.)
     bool defaultCamera = true;
     bool defaultLights = true;
-    // Memory budget in bytes (0: 75% of physical RAM): scene files, PLY meshes and glTF
-    // buffers that would need more are rejected with a SceneError before they are read.
+    // The render's memory budget (core/memory.h). LoadScene charges to it every scene file it
+    // reads (the top-level file and every Include; OBJ and MTL; glTF, its buffers and embedded
+    // images) and the mesh parameters it builds or parses (trianglemesh arrays, OBJ and glTF
+    // geometry); the charges are kept, so the builder and the renderer charge the rest to the
+    // same budget. A top-level .ply is checked too, but its charge is given back: the builder
+    // reads the mesh again through the "plymesh" shape and charges it then. Anything that would exceed it is refused with a
+    // MemoryBudgetError (a SceneError) before it is read or allocated. When null, a budget of
+    // `maxMemory` bytes (0: 75% of physical RAM) is used for this call alone.
+    MemoryBudget *budget = nullptr;
     uint64_t maxMemory = 0;
 };
 

@@ -15,6 +15,7 @@
 #include <tiny_obj_loader.h>
 
 #include "core/file_io.h"
+#include "core/memory.h"
 #include "scene/param_builders.h"
 
 namespace prism {
@@ -208,16 +209,21 @@ void CheckNumbers(const std::string &path, const std::string &text) {
 // looked up in the OBJ's directory; one that cannot be read is a warning, as in tinyobjloader.
 class MtlReader : public tinyobj::MaterialReader {
 public:
-    explicit MtlReader(std::string dir) : dir_(std::move(dir)) {}
+    MtlReader(std::string dir, MemoryBudget *budget, FileLoc loc)
+        : dir_(std::move(dir)), budget_(budget), loc_(std::move(loc)) {}
     bool operator()(const std::string &name, std::vector<tinyobj::material_t> *materials,
                     std::map<std::string, int> *matMap, std::string *warn,
                     std::string *err) override {
         std::string text;
         FileReadError error;
-        if (!ReadFileContents(dir_.empty() ? name : dir_ + "/" + name, &text, &error)) {
+        const std::string what = "material library " + Quote(name);
+        if (!ReadFileContents(dir_.empty() ? name : dir_ + "/" + name, &text, &error,
+                              budget_ ? budget_->Remaining() : UINT64_MAX)) {
+            if (error.tooLarge && budget_) budget_->Check(error.size, what, loc_);  // throws
             if (warn) *warn += "Material file [ " + name + " ] not found in a path : " + dir_ + "\n";
             return false;
         }
+        if (budget_) budget_->Charge(text.size(), what, loc_);
         std::istringstream in(text);
         tinyobj::LoadMtl(matMap, materials, &in, warn, err);
         return true;
@@ -225,20 +231,23 @@ public:
 
 private:
     std::string dir_;
+    MemoryBudget *budget_;
+    FileLoc loc_;
 };
 
 }  // namespace
 
-SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag) {
+SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag, MemoryBudget *budget) {
     FileLoc fileLoc{path};
-    std::string text = ReadFileOrThrow(path, fileLoc);
+    std::string text = budget ? ReadFileOrThrow(path, fileLoc, *budget, "scene file")
+                              : ReadFileOrThrow(path, fileLoc);
     CheckNumbers(path, text);
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warn, err;
-    MtlReader mtlReader(DirectoryOf(path));
+    MtlReader mtlReader(DirectoryOf(path), budget, fileLoc);
     std::istringstream in(std::move(text));
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtlReader,
                                /*triangulate=*/true, /*default_vcols_fallback=*/false);
@@ -308,6 +317,7 @@ SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag) {
             s.areaLight = mat >= 0 ? areaLightOf[size_t(mat)] : -1;
             s.directiveIndex = int(desc.shapes.size());
             s.params = TriangleMeshParams(b.indices, b.P, b.N, b.uv, fileLoc);
+            if (budget) budget->Charge(ParamStorageBytes(s.params), "mesh", fileLoc);
             desc.shapes.push_back(std::move(s));
         }
     }

@@ -8,8 +8,13 @@
 
 namespace prism {
 
+class MemoryBudget;
+
 // Throws SceneError when the file cannot be read or is malformed; a missing .mtl file is a
 // warning (the default material is used). The camera is left unspecified.
-SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag);
+// With a `budget` (core/memory.h), the OBJ file, each MTL file and the meshes built from them
+// (their parameter storage) are charged to it; MemoryBudgetError when they do not fit.
+SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag,
+                             MemoryBudget *budget = nullptr);
 
 }  // namespace prism

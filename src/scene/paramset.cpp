@@ -192,6 +192,16 @@ void ParamSet::ReportUnused(Diagnostics &diag, const std::string &context) const
     }
 }
 
+uint64_t ParamStorageBytes(const ParamSet &ps) {
+    uint64_t bytes = 0;
+    for (const Param &p : ps.Params()) {
+        bytes += sizeof(Param) + p.name.size() + p.numbers.size() * sizeof(double) +
+                 (p.bools.size() + 7) / 8;
+        for (const std::string &s : p.strings) bytes += sizeof(std::string) + s.size();
+    }
+    return bytes;
+}
+
 static Param ConvertParameter(ParsedParameter &in, const SpectrumFileReader &spectrumFile) {
     Param p;
     p.name = std::move(in.name);

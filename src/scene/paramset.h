@@ -4,6 +4,7 @@
 // spectrum, xyz) become linear sRGB there, so lookups only ever see RGB.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -73,6 +74,10 @@ private:
                            const char *want) const;
     std::vector<Param> params_;
 };
+
+// Heap bytes held by the values of `ps`: 8 per number (they are doubles), each string's
+// characters plus 32, one bit per bool, plus each Param's own size. For the memory budget.
+uint64_t ParamStorageBytes(const ParamSet &ps);
 
 // A parameter as the parser read it: `"type name" values`, before the type is interpreted.
 struct ParsedParameter {

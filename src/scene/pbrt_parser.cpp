@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "core/file_io.h"
+#include "core/memory.h"
 #include "scene/scene_builder.h"
 #include "scene/tokenizer.h"
 
@@ -213,7 +214,10 @@ void PbrtParser::Include(const Token &dir, const std::string &name) {
     if (opts_.confineIncludes && !IsInsideDirectory(canonical, baseDir_))
         throw SceneError(dir.Loc(), "included file " + Quote(name) +
                                         " is outside the scene directory");
-    ParseFile(ReadFileOrThrow(path, dir.Loc()), path, canonical);
+    std::string text = opts_.budget ? ReadFileOrThrow(path, dir.Loc(), *opts_.budget,
+                                                      "included file " + Quote(name))
+                                    : ReadFileOrThrow(path, dir.Loc());
+    ParseFile(std::move(text), path, canonical);
 }
 
 void PbrtParser::ParseDirective(Tokenizer &tok, const Token &dir) {
@@ -385,7 +389,9 @@ SceneDescription ParsePbrtString(const std::string &text, const std::string &fil
 
 SceneDescription ParsePbrtFile(const std::string &path, Diagnostics &diag,
                                const PbrtParseOptions &opts) {
-    std::string text = ReadFileOrThrow(path, FileLoc{path, 0, 0});
+    FileLoc loc{path, 0, 0};
+    std::string text = opts.budget ? ReadFileOrThrow(path, loc, *opts.budget, "scene file")
+                                   : ReadFileOrThrow(path, loc);
     SceneBuilder builder(path, diag, opts);
     ParsePbrt(std::move(text), path, builder, opts);
     return builder.Result();

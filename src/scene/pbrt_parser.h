@@ -13,11 +13,16 @@
 
 namespace prism {
 
+class MemoryBudget;
+
 struct PbrtParseOptions {
     int maxIncludeDepth = 32;
     // When set, an Include/Import (or .spd spectrum file) that resolves outside the directory
     // of the top-level file is rejected; for fuzzing and untrusted input.
     bool confineIncludes = false;
+    // When set, the top-level file (ParsePbrtFile), every included file and the parameters of
+    // every shape are charged to it (core/memory.h); MemoryBudgetError once they exceed it.
+    MemoryBudget *budget = nullptr;
 };
 
 enum class ActiveTransformKind { StartTime, EndTime, All };

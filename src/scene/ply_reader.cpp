@@ -388,8 +388,28 @@ void SkipElement(const PlyElement &e, DataReader &r) {
 
 }  // namespace
 
+uint64_t PlyMeshBytes(uint64_t fileBytes, uint64_t vertices, uint64_t faces) {
+    return fileBytes + vertices * 32 + faces * 24;
+}
+
 PlyMesh ReadPlyFile(const std::string &path, Diagnostics &diag, uint64_t maxBytes) {
-    std::string buf = ReadFileOrThrow(path, FileLoc{path}, maxBytes);
+    MemoryBudget budget(maxBytes);
+    return ReadPlyFile(path, diag, budget);
+}
+
+PlyMesh ReadPlyFile(const std::string &path, Diagnostics &diag, MemoryBudget &budget) {
+    // The file is a transient buffer, counted with the mesh below.
+    std::string buf;
+    {
+        FileReadError error;
+        if (!ReadFileContents(path, &buf, &error, budget.Remaining())) {
+            if (!error.tooLarge)
+                throw SceneError(FileLoc{path}, "cannot open file " + Quote(path) + ": " +
+                                                    error.reason);
+            budget.Check(error.size, "file", FileLoc{path});
+            buf = ReadFileOrThrow(path, FileLoc{path});  // memory was released meanwhile
+        }
+    }
     PlyHeader h = ParseHeader(path, buf);
 
     // Check every element count against the bytes that remain before allocating anything.
@@ -419,16 +439,13 @@ PlyMesh ReadPlyFile(const std::string &path, Diagnostics &diag, uint64_t maxByte
     if (!vertexElem) throw SceneError(FileLoc{path}, "no vertex element");
     if (vertexElem->count > uint64_t(std::numeric_limits<int>::max()))
         throw SceneError(vertexElem->loc, "too many vertices");
-    // Memory budget: the file plus P, N, uv (32 bytes per vertex) and the indices (a quad is
-    // two triangles: 24 bytes per face); counts are bounded by the file size, so no overflow.
+    // Memory budget: counts are bounded by the file size, so PlyMeshBytes cannot overflow.
     {
-        uint64_t need = buf.size() + vertexElem->count * 32;
+        uint64_t faces = 0;
         for (const PlyElement &e : h.elements)
-            if (e.name == "face") need += e.count * 24;
-        if (need > maxBytes)
-            throw SceneError(vertexElem->loc, "mesh needs about " + FormatBytes(need) +
-                                                  ", more than the memory budget of " +
-                                                  FormatBytes(maxBytes) + " (--max-memory)");
+            if (e.name == "face") faces += e.count;
+        budget.Charge(PlyMeshBytes(buf.size(), vertexElem->count, faces), "mesh",
+                      vertexElem->loc);
     }
 
     PlyMesh mesh;

@@ -18,9 +18,18 @@ struct PlyMesh {
     std::vector<int> indices;   // triangles; quads are split, larger polygons fanned
 };
 
+class MemoryBudget;
+
 // Throws SceneError for unreadable or malformed files (header errors carry file:line:col).
-// `maxBytes` is a memory budget: a file larger than it, or whose mesh would need more (file
-// plus arrays, estimated from the header), is rejected before the arrays are allocated.
+// The mesh is charged to `budget` (core/memory.h) before its arrays are allocated: the file
+// plus P, N, uv (32 bytes per vertex) and the indices (24 bytes per face, a quad being two
+// triangles), estimated from the header, as "mesh" at the vertex element's location. A file
+// larger than what remains is refused before it is read. MemoryBudgetError either way.
+PlyMesh ReadPlyFile(const std::string &path, Diagnostics &diag, MemoryBudget &budget);
+// The same with a budget of its own of `maxBytes` (0: the default budget).
 PlyMesh ReadPlyFile(const std::string &path, Diagnostics &diag, uint64_t maxBytes = 8ull << 30);
+// The bytes ReadPlyFile charges for a mesh of this many vertices and faces read from a file of
+// `fileBytes` bytes.
+uint64_t PlyMeshBytes(uint64_t fileBytes, uint64_t vertices, uint64_t faces);
 
 }  // namespace prism

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/file_io.h"
+#include "core/memory.h"
 #include "scene/spectrum.h"
 
 namespace prism {
@@ -361,6 +362,9 @@ void SceneBuilder::Shape(const std::string &type, ParsedParameterVector params,
     CheckWorld("Shape", loc);
     ShapeDesc s;
     static_cast<SceneEntity &>(s) = Entity(type, std::move(params), loc);
+    // Meshes given inline ("trianglemesh" arrays) live in the description until the render.
+    if (opts_.budget)
+        opts_.budget->Charge(ParamStorageBytes(s.params), "shape " + Quote(type), loc);
     s.worldFromObject = ctm_;
     s.reverseOrientation = gs_.reverseOrientation;
     s.material = gs_.material;

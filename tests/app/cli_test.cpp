@@ -152,6 +152,21 @@ TEST(Cli, BadOptionsExitWithStatus2) {
     EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
 
+// The libraries report a memory limit without naming a flag; the app adds it, exactly once.
+TEST(Cli, MemoryBudgetErrorNamesTheFlagOnce) {
+    fs::path dir = TempDir("budget");
+    const std::string flag = "(--max-memory)";
+    for (const char *args : {"budget_includes.pbrt' --max-memory 8K", "ply_budget.pbrt' --max-memory 100K"}) {
+        RunResult r = RunPrism("render '" + Source + "/tests/bad/" + args + " --res 16x16 -o a.png", dir);
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        size_t at = r.err.find(flag);
+        ASSERT_NE(at, std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find(flag, at + 1), std::string::npos) << r.err;
+        EXPECT_EQ(at + flag.size() + 1, r.err.size()) << "the message ends with the flag: " << r.err;
+        EXPECT_FALSE(fs::exists(dir / "a.png"));
+    }
+}
+
 TEST(Cli, InfoDescribesScene) {
     fs::path dir = TempDir("info");
     RunResult r = RunPrism("info '" + Source + "/scenes/quadrics.pbrt'", dir);

@@ -1,6 +1,7 @@
 // The shared file reader: regular files only (never blocking on a device or FIFO), the OS
 // reason on failure, and the size limit checked before reading.
 #include "core/file_io.h"
+#include "core/memory.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -71,9 +72,31 @@ TEST(FileIo, SizeLimitIsCheckedBeforeReading) {
     try {
         ReadFileOrThrow(path, FileLoc{path}, 1024);
         FAIL() << "no error";
-    } catch (const SceneError &e) {
-        EXPECT_EQ(e.Message(), "file is 4.9 KiB, more than the memory budget of 1.0 KiB (--max-memory)");
+    } catch (const MemoryBudgetError &e) {
+        // The library reports the limit; the app names the flag (tests/app/cli_test.cpp).
+        EXPECT_EQ(e.Message(), "file is 4.9 KiB, more than the memory budget of 1.0 KiB");
     }
+}
+
+TEST(FileIo, ReadingChargesTheBudgetAndRefusesWhatDoesNotFit) {
+    std::string path = TempPath("charged.txt");
+    std::ofstream(path) << std::string(3000, 'a');
+    MemoryBudget budget(8000);
+    EXPECT_EQ(ReadFileOrThrow(path, FileLoc{path}, budget, "scene file").size(), 3000u);
+    EXPECT_EQ(ReadFileOrThrow(path, FileLoc{path}, budget, "scene file").size(), 3000u);
+    EXPECT_EQ(budget.Used(), 6000u);
+    // The third copy alone fits the limit but not what remains: refused before it is read.
+    try {
+        ReadFileOrThrow(path, FileLoc{path, 2, 1}, budget, "included file \"c.pbrt\"");
+        FAIL() << "no error";
+    } catch (const MemoryBudgetError &e) {
+        EXPECT_EQ(e.Message(), "included file \"c.pbrt\" needs about 2.9 KiB; with 5.9 KiB already "
+                               "committed that exceeds the memory budget of 7.8 KiB");
+        EXPECT_EQ(e.Loc().line, 2);
+        EXPECT_EQ(e.Requested(), 3000u);
+        EXPECT_EQ(e.Committed(), 6000u);
+    }
+    EXPECT_EQ(budget.Used(), 6000u);
 }
 
 TEST(FileIo, PathHelpers) {
