@@ -19,7 +19,7 @@ void AddRenderCommand(CLI::App &app, int *exitCode);
 void AddTraceCommand(CLI::App &app, int *exitCode);
 void AddInfoCommand(CLI::App &app, int *exitCode);
 void AddBatchCommand(CLI::App &app, int *exitCode);
-void AddValidateCommand(CLI::App &app, int *exitCode);  // exit 3/4: see render/validate.h
+void AddValidateCommand(CLI::App &app, int *exitCode);  // exit 3/4: see validate/validate.h
 // `prism` with no arguments: render the default scene to whitted.png.
 int RenderDefaultScene();
 

@@ -7,7 +7,7 @@
 
 #include "app/commands.h"
 #include "app/common.h"
-#include "render/scene_shapes.h"
+#include "build/shape_factory.h"
 #include "scene/load_scene.h"
 
 namespace prism {

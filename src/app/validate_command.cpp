@@ -13,13 +13,13 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/output_file.h"
-#include "geometry/tessellate.h"
+#include "validate/tessellate.h"
 #include "image/image.h"
 #include "image/image_io.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
-#include "render/scene_shapes.h"
-#include "render/validate.h"
+#include "build/shape_factory.h"
+#include "validate/validate.h"
 #include "scene/load_scene.h"
 
 namespace prism {

@@ -16,7 +16,7 @@
 
 namespace prism {
 
-struct RevolutionProfile;  // geometry/tessellate.h
+struct RevolutionProfile;  // validate/tessellate.h
 
 enum class Precision { Float, Double };
 

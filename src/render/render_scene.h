@@ -36,7 +36,7 @@ struct RenderOptions {
     // world-space rays are traced without re-rounding.
     bool cameraRelative = true;
     // [validate hook] > 0: every analytic shape is replaced by its triangle twin with this
-    // many segments around the axis (geometry/tessellate.h).
+    // many segments around the axis (validate/tessellate.h).
     int tessellate = 0;
 };
 

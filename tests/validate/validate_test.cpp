@@ -1,6 +1,6 @@
 // `prism validate`: every canonical shape agrees with its tessellated twin up to the
 // chord-error band, and a deliberately broken intersector (built only here) is caught.
-#include "render/validate.h"
+#include "validate/validate.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,7 +13,7 @@
 
 #include "geometry/quadric_util.h"
 #include "geometry/sphere.h"
-#include "geometry/tessellate.h"
+#include "validate/tessellate.h"
 #include "render/render_scene.h"
 #include "scene/load_scene.h"
 

@@ -1,4 +1,4 @@
-#include "render/validate.h"
+#include "validate/validate.h"
 
 #include <algorithm>
 #include <chrono>
@@ -15,7 +15,7 @@
 #include "geometry/hyperboloid.h"
 #include "geometry/paraboloid.h"
 #include "geometry/sphere.h"
-#include "geometry/tessellate.h"
+#include "validate/tessellate.h"
 #include "geometry/torus.h"
 
 namespace prism {

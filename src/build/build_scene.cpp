@@ -9,12 +9,12 @@
 
 #include "core/memory.h"
 #include "geometry/sphere.h"
-#include "geometry/tessellate.h"
+#include "validate/tessellate.h"
 #include "render/area_light.h"
 #include "image/image.h"
 #include "image/image_io.h"
 #include "render/render_scene.h"
-#include "render/scene_shapes.h"
+#include "build/shape_factory.h"
 #include "scene/ply_reader.h"
 
 namespace prism {

@@ -1,4 +1,4 @@
-#include "geometry/tessellate.h"
+#include "validate/tessellate.h"
 
 #include <algorithm>
 #include <cmath>

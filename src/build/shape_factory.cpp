@@ -1,4 +1,4 @@
-#include "render/scene_shapes.h"
+#include "build/shape_factory.h"
 
 #include <filesystem>
 #include <stdexcept>
