@@ -13,6 +13,8 @@ namespace prism {
 inline constexpr int ExitOk = 0;
 inline constexpr int ExitInternal = 1;
 inline constexpr int ExitBadInput = 2;
+// 3 and 4: `prism validate` (ExitOutOfBand, ExitBadSlope in validate/validate.h).
+inline constexpr int ExitInterrupted = 130;  // SIGINT or SIGTERM: nothing half-written
 
 // Registers the subcommand's options on `app`; the returned callback runs it.
 void AddRenderCommand(CLI::App &app, int *exitCode);

@@ -16,8 +16,8 @@
 #include "validate/tessellate.h"
 #include "image/image.h"
 #include "image/image_io.h"
-#include "render/render_scene.h"
 #include "render/renderer.h"
+#include "build/build_scene.h"
 #include "build/shape_factory.h"
 #include "validate/validate.h"
 #include "scene/load_scene.h"
@@ -68,10 +68,10 @@ std::vector<Ray> CameraRays(const RenderScene &scene, int budget, Vec2i *grid) {
 }
 
 // Side by side: analytic | tessellated, and a heat map of the first-hit depth difference.
-void WriteSceneImages(const SceneDescription &desc, const RenderOptions &base, int level,
+void WriteSceneImages(const SceneDescription &desc, const BuildSettings &base, int level,
                       const std::string &dir, Diagnostics &diag, bool quiet) {
-    RenderOptions oa = base, ot = base;
-    ot.tessellate = level;
+    BuildSettings oa = base, ot = base;
+    ot.replaceAnalyticShape = TessellateWith(level);
     RenderScene sa = BuildRenderScene(desc, oa, diag), st = BuildRenderScene(desc, ot, diag);
     RenderStats stats;
     Image ia = Render(sa, &stats), it = Render(st, &stats);
@@ -159,9 +159,8 @@ int RunValidate(const ValidateArgs &a) {
     } else {
         Diagnostics diag(!a.quiet);
         SceneDescription desc = LoadScene(a.scene, diag);
-        RenderOptions ro;
+        BuildSettings ro;
         ro.precision = opt.precision;
-        ro.quiet = true;
         RenderScene scene = BuildRenderScene(desc, ro, diag);
         Vec2i grid;
         std::vector<Ray> cam = CameraRays(scene, a.cameraRays, &grid);

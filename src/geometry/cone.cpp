@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "geometry/quadric_solve.h"
+#include "geometry/revolution.h"
 
 namespace prism {
 
@@ -63,6 +64,17 @@ LocalGeometry Cone::Geometry(const ObjectHit &hit) const {
     // cross(dpdu, dpdv) = phiMax rho (h cos phi, h sin phi, r): outward and up, along grad F.
     g.n = Vec3d(height_ * cosPhi, height_ * sinPhi, radius_);
     return g;
+}
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Cone::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Cone;
+    pr->phiMax = phiMax_;
+    pr->a = radius_;
+    pr->b = height_;
+    pr->poleV1 = true;  // the apex
+    return true;
 }
 
 }  // namespace prism

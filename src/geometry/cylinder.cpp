@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "geometry/quadric_solve.h"
+#include "geometry/revolution.h"
 
 namespace prism {
 
@@ -101,6 +102,17 @@ bool Cylinder::SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) co
     double area = (zMax_ - zMin_) * radius_ * phiMax_;
     *pdfArea = area > 0 ? 1 / area : 0;
     return area > 0;
+}
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Cylinder::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Cylinder;
+    pr->phiMax = phiMax_;
+    pr->a = radius_;
+    pr->b = zMin_;
+    pr->c = zMax_;
+    return true;
 }
 
 }  // namespace prism

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "geometry/quadric_util.h"
+#include "geometry/revolution.h"
 
 namespace prism {
 
@@ -79,6 +80,18 @@ bool Disk::SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) const 
     double area = 0.5 * phiMax_ * (radius_ * radius_ - innerRadius_ * innerRadius_);
     *pdfArea = area > 0 ? 1 / area : 0;
     return area > 0;
+}
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Disk::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Disk;
+    pr->phiMax = phiMax_;
+    pr->a = radius_;  // v = 0 on the outer rim, as the shape's uv.v
+    pr->b = innerRadius_;
+    pr->c = height_;
+    pr->poleV1 = innerRadius_ == 0;
+    return true;
 }
 
 }  // namespace prism

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "geometry/quadric_solve.h"
+#include "geometry/revolution.h"
 
 namespace prism {
 
@@ -107,6 +108,21 @@ LocalGeometry Hyperboloid::Geometry(const ObjectHit &hit) const {
     Vec3d grad = HyperboloidQuadric(ah_, ch_).Grad(p);
     g.n = Dot(grad, Cross(g.dpdu, g.dpdv)) < 0 ? -grad : grad;
     return g;
+}
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Hyperboloid::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Hyperboloid;
+    pr->phiMax = phiMax_;
+    pr->a = ah_;
+    pr->b = ch_;
+    pr->p1 = p1_;
+    pr->p2 = p2_;
+    // Only a one-sheet fit (rho^2 > 0 over the whole z range) is a tube that can be swept.
+    for (double z : {zMin_, zMax_, Clamp(0.0, zMin_, zMax_)})
+        if (!((1 + ch_ * z * z) / ah_ > 0)) return false;
+    return true;
 }
 
 }  // namespace prism

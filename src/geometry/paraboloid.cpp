@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "geometry/quadric_solve.h"
+#include "geometry/revolution.h"
 
 namespace prism {
 
@@ -71,6 +72,21 @@ LocalGeometry Paraboloid::Geometry(const ObjectHit &hit) const {
     // cross(dpdu, dpdv) = phiMax dz (x, y, -1/(2k)): along grad F = (2kx, 2ky, -1).
     g.n = Vec3d(2 * k_ * p.x, 2 * k_ * p.y, -1);
     return g;
+}
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Paraboloid::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Paraboloid;
+    pr->phiMax = phiMax_;
+    pr->a = k_;
+    // Uniform in rho rather than z: rho = sqrt(z / k) has an infinite slope at the vertex, so
+    // uniform z steps would make the first ring's chord error O(1/n) instead of O(1/n^2).
+    double zLo = std::max(zMin_, 0.0);
+    pr->b = std::sqrt(zLo / k_);
+    pr->c = std::sqrt(zMax_ / k_);
+    pr->poleV0 = zLo == 0;
+    return pr->c > pr->b;
 }
 
 }  // namespace prism

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "geometry/quadric_util.h"
+#include "geometry/revolution.h"
 
 namespace prism {
 
@@ -137,6 +138,19 @@ LocalGeometry Sphere::Geometry(const ObjectHit &hit) const {
     // cross(dpdu, dpdv) points along +p; use p itself, which stays defined at the poles.
     g.n = p;
     return g;
+}
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Sphere::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Sphere;
+    pr->phiMax = phiMax_;
+    pr->a = radius_;
+    pr->b = thetaZMin_;  // v = 0 at zmin, as the shape's uv.v
+    pr->c = thetaZMax_;
+    pr->poleV0 = zMin_ <= -radius_;
+    pr->poleV1 = zMax_ >= radius_;
+    return thetaZMin_ > thetaZMax_;
 }
 
 }  // namespace prism

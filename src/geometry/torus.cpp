@@ -7,6 +7,7 @@
 
 #include "geometry/polynomial.h"
 #include "geometry/quadric_solve.h"
+#include "geometry/revolution.h"
 
 namespace prism {
 
@@ -222,6 +223,17 @@ LocalGeometry Torus::Geometry(const ObjectHit &hit) const {
     // cross(dpdu, dpdv) = 2 pi phiMax rho (cos theta cos phi, cos theta sin phi, sin theta) r.
     g.n = Vec3d((rho - R_) * cosPhi, (rho - R_) * sinPhi, p.z);
     return g;
+}
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Torus::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Torus;
+    pr->phiMax = phiMax_;
+    pr->a = R_;
+    pr->b = r_;
+    pr->closedV = true;
+    return true;
 }
 
 }  // namespace prism

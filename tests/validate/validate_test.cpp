@@ -14,7 +14,7 @@
 #include "geometry/quadric_util.h"
 #include "geometry/sphere.h"
 #include "validate/tessellate.h"
-#include "render/render_scene.h"
+#include "build/build_scene.h"
 #include "scene/load_scene.h"
 
 namespace prism {
@@ -147,8 +147,8 @@ TEST(Validate, TessellateOptionReplacesAnalyticShapes) {
     Diagnostics diag(false);
     SceneDescription desc =
         LoadScene(std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt", diag);
-    RenderOptions plain, tess;
-    tess.tessellate = 48;
+    BuildSettings plain, tess;
+    tess.replaceAnalyticShape = TessellateWith(48);
     RenderScene a = BuildRenderScene(desc, plain, diag), t = BuildRenderScene(desc, tess, diag);
     ASSERT_GT(a.features.analyticShapes, 5);
     EXPECT_EQ(t.features.analyticShapes, 0);
@@ -164,7 +164,7 @@ TEST(Validate, TessellateOptionReplacesAnalyticShapes) {
             if (a.accel->IntersectRaw(r, &ha) != t.accel->IntersectRaw(r, &ht)) ++differ;
         }
     EXPECT_LT(differ, total / 100);
-    tess.tessellate = 100000;  // far beyond the triangle budget: bad input, not an allocation
+    tess.replaceAnalyticShape = TessellateWith(100000);  // far beyond the triangle budget: bad input, not an allocation
     EXPECT_THROW(BuildRenderScene(desc, tess, diag), SceneError);
 }
 
