@@ -212,9 +212,10 @@ void AddValidateCommand(CLI::App &app, int *exitCode) {
         "Cross-check the analytic intersectors against Embree triangles on their "
         "tessellations (exit 3: out-of-band disagreement, 4: bad convergence slope)");
     cmd->add_option("scene", args->scene, "Scene whose analytic shapes (and camera rays) to use");
+    std::string shapeNames;
+    for (const std::string &n : CanonicalShapeNames()) shapeNames += n + ", ";
     cmd->add_option("--shape", args->shape,
-                    "Canonical shape: sphere, partial-sphere, cylinder, disk, cone, paraboloid, "
-                    "hyperboloid, torus, or all (default without a scene)");
+                    "Canonical shape: " + shapeNames + "or all (default without a scene)");
     cmd->add_option("--levels", args->levels, "Comma-separated segment counts around the axis");
     cmd->add_option("--rays", args->rays, "Random rays per shape")->check(CLI::Range(1, 100000000));
     cmd->add_option("--seed", args->seed, "Seed of the random rays");

@@ -6,6 +6,8 @@
 
 #include "geometry/quadric_solve.h"
 #include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
@@ -76,5 +78,27 @@ bool Cone::Revolution(RevolutionProfile *pr) const {
     pr->poleV1 = true;  // the apex
     return true;
 }
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Cone>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float radius = params.PositiveFloat("radius", 1.f);
+    float height = params.PositiveFloat("height", 1.f);
+    float phimax = params.PhiMax();
+    return params.Construct("height", [&] {
+        return std::make_unique<Cone>(renderFromObject, reverseOrientation, radius, height,
+                                      phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Cone>(const Transform &renderFromObject) {
+    return std::make_unique<Cone>(renderFromObject, false, 1, 1.5, 360);
+}
+
+PRISM_USER_GEOMETRY(Cone)
 
 }  // namespace prism

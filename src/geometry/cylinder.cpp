@@ -7,6 +7,8 @@
 
 #include "geometry/quadric_solve.h"
 #include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
@@ -114,5 +116,28 @@ bool Cylinder::Revolution(RevolutionProfile *pr) const {
     pr->c = zMax_;
     return true;
 }
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Cylinder>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float radius = params.PositiveFloat("radius", 1.f);
+    float zmin = params.FiniteFloat("zmin", -1.f), zmax = params.FiniteFloat("zmax", 1.f);
+    float phimax = params.PhiMax();
+    if (zmin == zmax) throw SceneError(params.Loc("zmax"), "cylinder zmin and zmax must differ");
+    return params.Construct("zmax", [&] {
+        return std::make_unique<Cylinder>(renderFromObject, reverseOrientation, radius, zmin,
+                                          zmax, phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Cylinder>(const Transform &renderFromObject) {
+    return std::make_unique<Cylinder>(renderFromObject, false, 1, -1, 1, 360);
+}
+
+PRISM_USER_GEOMETRY(Cylinder)
 
 }  // namespace prism

@@ -6,6 +6,8 @@
 
 #include "geometry/quadric_util.h"
 #include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
@@ -93,5 +95,30 @@ bool Disk::Revolution(RevolutionProfile *pr) const {
     pr->poleV1 = innerRadius_ == 0;
     return true;
 }
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Disk>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float height = params.FiniteFloat("height", 0.f);
+    float radius = params.PositiveFloat("radius", 1.f);
+    float inner = params.Float("innerradius", 0.f);
+    if (!(inner >= 0) || !(inner < radius))
+        throw SceneError(params.Loc("innerradius"), "disk innerradius must be in [0, radius)");
+    float phimax = params.PhiMax();
+    return params.Construct("radius", [&] {
+        return std::make_unique<Disk>(renderFromObject, reverseOrientation, height, radius, inner,
+                                      phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Disk>(const Transform &renderFromObject) {
+    return std::make_unique<Disk>(renderFromObject, false, 0, 1, 0.3, 300);
+}
+
+PRISM_USER_GEOMETRY(Disk)
 
 }  // namespace prism

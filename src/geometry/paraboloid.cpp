@@ -6,6 +6,8 @@
 
 #include "geometry/quadric_solve.h"
 #include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
@@ -88,5 +90,30 @@ bool Paraboloid::Revolution(RevolutionProfile *pr) const {
     pr->poleV0 = zLo == 0;
     return pr->c > pr->b;
 }
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Paraboloid>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float radius = params.PositiveFloat("radius", 1.f);
+    float zmin = params.FiniteFloat("zmin", 0.f), zmax = params.FiniteFloat("zmax", 1.f);
+    float phimax = params.PhiMax();
+    if (!(std::max(zmin, zmax) > 0))
+        throw SceneError(params.Loc("zmax"), "paraboloid zmax must be positive");
+    if (zmin == zmax) throw SceneError(params.Loc("zmax"), "paraboloid zmin and zmax must differ");
+    return params.Construct("zmax", [&] {
+        return std::make_unique<Paraboloid>(renderFromObject, reverseOrientation, radius, zmin,
+                                            zmax, phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Paraboloid>(const Transform &renderFromObject) {
+    return std::make_unique<Paraboloid>(renderFromObject, false, 1, 0, 1.5, 360);
+}
+
+PRISM_USER_GEOMETRY(Paraboloid)
 
 }  // namespace prism

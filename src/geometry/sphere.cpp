@@ -5,6 +5,8 @@
 
 #include "geometry/quadric_util.h"
 #include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
@@ -152,5 +154,24 @@ bool Sphere::Revolution(RevolutionProfile *pr) const {
     pr->poleV1 = zMax_ >= radius_;
     return thetaZMin_ > thetaZMax_;
 }
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Sphere>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float radius = params.PositiveFloat("radius", 1.f);
+    return std::make_unique<Sphere>(renderFromObject, reverseOrientation, radius,
+                                    params.Float("zmin", -radius), params.Float("zmax", radius),
+                                    params.Float("phimax", 360.f));
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Sphere>(const Transform &renderFromObject) {
+    return std::make_unique<Sphere>(renderFromObject, false, 1, -1, 1, 360);
+}
+
+PRISM_USER_GEOMETRY(Sphere)
 
 }  // namespace prism

@@ -8,6 +8,8 @@
 #include "geometry/polynomial.h"
 #include "geometry/quadric_solve.h"
 #include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
@@ -235,5 +237,29 @@ bool Torus::Revolution(RevolutionProfile *pr) const {
     pr->closedV = true;
     return true;
 }
+
+// pbrt parameters (pbrt-v3 names and defaults; the torus is Prism's own); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Torus>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float major = params.PositiveFloat("majorradius", 1.f);
+    float minor = params.PositiveFloat("minorradius", 0.25f);
+    float phimax = params.PhiMax();
+    if (!(minor < major))
+        throw SceneError(params.Loc("minorradius"),
+                         "torus minorradius must be smaller than majorradius");
+    return params.Construct("minorradius", [&] {
+        return std::make_unique<Torus>(renderFromObject, reverseOrientation, major, minor, phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Torus>(const Transform &renderFromObject) {
+    return std::make_unique<Torus>(renderFromObject, false, 1, 0.3, 360);
+}
+
+PRISM_USER_GEOMETRY(Torus)
 
 }  // namespace prism

@@ -9,14 +9,9 @@
 
 #include "core/rng.h"
 #include "geometry/accel.h"
-#include "geometry/cone.h"
-#include "geometry/cylinder.h"
-#include "geometry/disk.h"
-#include "geometry/hyperboloid.h"
-#include "geometry/paraboloid.h"
+#include "geometry/shape_list.h"
 #include "geometry/sphere.h"
 #include "validate/tessellate.h"
-#include "geometry/torus.h"
 
 namespace prism {
 
@@ -362,9 +357,16 @@ ShapeReport ValidateShape(const std::string &name, std::unique_ptr<AnalyticShape
     return rep;
 }
 
+// The shapes on the list (geometry/shape_list.inc), plus a partial sphere right after the
+// sphere (zone and wedge: the cut edges of a quadric).
 std::vector<std::string> CanonicalShapeNames() {
-    return {"sphere", "partial-sphere", "cylinder",    "disk",
-            "cone",   "paraboloid",     "hyperboloid", "torus"};
+    std::vector<std::string> names;
+#define PRISM_SHAPE(T, name) \
+    names.push_back(name);   \
+    if (names.back() == "sphere") names.push_back("partial-sphere");
+#include "geometry/shape_list.inc"
+#undef PRISM_SHAPE
+    return names;
 }
 
 std::unique_ptr<AnalyticShape> MakeCanonicalShape(const std::string &name) {
@@ -372,15 +374,11 @@ std::unique_ptr<AnalyticShape> MakeCanonicalShape(const std::string &name) {
     // object frame hides a bug.
     Transform w =
         Translate(Vec3d(0.25, -0.5, 1.0)) * Rotate(37, Vec3d(1, 2, 3)) * Scale(1.5, 1.5, 1.5);
-    if (name == "sphere") return std::make_unique<Sphere>(w, false, 1, -1, 1, 360);
     if (name == "partial-sphere") return std::make_unique<Sphere>(w, false, 1, -0.5, 0.3, 270);
-    if (name == "cylinder") return std::make_unique<Cylinder>(w, false, 1, -1, 1, 360);
-    if (name == "disk") return std::make_unique<Disk>(w, false, 0, 1, 0.3, 300);
-    if (name == "cone") return std::make_unique<Cone>(w, false, 1, 1.5, 360);
-    if (name == "paraboloid") return std::make_unique<Paraboloid>(w, false, 1, 0, 1.5, 360);
-    if (name == "hyperboloid")
-        return std::make_unique<Hyperboloid>(w, false, Vec3d(1, -1, -1), Vec3d(1, 1, 1), 360);
-    if (name == "torus") return std::make_unique<Torus>(w, false, 1, 0.3, 360);
+#define PRISM_SHAPE(T, n) \
+    if (name == n) return CanonicalShape<T>(w);
+#include "geometry/shape_list.inc"
+#undef PRISM_SHAPE
     return nullptr;
 }
 
