@@ -41,7 +41,7 @@ int RunInfo(const InfoArgs &a) {
         ShapeGeometry g = CreateShapeGeometry(s, worldFromObject, ctx);
         if (g.mesh) {
             triangles += g.mesh->NumTriangles();
-            Bounds3f b = g.mesh->WorldBounds();
+            Bounds3f b = g.mesh->RenderBounds();
             if (!b.IsEmpty()) bounds.Expand(Bounds3d(Vec3d(b.pMin), Vec3d(b.pMax)));
         } else if (g.analytic) {
             bounds.Expand(worldFromObject.Bounds(g.analytic->ObjectBounds()));

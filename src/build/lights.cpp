@@ -2,6 +2,7 @@
 
 #include "build/textures.h"
 #include "render/area_light.h"
+#include "render/infinite_light.h"
 
 namespace prism {
 

@@ -21,9 +21,9 @@ RotationalQuadric ConeQuadric(double radius, double height) {
 }
 }  // namespace
 
-Cone::Cone(const Transform &worldFromObject, bool reverseOrientation, double radius, double height,
+Cone::Cone(const Transform &renderFromObject, bool reverseOrientation, double radius, double height,
            double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       radius_(radius),
       height_(height),
       phiMax_(Radians(std::min(phiMaxDeg, 360.0))) {

@@ -12,9 +12,9 @@
 
 namespace prism {
 
-Cylinder::Cylinder(const Transform &worldFromObject, bool reverseOrientation, double radius,
+Cylinder::Cylinder(const Transform &renderFromObject, bool reverseOrientation, double radius,
                    double zMin, double zMax, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       radius_(radius),
       zMin_(std::min(zMin, zMax)),
       zMax_(std::max(zMin, zMax)),

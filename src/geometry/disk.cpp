@@ -11,9 +11,9 @@
 
 namespace prism {
 
-Disk::Disk(const Transform &worldFromObject, bool reverseOrientation, double height, double radius,
+Disk::Disk(const Transform &renderFromObject, bool reverseOrientation, double height, double radius,
            double innerRadius, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       height_(height),
       radius_(radius),
       innerRadius_(innerRadius),

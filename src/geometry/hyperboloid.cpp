@@ -21,9 +21,9 @@ RotationalQuadric HyperboloidQuadric(double a, double c) {
 }
 }  // namespace
 
-Hyperboloid::Hyperboloid(const Transform &worldFromObject, bool reverseOrientation, const Vec3d &p1,
+Hyperboloid::Hyperboloid(const Transform &renderFromObject, bool reverseOrientation, const Vec3d &p1,
                          const Vec3d &p2, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       p1_(p1),
       p2_(p2),
       phiMax_(Radians(std::min(phiMaxDeg, 360.0))) {

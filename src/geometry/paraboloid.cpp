@@ -20,9 +20,9 @@ RotationalQuadric ParaboloidQuadric(double k) {
 }
 }  // namespace
 
-Paraboloid::Paraboloid(const Transform &worldFromObject, bool reverseOrientation, double radius,
+Paraboloid::Paraboloid(const Transform &renderFromObject, bool reverseOrientation, double radius,
                        double zMin, double zMax, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       radius_(radius),
       zMin_(std::min(zMin, zMax)),
       zMax_(std::max(zMin, zMax)),

@@ -10,9 +10,9 @@
 
 namespace prism {
 
-Sphere::Sphere(const Transform &worldFromObject, bool reverseOrientation, double radius,
+Sphere::Sphere(const Transform &renderFromObject, bool reverseOrientation, double radius,
                double zMin, double zMax, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       radius_(radius),
       zMin_(Clamp(std::min(zMin, zMax), -radius, radius)),
       zMax_(Clamp(std::max(zMin, zMax), -radius, radius)),
@@ -20,8 +20,8 @@ Sphere::Sphere(const Transform &worldFromObject, bool reverseOrientation, double
       thetaZMax_(std::acos(Clamp(std::max(zMin, zMax) / radius, -1.0, 1.0))),
       phiMax_(Radians(Clamp(phiMaxDeg, 0.0, 360.0))) {
     partial_ = zMin_ > -radius_ || zMax_ < radius_ || phiMax_ < 2 * Pi;
-    Vec3d ex = worldFromObject.Vector(Vec3d(1, 0, 0)), ey = worldFromObject.Vector(Vec3d(0, 1, 0)),
-          ez = worldFromObject.Vector(Vec3d(0, 0, 1));
+    Vec3d ex = renderFromObject.Vector(Vec3d(1, 0, 0)), ey = renderFromObject.Vector(Vec3d(0, 1, 0)),
+          ez = renderFromObject.Vector(Vec3d(0, 0, 1));
     double lx = Length(ex), ly = Length(ey), lz = Length(ez);
     similarity_ = std::abs(lx - ly) <= 1e-9 * lx && std::abs(lx - lz) <= 1e-9 * lx &&
                   std::abs(Dot(ex, ey)) <= 1e-9 * lx * ly && std::abs(Dot(ex, ez)) <= 1e-9 * lx * lz &&
@@ -42,8 +42,8 @@ bool Sphere::SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) cons
 
 bool Sphere::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
     if (partial_ || !similarity_) return AnalyticShape::Sample(ref, u, ss);
-    Vec3d c = worldFromObject_.Point(Vec3d(0, 0, 0));
-    double rW = radius_ * Length(worldFromObject_.Vector(Vec3d(1, 0, 0)));
+    Vec3d c = renderFromObject_.Point(Vec3d(0, 0, 0));
+    double rW = radius_ * Length(renderFromObject_.Vector(Vec3d(1, 0, 0)));
     Vec3d wc = c - Vec3d(ref);
     double dc2 = LengthSquared(wc);
     if (dc2 <= rW * rW * (1 + 1e-6)) return AnalyticShape::Sample(ref, u, ss);  // inside

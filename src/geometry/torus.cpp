@@ -81,9 +81,9 @@ bool BoundingInterval(const Vec3d &o, const Vec3d &d, double R, double r, double
 
 }  // namespace
 
-Torus::Torus(const Transform &worldFromObject, bool reverseOrientation, double majorRadius,
+Torus::Torus(const Transform &renderFromObject, bool reverseOrientation, double majorRadius,
              double minorRadius, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       R_(majorRadius),
       r_(minorRadius),
       phiMax_(Radians(std::min(phiMaxDeg, 360.0))) {

@@ -37,7 +37,7 @@ namespace user_geometry_detail {
 template <typename S>
 inline void BoundsFunc(const RTCBoundsFunctionArguments *args) {
     const auto *shape = static_cast<const S *>(args->geometryUserPtr);
-    Bounds3f b = shape->WorldBounds();
+    Bounds3f b = shape->RenderBounds();
     RTCBounds *o = args->bounds_o;
     o->lower_x = b.pMin.x; o->lower_y = b.pMin.y; o->lower_z = b.pMin.z;
     o->upper_x = b.pMax.x; o->upper_y = b.pMax.y; o->upper_z = b.pMax.z;
@@ -54,7 +54,7 @@ inline bool RootRoutine(const S *shape, const Vec3f &o, const Vec3f &d, float tn
                                 std::is_same_v<Real, float> ? Precision::Float : Precision::Double,
                                 hit);
     else
-        return shape->template IntersectWorld<Real>(o, d, tnear, tfar, hit);
+        return shape->template IntersectRender<Real>(o, d, tnear, tfar, hit);
 }
 
 // The shared root routine for lane i of an N-wide ray packet: true with the float t of the

@@ -104,7 +104,7 @@ bool Tessellate(const AnalyticShape &shape, int nPhi, TessellatedMesh *mesh) {
 std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, int nPhi) {
     TessellatedMesh m;
     if (!Tessellate(shape, nPhi, &m)) return nullptr;
-    const Transform &w = shape.WorldFromObject();
+    const Transform &w = shape.RenderFromObject();
     // TriangleMesh flips (p1-p0)x(p2-p0) by ReverseOrientation XOR handedness, while the
     // analytic normal is the transformed gradient flipped by the same flag. A mirroring
     // transform also mirrors the cross product, so the twin reverses its winding there to

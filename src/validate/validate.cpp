@@ -38,8 +38,8 @@ double UlpF(double t) {
 
 // Norm bound of the linear part of objectFromWorld (Frobenius), to carry world-space float
 // rounding into object space.
-double InverseScale(const Transform &worldFromObject) {
-    const Matrix4 &mi = worldFromObject.InverseMatrix();
+double InverseScale(const Transform &renderFromObject) {
+    const Matrix4 &mi = renderFromObject.InverseMatrix();
     double s = 0;
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) s += mi.m[r][c] * mi.m[r][c];
@@ -122,7 +122,7 @@ int64_t ShapeReport::Leaks() const {
 }
 
 std::vector<Ray> RandomRaysAt(const AnalyticShape &shape, int count, uint64_t seed) {
-    Bounds3f b = shape.WorldBounds();
+    Bounds3f b = shape.RenderBounds();
     Vec3d lo(b.pMin), hi(b.pMax);
     double diag = Length(hi - lo);
     PCG32 rng(seed, 0x5eedULL);
@@ -169,7 +169,7 @@ ShapeReport ValidateShape(const std::string &name, std::unique_ptr<AnalyticShape
     std::vector<RawHit> rawA(nr);
     std::vector<char> hitA(nr);
     rep.nsPerRayAnalytic = TimedPass(analytic, rays, &hitA, &rawA);
-    Transform objFromWorld = shape.WorldFromObject().Inverse();
+    Transform objFromWorld = shape.RenderFromObject().Inverse();
     double errSum = 0;
     for (size_t i = 0; i < nr; ++i) {
         if (!hitA[i]) continue;
@@ -198,10 +198,10 @@ ShapeReport ValidateShape(const std::string &name, std::unique_ptr<AnalyticShape
     rep.analyticDtBound = rep.analyticHits ? errSum / double(rep.analyticHits) : 0;
 
     // World-space float rounding of the twin's vertices, carried to object space.
-    Bounds3f wb = shape.WorldBounds();
+    Bounds3f wb = shape.RenderBounds();
     double maxCoord =
         std::max(MaxComponent(Abs(Vec3d(wb.pMin))), MaxComponent(Abs(Vec3d(wb.pMax))));
-    double hRound = 2 * std::sqrt(3.0) * 0x1p-24 * maxCoord * InverseScale(shape.WorldFromObject());
+    double hRound = 2 * std::sqrt(3.0) * 0x1p-24 * maxCoord * InverseScale(shape.RenderFromObject());
 
     // Distance of each ray to a silhouette or boundary: level-independent, computed lazily
     // (only disagreeing rays need it), in double from the analytic description.
