@@ -37,8 +37,7 @@ std::unique_ptr<TriangleMesh> MakeMesh(const ShapeDesc &s, const Transform &rend
     }
 }
 
-ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
-                                const ShapeFactoryContext &ctx) {
+ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromObject) {
     const ParamSet &ps = s.params;
     std::vector<Vec3f> P = ps.GetPoint3s("P");
     std::vector<int> indices = ps.GetInts("indices");
@@ -129,7 +128,7 @@ ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFro
     }
 #include "geometry/shape_list.inc"
 #undef PRISM_SHAPE
-    if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject, ctx);
+    if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject);
     if (s.type == "plymesh") return PlyMeshShape(s, renderFromObject, ctx);
     if (s.type == "loopsubdiv") return LoopSubdivShape(s, renderFromObject, ctx);
     ctx.diag.WarnOnce("shape:" + s.type, s.loc,
