@@ -13,7 +13,6 @@ find_package(TinyGLTF REQUIRED)          # libtinygltf-dev 2.7 (header-only)
 if(PRISM_BUILD_TESTS)
   find_package(GTest REQUIRED)           # libgtest-dev 1.12
 endif()
-find_package(benchmark QUIET)            # libbenchmark-dev (bench/ only)
 
 # Debian 12's OpenImageIO config lists /usr/include/opencv4 as an include directory although
 # OpenImageIO's headers never need OpenCV; drop include paths that do not exist so the build

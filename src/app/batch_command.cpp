@@ -221,7 +221,7 @@ void Finish(Job &j, int status) {
     fs::remove(j.logPath, ec);
     if (WIFEXITED(status)) {
         j.exitCode = WEXITSTATUS(status);
-        j.status = j.exitCode == 0 ? "ok" : (j.exitCode == 130 ? "interrupted" : "failed");
+        j.status = j.exitCode == 0 ? "ok" : (j.exitCode == ExitInterrupted ? "interrupted" : "failed");
         if (j.status == "failed" && j.error.empty()) j.error = "exit status " + std::to_string(j.exitCode);
     } else if (WIFSIGNALED(status)) {
         int sig = WTERMSIG(status);
@@ -305,7 +305,7 @@ int RunBatch(const BatchArgs &a) {
         ss << s.rdbuf();
         std::fprintf(stderr, "%s", ss.str().c_str());
     }
-    if (g_interrupted) return 130;
+    if (g_interrupted) return ExitInterrupted;
     return failed > 0 ? ExitBadInput : ExitOk;
 }
 

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "app/commands.h"
+#include "build/build_scene.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/memory.h"
@@ -25,16 +27,16 @@ int RunGuarded(const std::function<int()> &fn) {
             (what.size() < flag.size() || what.compare(what.size() - flag.size(), flag.size(), flag) != 0))
             what += flag;
         std::fprintf(stderr, "%s\n", what.c_str());
-        return 2;
+        return ExitBadInput;
     } catch (const UsageError &e) {
         std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
+        return ExitBadInput;
     } catch (const std::bad_alloc &) {
         std::fprintf(stderr, "error: out of memory\n");
-        return 1;
+        return ExitInternal;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
+        return ExitInternal;
     }
 }
 
@@ -60,6 +62,9 @@ Vec2i ParseResolution(const std::string &s) {
     if (v.size() != 2 || v[0] != float(int(v[0])) || v[1] != float(int(v[1])) || v[0] < 1 ||
         v[1] < 1)
         throw UsageError("--res expects WxH with positive integers, e.g. 640x480 (got \"" + s + "\")");
+    if (v[0] > MaxImageResolution || v[1] > MaxImageResolution)
+        throw SceneError("--res " + s + " is out of range (1 to " +
+                         std::to_string(MaxImageResolution) + " per axis)");
     return {int(v[0]), int(v[1])};
 }
 
@@ -72,12 +77,14 @@ std::array<float, 4> ParseCrop(const std::string &s) {
     return {v[0], v[1], v[2], v[3]};
 }
 
-std::array<float, 9> ParseLookAt(const std::string &s) {
+Transform ParseLookAt(const std::string &s) {
     std::vector<float> v = SplitFloats(s, ',');
     if (v.size() != 9) throw UsageError("--lookat expects ex,ey,ez,lx,ly,lz,ux,uy,uz (got \"" + s + "\")");
-    std::array<float, 9> r;
-    std::copy(v.begin(), v.end(), r.begin());
-    return r;
+    try {
+        return LookAt({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}).Inverse();
+    } catch (const std::invalid_argument &e) {
+        throw SceneError(std::string("--lookat: ") + e.what());
+    }
 }
 
 uint64_t ParseMaxMemory(const std::string &s) {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "core/transform.h"
 #include "core/vecmath.h"
 #include "geometry/shape.h"
 
@@ -24,7 +25,8 @@ std::array<float, 4> ParseCrop(const std::string &s);    // "x0,x1,y0,y1"
 Precision ParsePrecision(const std::string &s);
 // --max-memory: "512M", "8G", ... (core/memory.h); "" gives 0, the default budget.
 uint64_t ParseMaxMemory(const std::string &s);
-std::array<float, 9> ParseLookAt(const std::string &s);  // "ex,ey,ez,lx,ly,lz,ux,uy,uz"
+// "ex,ey,ez,lx,ly,lz,ux,uy,uz" → worldFromCamera (pbrt LookAt, inverted).
+Transform ParseLookAt(const std::string &s);
 // Fails early (UsageError) if the image format is unsupported or the directory is missing.
 void CheckOutputPath(const std::string &path);
 // scenes/whitted.pbrt relative to the working directory, else to the source tree.

@@ -7,7 +7,9 @@
 
 #include "app/commands.h"
 #include "app/common.h"
-#include "render/scene_shapes.h"
+#include "build/shape_factory.h"
+#include "build/shapes.h"
+#include "core/pbrt_defaults.h"
 #include "scene/load_scene.h"
 
 namespace prism {
@@ -39,19 +41,17 @@ int RunInfo(const InfoArgs &a) {
         ShapeGeometry g = CreateShapeGeometry(s, worldFromObject, ctx);
         if (g.mesh) {
             triangles += g.mesh->NumTriangles();
-            Bounds3f b = g.mesh->WorldBounds();
+            Bounds3f b = g.mesh->RenderBounds();
             if (!b.IsEmpty()) bounds.Expand(Bounds3d(Vec3d(b.pMin), Vec3d(b.pMax)));
         } else if (g.analytic) {
             bounds.Expand(worldFromObject.Bounds(g.analytic->ObjectBounds()));
         }
     };
     for (const ShapeDesc &s : desc.shapes) account(s, s.worldFromObject);
-    std::map<std::string, const ObjectDesc *> objects;
-    for (const ObjectDesc &o : desc.objects) objects[o.name] = &o;
     for (const InstanceDesc &inst : desc.instances) {
-        auto it = objects.find(inst.object);
-        if (it == objects.end()) continue;
-        for (const ShapeDesc &s : it->second->shapes) account(s, inst.worldFromInstance * s.worldFromObject);
+        const ObjectDesc *obj = FindObject(desc, inst.object);
+        if (!obj) continue;
+        for (const ShapeDesc &s : obj->shapes) account(s, inst.worldFromInstance * s.worldFromObject);
     }
     for (const MaterialDesc &m : desc.materials) materials[m.type]++;
     for (const TextureDesc &t : desc.textures) textures[t.type]++;
@@ -73,8 +73,9 @@ int RunInfo(const InfoArgs &a) {
     std::printf("camera:     %s, eye %s, looking along %s%s\n", cam.specified ? cam.type.c_str() : "perspective (default)",
                 ToString(worldFromCamera.Point(Vec3d(0, 0, 0))).c_str(),
                 ToString(Normalize(worldFromCamera.Vector(Vec3d(0, 0, 1)))).c_str(),
-                cam.params.Has("fov") ? (", fov " + std::to_string(cam.params.GetFloat("fov", 90))).c_str() : "");
-    std::printf("film:       %dx%d\n", desc.film.params.GetInt("xresolution", 1280), desc.film.params.GetInt("yresolution", 720));
+                cam.params.Has("fov") ? (", fov " + std::to_string(cam.params.GetFloat("fov", PbrtDefaultFovDeg))).c_str() : "");
+    std::printf("film:       %dx%d\n", desc.film.params.GetInt("xresolution", PbrtDefaultXResolution),
+                desc.film.params.GetInt("yresolution", PbrtDefaultYResolution));
     std::printf("integrator: %s\n", desc.integrator.type.c_str());
     std::vector<Warning> w = diag.Warnings();
     std::printf("warnings:   %zu\n", w.size());

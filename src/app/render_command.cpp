@@ -12,9 +12,10 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "image/image_io.h"
-#include "render/render_scene.h"
+#include "build/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "validate/tessellate.h"
 
 namespace prism {
 
@@ -56,21 +57,19 @@ void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool t
 }
 
 int RunRender(const RenderArgs &a) {
-    RenderOptions opts;
+    BuildSettings opts;
     opts.spp = a.spp;
     opts.maxDepth = a.maxDepth;
-    opts.quiet = a.quiet;
-    opts.threads = a.threads;
     if (!a.res.empty()) opts.resolution = ParseResolution(a.res);
     if (!a.crop.empty()) opts.crop = ParseCrop(a.crop);
     opts.precision = ParsePrecision(a.precision);
-    if (!a.lookAt.empty()) opts.lookAt = ParseLookAt(a.lookAt);
-    opts.fov = a.fov;
+    if (!a.lookAt.empty()) opts.worldFromCamera = ParseLookAt(a.lookAt);
+    opts.fovDeg = a.fov;
     opts.lightSamples = a.lightSamples;
     opts.maxMemory = ParseMaxMemory(a.maxMemory);
     LoadOptions loadOpts;
     loadOpts.maxMemory = opts.maxMemory;
-    opts.tessellate = a.tessellate;
+    if (a.tessellate > 0) opts.replaceAnalyticShape = TessellateWith(a.tessellate);
 
     std::unique_ptr<tbb::global_control> threadLimit;
     if (a.threads > 0)
@@ -106,7 +105,7 @@ int RunRender(const RenderArgs &a) {
     Image img = Render(scene, &stats, progress, &g_cancel);
     if (stats.cancelled || g_cancel) {
         std::fprintf(stderr, "interrupted: no image written\n");
-        return 130;
+        return ExitInterrupted;
     }
     WriteImage(out, img);
     sigaction(SIGINT, &old, nullptr);

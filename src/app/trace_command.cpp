@@ -11,7 +11,7 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/output_file.h"
-#include "render/render_scene.h"
+#include "build/build_scene.h"
 #include "scene/load_scene.h"
 
 namespace prism {
@@ -61,7 +61,7 @@ int RunTrace(const TraceArgs &a) {
     LoadOptions loadOpts;
     loadOpts.maxMemory = ParseMaxMemory(a.maxMemory);
     SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
-    RenderOptions opts;
+    BuildSettings opts;
     opts.maxMemory = loadOpts.maxMemory;
     opts.precision = ParsePrecision(a.precision);
     opts.cameraRelative = false;  // rays are given in world space

@@ -14,13 +14,13 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/output_file.h"
-#include "geometry/tessellate.h"
+#include "validate/tessellate.h"
 #include "image/image.h"
 #include "image/image_io.h"
-#include "render/render_scene.h"
 #include "render/renderer.h"
-#include "render/scene_shapes.h"
-#include "render/validate.h"
+#include "build/build_scene.h"
+#include "build/shape_factory.h"
+#include "validate/validate.h"
 #include "scene/load_scene.h"
 
 namespace prism {
@@ -69,10 +69,10 @@ std::vector<Ray> CameraRays(const RenderScene &scene, int budget, Vec2i *grid) {
 }
 
 // Side by side: analytic | tessellated, and a heat map of the first-hit depth difference.
-void WriteSceneImages(const SceneDescription &desc, const RenderOptions &base, int level,
+void WriteSceneImages(const SceneDescription &desc, const BuildSettings &base, int level,
                       const std::string &dir, Diagnostics &diag, bool quiet) {
-    RenderOptions oa = base, ot = base;
-    ot.tessellate = level;
+    BuildSettings oa = base, ot = base;
+    ot.replaceAnalyticShape = TessellateWith(level);
     RenderScene sa = BuildRenderScene(desc, oa, diag), st = BuildRenderScene(desc, ot, diag);
     RenderStats stats;
     Image ia = Render(sa, &stats), it = Render(st, &stats);
@@ -160,9 +160,8 @@ int RunValidate(const ValidateArgs &a) {
     } else {
         Diagnostics diag(!a.quiet);
         SceneDescription desc = LoadScene(a.scene, diag);
-        RenderOptions ro;
+        BuildSettings ro;
         ro.precision = opt.precision;
-        ro.quiet = true;
         RenderScene scene = BuildRenderScene(desc, ro, diag);
         Vec2i grid;
         std::vector<Ray> cam = CameraRays(scene, a.cameraRays, &grid);
@@ -216,9 +215,10 @@ void AddValidateCommand(CLI::App &app, int *exitCode) {
         "Cross-check the analytic intersectors against Embree triangles on their "
         "tessellations (exit 3: out-of-band disagreement, 4: bad convergence slope)");
     cmd->add_option("scene", args->scene, "Scene whose analytic shapes (and camera rays) to use");
+    std::string shapeNames;
+    for (const std::string &n : CanonicalShapeNames()) shapeNames += n + ", ";
     cmd->add_option("--shape", args->shape,
-                    "Canonical shape: sphere, partial-sphere, cylinder, disk, cone, paraboloid, "
-                    "hyperboloid, torus, or all (default without a scene)");
+                    "Canonical shape: " + shapeNames + "or all (default without a scene)");
     cmd->add_option("--levels", args->levels, "Comma-separated segment counts around the axis");
     cmd->add_option("--rays", args->rays, "Random rays per shape")->check(CLI::Range(1, 100000000));
     cmd->add_option("--seed", args->seed, "Seed of the random rays");

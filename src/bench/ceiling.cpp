@@ -12,7 +12,7 @@
 #include <cmath>
 #include <memory>
 
-#include "render/render_scene.h"
+#include "build/build_scene.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
 #include "scene/load_scene.h"
@@ -141,11 +141,9 @@ CeilingResult RunCeiling(const CeilingOptions &o, std::FILE *log) {
     if (o.threads > 0)
         threadLimit = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, size_t(o.threads));
-    RenderOptions ro;
+    BuildSettings ro;
     ro.spp = o.spp;
     ro.resolution = Vec2i(o.width, o.height);
-    ro.threads = o.threads;
-    ro.quiet = true;
     Diagnostics diag(false);
     SceneDescription desc = LoadScene(o.scene, diag);
     RenderScene scene = BuildRenderScene(desc, ro, diag);

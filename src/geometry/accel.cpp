@@ -87,7 +87,7 @@ struct Accel::Impl {
         std::unique_ptr<TriangleMesh> mesh;
         std::unique_ptr<AnalyticShape> analytic;
         std::shared_ptr<const Accel> prototype;  // instances
-        Transform worldFromInstance;
+        Transform renderFromInstance;
     };
     std::vector<Entry> shapes;
     std::vector<int> shapeOfGeom;  // geomID -> shape index
@@ -135,14 +135,14 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask) {
     return shape;
 }
 
-int Accel::AddInstance(std::shared_ptr<const Accel> prototype, const Transform &worldFromInstance) {
+int Accel::AddInstance(std::shared_ptr<const Accel> prototype, const Transform &renderFromInstance) {
     PRISM_CHECK(!impl_->committed);
     PRISM_CHECK(prototype && prototype->impl_->committed);
     Device &dev = GetDevice();
     RTCGeometry geom = rtcNewGeometry(dev.device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geom, prototype->impl_->scene);
     float xfm[12];
-    const Matrix4 &m = worldFromInstance.Matrix();
+    const Matrix4 &m = renderFromInstance.Matrix();
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) xfm[r * 4 + c] = float(m.m[r][c]);
     rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
@@ -152,7 +152,7 @@ int Accel::AddInstance(std::shared_ptr<const Accel> prototype, const Transform &
     dev.ThrowIfError("adding an instance");
     int index = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, index);
-    impl_->shapes.push_back({nullptr, nullptr, std::move(prototype), worldFromInstance});
+    impl_->shapes.push_back({nullptr, nullptr, std::move(prototype), renderFromInstance});
     return index;
 }
 
@@ -205,12 +205,12 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
     const Impl::Entry &e = impl_->shapes[hit.shape];
     SurfaceInteraction si;
     if (e.prototype) {
-        // Phase 2 in instance space, then back to world space. Normals use the inverse
+        // Phase 2 in instance space, then back to render space. Normals use the inverse
         // transpose and flip when the instance transform swaps handedness, exactly as if the
         // prototype's shapes had been declared with the combined transform.
-        const Transform &w = e.worldFromInstance;
-        Transform instFromWorld = w.Inverse();
-        Ray ri{Vec3f(instFromWorld.Point(Vec3d(r.o))), Vec3f(instFromWorld.Vector(Vec3d(r.d))),
+        const Transform &w = e.renderFromInstance;
+        Transform instFromRender = w.Inverse();
+        Ray ri{Vec3f(instFromRender.Point(Vec3d(r.o))), Vec3f(instFromRender.Vector(Vec3d(r.d))),
                r.tMax, r.tMin};
         RawHit sub = hit;
         sub.shape = hit.instanceShape;
@@ -248,7 +248,7 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
             // Cannot happen for a deterministic routine; fall back to the float t.
             oh.t = hit.t;
             Vec3d pW = Vec3d(r.o) + Vec3d(r.d) * double(hit.t);
-            oh.p = e.analytic->WorldFromObject().Inverse().Point(pW);
+            oh.p = e.analytic->RenderFromObject().Inverse().Point(pW);
             oh.pError = Abs(oh.p) * 1e-6;
         }
         si = e.analytic->Interaction(oh, r.d);
@@ -315,34 +315,7 @@ void Accel::IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded
 int Accel::NumShapes() const { return int(impl_->shapes.size()); }
 const TriangleMesh *Accel::Mesh(int s) const { return impl_->shapes[s].mesh.get(); }
 const AnalyticShape *Accel::Analytic(int s) const { return impl_->shapes[s].analytic.get(); }
-const Accel *Accel::Prototype(int s) const { return impl_->shapes[s].prototype.get(); }
 double Accel::BuildSeconds() const { return impl_->buildSeconds; }
-const AccelOptions &Accel::Options() const { return impl_->options; }
 
-Bounds3f Accel::WorldBounds() const {
-    Bounds3f b;
-    for (const auto &e : impl_->shapes) {
-        if (e.mesh) {
-            b.Expand(e.mesh->WorldBounds());
-        } else if (e.analytic) {
-            b.Expand(e.analytic->WorldBounds());
-        } else {
-            Bounds3f pb = e.prototype->WorldBounds();
-            if (pb.IsEmpty()) continue;
-            Bounds3d wb = e.worldFromInstance.Bounds(Bounds3d(Vec3d(pb.pMin), Vec3d(pb.pMax)));
-            b.Expand(Bounds3f(Vec3f(wb.pMin), Vec3f(wb.pMax)));
-        }
-    }
-    return b;
-}
-
-size_t Accel::NumTriangles() const {
-    size_t n = 0;
-    for (const auto &e : impl_->shapes) {
-        if (e.mesh) n += e.mesh->NumTriangles();
-        if (e.prototype) n += e.prototype->NumTriangles();
-    }
-    return n;
-}
 
 }  // namespace prism

@@ -45,7 +45,7 @@ public:
     // An Embree instance of a committed prototype (pbrt ObjectInstance). Embree 3 allows one
     // instance level: prototypes hold meshes and analytic shapes only, and analytic shapes
     // apply their own object transform inside the instance.
-    int AddInstance(std::shared_ptr<const Accel> prototype, const Transform &worldFromInstance);
+    int AddInstance(std::shared_ptr<const Accel> prototype, const Transform &renderFromInstance);
     // Builds the BVH. Throws std::runtime_error with Embree's message on failure.
     void Commit();
 
@@ -65,11 +65,7 @@ public:
     int NumShapes() const;
     const TriangleMesh *Mesh(int shape) const;          // nullptr if analytic
     const AnalyticShape *Analytic(int shape) const;     // nullptr if mesh
-    const Accel *Prototype(int shape) const;            // non-null for instances
-    Bounds3f WorldBounds() const;
-    size_t NumTriangles() const;
     double BuildSeconds() const;
-    const AccelOptions &Options() const;
 
 private:
     struct Impl;

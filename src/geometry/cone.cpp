@@ -5,6 +5,9 @@
 #include <stdexcept>
 
 #include "geometry/quadric_solve.h"
+#include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
@@ -18,9 +21,9 @@ RotationalQuadric ConeQuadric(double radius, double height) {
 }
 }  // namespace
 
-Cone::Cone(const Transform &worldFromObject, bool reverseOrientation, double radius, double height,
+Cone::Cone(const Transform &renderFromObject, bool reverseOrientation, double radius, double height,
            double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       radius_(radius),
       height_(height),
       phiMax_(Radians(std::min(phiMaxDeg, 360.0))) {
@@ -64,5 +67,38 @@ LocalGeometry Cone::Geometry(const ObjectHit &hit) const {
     g.n = Vec3d(height_ * cosPhi, height_ * sinPhi, radius_);
     return g;
 }
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Cone::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Cone;
+    pr->phiMax = phiMax_;
+    pr->a = radius_;
+    pr->b = height_;
+    pr->poleV1 = true;  // the apex
+    return true;
+}
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Cone>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float radius = params.PositiveFloat("radius", 1.f);
+    float height = params.PositiveFloat("height", 1.f);
+    float phimax = params.PhiMax();
+    return params.Construct("height", [&] {
+        return std::make_unique<Cone>(renderFromObject, reverseOrientation, radius, height,
+                                      phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Cone>(const Transform &renderFromObject) {
+    return std::make_unique<Cone>(renderFromObject, false, 1, 1.5, 360);
+}
+
+PRISM_USER_GEOMETRY(Cone)
 
 }  // namespace prism

@@ -9,7 +9,7 @@ namespace prism {
 class Cone final : public AnalyticShapeT<Cone> {
   public:
     // Throws std::invalid_argument for radius <= 0, height <= 0 or phimax outside (0, 360].
-    Cone(const Transform &worldFromObject, bool reverseOrientation, double radius, double height,
+    Cone(const Transform &renderFromObject, bool reverseOrientation, double radius, double height,
          double phiMaxDeg);
 
     const char *Name() const override { return "cone"; }

@@ -6,12 +6,15 @@
 #include <stdexcept>
 
 #include "geometry/quadric_solve.h"
+#include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
-Cylinder::Cylinder(const Transform &worldFromObject, bool reverseOrientation, double radius,
+Cylinder::Cylinder(const Transform &renderFromObject, bool reverseOrientation, double radius,
                    double zMin, double zMax, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       radius_(radius),
       zMin_(std::min(zMin, zMax)),
       zMax_(std::max(zMin, zMax)),
@@ -102,5 +105,39 @@ bool Cylinder::SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) co
     *pdfArea = area > 0 ? 1 / area : 0;
     return area > 0;
 }
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Cylinder::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Cylinder;
+    pr->phiMax = phiMax_;
+    pr->a = radius_;
+    pr->b = zMin_;
+    pr->c = zMax_;
+    return true;
+}
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Cylinder>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float radius = params.PositiveFloat("radius", 1.f);
+    float zmin = params.FiniteFloat("zmin", -1.f), zmax = params.FiniteFloat("zmax", 1.f);
+    float phimax = params.PhiMax();
+    if (zmin == zmax) throw SceneError(params.Loc("zmax"), "cylinder zmin and zmax must differ");
+    return params.Construct("zmax", [&] {
+        return std::make_unique<Cylinder>(renderFromObject, reverseOrientation, radius, zmin,
+                                          zmax, phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Cylinder>(const Transform &renderFromObject) {
+    return std::make_unique<Cylinder>(renderFromObject, false, 1, -1, 1, 360);
+}
+
+PRISM_USER_GEOMETRY(Cylinder)
 
 }  // namespace prism

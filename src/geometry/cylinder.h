@@ -9,7 +9,7 @@ namespace prism {
 class Cylinder final : public AnalyticShapeT<Cylinder> {
   public:
     // Throws std::invalid_argument for radius <= 0, zmin == zmax or phimax outside (0, 360].
-    Cylinder(const Transform &worldFromObject, bool reverseOrientation, double radius, double zMin,
+    Cylinder(const Transform &renderFromObject, bool reverseOrientation, double radius, double zMin,
              double zMax, double phiMaxDeg);
 
     const char *Name() const override { return "cylinder"; }

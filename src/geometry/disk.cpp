@@ -5,12 +5,15 @@
 #include <stdexcept>
 
 #include "geometry/quadric_util.h"
+#include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
-Disk::Disk(const Transform &worldFromObject, bool reverseOrientation, double height, double radius,
+Disk::Disk(const Transform &renderFromObject, bool reverseOrientation, double height, double radius,
            double innerRadius, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       height_(height),
       radius_(radius),
       innerRadius_(innerRadius),
@@ -80,5 +83,42 @@ bool Disk::SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) const 
     *pdfArea = area > 0 ? 1 / area : 0;
     return area > 0;
 }
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Disk::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Disk;
+    pr->phiMax = phiMax_;
+    pr->a = radius_;  // v = 0 on the outer rim, as the shape's uv.v
+    pr->b = innerRadius_;
+    pr->c = height_;
+    pr->poleV1 = innerRadius_ == 0;
+    return true;
+}
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Disk>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float height = params.FiniteFloat("height", 0.f);
+    float radius = params.PositiveFloat("radius", 1.f);
+    float inner = params.Float("innerradius", 0.f);
+    if (!(inner >= 0) || !(inner < radius))
+        throw SceneError(params.Loc("innerradius"), "disk innerradius must be in [0, radius)");
+    float phimax = params.PhiMax();
+    return params.Construct("radius", [&] {
+        return std::make_unique<Disk>(renderFromObject, reverseOrientation, height, radius, inner,
+                                      phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Disk>(const Transform &renderFromObject) {
+    return std::make_unique<Disk>(renderFromObject, false, 0, 1, 0.3, 300);
+}
+
+PRISM_USER_GEOMETRY(Disk)
 
 }  // namespace prism

@@ -9,7 +9,7 @@ class Disk final : public AnalyticShapeT<Disk> {
   public:
     // Throws std::invalid_argument for radius <= 0, innerradius outside [0, radius) or
     // phimax outside (0, 360].
-    Disk(const Transform &worldFromObject, bool reverseOrientation, double height, double radius,
+    Disk(const Transform &renderFromObject, bool reverseOrientation, double height, double radius,
          double innerRadius, double phiMaxDeg);
 
     const char *Name() const override { return "disk"; }

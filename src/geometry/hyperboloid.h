@@ -12,7 +12,7 @@ class Hyperboloid final : public AnalyticShapeT<Hyperboloid> {
     // Throws std::invalid_argument when p1, p2 define no hyperboloid (equal points, equal
     // heights, a segment whose line meets the axis so the fit never converges, a <= 0) or
     // phimax is outside (0, 360].
-    Hyperboloid(const Transform &worldFromObject, bool reverseOrientation, const Vec3d &p1,
+    Hyperboloid(const Transform &renderFromObject, bool reverseOrientation, const Vec3d &p1,
                 const Vec3d &p2, double phiMaxDeg);
 
     const char *Name() const override { return "hyperboloid"; }

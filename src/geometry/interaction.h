@@ -9,7 +9,7 @@
 namespace prism {
 
 struct SurfaceInteraction {
-    Vec3f p;        // world-space hit point
+    Vec3f p;        // render-space hit point
     Vec3f pError;   // conservative absolute error of p, per component
     Vec3f n;        // unit geometric normal, pbrt orientation (not turned toward the ray)
     Vec3f ns;       // unit shading normal, in n's hemisphere

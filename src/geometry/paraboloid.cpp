@@ -5,6 +5,9 @@
 #include <stdexcept>
 
 #include "geometry/quadric_solve.h"
+#include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
@@ -17,9 +20,9 @@ RotationalQuadric ParaboloidQuadric(double k) {
 }
 }  // namespace
 
-Paraboloid::Paraboloid(const Transform &worldFromObject, bool reverseOrientation, double radius,
+Paraboloid::Paraboloid(const Transform &renderFromObject, bool reverseOrientation, double radius,
                        double zMin, double zMax, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       radius_(radius),
       zMin_(std::min(zMin, zMax)),
       zMax_(std::max(zMin, zMax)),
@@ -72,5 +75,45 @@ LocalGeometry Paraboloid::Geometry(const ObjectHit &hit) const {
     g.n = Vec3d(2 * k_ * p.x, 2 * k_ * p.y, -1);
     return g;
 }
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Paraboloid::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Paraboloid;
+    pr->phiMax = phiMax_;
+    pr->a = k_;
+    // Uniform in rho rather than z: rho = sqrt(z / k) has an infinite slope at the vertex, so
+    // uniform z steps would make the first ring's chord error O(1/n) instead of O(1/n^2).
+    double zLo = std::max(zMin_, 0.0);
+    pr->b = std::sqrt(zLo / k_);
+    pr->c = std::sqrt(zMax_ / k_);
+    pr->poleV0 = zLo == 0;
+    return pr->c > pr->b;
+}
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Paraboloid>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float radius = params.PositiveFloat("radius", 1.f);
+    float zmin = params.FiniteFloat("zmin", 0.f), zmax = params.FiniteFloat("zmax", 1.f);
+    float phimax = params.PhiMax();
+    if (!(std::max(zmin, zmax) > 0))
+        throw SceneError(params.Loc("zmax"), "paraboloid zmax must be positive");
+    if (zmin == zmax) throw SceneError(params.Loc("zmax"), "paraboloid zmin and zmax must differ");
+    return params.Construct("zmax", [&] {
+        return std::make_unique<Paraboloid>(renderFromObject, reverseOrientation, radius, zmin,
+                                            zmax, phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Paraboloid>(const Transform &renderFromObject) {
+    return std::make_unique<Paraboloid>(renderFromObject, false, 1, 0, 1.5, 360);
+}
+
+PRISM_USER_GEOMETRY(Paraboloid)
 
 }  // namespace prism

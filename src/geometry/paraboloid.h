@@ -10,7 +10,7 @@ class Paraboloid final : public AnalyticShapeT<Paraboloid> {
   public:
     // Throws std::invalid_argument for radius <= 0, max(zmin, zmax) <= 0, zmin == zmax or
     // phimax outside (0, 360].
-    Paraboloid(const Transform &worldFromObject, bool reverseOrientation, double radius,
+    Paraboloid(const Transform &renderFromObject, bool reverseOrientation, double radius,
                double zMin, double zMax, double phiMaxDeg);
 
     const char *Name() const override { return "paraboloid"; }

@@ -12,15 +12,15 @@ static Affine3<Real> ToAffine(const Matrix4 &m) {
     return a;
 }
 
-AnalyticShape::AnalyticShape(const Transform &worldFromObject, bool reverseOrientation)
-    : worldFromObject_(worldFromObject),
+AnalyticShape::AnalyticShape(const Transform &renderFromObject, bool reverseOrientation)
+    : renderFromObject_(renderFromObject),
       reverseOrientation_(reverseOrientation),
-      flipNormals_(reverseOrientation != worldFromObject.SwapsHandedness()),
-      objectFromWorldF_(ToAffine<float>(worldFromObject.InverseMatrix())),
-      objectFromWorldD_(ToAffine<double>(worldFromObject.InverseMatrix())) {}
+      flipNormals_(reverseOrientation != renderFromObject.SwapsHandedness()),
+      objectFromRenderF_(ToAffine<float>(renderFromObject.InverseMatrix())),
+      objectFromRenderD_(ToAffine<double>(renderFromObject.InverseMatrix())) {}
 
-Bounds3f AnalyticShape::WorldBounds() const {
-    Bounds3d b = worldFromObject_.Bounds(ObjectBounds());
+Bounds3f AnalyticShape::RenderBounds() const {
+    Bounds3d b = renderFromObject_.Bounds(ObjectBounds());
     // Relative padding: 1e-6 of the largest coordinate magnitude plus the box's own extent,
     // then rounded outward to float.
     double scale = std::max(MaxComponent(Abs(b.pMin)), MaxComponent(Abs(b.pMax)));
@@ -40,9 +40,9 @@ bool AnalyticShape::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
     double nLen = Length(nObj);
     if (!(nLen > 0) || !(pdfObj > 0)) return false;
     // World area element: dA_w = |det M| |M^-T n_o| dA_o for a unit object normal n_o.
-    Vec3d nW = worldFromObject_.Normal(nObj / nLen);
-    double jac = std::abs(worldFromObject_.Matrix().Determinant3x3()) * Length(nW);
-    Vec3d pW = worldFromObject_.Point(pObj);
+    Vec3d nW = renderFromObject_.Normal(nObj / nLen);
+    double jac = std::abs(renderFromObject_.Matrix().Determinant3x3()) * Length(nW);
+    Vec3d pW = renderFromObject_.Point(pObj);
     nW = Normalize(nW);
     if (flipNormals_) nW = -nW;
     Vec3d w = pW - Vec3d(ref);
@@ -59,19 +59,19 @@ bool AnalyticShape::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
 SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir) const {
     LocalGeometry g = Geometry(hit);
     SurfaceInteraction si;
-    Vec3d pW = worldFromObject_.Point(hit.p);
-    Vec3d errW = worldFromObject_.PointError(hit.p, hit.pError, MachineEpsilon<double>());
+    Vec3d pW = renderFromObject_.Point(hit.p);
+    Vec3d errW = renderFromObject_.PointError(hit.p, hit.pError, MachineEpsilon<double>());
     si.p = Vec3f(pW);
     // Rounding the double world point to float adds up to half an ulp per component; bound it
     // by the exact difference plus one float ulp of headroom.
     for (int i = 0; i < 3; ++i)
         si.pError[i] = float(errW[i] + std::abs(double(si.p[i]) - pW[i]) +
                              std::abs(pW[i]) * MachineEpsilon<float>());
-    Vec3d n = Normalize(worldFromObject_.Normal(g.n));
+    Vec3d n = Normalize(renderFromObject_.Normal(g.n));
     if (flipNormals_) n = -n;
     si.n = si.ns = Vec3f(n);
-    si.dpdu = Vec3f(worldFromObject_.Vector(g.dpdu));
-    si.dpdv = Vec3f(worldFromObject_.Vector(g.dpdv));
+    si.dpdu = Vec3f(renderFromObject_.Vector(g.dpdu));
+    si.dpdv = Vec3f(renderFromObject_.Vector(g.dpdv));
     si.uv = Vec2f(float(g.uv.x), float(g.uv.y));
     si.wo = Normalize(-rayDir);
     si.t = float(hit.t);

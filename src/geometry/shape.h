@@ -1,4 +1,6 @@
 // Analytic shapes (Embree user geometry): the interface shared by the quadrics and the torus.
+// Positions are in render space (world space translated so the camera sits at the origin,
+// render/render_scene.h), named as pbrt-v4 names them: renderFromObject, RenderBounds.
 //
 // Intersection is two-phase (the Mitsuba pattern): Intersect() runs inside Embree's callback
 // and returns only the ray parameter and the object-space hit; Interaction() builds normals,
@@ -16,13 +18,13 @@
 
 namespace prism {
 
-struct RevolutionProfile;  // geometry/tessellate.h
+struct RevolutionProfile;  // validate/tessellate.h
 
 enum class Precision { Float, Double };
 
 // Result of the root routine, in object space.
 struct ObjectHit {
-    double t = 0;       // ray parameter (units of the world ray's direction)
+    double t = 0;       // ray parameter (units of the render-space ray's direction)
     Vec3d p;            // object-space hit point, re-projected onto the surface where possible
     Vec3d pError;       // conservative absolute error of p
     double phi = 0;     // azimuth of the hit (used by partial shapes)
@@ -31,7 +33,7 @@ struct ObjectHit {
 // A point sampled on a shape's surface for direct lighting, with the density of choosing it
 // expressed in solid angle as seen from the reference point.
 struct ShapeSample {
-    Vec3f p, n;        // world-space point and unit normal (pbrt orientation, flips applied)
+    Vec3f p, n;        // render-space point and unit normal (pbrt orientation, flips applied)
     float pdf = 0;     // solid-angle density at the reference point
 };
 
@@ -60,7 +62,7 @@ struct Affine3 {
 
 class AnalyticShape {
 public:
-    AnalyticShape(const Transform &worldFromObject, bool reverseOrientation);
+    AnalyticShape(const Transform &renderFromObject, bool reverseOrientation);
     virtual ~AnalyticShape() = default;
 
     virtual const char *Name() const = 0;
@@ -70,7 +72,7 @@ public:
     virtual double Implicit(const Vec3d &pObj) const = 0;
     virtual Vec3d ImplicitGradient(const Vec3d &pObj) const = 0;
 
-    // Nearest valid hit with t in (tMin, tMax) for a world-space ray.
+    // Nearest valid hit with t in (tMin, tMax) for a render-space ray.
     virtual bool Intersect(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
                            Precision precision, ObjectHit *hit) const = 0;
     // Object-space differential geometry at a hit found by Intersect.
@@ -92,39 +94,40 @@ public:
     }
 
     // [validate hook] Every analytic shape is a profile curve swept about z; shapes fill in
-    // that description (defined in tessellate.cpp) for tessellation and `prism validate`.
+    // that description (in each shape's own .cpp; geometry/revolution.h) for tessellation and
+    // `prism validate`.
     // Returns false for shapes that cannot describe themselves so.
     virtual bool Revolution(RevolutionProfile *profile) const { return false; }
 
-    // World-space bounds, padded by a relative margin: Embree's user-geometry traversal is not
+    // Render-space bounds, padded by a relative margin: Embree's user-geometry traversal is not
     // robust (REFERENCE.md §0.2), so the box must absorb its rounding.
-    Bounds3f WorldBounds() const;
-    // Phase 2: the full world-space interaction for a hit.
+    Bounds3f RenderBounds() const;
+    // Phase 2: the full render-space interaction for a hit.
     SurfaceInteraction Interaction(const ObjectHit &hit, const Vec3f &rayDir) const;
 
-    const Transform &WorldFromObject() const { return worldFromObject_; }
+    const Transform &RenderFromObject() const { return renderFromObject_; }
     bool FlipNormals() const { return flipNormals_; }
 
     template <typename Real>
-    const Affine3<Real> &ObjectFromWorld() const {
+    const Affine3<Real> &ObjectFromRender() const {
         if constexpr (std::is_same_v<Real, float>)
-            return objectFromWorldF_;
+            return objectFromRenderF_;
         else
-            return objectFromWorldD_;
+            return objectFromRenderD_;
     }
 
 protected:
-    Transform worldFromObject_;
+    Transform renderFromObject_;
     bool reverseOrientation_, flipNormals_;
-    Affine3<float> objectFromWorldF_;
-    Affine3<double> objectFromWorldD_;
+    Affine3<float> objectFromRenderF_;
+    Affine3<double> objectFromRenderD_;
 };
 
-// Adds the per-shape world-ray → object-ray conversion and the precision switch on top of a
+// Adds the per-shape render-space ray → object-ray conversion and the precision switch on top of a
 // shape's templated root routine: Derived provides
 //   template <typename Real> bool IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax,
 //                                            Real tSlack, ObjectHit *hit) const;
-// where tSlack bounds the error in t caused by rounding in the world-to-object transform of
+// where tSlack bounds the error in t caused by rounding in the render-to-object transform of
 // the ray origin (negligible in double, decisive in float for far-from-origin shapes).
 template <typename Derived>
 class AnalyticShapeT : public AnalyticShape {
@@ -132,9 +135,9 @@ public:
     using AnalyticShape::AnalyticShape;
 
     template <typename Real>
-    bool IntersectWorld(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
+    bool IntersectRender(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
                         ObjectHit *hit) const {
-        const Affine3<Real> &m = ObjectFromWorld<Real>();
+        const Affine3<Real> &m = ObjectFromRender<Real>();
         Vec3<Real> ow(o), dw(d);
         Vec3<Real> oo = m.Point(ow), dd = m.Vector(dw);
         // pbrt-v3 transform.h: |error| <= gamma3 (|M| |o| + |t|) per component.
@@ -149,8 +152,8 @@ public:
     }
     bool Intersect(const Vec3f &o, const Vec3f &d, float tMin, float tMax, Precision precision,
                    ObjectHit *hit) const override {
-        return precision == Precision::Double ? IntersectWorld<double>(o, d, tMin, tMax, hit)
-                                              : IntersectWorld<float>(o, d, tMin, tMax, hit);
+        return precision == Precision::Double ? IntersectRender<double>(o, d, tMin, tMax, hit)
+                                              : IntersectRender<float>(o, d, tMin, tMax, hit);
     }
 };
 

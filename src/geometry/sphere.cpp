@@ -4,12 +4,15 @@
 #include <cmath>
 
 #include "geometry/quadric_util.h"
+#include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
-Sphere::Sphere(const Transform &worldFromObject, bool reverseOrientation, double radius,
+Sphere::Sphere(const Transform &renderFromObject, bool reverseOrientation, double radius,
                double zMin, double zMax, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       radius_(radius),
       zMin_(Clamp(std::min(zMin, zMax), -radius, radius)),
       zMax_(Clamp(std::max(zMin, zMax), -radius, radius)),
@@ -17,8 +20,8 @@ Sphere::Sphere(const Transform &worldFromObject, bool reverseOrientation, double
       thetaZMax_(std::acos(Clamp(std::max(zMin, zMax) / radius, -1.0, 1.0))),
       phiMax_(Radians(Clamp(phiMaxDeg, 0.0, 360.0))) {
     partial_ = zMin_ > -radius_ || zMax_ < radius_ || phiMax_ < 2 * Pi;
-    Vec3d ex = worldFromObject.Vector(Vec3d(1, 0, 0)), ey = worldFromObject.Vector(Vec3d(0, 1, 0)),
-          ez = worldFromObject.Vector(Vec3d(0, 0, 1));
+    Vec3d ex = renderFromObject.Vector(Vec3d(1, 0, 0)), ey = renderFromObject.Vector(Vec3d(0, 1, 0)),
+          ez = renderFromObject.Vector(Vec3d(0, 0, 1));
     double lx = Length(ex), ly = Length(ey), lz = Length(ez);
     similarity_ = std::abs(lx - ly) <= 1e-9 * lx && std::abs(lx - lz) <= 1e-9 * lx &&
                   std::abs(Dot(ex, ey)) <= 1e-9 * lx * ly && std::abs(Dot(ex, ez)) <= 1e-9 * lx * lz &&
@@ -39,8 +42,8 @@ bool Sphere::SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) cons
 
 bool Sphere::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
     if (partial_ || !similarity_) return AnalyticShape::Sample(ref, u, ss);
-    Vec3d c = worldFromObject_.Point(Vec3d(0, 0, 0));
-    double rW = radius_ * Length(worldFromObject_.Vector(Vec3d(1, 0, 0)));
+    Vec3d c = renderFromObject_.Point(Vec3d(0, 0, 0));
+    double rW = radius_ * Length(renderFromObject_.Vector(Vec3d(1, 0, 0)));
     Vec3d wc = c - Vec3d(ref);
     double dc2 = LengthSquared(wc);
     if (dc2 <= rW * rW * (1 + 1e-6)) return AnalyticShape::Sample(ref, u, ss);  // inside
@@ -138,5 +141,37 @@ LocalGeometry Sphere::Geometry(const ObjectHit &hit) const {
     g.n = p;
     return g;
 }
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Sphere::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Sphere;
+    pr->phiMax = phiMax_;
+    pr->a = radius_;
+    pr->b = thetaZMin_;  // v = 0 at zmin, as the shape's uv.v
+    pr->c = thetaZMax_;
+    pr->poleV0 = zMin_ <= -radius_;
+    pr->poleV1 = zMax_ >= radius_;
+    return thetaZMin_ > thetaZMax_;
+}
+
+// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Sphere>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float radius = params.PositiveFloat("radius", 1.f);
+    return std::make_unique<Sphere>(renderFromObject, reverseOrientation, radius,
+                                    params.Float("zmin", -radius), params.Float("zmax", radius),
+                                    params.Float("phimax", 360.f));
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Sphere>(const Transform &renderFromObject) {
+    return std::make_unique<Sphere>(renderFromObject, false, 1, -1, 1, 360);
+}
+
+PRISM_USER_GEOMETRY(Sphere)
 
 }  // namespace prism

@@ -7,7 +7,7 @@ namespace prism {
 
 class Sphere final : public AnalyticShapeT<Sphere> {
 public:
-    Sphere(const Transform &worldFromObject, bool reverseOrientation, double radius, double zMin,
+    Sphere(const Transform &renderFromObject, bool reverseOrientation, double radius, double zMin,
            double zMax, double phiMaxDeg);
 
     const char *Name() const override { return "sphere"; }

@@ -7,6 +7,9 @@
 
 #include "geometry/polynomial.h"
 #include "geometry/quadric_solve.h"
+#include "geometry/revolution.h"
+#include "geometry/shape_list.h"
+#include "geometry/user_geometry.h"
 
 namespace prism {
 
@@ -78,9 +81,9 @@ bool BoundingInterval(const Vec3d &o, const Vec3d &d, double R, double r, double
 
 }  // namespace
 
-Torus::Torus(const Transform &worldFromObject, bool reverseOrientation, double majorRadius,
+Torus::Torus(const Transform &renderFromObject, bool reverseOrientation, double majorRadius,
              double minorRadius, double phiMaxDeg)
-    : AnalyticShapeT(worldFromObject, reverseOrientation),
+    : AnalyticShapeT(renderFromObject, reverseOrientation),
       R_(majorRadius),
       r_(minorRadius),
       phiMax_(Radians(std::min(phiMaxDeg, 360.0))) {
@@ -223,5 +226,40 @@ LocalGeometry Torus::Geometry(const ObjectHit &hit) const {
     g.n = Vec3d((rho - R_) * cosPhi, (rho - R_) * sinPhi, p.z);
     return g;
 }
+
+// The profile swept about z (tessellation and `prism validate`).
+bool Torus::Revolution(RevolutionProfile *pr) const {
+    *pr = RevolutionProfile{};
+    pr->kind = RevolutionProfile::Kind::Torus;
+    pr->phiMax = phiMax_;
+    pr->a = R_;
+    pr->b = r_;
+    pr->closedV = true;
+    return true;
+}
+
+// pbrt parameters (pbrt-v3 names and defaults; the torus is Prism's own); each value is checked so the error points
+// at the offending parameter.
+template <>
+std::unique_ptr<AnalyticShape> CreateShape<Torus>(const ShapeParams &params,
+                                           const Transform &renderFromObject,
+                                           bool reverseOrientation) {
+    float major = params.PositiveFloat("majorradius", 1.f);
+    float minor = params.PositiveFloat("minorradius", 0.25f);
+    float phimax = params.PhiMax();
+    if (!(minor < major))
+        throw SceneError(params.Loc("minorradius"),
+                         "torus minorradius must be smaller than majorradius");
+    return params.Construct("minorradius", [&] {
+        return std::make_unique<Torus>(renderFromObject, reverseOrientation, major, minor, phimax);
+    });
+}
+
+template <>
+std::unique_ptr<AnalyticShape> CanonicalShape<Torus>(const Transform &renderFromObject) {
+    return std::make_unique<Torus>(renderFromObject, false, 1, 0.3, 360);
+}
+
+PRISM_USER_GEOMETRY(Torus)
 
 }  // namespace prism

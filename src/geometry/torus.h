@@ -12,7 +12,7 @@ class Torus final : public AnalyticShapeT<Torus> {
   public:
     // Throws std::invalid_argument for R <= 0, r <= 0, r >= R (spindle/horn tori) or phimax
     // outside (0, 360].
-    Torus(const Transform &worldFromObject, bool reverseOrientation, double majorRadius,
+    Torus(const Transform &renderFromObject, bool reverseOrientation, double majorRadius,
           double minorRadius, double phiMaxDeg);
 
     const char *Name() const override { return "torus"; }

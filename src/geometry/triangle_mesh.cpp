@@ -6,12 +6,12 @@
 
 namespace prism {
 
-TriangleMesh::TriangleMesh(const Transform &worldFromObject, bool reverseOrientation,
+TriangleMesh::TriangleMesh(const Transform &renderFromObject, bool reverseOrientation,
                            const std::vector<Vec3f> &P, std::vector<uint32_t> indices,
                            const std::vector<Vec3f> &N, std::vector<Vec2f> uv)
     : indices_(std::move(indices)),
       uv_(std::move(uv)),
-      flipNormals_(reverseOrientation != worldFromObject.SwapsHandedness()) {
+      flipNormals_(reverseOrientation != renderFromObject.SwapsHandedness()) {
     if (indices_.size() % 3 != 0)
         throw std::invalid_argument("number of vertex indices (" + std::to_string(indices_.size()) +
                                     ") is not a multiple of 3");
@@ -28,9 +28,9 @@ TriangleMesh::TriangleMesh(const Transform &worldFromObject, bool reverseOrienta
                                     " entries but there are " + std::to_string(P.size()) +
                                     " vertices");
     positions_.resize(3 * P.size() + 1);  // Embree reads 16 bytes past the last float3
-    bool identity = worldFromObject.IsIdentity();
+    bool identity = renderFromObject.IsIdentity();
     for (size_t i = 0; i < P.size(); ++i) {
-        Vec3f w = identity ? P[i] : Vec3f(worldFromObject.Point(Vec3d(P[i])));
+        Vec3f w = identity ? P[i] : Vec3f(renderFromObject.Point(Vec3d(P[i])));
         positions_[3 * i] = w.x;
         positions_[3 * i + 1] = w.y;
         positions_[3 * i + 2] = w.z;
@@ -38,14 +38,14 @@ TriangleMesh::TriangleMesh(const Transform &worldFromObject, bool reverseOrienta
     if (!N.empty()) {
         normals_.resize(N.size());
         for (size_t i = 0; i < N.size(); ++i) {
-            Vec3d n = identity ? Vec3d(N[i]) : worldFromObject.Normal(Vec3d(N[i]));
+            Vec3d n = identity ? Vec3d(N[i]) : renderFromObject.Normal(Vec3d(N[i]));
             double len = Length(n);
             normals_[i] = len > 0 ? Vec3f(n / len) : Vec3f(0, 0, 0);
         }
     }
 }
 
-Bounds3f TriangleMesh::WorldBounds() const {
+Bounds3f TriangleMesh::RenderBounds() const {
     Bounds3f b;
     for (size_t i = 0; i + 1 < positions_.size(); i += 3)
         b.Expand(Vec3f(positions_[i], positions_[i + 1], positions_[i + 2]));

@@ -1,4 +1,4 @@
-// Triangle meshes in world space, shared with Embree without copying.
+// Triangle meshes in render space, shared with Embree without copying.
 #pragma once
 
 #include <cstdint>
@@ -11,9 +11,9 @@ namespace prism {
 
 class TriangleMesh {
 public:
-    // Object-space data; transformed to world space here (in double, rounded once).
+    // Object-space data; transformed to render space here (in double, rounded once).
     // Throws std::invalid_argument for inconsistent sizes or out-of-range indices.
-    TriangleMesh(const Transform &worldFromObject, bool reverseOrientation,
+    TriangleMesh(const Transform &renderFromObject, bool reverseOrientation,
                  const std::vector<Vec3f> &P, std::vector<uint32_t> indices,
                  const std::vector<Vec3f> &N = {}, std::vector<Vec2f> uv = {});
 
@@ -28,7 +28,7 @@ public:
     bool HasNormals() const { return !normals_.empty(); }
     bool HasUV() const { return !uv_.empty(); }
     bool FlipNormals() const { return flipNormals_; }
-    Bounds3f WorldBounds() const;
+    Bounds3f RenderBounds() const;
 
     // Geometric normal as the trace command defines it: (p1-p0) x (p2-p0), flipped by
     // ReverseOrientation XOR handedness; unit length; zero for degenerate triangles.

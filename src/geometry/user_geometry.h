@@ -1,7 +1,13 @@
-// Registers an analytic shape as Embree user geometry (internal to src/geometry).
+// Registers an analytic shape as Embree user geometry (internal to src/geometry). The callbacks
+// handle N-wide packets (valid masks, SOA accessors) so rtcIntersect4/8/16 work as well as
+// rtcIntersect1; intersect and occluded share the shape's single root routine, so visibility
+// and shadows agree.
 #pragma once
 
 #include <embree3/rtcore.h>
+
+#include <limits>
+#include <type_traits>
 
 #include "geometry/shape.h"
 
@@ -12,5 +18,125 @@ namespace prism {
 // `mask` is the Embree geometry mask (which ray kinds see the shape).
 unsigned AttachUserGeometry(RTCDevice device, RTCScene scene, const AnalyticShape *shape,
                             Precision precision, unsigned mask);
+
+// For each listed shape T (shape_list.inc): attaches `shape` with T's root routine called
+// directly (no virtual dispatch per candidate) if it is a T, else returns
+// RTC_INVALID_GEOMETRY_ID. Defined in T's .cpp by PRISM_USER_GEOMETRY(T).
+template <typename T>
+unsigned AttachShape(RTCDevice device, RTCScene scene, const AnalyticShape &shape,
+                     Precision precision, unsigned mask);
+#define PRISM_SHAPE(T, name) \
+    class T;                 \
+    template <>              \
+    unsigned AttachShape<T>(RTCDevice, RTCScene, const AnalyticShape &, Precision, unsigned);
+#include "geometry/shape_list.inc"
+#undef PRISM_SHAPE
+
+namespace user_geometry_detail {
+
+template <typename S>
+inline void BoundsFunc(const RTCBoundsFunctionArguments *args) {
+    const auto *shape = static_cast<const S *>(args->geometryUserPtr);
+    Bounds3f b = shape->RenderBounds();
+    RTCBounds *o = args->bounds_o;
+    o->lower_x = b.pMin.x; o->lower_y = b.pMin.y; o->lower_z = b.pMin.z;
+    o->upper_x = b.pMax.x; o->upper_y = b.pMax.y; o->upper_z = b.pMax.z;
+}
+
+// [validate hook] Shapes outside the list below (test-only intersectors, e.g. the broken
+// sphere that `prism validate`'s tests must catch) are attached as AnalyticShape and reached
+// through the virtual Intersect: one indirect call per candidate, fine for them.
+template <typename S, typename Real>
+inline bool RootRoutine(const S *shape, const Vec3f &o, const Vec3f &d, float tnear, float tfar,
+                 ObjectHit *hit) {
+    if constexpr (std::is_same_v<S, AnalyticShape>)
+        return shape->Intersect(o, d, tnear, tfar,
+                                std::is_same_v<Real, float> ? Precision::Float : Precision::Double,
+                                hit);
+    else
+        return shape->template IntersectRender<Real>(o, d, tnear, tfar, hit);
+}
+
+// The shared root routine for lane i of an N-wide ray packet: true with the float t of the
+// nearest valid hit inside the lane's (tnear, tfar).
+template <typename S, typename Real>
+inline bool LaneHit(const S *shape, RTCRayN *rays, unsigned N, unsigned i, float *tHit) {
+    Vec3f o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
+    Vec3f d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
+    float tnear = RTCRayN_tnear(rays, N, i), tfar = RTCRayN_tfar(rays, N, i);
+    ObjectHit hit;
+    if (!RootRoutine<S, Real>(shape, o, d, tnear, tfar, &hit)) return false;
+    float t = float(hit.t);
+    *tHit = t;
+    return t > tnear && t < tfar;  // rounding to float may leave the interval
+}
+
+template <typename S, typename Real>
+inline void IntersectFunc(const RTCIntersectFunctionNArguments *args) {
+    const auto *shape = static_cast<const S *>(args->geometryUserPtr);
+    const unsigned N = args->N;
+    RTCRayN *rays = RTCRayHitN_RayN(args->rayhit, N);
+    RTCHitN *hits = RTCRayHitN_HitN(args->rayhit, N);
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] != -1) continue;
+        float t;
+        if (!LaneHit<S, Real>(shape, rays, N, i, &t)) continue;
+        RTCRayN_tfar(rays, N, i) = t;
+        // Ng is not computed here: shading geometry is built once, after traversal.
+        RTCHitN_Ng_x(hits, N, i) = 0;
+        RTCHitN_Ng_y(hits, N, i) = 0;
+        RTCHitN_Ng_z(hits, N, i) = 0;
+        RTCHitN_u(hits, N, i) = 0;
+        RTCHitN_v(hits, N, i) = 0;
+        RTCHitN_primID(hits, N, i) = args->primID;
+        RTCHitN_geomID(hits, N, i) = args->geomID;
+        RTCHitN_instID(hits, N, i, 0) = args->context->instID[0];
+    }
+}
+
+template <typename S, typename Real>
+inline void OccludedFunc(const RTCOccludedFunctionNArguments *args) {
+    const auto *shape = static_cast<const S *>(args->geometryUserPtr);
+    const unsigned N = args->N;
+    RTCRayN *rays = args->ray;
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] != -1) continue;
+        float t;
+        if (LaneHit<S, Real>(shape, rays, N, i, &t))
+            RTCRayN_tfar(rays, N, i) = -std::numeric_limits<float>::infinity();
+    }
+}
+
+template <typename S>
+inline unsigned Attach(RTCDevice device, RTCScene scene, const S *shape, Precision precision,
+                unsigned mask) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserData(geom, const_cast<S *>(shape));
+    rtcSetGeometryBoundsFunction(geom, BoundsFunc<S>, nullptr);
+    if (precision == Precision::Double) {
+        rtcSetGeometryIntersectFunction(geom, IntersectFunc<S, double>);
+        rtcSetGeometryOccludedFunction(geom, OccludedFunc<S, double>);
+    } else {
+        rtcSetGeometryIntersectFunction(geom, IntersectFunc<S, float>);
+        rtcSetGeometryOccludedFunction(geom, OccludedFunc<S, float>);
+    }
+    rtcSetGeometryMask(geom, mask);
+    rtcCommitGeometry(geom);
+    unsigned id = rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    return id;
+}
+
+}  // namespace user_geometry_detail
+
+#define PRISM_USER_GEOMETRY(T)                                                                  \
+    template <>                                                                                 \
+    unsigned AttachShape<T>(RTCDevice device, RTCScene scene, const AnalyticShape &shape,       \
+                            Precision precision, unsigned mask) {                               \
+        const T *t = dynamic_cast<const T *>(&shape);                                           \
+        return t ? user_geometry_detail::Attach(device, scene, t, precision, mask)              \
+                 : RTC_INVALID_GEOMETRY_ID;                                                     \
+    }
 
 }  // namespace prism

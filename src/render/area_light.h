@@ -1,6 +1,5 @@
-// Area and environment lights, sampled with stratified shadow rays (distribution ray
-// tracing): pbrt-v3's "diffuse" AreaLightSource on spheres, disks, cylinders and triangle
-// meshes, and the "infinite" light with a constant radiance or an equirectangular map.
+// Area lights, sampled with stratified shadow rays (distribution ray tracing): pbrt-v3's
+// "diffuse" AreaLightSource on spheres, disks, cylinders and triangle meshes.
 #pragma once
 
 #include <memory>
@@ -11,8 +10,6 @@
 #include "render/light.h"
 
 namespace prism {
-
-struct Image;
 
 class DiffuseAreaLight final : public Light {
 public:
@@ -36,25 +33,6 @@ private:
     int nSamples_;
     Distribution1D triangleAreas_;
     double meshArea_ = 0;
-};
-
-class InfiniteLight final : public Light {
-public:
-    // lightFromRender rotates render-space directions into the map's frame (z = pole).
-    InfiniteLight(const Transform &renderFromLight, const RGB &L,
-                  std::shared_ptr<const Image> map, int nSamples);
-    const char *Name() const override { return "infinite"; }
-    bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
-    RGB Le(const Ray &ray) const override;
-    int NumSamples() const override { return nSamples_; }
-
-private:
-    RGB Lookup(const Vec3f &wRender) const;
-    Transform renderFromLight_;
-    RGB L_;
-    std::shared_ptr<const Image> map_;
-    Distribution2D distribution_;
-    int nSamples_;
 };
 
 }  // namespace prism

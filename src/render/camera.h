@@ -21,7 +21,6 @@ public:
            double frameAspectRatio);
     // pFilm: continuous raster position; uLens in [0,1)^2 (used only with a lens).
     Ray GenerateRay(Vec2f pFilm, Vec2f uLens) const;
-    bool HasLens() const { return lensRadius_ > 0; }
 
 private:
     bool ortho_;

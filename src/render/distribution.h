@@ -16,7 +16,6 @@ public:
     double SampleContinuous(double u, double *pdf, int *offset = nullptr) const;
     // Discrete index with probability f[i] / sum.
     int SampleDiscrete(double u, double *prob = nullptr) const;
-    double DiscretePdf(int i) const { return integral_ > 0 ? func_[size_t(i)] / (integral_ * Count()) : 0; }
     int Count() const { return int(func_.size()); }
     double Integral() const { return integral_; }
     double Func(int i) const { return func_[size_t(i)]; }

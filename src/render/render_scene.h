@@ -1,44 +1,19 @@
-// Everything a render needs, built once from a SceneDescription and immutable while rendering.
+// Everything a render needs, built once from a SceneDescription (build/build_scene.h) and
+// immutable while rendering.
 #pragma once
 
-#include <array>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "core/error.h"
+#include "core/pbrt_defaults.h"
 #include "geometry/accel.h"
 #include "image/film.h"
 #include "render/camera.h"
 #include "render/light.h"
 #include "render/material.h"
-#include "scene/scene_description.h"
 
 namespace prism {
-
-// Command-line overrides of what the scene file says.
-struct RenderOptions {
-    int spp = 0;                    // 0: the scene's Sampler
-    Vec2i resolution{0, 0};         // 0: the scene's Film
-    int maxDepth = -1;              // -1: the scene's Integrator
-    std::optional<std::array<float, 4>> crop;  // NDC x0 x1 y0 y1, like Film "cropwindow"
-    Precision precision = Precision::Double;
-    int threads = 0;                // 0: all cores
-    int lightSamples = 0;           // 0: each area/infinite light's own nsamples
-    std::optional<std::array<float, 9>> lookAt;  // eye, look, up: replaces the scene's camera
-    float fov = 0;                  // degrees on the shorter image axis; 0: the scene's
-    bool quiet = false;
-    // Memory budget in bytes for the film and image textures (and PLY meshes); 0: the default,
-    // 75% of physical RAM (core/memory.h). Exceeding it is a SceneError, not an OOM kill.
-    uint64_t maxMemory = 0;
-    // Render in camera-centred world space (default). `prism trace` turns it off so that
-    // world-space rays are traced without re-rounding.
-    bool cameraRelative = true;
-    // [validate hook] > 0: every analytic shape is replaced by its triangle twin with this
-    // many segments around the axis (geometry/tessellate.h).
-    int tessellate = 0;
-};
 
 // What the scene calls for; the renderer simulates only these effects.
 struct SceneFeatures {
@@ -74,7 +49,7 @@ struct RenderScene {
     std::vector<std::unique_ptr<Light>> lights;
     std::unique_ptr<Camera> camera;
     Transform renderFromWorld;      // world translated so the camera sits at the origin
-    Vec2i resolution{1280, 720};
+    Vec2i resolution{PbrtDefaultXResolution, PbrtDefaultYResolution};
     Bounds2i pixelBounds;           // crop window in pixels
     Filter filter;
     float filmScale = 1;
@@ -86,10 +61,5 @@ struct RenderScene {
     SceneFeatures features;
     double buildSeconds = 0;        // BVH build only
 };
-
-// Creates lights, materials, camera, shapes and the BVH. Throws SceneError (with the entity's
-// location) for bad input; warns for what it approximates or skips.
-RenderScene BuildRenderScene(const SceneDescription &desc, const RenderOptions &options,
-                             Diagnostics &diag);
 
 }  // namespace prism

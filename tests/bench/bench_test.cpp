@@ -12,7 +12,7 @@
 #include "bench/knot.h"
 #include "bench/process.h"
 #include "bench/suite.h"
-#include "render/render_scene.h"
+#include "build/build_scene.h"
 #include "scene/load_scene.h"
 #include "scene/ply_reader.h"
 
@@ -76,8 +76,7 @@ TEST(Knot, PlyReadableAndSceneBuilds) {
     for (size_t i = 0; i < ply.P.size(); ++i)
         EXPECT_EQ(ply.P[i].y, float(m.p[i][1]));
     SceneDescription desc = LoadScene(kf.pbrt, diag);
-    RenderOptions ro;
-    ro.quiet = true;
+    BuildSettings ro;
     RenderScene scene = BuildRenderScene(desc, ro, diag);
     EXPECT_EQ(scene.features.triangles, kf.triangles);
     EXPECT_EQ(scene.lights.size(), 1u);

@@ -18,7 +18,7 @@ const char *PrecName(Precision p) { return p == Precision::Float ? "float" : "do
 // A ray from outside the world bounds toward a random point of them.
 bool ShootAtBounds(const AnalyticShape &s, PCG32 &rng, Precision prec, Vec3f *o, Vec3f *d,
                    ObjectHit *hit) {
-    Bounds3d wb = s.WorldFromObject().Bounds(s.ObjectBounds());
+    Bounds3d wb = s.RenderFromObject().Bounds(s.ObjectBounds());
     Vec3d target(Lerp(rng.UniformDouble(), wb.pMin.x, wb.pMax.x),
                  Lerp(rng.UniformDouble(), wb.pMin.y, wb.pMax.y),
                  Lerp(rng.UniformDouble(), wb.pMin.z, wb.pMax.z));

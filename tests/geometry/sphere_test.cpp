@@ -29,7 +29,7 @@ Transform RandomTransform(PCG32 &rng) {
 // inward rays find the far side exactly once.
 void CheckReintersect(const Sphere &sphere, Precision prec, uint64_t seed, int nRays) {
     PCG32 rng(seed);
-    Bounds3d wb = sphere.WorldFromObject().Bounds(sphere.ObjectBounds());
+    Bounds3d wb = sphere.RenderFromObject().Bounds(sphere.ObjectBounds());
     int checked = 0;
     for (int i = 0; i < nRays; ++i) {
         // A ray from outside aimed at a random point of the bounds.

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "render/render_scene.h"
+#include "build/build_scene.h"
 #include "scene/pbrt_parser.h"
 
 namespace prism {
@@ -188,7 +188,7 @@ RenderScene Build(const std::string &world, Diagnostics &diag) {
     SceneDescription d = ParsePbrtString(
         "Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n" + world,
         "test.pbrt", diag);
-    RenderOptions o;
+    BuildSettings o;
     o.resolution = {8, 8};
     return BuildRenderScene(d, o, diag);
 }

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "render/noise.h"
-#include "render/render_scene.h"
+#include "build/build_scene.h"
 #include "scene/pbrt_parser.h"
 
 namespace prism {
@@ -107,7 +107,7 @@ TEST(TextureScene, ThreeDTexturesUseTheInverseCTM) {
                                "AttributeEnd\n"
                                "Material \"matte\" \"texture Kd\" \"n\"\nShape \"sphere\"\n",
                                diag);
-    RenderOptions o;
+    BuildSettings o;
     o.resolution = {4, 4};
     RenderScene s = BuildRenderScene(d, o, diag);
     const Material &m = s.materials[size_t(s.shapes[0].material)];
@@ -130,7 +130,7 @@ TEST(TextureScene, EveryClassBuildsAndPtexWarns) {
         "Texture \"h\" \"spectrum\" \"scale\" \"texture tex\" \"c\" \"float scale\" 2\n"
         "Shape \"sphere\"\n",
         diag);
-    RenderOptions o;
+    BuildSettings o;
     o.resolution = {4, 4};
     RenderScene s = BuildRenderScene(d, o, diag);
     ASSERT_EQ(diag.Count(), size_t(1)) << diag.Warnings()[0].ToString();

@@ -1,4 +1,4 @@
-#include "render/validate.h"
+#include "validate/validate.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,14 +9,9 @@
 
 #include "core/rng.h"
 #include "geometry/accel.h"
-#include "geometry/cone.h"
-#include "geometry/cylinder.h"
-#include "geometry/disk.h"
-#include "geometry/hyperboloid.h"
-#include "geometry/paraboloid.h"
+#include "geometry/shape_list.h"
 #include "geometry/sphere.h"
-#include "geometry/tessellate.h"
-#include "geometry/torus.h"
+#include "validate/tessellate.h"
 
 namespace prism {
 
@@ -43,8 +38,8 @@ double UlpF(double t) {
 
 // Norm bound of the linear part of objectFromWorld (Frobenius), to carry world-space float
 // rounding into object space.
-double InverseScale(const Transform &worldFromObject) {
-    const Matrix4 &mi = worldFromObject.InverseMatrix();
+double InverseScale(const Transform &renderFromObject) {
+    const Matrix4 &mi = renderFromObject.InverseMatrix();
     double s = 0;
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) s += mi.m[r][c] * mi.m[r][c];
@@ -127,7 +122,7 @@ int64_t ShapeReport::Leaks() const {
 }
 
 std::vector<Ray> RandomRaysAt(const AnalyticShape &shape, int count, uint64_t seed) {
-    Bounds3f b = shape.WorldBounds();
+    Bounds3f b = shape.RenderBounds();
     Vec3d lo(b.pMin), hi(b.pMax);
     double diag = Length(hi - lo);
     PCG32 rng(seed, 0x5eedULL);
@@ -174,7 +169,7 @@ ShapeReport ValidateShape(const std::string &name, std::unique_ptr<AnalyticShape
     std::vector<RawHit> rawA(nr);
     std::vector<char> hitA(nr);
     rep.nsPerRayAnalytic = TimedPass(analytic, rays, &hitA, &rawA);
-    Transform objFromWorld = shape.WorldFromObject().Inverse();
+    Transform objFromWorld = shape.RenderFromObject().Inverse();
     double errSum = 0;
     for (size_t i = 0; i < nr; ++i) {
         if (!hitA[i]) continue;
@@ -203,10 +198,10 @@ ShapeReport ValidateShape(const std::string &name, std::unique_ptr<AnalyticShape
     rep.analyticDtBound = rep.analyticHits ? errSum / double(rep.analyticHits) : 0;
 
     // World-space float rounding of the twin's vertices, carried to object space.
-    Bounds3f wb = shape.WorldBounds();
+    Bounds3f wb = shape.RenderBounds();
     double maxCoord =
         std::max(MaxComponent(Abs(Vec3d(wb.pMin))), MaxComponent(Abs(Vec3d(wb.pMax))));
-    double hRound = 2 * std::sqrt(3.0) * 0x1p-24 * maxCoord * InverseScale(shape.WorldFromObject());
+    double hRound = 2 * std::sqrt(3.0) * 0x1p-24 * maxCoord * InverseScale(shape.RenderFromObject());
 
     // Distance of each ray to a silhouette or boundary: level-independent, computed lazily
     // (only disagreeing rays need it), in double from the analytic description.
@@ -378,9 +373,16 @@ ShapeReport ValidateShape(const std::string &name, std::unique_ptr<AnalyticShape
     return rep;
 }
 
+// The shapes on the list (geometry/shape_list.inc), plus a partial sphere right after the
+// sphere (zone and wedge: the cut edges of a quadric).
 std::vector<std::string> CanonicalShapeNames() {
-    return {"sphere", "partial-sphere", "cylinder",    "disk",
-            "cone",   "paraboloid",     "hyperboloid", "torus"};
+    std::vector<std::string> names;
+#define PRISM_SHAPE(T, name) \
+    names.push_back(name);   \
+    if (names.back() == "sphere") names.push_back("partial-sphere");
+#include "geometry/shape_list.inc"
+#undef PRISM_SHAPE
+    return names;
 }
 
 std::unique_ptr<AnalyticShape> MakeCanonicalShape(const std::string &name) {
@@ -388,15 +390,11 @@ std::unique_ptr<AnalyticShape> MakeCanonicalShape(const std::string &name) {
     // object frame hides a bug.
     Transform w =
         Translate(Vec3d(0.25, -0.5, 1.0)) * Rotate(37, Vec3d(1, 2, 3)) * Scale(1.5, 1.5, 1.5);
-    if (name == "sphere") return std::make_unique<Sphere>(w, false, 1, -1, 1, 360);
     if (name == "partial-sphere") return std::make_unique<Sphere>(w, false, 1, -0.5, 0.3, 270);
-    if (name == "cylinder") return std::make_unique<Cylinder>(w, false, 1, -1, 1, 360);
-    if (name == "disk") return std::make_unique<Disk>(w, false, 0, 1, 0.3, 300);
-    if (name == "cone") return std::make_unique<Cone>(w, false, 1, 1.5, 360);
-    if (name == "paraboloid") return std::make_unique<Paraboloid>(w, false, 1, 0, 1.5, 360);
-    if (name == "hyperboloid")
-        return std::make_unique<Hyperboloid>(w, false, Vec3d(1, -1, -1), Vec3d(1, 1, 1), 360);
-    if (name == "torus") return std::make_unique<Torus>(w, false, 1, 0.3, 360);
+#define PRISM_SHAPE(T, n) \
+    if (name == n) return CanonicalShape<T>(w);
+#include "geometry/shape_list.inc"
+#undef PRISM_SHAPE
     return nullptr;
 }
 

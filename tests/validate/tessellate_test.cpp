@@ -1,7 +1,7 @@
 // Tessellated twins of the analytic shapes: vertices on the surface, winding that agrees with
 // the analytic normal (through transforms, mirrors and ReverseOrientation), watertight closed
 // meshes, and a chord error and shading-normal error that shrink as O(1/n^2).
-#include "geometry/tessellate.h"
+#include "validate/tessellate.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "geometry/tessellate.h"
+#include "validate/tessellate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,186 +18,6 @@
 namespace prism {
 
 using Kind = RevolutionProfile::Kind;
-
-// ---------------------------------------------------------------------------------------------
-// The shapes' profile descriptions (members of the shape classes, so they read the private
-// parameters directly; declared in each shape's header as the [validate hook]).
-
-bool Sphere::Revolution(RevolutionProfile *pr) const {
-    *pr = RevolutionProfile{};
-    pr->kind = Kind::Sphere;
-    pr->phiMax = phiMax_;
-    pr->a = radius_;
-    pr->b = thetaZMin_;  // v = 0 at zmin, as the shape's uv.v
-    pr->c = thetaZMax_;
-    pr->poleV0 = zMin_ <= -radius_;
-    pr->poleV1 = zMax_ >= radius_;
-    return thetaZMin_ > thetaZMax_;
-}
-
-bool Cylinder::Revolution(RevolutionProfile *pr) const {
-    *pr = RevolutionProfile{};
-    pr->kind = Kind::Cylinder;
-    pr->phiMax = phiMax_;
-    pr->a = radius_;
-    pr->b = zMin_;
-    pr->c = zMax_;
-    return true;
-}
-
-bool Disk::Revolution(RevolutionProfile *pr) const {
-    *pr = RevolutionProfile{};
-    pr->kind = Kind::Disk;
-    pr->phiMax = phiMax_;
-    pr->a = radius_;  // v = 0 on the outer rim, as the shape's uv.v
-    pr->b = innerRadius_;
-    pr->c = height_;
-    pr->poleV1 = innerRadius_ == 0;
-    return true;
-}
-
-bool Cone::Revolution(RevolutionProfile *pr) const {
-    *pr = RevolutionProfile{};
-    pr->kind = Kind::Cone;
-    pr->phiMax = phiMax_;
-    pr->a = radius_;
-    pr->b = height_;
-    pr->poleV1 = true;  // the apex
-    return true;
-}
-
-bool Paraboloid::Revolution(RevolutionProfile *pr) const {
-    *pr = RevolutionProfile{};
-    pr->kind = Kind::Paraboloid;
-    pr->phiMax = phiMax_;
-    pr->a = k_;
-    // Uniform in rho rather than z: rho = sqrt(z / k) has an infinite slope at the vertex, so
-    // uniform z steps would make the first ring's chord error O(1/n) instead of O(1/n^2).
-    double zLo = std::max(zMin_, 0.0);
-    pr->b = std::sqrt(zLo / k_);
-    pr->c = std::sqrt(zMax_ / k_);
-    pr->poleV0 = zLo == 0;
-    return pr->c > pr->b;
-}
-
-bool Hyperboloid::Revolution(RevolutionProfile *pr) const {
-    *pr = RevolutionProfile{};
-    pr->kind = Kind::Hyperboloid;
-    pr->phiMax = phiMax_;
-    pr->a = ah_;
-    pr->b = ch_;
-    pr->p1 = p1_;
-    pr->p2 = p2_;
-    // Only a one-sheet fit (rho^2 > 0 over the whole z range) is a tube that can be swept.
-    for (double z : {zMin_, zMax_, Clamp(0.0, zMin_, zMax_)})
-        if (!((1 + ch_ * z * z) / ah_ > 0)) return false;
-    return true;
-}
-
-bool Torus::Revolution(RevolutionProfile *pr) const {
-    *pr = RevolutionProfile{};
-    pr->kind = Kind::Torus;
-    pr->phiMax = phiMax_;
-    pr->a = R_;
-    pr->b = r_;
-    pr->closedV = true;
-    return true;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Profile geometry.
-
-Vec2d RevolutionProfile::Point(double v) const {
-    switch (kind) {
-        case Kind::Sphere: {
-            if ((v <= 0 && poleV0) || (v >= 1 && poleV1)) return {0, v <= 0 ? -a : a};
-            double th = Lerp(v, b, c);
-            return {a * std::sin(th), a * std::cos(th)};
-        }
-        case Kind::Cylinder:
-            return {a, Lerp(v, b, c)};
-        case Kind::Disk:
-            return {v >= 1 && poleV1 ? 0.0 : Lerp(v, a, b), c};
-        case Kind::Cone:
-            return {v >= 1 ? 0.0 : a * (1 - v), b * v};
-        case Kind::Paraboloid: {
-            double rho = v <= 0 && poleV0 ? 0.0 : Lerp(v, b, c);
-            return {rho, a * rho * rho};
-        }
-        case Kind::Hyperboloid: {
-            double z = Lerp(v, p1.z, p2.z);
-            return {std::sqrt((1 + b * z * z) / a), z};
-        }
-        case Kind::Torus: {
-            double th = 2 * Pi * v;
-            return {a + b * std::cos(th), b * std::sin(th)};
-        }
-    }
-    return {0, 0};
-}
-
-Vec2d RevolutionProfile::Tangent(double v) const {
-    switch (kind) {
-        case Kind::Sphere: {
-            double th = Lerp(v, b, c);
-            return Vec2d(a * std::cos(th), -a * std::sin(th)) * (c - b);
-        }
-        case Kind::Cylinder:
-            return {0, c - b};
-        case Kind::Disk:
-            return {b - a, 0};
-        case Kind::Cone:
-            return {-a, b};
-        case Kind::Paraboloid: {
-            double rho = Lerp(v, b, c);
-            return Vec2d(1, 2 * a * rho) * (c - b);
-        }
-        case Kind::Hyperboloid: {
-            double dz = p2.z - p1.z, z = Lerp(v, p1.z, p2.z);
-            double rho = std::sqrt((1 + b * z * z) / a);
-            return {b * z * dz / (a * rho), dz};
-        }
-        case Kind::Torus: {
-            double th = 2 * Pi * v;
-            return Vec2d(-b * std::sin(th), b * std::cos(th)) * (2 * Pi);
-        }
-    }
-    return {0, 0};
-}
-
-double RevolutionProfile::Alpha(double v) const {
-    if (kind != Kind::Hyperboloid) return 0;
-    Vec3d pr = p1 * (1 - v) + p2 * v;
-    return std::atan2(pr.y, pr.x);
-}
-
-Vec3d RevolutionProfile::Surface(double phi, double v) const {
-    Vec2d q = Point(v);
-    double ang = phi + Alpha(v);
-    // Exactly on the axis at poles; exactly at the rim for cos/sin's rounding otherwise.
-    if (q.x == 0) return {0, 0, q.y};
-    return {q.x * std::cos(ang), q.x * std::sin(ang), q.y};
-}
-
-double RevolutionProfile::Turning() const {
-    if (kind == Kind::Torus) return 2 * Pi;
-    if (kind == Kind::Sphere) return std::abs(c - b);
-    const int steps = 256;
-    double total = 0;
-    Vec2d prev = Tangent(0);
-    for (int i = 1; i <= steps; ++i) {
-        Vec2d t = Tangent(double(i) / steps);
-        double cr = prev.x * t.y - prev.y * t.x, dt = prev.x * t.x + prev.y * t.y;
-        total += std::abs(std::atan2(cr, dt));
-        prev = t;
-    }
-    if (kind == Kind::Hyperboloid) {
-        // The rulings twist as well: sample the twist like a bend so quads stay near-planar.
-        double da = std::remainder(Alpha(1) - Alpha(0), 2 * Pi);
-        total += std::abs(da);
-    }
-    return total;
-}
 
 int RingsFor(const RevolutionProfile &profile, int nPhi) {
     double turn = profile.Turning();
@@ -288,7 +108,7 @@ bool Tessellate(const AnalyticShape &shape, int nPhi, TessellatedMesh *mesh) {
 std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, int nPhi) {
     TessellatedMesh m;
     if (!Tessellate(shape, nPhi, &m)) return nullptr;
-    const Transform &w = shape.WorldFromObject();
+    const Transform &w = shape.RenderFromObject();
     // TriangleMesh flips (p1-p0)x(p2-p0) by ReverseOrientation XOR handedness, while the
     // analytic normal is the transformed gradient flipped by the same flag. A mirroring
     // transform also mirrors the cross product, so the twin reverses its winding there to
@@ -312,6 +132,10 @@ std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, in
     // it the float vertices (the rounding is part of the measured chord-error band).
     return std::make_unique<TriangleMesh>(w, shape.FlipNormals() != w.SwapsHandedness(), P,
                                           std::move(m.indices), N, std::move(uv));
+}
+
+std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &)> TessellateWith(int nPhi) {
+    return [nPhi](const AnalyticShape &shape) { return MakeTessellatedMesh(shape, nPhi); };
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "image/image_compare.h"
-#include "render/render_scene.h"
+#include "build/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "test_util.h"
@@ -28,7 +28,7 @@ struct Rendered {
     std::vector<Warning> warnings;
 };
 
-Rendered RenderFile(const std::string &path, RenderOptions opts = {}) {
+Rendered RenderFile(const std::string &path, BuildSettings opts = {}) {
     Diagnostics diag;
     SceneDescription desc = LoadScene(path, diag);
     RenderScene scene = BuildRenderScene(desc, opts, diag);
@@ -38,7 +38,7 @@ Rendered RenderFile(const std::string &path, RenderOptions opts = {}) {
     return r;
 }
 
-Rendered RenderText(const std::string &name, const std::string &text, RenderOptions opts = {}) {
+Rendered RenderText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
     fs::path dir = fs::path(::testing::TempDir()) / "prism_scene_render";
     fs::create_directories(dir);
     fs::path file = dir / (name + ".pbrt");
@@ -47,7 +47,7 @@ Rendered RenderText(const std::string &name, const std::string &text, RenderOpti
 }
 
 TEST(SceneRender, QuadricsShowcaseHasNoNaN) {
-    RenderOptions opts;
+    BuildSettings opts;
     opts.resolution = {200, 125};
     opts.spp = 4;
     for (Precision p : {Precision::Double, Precision::Float}) {
@@ -245,7 +245,7 @@ TEST(SceneRender, SharedScenesRender) {
         "gltf-2cylinderengine/2CylinderEngine.glb",
         "gltf-shadows-spot/shadows-spot.gltf",
     };
-    RenderOptions opts;
+    BuildSettings opts;
     opts.resolution = {160, 120};
     opts.spp = 1;
     opts.lightSamples = 1;

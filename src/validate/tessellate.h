@@ -4,46 +4,16 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include "core/vecmath.h"
+#include "geometry/revolution.h"
 #include "geometry/shape.h"
 #include "geometry/triangle_mesh.h"
 
 namespace prism {
-
-// P(phi, v) = (rho(v) cos(phi + alpha(v)), rho(v) sin(phi + alpha(v)), z(v)) for phi in
-// [0, phiMax], v in [0, 1]. alpha is nonzero only for the hyperboloid, whose azimuth pbrt
-// measures from the rotated profile point. v is a geometric parameter chosen for even
-// sampling (not always the shape's uv.v).
-struct RevolutionProfile {
-    enum class Kind { Sphere, Cylinder, Disk, Cone, Paraboloid, Hyperboloid, Torus };
-    Kind kind = Kind::Sphere;
-    double phiMax = 2 * Pi;
-    // Kind-specific parameters:
-    //   Sphere: a = radius, b = theta at v=0, c = theta at v=1 (theta from +z)
-    //   Cylinder: a = radius, b = zmin, c = zmax
-    //   Disk: a = outer radius, b = inner radius, c = height
-    //   Cone: a = radius, b = height
-    //   Paraboloid: a = k (z = k rho^2), b = rho at v=0, c = rho at v=1
-    //   Hyperboloid: a = a_h, b = c_h (a rho^2 - c z^2 = 1), p1, p2 = the profile segment
-    //   Torus: a = R, b = r
-    double a = 0, b = 0, c = 0;
-    Vec3d p1, p2;
-    // Ends of the profile that lie on the axis (one vertex, a triangle fan) and whether the
-    // profile is a closed curve (torus: v = 0 and v = 1 are the same ring).
-    bool poleV0 = false, poleV1 = false, closedV = false;
-
-    Vec2d Point(double v) const;    // (rho, z)
-    Vec2d Tangent(double v) const;  // d(rho, z)/dv
-    double Alpha(double v) const;
-    Vec3d Surface(double phi, double v) const;
-    // Total turning of the profile's tangent over v in [0, 1] (radians): sets the number of
-    // rings so both directions get the same angular resolution.
-    double Turning() const;
-    bool FullCircle() const { return phiMax >= 2 * Pi; }
-};
 
 struct TessellatedMesh {
     std::vector<Vec3d> P;   // object space, on the surface to double rounding
@@ -68,6 +38,10 @@ bool Tessellate(const AnalyticShape &shape, int nPhi, TessellatedMesh *mesh);
 // The tessellation as an Embree-ready triangle mesh with the shape's transform and
 // orientation (nullptr if the shape cannot be tessellated).
 std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, int nPhi);
+
+// MakeTessellatedMesh with nPhi segments as a BuildSettings::replaceAnalyticShape hook
+// (`prism render --tessellate N`): build/ calls it without depending on validate/.
+std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &)> TessellateWith(int nPhi);
 
 // Distance in the meridian half-plane from (rho, z) to the profile curve (v clipped to
 // [0, 1]); *vClosest receives the closest parameter. Signed: positive on the side of the

@@ -1,6 +1,6 @@
 // `prism validate`: every canonical shape agrees with its tessellated twin up to the
 // chord-error band, and a deliberately broken intersector (built only here) is caught.
-#include "render/validate.h"
+#include "validate/validate.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,8 +13,8 @@
 
 #include "geometry/quadric_util.h"
 #include "geometry/sphere.h"
-#include "geometry/tessellate.h"
-#include "render/render_scene.h"
+#include "validate/tessellate.h"
+#include "build/build_scene.h"
 #include "scene/load_scene.h"
 
 namespace prism {
@@ -199,8 +199,8 @@ TEST(Validate, TessellateOptionReplacesAnalyticShapes) {
     Diagnostics diag(false);
     SceneDescription desc =
         LoadScene(std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt", diag);
-    RenderOptions plain, tess;
-    tess.tessellate = 48;
+    BuildSettings plain, tess;
+    tess.replaceAnalyticShape = TessellateWith(48);
     RenderScene a = BuildRenderScene(desc, plain, diag), t = BuildRenderScene(desc, tess, diag);
     ASSERT_GT(a.features.analyticShapes, 5);
     EXPECT_EQ(t.features.analyticShapes, 0);
@@ -216,7 +216,7 @@ TEST(Validate, TessellateOptionReplacesAnalyticShapes) {
             if (a.accel->IntersectRaw(r, &ha) != t.accel->IntersectRaw(r, &ht)) ++differ;
         }
     EXPECT_LT(differ, total / 100);
-    tess.tessellate = 100000;  // far beyond the triangle budget: bad input, not an allocation
+    tess.replaceAnalyticShape = TessellateWith(100000);  // far beyond the triangle budget: bad input, not an allocation
     EXPECT_THROW(BuildRenderScene(desc, tess, diag), SceneError);
 }
 

@@ -82,7 +82,7 @@ ShapeReport ValidateShape(const std::string &name, std::unique_ptr<AnalyticShape
                           const std::vector<Ray> &extraRays, const ValidateOptions &options);
 
 // The canonical instances of `prism validate --shape`, each under a fixed similarity
-// transform: sphere, partial-sphere, cylinder, disk, cone, paraboloid, hyperboloid, torus.
+// transform: every shape on geometry/shape_list.inc (CanonicalShape<T>) and partial-sphere.
 std::vector<std::string> CanonicalShapeNames();
 std::unique_ptr<AnalyticShape> MakeCanonicalShape(const std::string &name);  // nullptr if unknown
 

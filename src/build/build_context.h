@@ -1,0 +1,46 @@
+// What the build steps share: their inputs, the RenderScene they fill, and the tables one
+// step leaves for the next (textures for materials; decoded images for textures and lights).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "build/build_scene.h"
+#include "image/image.h"
+#include "render/texture.h"
+#include "scene/paramset.h"
+
+namespace prism {
+
+struct BuildContext {
+    const SceneDescription &desc;
+    const BuildSettings &settings;
+    Diagnostics &diag;
+    RenderScene &scene;
+    std::map<std::string, TexturePtr> floatTextures, rgbTextures;     // by texture name
+    std::map<std::string, std::shared_ptr<const Image>> imageCache;  // by path and encoding
+};
+
+inline std::string Quote(const std::string &s) { return "\"" + s + "\""; }
+
+// pbrt-v3 reads "scale" as a spectrum; v4 files write a float. Accept both.
+inline RGB ScaleParam(const ParamSet &ps) {
+    const Param *p = ps.Find("scale");
+    if (p && p->type == ParamType::Float) return RGB(ps.GetFloat("scale", 1.f));
+    return ps.GetRGB("scale", RGB(1));
+}
+
+// Base of the steps' private builder classes: the context under short names, so each step
+// reads like pbrt-v4's *::Create functions.
+struct BuildStep {
+    explicit BuildStep(BuildContext &c)
+        : ctx(c), desc(c.desc), settings(c.settings), diag(c.diag), scene(c.scene) {}
+    BuildContext &ctx;
+    const SceneDescription &desc;
+    const BuildSettings &settings;
+    Diagnostics &diag;
+    RenderScene &scene;
+};
+
+}  // namespace prism

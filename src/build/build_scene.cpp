@@ -1,0 +1,32 @@
+// The orchestrator: each step reads its directives' pbrt parameters (pbrt-v3 names and
+// defaults) and fills its part of the RenderScene.
+#include "build/build_scene.h"
+
+#include "build/camera_film.h"
+#include "build/lights.h"
+#include "build/materials.h"
+#include "build/shapes.h"
+#include "build/textures.h"
+
+namespace prism {
+
+RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &settings,
+                             Diagnostics &diag) {
+    RenderScene scene;
+    BuildContext ctx{desc, settings, diag, scene, {}, {}, {}};
+    BuildFilm(ctx);
+    BuildCamera(ctx);  // sets renderFromWorld, which every later step uses
+    BuildSampler(ctx);
+    BuildPixelFilter(ctx);
+    BuildIntegratorSettings(ctx);
+    BuildTextures(ctx);
+    BuildLights(ctx);
+    MaterialBuilder materials(ctx);  // created on demand, as shapes use them
+    BuildShapesAndInstances(ctx, materials);
+    if (scene.lights.empty())
+        diag.Warn(desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0},
+                  "the scene has no light sources");
+    return scene;
+}
+
+}  // namespace prism

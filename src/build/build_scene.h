@@ -1,0 +1,55 @@
+// BuildRenderScene: SceneDescription (plain data, scene/) → RenderScene (runtime objects,
+// render/). The settings are plain values; the command line that fills them lives in app/.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include "core/error.h"
+#include "core/transform.h"
+#include "geometry/shape.h"
+#include "geometry/triangle_mesh.h"
+#include "render/render_scene.h"
+#include "scene/scene_description.h"
+
+namespace prism {
+
+// Limits on what a scene (or a setting) may ask for; larger values are bad input.
+inline constexpr int MaxImageResolution = 1 << 16;  // per axis
+inline constexpr int MaxSamplesPerPixel = 1 << 16;
+inline constexpr int MaxTraceDepth = 1000;
+
+// Replaces the geometry of an analytic shape (e.g. by its tessellated twin, validate/); returns
+// nullptr to keep the analytic shape. May throw std::length_error when too large.
+using ShapeReplacement = std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &)>;
+
+struct BuildSettings {
+    // Replacements for what the description says; the default keeps the description's value.
+    int spp = 0;                               // 0: the Sampler's
+    Vec2i resolution{0, 0};                    // 0: the Film's
+    int maxDepth = -1;                         // -1: the Integrator's
+    std::optional<std::array<float, 4>> crop;  // NDC x0 x1 y0 y1, like Film "cropwindow"
+    std::optional<Transform> worldFromCamera;  // replaces the camera's placement
+    float fovDeg = 0;                          // 0: the Camera's; degrees on the shorter axis
+    int lightSamples = 0;                      // 0: each area/infinite light's own nsamples
+    // How to build.
+    Precision precision = Precision::Double;
+    // Memory budget in bytes for the film, image textures and PLY meshes; 0: the default,
+    // 75% of physical RAM (core/memory.h). Exceeding it is a SceneError, not an OOM kill.
+    uint64_t maxMemory = 0;
+    // Render in camera-centred world space (default). `prism trace` turns it off so that
+    // world-space rays are traced without re-rounding.
+    bool cameraRelative = true;
+    ShapeReplacement replaceAnalyticShape;  // empty: every analytic shape stays analytic
+};
+
+// Creates textures, materials, lights, the camera and film settings, shapes, instances and the
+// BVH. Throws SceneError (with the entity's location) for bad input; warns for what it
+// approximates or skips.
+RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &settings,
+                             Diagnostics &diag);
+
+}  // namespace prism

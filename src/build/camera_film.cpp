@@ -1,0 +1,197 @@
+#include "build/camera_film.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/memory.h"
+#include "core/pbrt_defaults.h"
+
+namespace prism {
+
+void BuildFilm(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    const BuildSettings &settings = ctx.settings;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const ParamSet &film = desc.film.params;
+    int xres = film.GetInt("xresolution", PbrtDefaultXResolution);
+    int yres = film.GetInt("yresolution", PbrtDefaultYResolution);
+    // The file's values are checked even when settings replace them: they are bad input.
+    const int maxRes = MaxImageResolution;
+    if (xres <= 0 || yres <= 0 || xres > maxRes || yres > maxRes) {
+        const Param *p = film.Find(xres <= 0 || xres > maxRes ? "xresolution" : "yresolution");
+        throw SceneError(p ? p->loc : desc.film.loc,
+                         "image resolution " + std::to_string(xres) + "x" + std::to_string(yres) +
+                             " is out of range (1 to " + std::to_string(maxRes) + " per axis)");
+    }
+    if (settings.resolution.x > 0) {
+        xres = settings.resolution.x;
+        yres = settings.resolution.y;
+        // The caller checks its own values (and names their source); this is the backstop.
+        if (xres > maxRes || yres > maxRes)
+            throw SceneError("resolution " + std::to_string(xres) + "x" + std::to_string(yres) +
+                             " is out of range (1 to " + std::to_string(maxRes) + " per axis)");
+    }
+    scene.resolution = {xres, yres};
+    std::array<float, 4> crop{0, 1, 0, 1};
+    std::vector<float> cw = film.GetFloats("cropwindow");
+    if (cw.size() == 4) std::copy(cw.begin(), cw.end(), crop.begin());
+    if (settings.crop) crop = *settings.crop;
+    crop = {Clamp(std::min(crop[0], crop[1]), 0.f, 1.f), Clamp(std::max(crop[0], crop[1]), 0.f, 1.f),
+            Clamp(std::min(crop[2], crop[3]), 0.f, 1.f), Clamp(std::max(crop[2], crop[3]), 0.f, 1.f)};
+    Bounds2i pb;
+    pb.pMin = {int(std::ceil(xres * crop[0])), int(std::ceil(yres * crop[2]))};
+    pb.pMax = {int(std::ceil(xres * crop[1])), int(std::ceil(yres * crop[3]))};
+    if (pb.pMax.x <= pb.pMin.x || pb.pMax.y <= pb.pMin.y)
+        throw SceneError(desc.film.loc, "the crop window covers no pixels");
+    scene.pixelBounds = pb;
+    {
+        // Film (4 doubles per pixel), tile buffers with filter margins, the float image
+        // and its encoded copy: about 96 bytes per pixel, checked before any is allocated.
+        const uint64_t bytesPerPixel = 96;
+        uint64_t pixels = uint64_t(pb.pMax.x - pb.pMin.x) * uint64_t(pb.pMax.y - pb.pMin.y);
+        uint64_t budget = EffectiveMemoryBudget(settings.maxMemory);
+        if (pixels > budget / bytesPerPixel) {
+            std::string msg = "image " + std::to_string(xres) + "x" + std::to_string(yres) +
+                              " needs about " + FormatBytes(pixels * bytesPerPixel) +
+                              ", more than the memory budget of " + FormatBytes(budget) +
+                              " (--max-memory)";
+            if (settings.resolution.x > 0) throw SceneError(msg);
+            const Param *p = film.Find("xresolution");
+            throw SceneError(p ? p->loc : desc.film.loc, msg);
+        }
+    }
+    scene.outputFilename = film.GetString("filename", "");
+    scene.filmScale = film.GetFloat("scale", 1.f);
+    scene.maxSampleLuminance = film.GetFloat("maxsampleluminance", Infinity);
+    film.MarkUsed("diagonal");
+    film.ReportUnused(diag, "film");
+}
+
+void BuildCamera(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    const BuildSettings &settings = ctx.settings;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const CameraDesc &cd = desc.camera;
+    const ParamSet &cp = cd.params;
+    CameraParams params;
+    std::string type = cd.specified ? cd.type : "perspective";
+    if (type == "orthographic") {
+        params.orthographic = true;
+    } else if (type != "perspective") {
+        diag.Warn(cd.loc, "camera " + Quote(type) + " is not supported; using perspective");
+    }
+    params.fovDeg = cp.GetFloat("fov", PbrtDefaultFovDeg);
+    float halffov = cp.GetFloat("halffov", -1.f);
+    if (halffov > 0) params.fovDeg = 2 * halffov;
+    if (settings.fovDeg > 0) params.fovDeg = settings.fovDeg;
+    if (!(params.fovDeg > 0 && params.fovDeg < 180)) {
+        const Param *p = cp.Find("fov");
+        throw SceneError(p ? p->loc : cd.loc, "camera fov must be between 0 and 180 degrees");
+    }
+    std::vector<float> sw = cp.GetFloats("screenwindow");
+    if (sw.size() == 4)
+        for (int i = 0; i < 4; ++i) params.screenWindow[i] = sw[size_t(i)];
+    params.lensRadius = cp.GetFloat("lensradius", 0.f);
+    params.focalDistance = cp.GetFloat("focaldistance", 1e6f);
+    scene.features.lens = params.lensRadius > 0;
+    const Vec2i res = scene.resolution;
+    double frame = cp.GetFloat("frameaspectratio", float(double(res.x) / res.y));
+    for (const char *n : {"shutteropen", "shutterclose"}) cp.MarkUsed(n);
+    cp.ReportUnused(diag, "camera");
+
+    Transform worldFromCamera = cd.cameraFromWorld.Inverse();
+    if (settings.worldFromCamera) worldFromCamera = *settings.worldFromCamera;
+    // Render in camera-centred world space (pbrt-v4 "cameraworld"): far-away scenes keep
+    // full float precision near the viewer.
+    Vec3d eye = worldFromCamera.Point(Vec3d(0, 0, 0));
+    scene.renderFromWorld = settings.cameraRelative ? Translate(-eye) : Transform();
+    scene.camera = std::make_unique<Camera>(params, scene.renderFromWorld * worldFromCamera,
+                                            scene.resolution, frame);
+}
+
+void BuildSampler(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    const BuildSettings &settings = ctx.settings;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const ParamSet &sp = desc.sampler.params;
+    int spp;
+    if (desc.sampler.type == "stratified") {
+        // In 64 bits: the product of two file values must not overflow.
+        int64_t n = int64_t(sp.GetInt("xsamples", 4)) * sp.GetInt("ysamples", 4);
+        spp = int(std::clamp<int64_t>(n, -(int64_t(1) << 30), int64_t(1) << 30));
+        sp.MarkUsed("jitter");
+    } else {
+        spp = sp.GetInt("pixelsamples", desc.sampler.type == "random" ? 4 : 16);
+    }
+    sp.MarkUsed("dimensions");
+    sp.MarkUsed("seed");
+    if (settings.spp > 0) spp = settings.spp;
+    const int maxSpp = MaxSamplesPerPixel;
+    if (spp <= 0 || spp > maxSpp)
+        throw SceneError(desc.sampler.loc, "samples per pixel " + std::to_string(spp) +
+                                               " out of range (1 to " + std::to_string(maxSpp) + ")");
+    scene.spp = spp;
+    sp.ReportUnused(diag, "sampler");
+}
+
+void BuildPixelFilter(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const ParamSet &fp = desc.filter.params;
+    Filter f;
+    std::string ft = desc.filter.type;
+    bool known = ft == "box" || ft == "gaussian" || ft == "triangle" || ft == "mitchell";
+    if (known) {
+        // pbrt-v3 radii: 0.5 for the box, 2 for the others.
+        float defaultRadius = ft == "box" ? 0.5f : 2.f;
+        f.radiusX = fp.GetFloat("xwidth", defaultRadius);
+        f.radiusY = fp.GetFloat("ywidth", defaultRadius);
+    }
+    if (ft == "box") {
+        f.kind = Filter::Kind::Box;
+    } else if (ft == "gaussian") {
+        f.kind = Filter::Kind::Gaussian;
+        f.alpha = fp.GetFloat("alpha", 2.f);
+    } else if (ft == "triangle") {
+        f.kind = Filter::Kind::Triangle;
+    } else if (ft == "mitchell") {
+        f.kind = Filter::Kind::Mitchell;
+        f.B = fp.GetFloat("B", 1.f / 3);
+        f.C = fp.GetFloat("C", 1.f / 3);
+    } else {
+        diag.Warn(desc.filter.loc, "pixel filter " + Quote(ft) + " is not supported; using gaussian");
+        f.kind = Filter::Kind::Gaussian;
+        f.radiusX = f.radiusY = 2;
+        for (const Param &p : fp.Params()) p.lookedUp = true;
+    }
+    if (!(f.radiusX > 0 && f.radiusY > 0 && f.radiusX <= 16 && f.radiusY <= 16))
+        throw SceneError(desc.filter.loc, "pixel filter width must be in (0, 16]");
+    scene.filter = f;
+    fp.ReportUnused(diag, "pixel filter");
+}
+
+void BuildIntegratorSettings(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    const BuildSettings &settings = ctx.settings;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const ParamSet &ip = desc.integrator.params;
+    scene.integratorName = desc.integrator.type;
+    int maxDepth = ip.GetInt("maxdepth", 5);
+    // Only an Integrator the file names is worth a warning (pbrt's default is "path").
+    if (desc.integrator.type != "whitted" && desc.integrator.loc.Valid())
+        diag.Warn(desc.integrator.loc, "integrator " + Quote(desc.integrator.type) +
+                                           " is rendered with Whitted (maxdepth " +
+                                           std::to_string(settings.maxDepth >= 0 ? settings.maxDepth : maxDepth) + ")");
+    for (const Param &p : ip.Params()) p.lookedUp = true;  // other integrators' settings
+    if (settings.maxDepth >= 0) maxDepth = settings.maxDepth;
+    if (maxDepth < 0 || maxDepth > MaxTraceDepth)
+        throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) + " out of range (0 to 1000)");
+    scene.maxDepth = maxDepth;
+}
+
+}  // namespace prism

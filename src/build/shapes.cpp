@@ -1,0 +1,147 @@
+#include "build/shapes.h"
+
+#include <chrono>
+#include <map>
+#include <stdexcept>
+
+#include "build/lights.h"
+#include "build/shape_factory.h"
+
+namespace prism {
+
+const ObjectDesc *FindObject(const SceneDescription &desc, const std::string &name) {
+    // The last definition wins, as in pbrt-v3 (a redefinition replaces the object).
+    const ObjectDesc *found = nullptr;
+    for (const ObjectDesc &o : desc.objects)
+        if (o.name == name) found = &o;
+    return found;
+}
+
+namespace {
+
+struct ShapeBuilder : BuildStep {
+    ShapeBuilder(BuildContext &ctx, MaterialBuilder &m) : BuildStep(ctx), materials(m) {}
+    MaterialBuilder &materials;
+    std::vector<const AreaLightDesc *> usedAreaLights;  // unused parameters reported at the end
+
+    // pbrt's "alpha" / "shadowalpha": a constant 0 removes the shape from all rays / from
+    // shadow rays (pbrt-v3 cuts out only where alpha is exactly 0). Textured alpha is not
+    // supported and treated as opaque.
+    unsigned VisibilityMask(const ShapeDesc &s) {
+        const ParamSet &ps = s.params;
+        float alpha = 1, shadowAlpha = 1;
+        for (const char *n : {"alpha", "shadowalpha"}) {
+            const Param *p = ps.Find(n);
+            if (!p) continue;
+            if (p->type == ParamType::Texture) {
+                diag.WarnOnce(std::string("texalpha:") + n, p->loc,
+                              std::string("textured \"") + n + "\" is not supported; treated as opaque");
+                ps.MarkUsed(n);
+                continue;
+            }
+            (std::string(n) == "alpha" ? alpha : shadowAlpha) = ps.GetFloat(n, 1.f);
+        }
+        if (!ps.Has("shadowalpha") || ps.Find("shadowalpha")->type == ParamType::Texture)
+            shadowAlpha = alpha;
+        unsigned mask = AllRays;
+        if (alpha == 0) mask &= ~CameraRays;
+        if (shadowAlpha == 0) mask &= ~ShadowRays;
+        return mask;
+    }
+
+    // Creates the geometry of one shape and adds it to `accel`; records its ShapeInfo in
+    // `infos` (by accel shape index). Returns the shape index, or -1 if skipped.
+    int AddShapeTo(Accel &accel, std::vector<ShapeInfo> &infos, const ShapeDesc &s,
+                   const Transform &renderFromObject) {
+        ShapeFactoryContext fctx{desc, diag, settings.precision, settings.maxMemory};
+        ShapeGeometry geom = CreateShapeGeometry(s, renderFromObject, fctx);
+        if (!geom.mesh && !geom.analytic) return -1;  // skipped with a warning
+        if (settings.replaceAnalyticShape && geom.analytic) {  // e.g. --tessellate N
+            try {
+                if (auto twin = settings.replaceAnalyticShape(*geom.analytic)) {
+                    geom.mesh = std::move(twin);
+                    geom.analytic.reset();
+                }
+            } catch (const std::length_error &e) {
+                throw SceneError(s.loc, e.what());
+            }
+        }
+        unsigned mask = VisibilityMask(s);
+        if (mask == 0) return -1;  // alpha 0: cut out entirely
+        int material = materials.MaterialForShape(s);
+        s.params.ReportUnused(diag, "shape " + Quote(s.type));
+        int index;
+        if (geom.mesh) {
+            scene.features.meshes++;
+            scene.features.triangles += geom.mesh->NumTriangles();
+            index = accel.AddMesh(std::move(geom.mesh), mask);
+        } else {
+            scene.features.analyticShapes++;
+            index = accel.AddAnalytic(std::move(geom.analytic), mask);
+        }
+        if (int(infos.size()) <= index) infos.resize(size_t(index) + 1);
+        infos[size_t(index)] = {material, -1, s.directiveIndex, s.type, -1};
+        const Material &m = scene.materials[size_t(material)];
+        if (m.MayReflectSpecularly()) scene.features.specularReflection = true;
+        if (m.MayTransmit()) scene.features.transmission = true;
+        return index;
+    }
+
+    void AddShape(const ShapeDesc &s, const Transform &renderFromObject) {
+        int index = AddShapeTo(*scene.accel, scene.shapes, s, renderFromObject);
+        if (index >= 0 && s.areaLight >= 0)
+            if (const AreaLightDesc *a = AddAreaLight(ctx, s, index)) usedAreaLights.push_back(a);
+    }
+
+    // ObjectInstance: each ObjectBegin group becomes one committed prototype, shared by all
+    // its instances (Embree instances; one level, as in pbrt-v3).
+    std::map<std::string, std::pair<std::shared_ptr<const Accel>, int>> prototypeOf;
+
+    void AddInstance(const InstanceDesc &inst) {
+        auto it = prototypeOf.find(inst.object);
+        if (it == prototypeOf.end()) {
+            const ObjectDesc *obj = FindObject(desc, inst.object);
+            if (!obj) throw SceneError(inst.loc, "unknown object " + Quote(inst.object));
+            AccelOptions ao;
+            ao.precision = settings.precision;
+            auto proto = std::make_shared<Accel>(ao);
+            std::vector<ShapeInfo> infos;
+            for (const ShapeDesc &s : obj->shapes) {
+                if (s.areaLight >= 0)
+                    diag.Warn(s.loc, "area lights inside object instances are not supported (as in pbrt-v3); the shape does not emit");
+                AddShapeTo(*proto, infos, s, s.worldFromObject);
+            }
+            proto->Commit();
+            scene.prototypes.push_back(std::move(infos));
+            it = prototypeOf.emplace(inst.object, std::make_pair(proto, int(scene.prototypes.size()) - 1)).first;
+        }
+        if (it->second.first->NumShapes() == 0) return;
+        int index = scene.accel->AddInstance(it->second.first, scene.renderFromWorld * inst.worldFromInstance);
+        if (int(scene.shapes.size()) <= index) scene.shapes.resize(size_t(index) + 1);
+        ShapeInfo info;
+        info.type = "instance";
+        info.prototype = it->second.second;
+        scene.shapes[size_t(index)] = info;
+    }
+
+    void Build() {
+        AccelOptions ao;
+        ao.precision = settings.precision;
+        scene.accel = std::make_unique<Accel>(ao);
+        for (const ShapeDesc &s : desc.shapes) AddShape(s, scene.renderFromWorld * s.worldFromObject);
+        for (const InstanceDesc &inst : desc.instances) AddInstance(inst);
+        for (const AreaLightDesc *a : usedAreaLights) a->params.ReportUnused(diag, "area light");
+        auto start = std::chrono::steady_clock::now();
+        scene.accel->Commit();
+        scene.buildSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+};
+
+}  // namespace
+
+void BuildShapesAndInstances(BuildContext &ctx, MaterialBuilder &materials) {
+    ShapeBuilder(ctx, materials).Build();
+}
+
+}  // namespace prism

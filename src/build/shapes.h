@@ -1,0 +1,19 @@
+// Shape, ObjectBegin/End and ObjectInstance directives → the RenderScene's Accel (analytic
+// shapes as Embree user geometry, meshes as Embree triangles, one Embree instance per
+// ObjectInstance), each shape's material and area light, and the committed BVH.
+#pragma once
+
+#include <string>
+
+#include "build/build_context.h"
+#include "build/materials.h"
+
+namespace prism {
+
+void BuildShapesAndInstances(BuildContext &ctx, MaterialBuilder &materials);
+
+// The ObjectBegin group an ObjectInstance names (nullptr if none): the one lookup of instances
+// by name outside the parser.
+const ObjectDesc *FindObject(const SceneDescription &desc, const std::string &name);
+
+}  // namespace prism

@@ -1,0 +1,78 @@
+#include "render/infinite_light.h"
+
+#include <cmath>
+
+#include "image/image.h"
+
+namespace prism {
+
+InfiniteLight::InfiniteLight(const Transform &renderFromLight, const RGB &L,
+                             std::shared_ptr<const Image> map, int nSamples)
+    : renderFromLight_(renderFromLight), L_(L), map_(std::move(map)), nSamples_(std::max(1, nSamples)) {
+    if (map_) {
+        // Sample texels in proportion to luminance times sin(theta) (the equirectangular
+        // area distortion), as pbrt-v3's InfiniteAreaLight does.
+        int w = map_->width, h = map_->height;
+        std::vector<double> f(size_t(w) * size_t(h));
+        for (int y = 0; y < h; ++y) {
+            double sinTheta = std::sin(Pi * (y + 0.5) / h);
+            for (int x = 0; x < w; ++x)
+                f[size_t(y) * size_t(w) + size_t(x)] = double(map_->GetRGB(x, y).Luminance()) * sinTheta;
+        }
+        distribution_ = Distribution2D(f, w, h);
+    }
+}
+
+RGB InfiniteLight::Lookup(const Vec3f &wRender) const {
+    if (!map_) return L_;
+    Vec3d wl = Normalize(renderFromLight_.Inverse().Vector(Vec3d(wRender)));
+    double theta = SafeACos(wl.z), phi = std::atan2(wl.y, wl.x);
+    if (phi < 0) phi += 2 * Pi;
+    // Row 0 of the map is the +z pole; bilinear lookup with wrapping in phi.
+    double s = phi / (2 * Pi) * map_->width - 0.5, t = theta / Pi * map_->height - 0.5;
+    int s0 = int(std::floor(s)), t0 = int(std::floor(t));
+    double ds = s - s0, dt = t - t0;
+    auto texel = [&](int x, int y) {
+        x = ((x % map_->width) + map_->width) % map_->width;
+        y = Clamp(y, 0, map_->height - 1);
+        return map_->GetRGB(x, y);
+    };
+    RGB v = texel(s0, t0) * float((1 - ds) * (1 - dt)) + texel(s0 + 1, t0) * float(ds * (1 - dt)) +
+            texel(s0, t0 + 1) * float((1 - ds) * dt) + texel(s0 + 1, t0 + 1) * float(ds * dt);
+    return v * L_;
+}
+
+RGB InfiniteLight::Le(const Ray &ray) const { return Lookup(ray.d); }
+
+bool InfiniteLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const {
+    Vec3f wi;
+    float pdf;
+    if (!map_) {
+        // Cosine-weighted hemisphere on the side of the viewer (matches the Lambertian lobe).
+        Vec3f n = FaceForward(si.ns, si.wo);
+        float r = std::sqrt(u.x), phi = float(2 * Pi) * u.y;
+        Vec3f lx = Vec3f(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.f, 1 - u.x)));
+        Vec3f s, t;
+        CoordinateSystem(n, &s, &t);
+        wi = s * lx.x + t * lx.y + n * lx.z;
+        pdf = lx.z * float(InvPi);
+    } else {
+        double mapPdf;
+        Vec2d uv = distribution_.SampleContinuous(Vec2d(u.x, u.y), &mapPdf);
+        if (mapPdf == 0) return false;
+        double theta = uv.y * Pi, phi = uv.x * 2 * Pi;
+        double sinTheta = std::sin(theta);
+        if (sinTheta == 0) return false;
+        Vec3d wl(sinTheta * std::cos(phi), sinTheta * std::sin(phi), std::cos(theta));
+        wi = Vec3f(Normalize(renderFromLight_.Vector(wl)));
+        pdf = float(mapPdf / (2 * Pi * Pi * sinTheta));
+    }
+    if (!(pdf > 0)) return false;
+    ls->wi = wi;
+    ls->Li = Lookup(wi);
+    ls->infinite = true;
+    ls->pdf = pdf;
+    return true;
+}
+
+}  // namespace prism

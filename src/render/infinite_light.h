@@ -1,0 +1,34 @@
+// The environment light: pbrt-v3's "infinite" light with a constant radiance or an
+// equirectangular map, sampled with stratified shadow rays (by the map's luminance).
+#pragma once
+
+#include <memory>
+
+#include "core/transform.h"
+#include "render/distribution.h"
+#include "render/light.h"
+
+namespace prism {
+
+struct Image;
+
+class InfiniteLight final : public Light {
+public:
+    // lightFromRender rotates render-space directions into the map's frame (z = pole).
+    InfiniteLight(const Transform &renderFromLight, const RGB &L,
+                  std::shared_ptr<const Image> map, int nSamples);
+    const char *Name() const override { return "infinite"; }
+    bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
+    RGB Le(const Ray &ray) const override;
+    int NumSamples() const override { return nSamples_; }
+
+private:
+    RGB Lookup(const Vec3f &wRender) const;
+    Transform renderFromLight_;
+    RGB L_;
+    std::shared_ptr<const Image> map_;
+    Distribution2D distribution_;
+    int nSamples_;
+};
+
+}  // namespace prism
