@@ -100,7 +100,7 @@ public:
     virtual bool Revolution(RevolutionProfile *profile) const { return false; }
 
     // Render-space bounds, padded by a relative margin: Embree's user-geometry traversal is not
-    // robust (REFERENCE.md §0.2), so the box must absorb its rounding.
+    // robust (docs/HARD_CASES.md E2), so the box must absorb its rounding.
     Bounds3f RenderBounds() const;
     // Phase 2: the full render-space interaction for a hit.
     SurfaceInteraction Interaction(const ObjectHit &hit, const Vec3f &rayDir) const;

@@ -1,4 +1,4 @@
-// The torus hard cases of REFERENCE.md §6 S8 (a-e), against long-double references.
+// The torus hard cases of docs/HARD_CASES.md S8 (a-e), against long-double references.
 #include "geometry/torus.h"
 
 #include <gtest/gtest.h>
