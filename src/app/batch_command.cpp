@@ -22,6 +22,7 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/output_file.h"
+#include "core/file_io.h"
 #include "core/memory.h"
 #include "scene/load_scene.h"
 
@@ -58,25 +59,12 @@ bool IsSceneFile(const fs::path &p) { return IsSceneExtension(p.extension().stri
 // pbrt files that another .pbrt file in the set Includes (or Imports) are fragments, not
 // scenes: `Include "../geometry/cube.pbrt"`. A plain text scan; the path resolves against the
 // including file's directory, as the parser does for a top-level file.
-std::set<fs::path> IncludedFiles(const std::vector<std::string> &scenes) {
-    std::set<fs::path> included;
-    for (const std::string &s : scenes) {
-        if (fs::path(s).extension() != ".pbrt") continue;
-        std::ifstream in(s);
-        std::string line;
-        while (std::getline(in, line)) {
-            size_t k = line.find_first_not_of(" \t");
-            if (k == std::string::npos || (line.compare(k, 7, "Include") && line.compare(k, 6, "Import")))
-                continue;
-            size_t q0 = line.find('"', k), q1 = q0 == std::string::npos ? q0 : line.find('"', q0 + 1);
-            if (q1 == std::string::npos) continue;
-            fs::path p = fs::path(s).parent_path() / line.substr(q0 + 1, q1 - q0 - 1);
-            std::error_code ec;
-            fs::path c = fs::weakly_canonical(p, ec);
-            included.insert(ec ? p.lexically_normal() : c);
-        }
-    }
-    return included;
+// Files that the collected scenes name (includes, meshes, textures): not scenes of their own.
+std::set<std::string> ReferencedByScenes(const std::vector<std::string> &scenes) {
+    std::set<std::string> referenced;
+    for (const std::string &s : scenes)
+        for (std::string &f : ReferencedFiles(s)) referenced.insert(std::move(f));
+    return referenced;
 }
 
 std::vector<std::string> CollectScenes(const std::string &input) {
@@ -85,11 +73,8 @@ std::vector<std::string> CollectScenes(const std::string &input) {
         for (const auto &e : fs::recursive_directory_iterator(input))
             if (e.is_regular_file() && IsSceneFile(e.path())) scenes.push_back(e.path().string());
         std::sort(scenes.begin(), scenes.end());
-        std::set<fs::path> included = IncludedFiles(scenes);
-        std::erase_if(scenes, [&](const std::string &s) {
-            std::error_code ec;
-            return included.count(fs::weakly_canonical(s, ec)) > 0;
-        });
+        std::set<std::string> referenced = ReferencedByScenes(scenes);
+        std::erase_if(scenes, [&](const std::string &s) { return referenced.count(CanonicalPath(s)) > 0; });
         return scenes;
     }
     std::ifstream in(input);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 
@@ -12,6 +13,7 @@
 #include "core/memory.h"
 #include "scene/gltf_reader.h"
 #include "scene/obj_reader.h"
+#include "scene/tokenizer.h"
 #include "scene/param_builders.h"
 #include "scene/ply_reader.h"
 
@@ -80,6 +82,39 @@ std::string SceneExtensionList() {
     for (size_t i = 0; i < n; ++i)
         list += std::string(i == 0 ? "" : i + 1 == n ? " or " : ", ") + kSceneExtensions[i];
     return list;
+}
+
+std::vector<std::string> ReferencedFiles(const std::string &sceneFile) {
+    std::vector<std::string> files;
+    if (LowerExtension(sceneFile) != ".pbrt") return files;
+    std::string text;
+    FileReadError error;
+    if (!ReadFileContents(sceneFile, &text, &error)) return files;
+    const std::string dir = DirectoryOf(sceneFile);
+    auto add = [&](const Token &t) {
+        files.push_back(CanonicalPath(ResolveScenePath(dir, Tokenizer::StringValue(t))));
+    };
+    try {
+        Tokenizer tok(std::move(text), sceneFile);
+        for (Token t = tok.Next(); t.kind != TokenKind::End; t = tok.Next()) {
+            if (t.kind == TokenKind::Word && (t.text == "Include" || t.text == "Import")) {
+                if (tok.Peek().kind == TokenKind::String) add(tok.Next());
+            } else if (t.kind == TokenKind::String) {
+                // "string filename" "x.ply" or "string filename" [ "x.ply" ]
+                std::string decl(t.text);
+                char type[16], name[16], extra;
+                if (decl.size() > 40 ||
+                    std::sscanf(decl.c_str(), " %15s %15s %c", type, name, &extra) != 2 ||
+                    std::strcmp(type, "string") != 0 || std::strcmp(name, "filename") != 0)
+                    continue;
+                if (tok.Peek().kind == TokenKind::LBracket) tok.Next();
+                if (tok.Peek().kind == TokenKind::String) add(tok.Next());
+            }
+        }
+    } catch (const SceneError &) {
+        // Malformed: keep what was found; the render of this scene reports the error.
+    }
+    return files;
 }
 
 Bounds3f SceneMeshBounds(const SceneDescription &desc) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/memory.h"
 #include "core/vecmath.h"
@@ -41,6 +42,14 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag,
 bool IsSceneExtension(const std::string &extension);
 // The same list for messages: ".pbrt, .obj, .gltf, .glb or .ply".
 std::string SceneExtensionList();
+
+// The files a scene file names directly, as canonical paths (CanonicalPath): for pbrt, the
+// targets of Include/Import and every "string filename" parameter (plymesh meshes, image
+// textures, ...), found with the pbrt tokenizer, not resolved recursively; other formats
+// return nothing. `prism batch DIR` uses it so that a mesh or an included file inside a scene
+// folder is not rendered as a scene of its own. Unreadable or malformed files give what was
+// found before the problem (the render reports the problem itself).
+std::vector<std::string> ReferencedFiles(const std::string &sceneFile);
 
 // World-space bounds of the scene's "trianglemesh" shapes (P through worldFromObject, for
 // top-level shapes and object instances). Other shape types are not included.

@@ -257,6 +257,18 @@ TEST(Batch, ReportsFailuresKeepsImagesAndSkipsUpToDate) {
     withInclude.insert(withInclude.find("WorldEnd"), "Include \"sub/part.pbrt\"\n");
     std::ofstream(dir / "in/c.pbrt") << withInclude;
     std::ofstream(dir / "in/sub/part.pbrt") << "Shape \"sphere\" \"float radius\" 0.5\n";
+    // A PLY file is a scene of its own, unless a scene names it (plymesh): then it is a mesh.
+    const char *ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                      "property float y\nproperty float z\nelement face 1\n"
+                      "property list uchar int vertex_indices\nend_header\n"
+                      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    fs::create_directories(dir / "in/mesh");
+    std::ofstream(dir / "in/lone.ply") << ply;
+    std::ofstream(dir / "in/mesh/tri.ply") << ply;
+    std::string withMesh = SphereScene(8, 8, 1);
+    withMesh.insert(withMesh.find("WorldEnd"),
+                    "Shape \"plymesh\" \"string filename\" [ \"mesh/tri.ply\" ]\n");
+    std::ofstream(dir / "in/d.pbrt") << withMesh;
 
     RunResult r = RunPrism("batch in -o out --quiet", dir);
     EXPECT_EQ(r.exitCode, 2) << r.err;
@@ -272,7 +284,10 @@ TEST(Batch, ReportsFailuresKeepsImagesAndSkipsUpToDate) {
     EXPECT_EQ(ReportLine(out, "notes.txt"), "");
     EXPECT_TRUE(HasStatus(out, "c.pbrt", "ok"));
     EXPECT_EQ(ReportLine(out, "part.pbrt"), "");
-    EXPECT_NE(ReadFile(out / "report.json").find("\"ok\": 3, \"skipped\": 0, \"failed\": 2"),
+    EXPECT_TRUE(HasStatus(out, "d.pbrt", "ok"));
+    EXPECT_TRUE(HasStatus(out, "lone.ply", "ok"));
+    EXPECT_EQ(ReportLine(out, "tri.ply"), "");
+    EXPECT_NE(ReadFile(out / "report.json").find("\"ok\": 5, \"skipped\": 0, \"failed\": 2"),
               std::string::npos) << ReadFile(out / "report.json");
     EXPECT_NE(ReadFile(out / "summary.txt").find("broken.pbrt"), std::string::npos);
     Image a = ReadImage((out / "in_a.png").string());
