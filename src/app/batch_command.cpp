@@ -42,7 +42,9 @@ struct BatchArgs {
 struct Job {
     std::string scene, output;
     std::string status = "pending";  // ok, failed, skipped, interrupted
-    double seconds = 0;
+    double seconds = 0;  // whole child process
+    // The child's own phases, from its statistics line; negative when it printed none.
+    double parseSeconds = -1, setupSeconds = -1, bvhSeconds = -1, renderSeconds = -1;
     int exitCode = 0;
     std::vector<std::string> warnings;
     std::string error;
@@ -56,9 +58,6 @@ void OnSigint(int) { g_interrupted = 1; }
 
 bool IsSceneFile(const fs::path &p) { return IsSceneExtension(p.extension().string()); }
 
-// pbrt files that another .pbrt file in the set Includes (or Imports) are fragments, not
-// scenes: `Include "../geometry/cube.pbrt"`. A plain text scan; the path resolves against the
-// including file's directory, as the parser does for a top-level file.
 // Files that the collected scenes name (includes, meshes, textures): not scenes of their own.
 std::set<std::string> ReferencedByScenes(const std::vector<std::string> &scenes) {
     std::set<std::string> referenced;
@@ -125,16 +124,25 @@ std::string JsonEscape(const std::string &s) {
     return o;
 }
 
-void WriteReports(const std::string &outDir, const std::vector<Job> &jobs) {
+void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds) {
     std::map<std::string, int> counts;
-    for (const Job &j : jobs) counts[j.status]++;
+    double renderSum = 0;
+    for (const Job &j : jobs) {
+        counts[j.status]++;
+        if (j.renderSeconds > 0) renderSum += j.renderSeconds;
+    }
     std::string json = "{\n  \"scenes\": [\n";
     for (size_t i = 0; i < jobs.size(); ++i) {
         const Job &j = jobs[i];
         json += fmt::format("    {{\"scene\": \"{}\", \"output\": \"{}\", \"status\": \"{}\", "
-                            "\"seconds\": {:.3f}, \"exit_code\": {}, \"error\": \"{}\", \"warnings\": [",
+                            "\"seconds\": {:.3f}, \"exit_code\": {}, \"error\": \"{}\", ",
                             JsonEscape(j.scene), JsonEscape(j.output), j.status, j.seconds,
                             j.exitCode, JsonEscape(j.error));
+        if (j.renderSeconds >= 0)
+            json += fmt::format("\"phases\": {{\"parse\": {:.3f}, \"setup\": {:.3f}, \"bvh\": {:.3f}, "
+                                "\"render\": {:.3f}}}, ",
+                                j.parseSeconds, j.setupSeconds, j.bvhSeconds, j.renderSeconds);
+        json += "\"warnings\": [";
         for (size_t k = 0; k < j.warnings.size(); ++k)
             json += (k ? ", \"" : "\"") + JsonEscape(j.warnings[k]) + "\"";
         json += std::string("]}") + (i + 1 < jobs.size() ? ",\n" : "\n");
@@ -145,7 +153,8 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs) {
         json += fmt::format("{}\"{}\": {}", first ? "" : ", ", k, counts[k]);
         first = false;
     }
-    json += "}\n}\n";
+    json += fmt::format("}},\n  \"wall_seconds\": {:.3f}, \"render_seconds\": {:.3f}\n}}\n",
+                        wallSeconds, renderSum);
     WriteFileAtomically((fs::path(outDir) / "report.json").string(), json);
 
     std::string txt = fmt::format("{:<11} {:>8}  {:>5}  {}\n", "status", "seconds", "warn", "scene");
@@ -156,6 +165,8 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs) {
     txt += fmt::format("\n{} ok, {} skipped (up to date), {} failed, {} interrupted, {} not run\n",
                        counts["ok"], counts["skipped"], counts["failed"], counts["interrupted"],
                        counts["pending"]);
+    txt += fmt::format("batch {:.2f} s; the renders' render phases add up to {:.2f} s ({:.0f}%)\n",
+                       wallSeconds, renderSum, wallSeconds > 0 ? 100 * renderSum / wallSeconds : 0.0);
     WriteFileAtomically((fs::path(outDir) / "summary.txt").string(), txt);
 }
 
@@ -199,6 +210,12 @@ void Finish(Job &j, int status) {
     std::ifstream log(j.logPath);
     std::string line;
     while (std::getline(log, line)) {
+        double p, su, b, r;
+        if (std::sscanf(line.c_str(), "time: parse %lfs, setup %lfs, BVH build %lfs, render %lfs",
+                        &p, &su, &b, &r) == 4) {
+            j.parseSeconds = p, j.setupSeconds = su, j.bvhSeconds = b, j.renderSeconds = r;
+            continue;
+        }
         if (line.find("warning:") != std::string::npos) j.warnings.push_back(line);
         else if (line.find("error:") != std::string::npos && j.error.empty()) j.error = line;
     }
@@ -249,7 +266,8 @@ int RunBatch(const BatchArgs &a) {
 
     size_t next = 0;
     int running = 0;
-    WriteReports(a.outDir, jobs);
+    const auto batchStart = std::chrono::steady_clock::now();
+    WriteReports(a.outDir, jobs, 0);
     while (true) {
         while (!g_interrupted && running < nJobs && next < jobs.size()) {
             Job &j = jobs[next++];
@@ -277,11 +295,11 @@ int RunBatch(const BatchArgs &a) {
             if (!a.quiet)
                 std::fprintf(stderr, "batch: %s %s (%.1fs)%s%s\n", j.status.c_str(), j.scene.c_str(),
                              j.seconds, j.error.empty() ? "" : ": ", j.error.c_str());
-            WriteReports(a.outDir, jobs);
+            WriteReports(a.outDir, jobs, SecondsSince(batchStart));
         }
     }
     sigaction(SIGINT, &old, nullptr);
-    WriteReports(a.outDir, jobs);
+    WriteReports(a.outDir, jobs, SecondsSince(batchStart));
     int failed = 0;
     for (const Job &j : jobs) failed += j.status == "failed";
     if (!a.quiet) {

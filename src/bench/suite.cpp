@@ -157,7 +157,7 @@ int RunSuite(const SuiteOptions &options) {
     using Section = void (*)(SuiteContext &);
     const std::vector<std::pair<int, Section>> order{
         {4, MeasureMemorySection}, {3, MeasureStartupSection}, {0, MeasureCeilingSection},
-        {1, MeasurePovRaySection}, {2, MeasureThreadScalingSection}};
+        {1, MeasurePovRaySection}, {2, MeasureThreadScalingSection}, {5, MeasureBatchSection}};
     std::vector<std::string> sections(order.size());
     std::vector<std::vector<BenchMetric>> sectionMetrics(order.size());
     for (const auto &[slot, measure] : order) {
@@ -181,8 +181,6 @@ int RunSuite(const SuiteOptions &options) {
         targets += fmt::format("| {} {}{} | {}{} | {} |\n", m.name, m.target, unit,
                                FormatValue(m.value), unit, m.status);
     }
-    targets += "| `prism batch` over ../shared/scenes within 10% of the sum of render phases | "
-               "not measured by the suite | - |\n";
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::string report = head + ctx.markdown + targets +
                          fmt::format("\nSuite time {:.0f} s; load average at the end {}.\n",

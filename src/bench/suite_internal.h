@@ -32,5 +32,6 @@ void MeasurePovRaySection(SuiteContext &ctx);
 void MeasureThreadScalingSection(SuiteContext &ctx);
 void MeasureStartupSection(SuiteContext &ctx);
 void MeasureMemorySection(SuiteContext &ctx);
+void MeasureBatchSection(SuiteContext &ctx);
 
 }  // namespace prism

@@ -221,4 +221,46 @@ void MeasureMemorySection(SuiteContext &ctx) {
     ctx.Add("memory", "bytes per triangle", perTri, "B", "<= 100");
 }
 
+// `prism batch` over ../shared/scenes: its wall time against the sum of the render phases its
+// children report (report.json), i.e. what the batch costs beyond rendering. Skipped by --quick
+// (the scenes render at their own resolutions: a few minutes).
+void MeasureBatchSection(SuiteContext &ctx) {
+    ctx.markdown += "## `prism batch` over ../shared/scenes\n\n";
+    std::string scenes = ctx.sharedDir + "/scenes";
+    if (ctx.options.quick || !fs::is_directory(scenes)) {
+        ctx.markdown += ctx.options.quick ? "Skipped by --quick.\n\n"
+                                          : "Skipped: " + scenes + " not found.\n\n";
+        return;
+    }
+    Progress("batch over " + scenes);
+    std::string out = ctx.tmp + "/batch";
+    ChildRun r = RunChild({ctx.prism, "batch", scenes, "-o", out, "--force", "--quiet"});
+    std::string report;
+    std::FILE *f = std::fopen((out + "/report.json").c_str(), "r");
+    if (f) {
+        char buf[4096];
+        size_t n;
+        while ((n = std::fread(buf, 1, sizeof(buf), f)) > 0) report.append(buf, n);
+        std::fclose(f);
+    }
+    double wall = 0, render = 0;
+    size_t k = report.find("\"wall_seconds\": ");
+    if (k != std::string::npos)
+        std::sscanf(report.c_str() + k, "\"wall_seconds\": %lf, \"render_seconds\": %lf", &wall,
+                    &render);
+    int ok = 0;
+    for (size_t p = report.find("\"status\": \"ok\""); p != std::string::npos;
+         p = report.find("\"status\": \"ok\"", p + 1))
+        ++ok;
+    double ratio = render > 0 ? wall / render : 0;
+    ctx.markdown += fmt::format(
+        "`prism batch {} -o OUT --force` (one scene at a time, each with every core; exit {}): "
+        "{} scenes rendered.\n\n| batch wall time | sum of render phases | ratio |\n|---|---|---|\n"
+        "| {} | {} | {:.3f} |\n\n",
+        scenes, r.exitStatus, ok, Sec(wall), Sec(render), ratio);
+    ctx.Add("batch", "batch wall time", wall, "s");
+    ctx.Add("batch", "sum of render phases", render, "s");
+    ctx.Add("batch", "batch wall / render phases", ratio, "", "<= 1.10");
+}
+
 }  // namespace prism

@@ -290,6 +290,12 @@ TEST(Batch, ReportsFailuresKeepsImagesAndSkipsUpToDate) {
     EXPECT_NE(ReadFile(out / "report.json").find("\"ok\": 5, \"skipped\": 0, \"failed\": 2"),
               std::string::npos) << ReadFile(out / "report.json");
     EXPECT_NE(ReadFile(out / "summary.txt").find("broken.pbrt"), std::string::npos);
+    // Each render's own phases, and the batch's wall time against their sum.
+    EXPECT_NE(ReportLine(out, "a.pbrt").find("\"phases\": {\"parse\": "), std::string::npos)
+        << ReportLine(out, "a.pbrt");
+    EXPECT_EQ(ReportLine(out, "broken.pbrt").find("\"phases\""), std::string::npos);
+    EXPECT_NE(ReadFile(out / "report.json").find("\"wall_seconds\": "), std::string::npos);
+    EXPECT_NE(ReadFile(out / "summary.txt").find("render phases add up to"), std::string::npos);
     Image a = ReadImage((out / "in_a.png").string());
     EXPECT_EQ(a.width, 16);
     EXPECT_EQ(a.height, 12);
