@@ -29,16 +29,26 @@ std::string Counts(const std::map<std::string, int> &m) {
 int RunInfo(const InfoArgs &a) {
     Diagnostics diag(false);
     auto t0 = std::chrono::steady_clock::now();
-    SceneDescription desc = LoadScene(a.scene, diag);
+    // One budget (the default limit) for the scene and, one at a time, each mesh it counts.
+    MemoryBudget budget;
+    LoadOptions loadOpts;
+    loadOpts.budget = &budget;
+    SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
     double loadSeconds = SecondsSince(t0);
 
     std::map<std::string, int> shapes, materials, textures, lights;
     size_t triangles = 0;
     Bounds3d bounds;
-    ShapeFactoryContext ctx{desc, diag, Precision::Double};
+    ShapeFactoryContext ctx{desc, diag, Precision::Double, &budget};
     auto account = [&](const ShapeDesc &s, const Transform &worldFromObject) {
         shapes[s.type]++;
+        uint64_t usedBefore = budget.Used();
         ShapeGeometry g = CreateShapeGeometry(s, worldFromObject, ctx);
+        struct GiveBack {  // the mesh is freed when this shape is counted
+            MemoryBudget &b;
+            uint64_t n;
+            ~GiveBack() { b.Release(n); }
+        } giveBack{budget, budget.Used() - usedBefore};
         if (g.mesh) {
             triangles += g.mesh->NumTriangles();
             Bounds3f b = g.mesh->RenderBounds();

@@ -66,9 +66,12 @@ int RunRender(const RenderArgs &a) {
     if (!a.lookAt.empty()) opts.worldFromCamera = ParseLookAt(a.lookAt);
     opts.fovDeg = a.fov;
     opts.lightSamples = a.lightSamples;
-    opts.maxMemory = ParseMaxMemory(a.maxMemory);
+    // One budget for everything this render holds: scene files and meshes (LoadScene), the
+    // film, textures, meshes and BVH (BuildRenderScene); it lives until the render ends.
+    MemoryBudget budget(ParseMaxMemory(a.maxMemory));
+    opts.budget = &budget;
     LoadOptions loadOpts;
-    loadOpts.maxMemory = opts.maxMemory;
+    loadOpts.budget = &budget;
     if (a.tessellate > 0) opts.replaceAnalyticShape = TessellateWith(a.tessellate);
 
     std::unique_ptr<tbb::global_control> threadLimit;

@@ -58,11 +58,12 @@ bool ParseRayLine(const std::string &line, const std::string &file, int lineNo, 
 
 int RunTrace(const TraceArgs &a) {
     Diagnostics diag(!a.quiet);
+    MemoryBudget budget(ParseMaxMemory(a.maxMemory));  // scene, meshes and BVH together
     LoadOptions loadOpts;
-    loadOpts.maxMemory = ParseMaxMemory(a.maxMemory);
+    loadOpts.budget = &budget;
     SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
     BuildSettings opts;
-    opts.maxMemory = loadOpts.maxMemory;
+    opts.budget = &budget;
     opts.precision = ParsePrecision(a.precision);
     opts.cameraRelative = false;  // rays are given in world space
     RenderScene scene = BuildRenderScene(desc, opts, diag);

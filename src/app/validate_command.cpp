@@ -159,19 +159,28 @@ int RunValidate(const ValidateArgs &a) {
         }
     } else {
         Diagnostics diag(!a.quiet);
-        SceneDescription desc = LoadScene(a.scene, diag);
+        // One budget (the default limit) for the scene and the three renders of it, which are
+        // alive together.
+        MemoryBudget budget;
+        LoadOptions loadOpts;
+        loadOpts.budget = &budget;
+        SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
         BuildSettings ro;
         ro.precision = opt.precision;
+        ro.budget = &budget;
         RenderScene scene = BuildRenderScene(desc, ro, diag);
         Vec2i grid;
         std::vector<Ray> cam = CameraRays(scene, a.cameraRays, &grid);
         std::printf("%s: %zu camera rays (%dx%d grid) per shape on top of %d random rays\n",
                     a.scene.c_str(), cam.size(), grid.x, grid.y, opt.rays);
-        ShapeFactoryContext ctx{desc, diag, opt.precision};
+        ShapeFactoryContext ctx{desc, diag, opt.precision, &budget};
         int analyticCount = 0;
         for (const ShapeDesc &s : desc.shapes) {
+            uint64_t usedBefore = budget.Used();
             ShapeGeometry g =
                 CreateShapeGeometry(s, scene.renderFromWorld * s.worldFromObject, ctx);
+            g.mesh.reset();  // only analytic shapes are validated
+            budget.Release(budget.Used() - usedBefore);
             if (!g.analytic) continue;
             ++analyticCount;
             std::string name = "shape" + std::to_string(s.directiveIndex) + ":" + s.type;

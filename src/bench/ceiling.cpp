@@ -21,9 +21,9 @@ namespace prism {
 
 namespace {
 
-// The renderer's tile size and sample purposes (render/renderer.cpp), so both passes trace the
-// same rays in the same order of tiles.
-constexpr int TileSize = 16;
+// The renderer's tile size (render/renderer.h) and sample purposes (render/renderer.cpp), so
+// both passes trace the same rays in the same order of tiles.
+constexpr int TileSize = RenderTileSize;
 enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1 };
 
 struct PassCounters {
@@ -141,11 +141,15 @@ CeilingResult RunCeiling(const CeilingOptions &o, std::FILE *log) {
     if (o.threads > 0)
         threadLimit = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+    MemoryBudget budget;  // the default limit, for the scene and its render together
     BuildSettings ro;
     ro.spp = o.spp;
     ro.resolution = Vec2i(o.width, o.height);
+    ro.budget = &budget;
     Diagnostics diag(false);
-    SceneDescription desc = LoadScene(o.scene, diag);
+    LoadOptions loadOpts;
+    loadOpts.budget = &budget;
+    SceneDescription desc = LoadScene(o.scene, diag, loadOpts);
     RenderScene scene = BuildRenderScene(desc, ro, diag);
 
     CeilingResult res;

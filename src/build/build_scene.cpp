@@ -13,11 +13,14 @@ namespace prism {
 RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &settings,
                              Diagnostics &diag) {
     RenderScene scene;
-    BuildContext ctx{desc, settings, diag, scene, {}, {}, {}};
+    MemoryBudget ownBudget;  // the default limit, when the caller passes no budget
+    MemoryBudget &budget = settings.budget ? *settings.budget : ownBudget;
+    BuildContext ctx{desc, settings, diag, scene, budget, {}, {}, {}};
     BuildFilm(ctx);
     BuildCamera(ctx);  // sets renderFromWorld, which every later step uses
     BuildSampler(ctx);
     BuildPixelFilter(ctx);
+    ChargeFilmMemory(ctx);  // needs the crop window and the filter's radius
     BuildIntegratorSettings(ctx);
     BuildTextures(ctx);
     BuildLights(ctx);

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/memory.h"
 #include "core/transform.h"
 #include "geometry/shape.h"
 #include "geometry/triangle_mesh.h"
@@ -23,8 +24,11 @@ inline constexpr int MaxSamplesPerPixel = 1 << 16;
 inline constexpr int MaxTraceDepth = 1000;
 
 // Replaces the geometry of an analytic shape (e.g. by its tessellated twin, validate/); returns
-// nullptr to keep the analytic shape. May throw std::length_error when too large.
-using ShapeReplacement = std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &)>;
+// nullptr to keep the analytic shape. Calls `charge` with the mesh's size before allocating it
+// (the builder charges it to the render's budget as the shape). May throw std::length_error
+// when too large.
+using ShapeReplacement =
+    std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &, const MeshCharge &charge)>;
 
 struct BuildSettings {
     // Replacements for what the description says; the default keeps the description's value.
@@ -37,9 +41,13 @@ struct BuildSettings {
     int lightSamples = 0;                      // 0: each area/infinite light's own nsamples
     // How to build.
     Precision precision = Precision::Double;
-    // Memory budget in bytes for the film, image textures and PLY meshes; 0: the default,
-    // 75% of physical RAM (core/memory.h). Exceeding it is a SceneError, not an OOM kill.
-    uint64_t maxMemory = 0;
+    // The render's memory budget (core/memory.h), usually the one LoadOptions::budget charged
+    // the scene files to. The build charges to it, and keeps charged, the film (EstimateFilmBytes),
+    // decoded image textures, every triangle mesh (trianglemesh, plymesh, loopsubdiv,
+    // tessellated twins) and the BVH (EstimateBvhBytes), each before it is allocated; exceeding
+    // it is a MemoryBudgetError (a SceneError), not an OOM kill. The caller keeps it alive for
+    // the render. Null: a budget of the default limit (75% of physical RAM) for this build.
+    MemoryBudget *budget = nullptr;
     // Render in camera-centred world space (default). `prism trace` turns it off so that
     // world-space rays are traced without re-rounding.
     bool cameraRelative = true;

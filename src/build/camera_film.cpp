@@ -5,6 +5,7 @@
 
 #include "core/memory.h"
 #include "core/pbrt_defaults.h"
+#include "render/renderer.h"
 
 namespace prism {
 
@@ -45,27 +46,23 @@ void BuildFilm(BuildContext &ctx) {
     if (pb.pMax.x <= pb.pMin.x || pb.pMax.y <= pb.pMin.y)
         throw SceneError(desc.film.loc, "the crop window covers no pixels");
     scene.pixelBounds = pb;
-    {
-        // Film (4 doubles per pixel), tile buffers with filter margins, the float image
-        // and its encoded copy: about 96 bytes per pixel, checked before any is allocated.
-        const uint64_t bytesPerPixel = 96;
-        uint64_t pixels = uint64_t(pb.pMax.x - pb.pMin.x) * uint64_t(pb.pMax.y - pb.pMin.y);
-        uint64_t budget = EffectiveMemoryBudget(settings.maxMemory);
-        if (pixels > budget / bytesPerPixel) {
-            std::string msg = "image " + std::to_string(xres) + "x" + std::to_string(yres) +
-                              " needs about " + FormatBytes(pixels * bytesPerPixel) +
-                              ", more than the memory budget of " + FormatBytes(budget) +
-                              " (--max-memory)";
-            if (settings.resolution.x > 0) throw SceneError(msg);
-            const Param *p = film.Find("xresolution");
-            throw SceneError(p ? p->loc : desc.film.loc, msg);
-        }
-    }
     scene.outputFilename = film.GetString("filename", "");
     scene.filmScale = film.GetFloat("scale", 1.f);
     scene.maxSampleLuminance = film.GetFloat("maxsampleluminance", Infinity);
     film.MarkUsed("diagonal");
     film.ReportUnused(diag, "film");
+}
+
+void ChargeFilmMemory(BuildContext &ctx) {
+    const Bounds2i &pb = ctx.scene.pixelBounds;
+    const Vec2i res = ctx.scene.resolution;
+    uint64_t bytes = EstimateFilmBytes(uint64_t(pb.pMax.x - pb.pMin.x), uint64_t(pb.pMax.y - pb.pMin.y),
+                                       ctx.scene.filter.radiusX, ctx.scene.filter.radiusY,
+                                       RenderTileSize);
+    // A resolution from the settings has no location in the file.
+    const Param *p = ctx.desc.film.params.Find("xresolution");
+    FileLoc loc = ctx.settings.resolution.x > 0 ? FileLoc{} : p ? p->loc : ctx.desc.film.loc;
+    ctx.budget.Charge(bytes, "image " + std::to_string(res.x) + "x" + std::to_string(res.y), loc);
 }
 
 void BuildCamera(BuildContext &ctx) {

@@ -8,10 +8,13 @@
 
 namespace prism {
 
-void BuildFilm(BuildContext &ctx);     // resolution, crop window, memory check, scale, filename
+void BuildFilm(BuildContext &ctx);     // resolution, crop window, scale, filename
 void BuildCamera(BuildContext &ctx);   // camera and renderFromWorld
 void BuildSampler(BuildContext &ctx);  // samples per pixel
 void BuildPixelFilter(BuildContext &ctx);
+// Charges the film's memory (EstimateFilmBytes: film, tiles with the filter's margins, image
+// and its encoded copy) to the budget; after BuildFilm and BuildPixelFilter.
+void ChargeFilmMemory(BuildContext &ctx);
 void BuildIntegratorSettings(BuildContext &ctx);  // maxdepth (every integrator renders Whitted)
 
 }  // namespace prism

@@ -1,5 +1,6 @@
 #include "build/shape_factory.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -17,9 +18,30 @@ const FileLoc &ParamLoc(const ShapeDesc &s, const char *name) {
     return p ? p->loc : s.loc;
 }
 
+// The bytes of these arrays, which a mesh is made from and which are freed after.
+uint64_t ArrayBytes(const std::vector<Vec3f> &P, const std::vector<int> &idx,
+                    const std::vector<Vec3f> &N, const std::vector<Vec2f> &uv) {
+    return P.size() * sizeof(Vec3f) + idx.size() * sizeof(int) + N.size() * sizeof(Vec3f) +
+           uv.size() * sizeof(Vec2f);
+}
+
+// Charges a mesh of `meshBytes` to the budget as the shape, with `transientBytes` more that
+// must fit beside it until it is made (MeshCharge, geometry/triangle_mesh.h).
+void ChargeMesh(MemoryBudget &budget, const ShapeDesc &s, uint64_t meshBytes,
+                uint64_t transientBytes) {
+    std::string what = "shape " + Quote(s.type);
+    budget.Check(meshBytes + transientBytes, what, s.loc);
+    budget.Charge(meshBytes, what, s.loc);
+}
+
+// The render-space mesh, charged to the budget before it is allocated together with the
+// arrays it is made from (freed when the shape's factory returns).
 std::unique_ptr<TriangleMesh> MakeMesh(const ShapeDesc &s, const Transform &renderFromObject,
                                        const std::vector<Vec3f> &P, const std::vector<int> &idx,
-                                       const std::vector<Vec3f> &N, const std::vector<Vec2f> &uv) {
+                                       const std::vector<Vec3f> &N, const std::vector<Vec2f> &uv,
+                                       MemoryBudget &budget, uint64_t transientBytes) {
+    ChargeMesh(budget, s, TriangleMesh::Bytes(P.size(), idx.size(), !N.empty(), !uv.empty()),
+               transientBytes);
     std::vector<uint32_t> indices;
     indices.reserve(idx.size());
     for (int i : idx) {
@@ -37,7 +59,8 @@ std::unique_ptr<TriangleMesh> MakeMesh(const ShapeDesc &s, const Transform &rend
     }
 }
 
-ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromObject) {
+ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
+                                MemoryBudget &budget) {
     const ParamSet &ps = s.params;
     std::vector<Vec3f> P = ps.GetPoint3s("P");
     std::vector<int> indices = ps.GetInts("indices");
@@ -51,22 +74,29 @@ ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromO
     if (uv.empty()) uv = ps.GetPoint2s("st");
     for (const char *n : {"S", "faceIndices"}) ps.MarkUsed(n);
     ShapeGeometry g;
-    g.mesh = MakeMesh(s, renderFromObject, P, indices, N, uv);
+    // The arrays read from the parameters (their storage was charged when the scene was read;
+    // these float copies are at most half of it) are freed when this returns.
+    g.mesh = MakeMesh(s, renderFromObject, P, indices, N, uv, budget, ArrayBytes(P, indices, N, uv));
     return g;
 }
 
 ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
-                           const ShapeFactoryContext &ctx) {
+                           const ShapeFactoryContext &ctx, MemoryBudget &budget) {
     std::string file = s.params.GetString("filename", "");
     if (file.empty()) throw SceneError(s.loc, "plymesh needs a \"filename\"");
-    PlyMesh ply = ReadPlyFile(ResolveScenePath(ctx.desc, file), ctx.diag, EffectiveMemoryBudget(ctx.maxMemory));
+    // ReadPlyFile charges the file and the mesh it reads (ply_reader.h); both are freed when
+    // this returns, so that charge is given back once the render-space mesh is made and charged.
+    uint64_t usedBefore = budget.Used();
+    PlyMesh ply = ReadPlyFile(ResolveScenePath(ctx.desc, file), ctx.diag, budget);
+    uint64_t plyBytes = budget.Used() - usedBefore;
     for (const char *n : {"displacement", "edgelength"})
         if (s.params.Has(n)) {
             ctx.diag.Warn(ParamLoc(s, n), std::string("\"") + n + "\" is not supported; ignored");
             s.params.MarkUsed(n);
         }
     ShapeGeometry g;
-    g.mesh = MakeMesh(s, renderFromObject, ply.P, ply.indices, ply.N, ply.uv);
+    g.mesh = MakeMesh(s, renderFromObject, ply.P, ply.indices, ply.N, ply.uv, budget, 0);
+    budget.Release(plyBytes);
     return g;
 }
 
@@ -88,7 +118,7 @@ private:
 
 // [loopsubdiv] Loop subdivision on the CPU into a triangle mesh with limit normals.
 ShapeGeometry LoopSubdivShape(const ShapeDesc &s, const Transform &renderFromObject,
-                              const ShapeFactoryContext &ctx) {
+                              const ShapeFactoryContext &ctx, MemoryBudget &budget) {
     const ParamSet &ps = s.params;
     const char *levelsName = ps.Has("levels") || !ps.Has("nlevels") ? "levels" : "nlevels";
     int levels = ps.GetInt(levelsName, 3);
@@ -99,6 +129,19 @@ ShapeGeometry LoopSubdivShape(const ShapeDesc &s, const Transform &renderFromObj
     for (const Vec3f &p : P)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             throw SceneError(ParamLoc(s, "P"), "vertex position is not finite");
+    {
+        // Before subdividing: each level makes 4 triangles of one and a vertex of each edge,
+        // so the output has T = 4^levels F triangles and fewer than V0 + T vertices (the
+        // edges of all levels number less than 3/4 T). Its arrays (positions and normals, 24
+        // bytes a vertex; indices, 12 a triangle) and the mesh made from them must fit.
+        // (LoopSubdivide refuses levels and sizes beyond its limits.)
+        uint64_t faces = indices.size() / 3;
+        int l = std::clamp(levels, 0, MaxLoopSubdivLevels);
+        uint64_t tris = std::min<uint64_t>(faces << (2 * l), MaxLoopSubdivTriangles);
+        uint64_t verts = P.size() + tris;
+        ChargeMesh(budget, s, 0,
+                   TriangleMesh::Bytes(verts, 3 * tris, true, false) + verts * 24 + tris * 12);
+    }
     LoopSubdivResult r;
     try {
         r = LoopSubdivide(P, indices, levels);
@@ -112,7 +155,8 @@ ShapeGeometry LoopSubdivShape(const ShapeDesc &s, const Transform &renderFromObj
                                                   " degenerate triangle(s)");
     if (r.indices.empty()) throw SceneError(s.loc, "loopsubdiv has no non-degenerate triangles");
     ShapeGeometry g;
-    g.mesh = MakeMesh(s, renderFromObject, r.P, r.indices, r.N, {});
+    g.mesh = MakeMesh(s, renderFromObject, r.P, r.indices, r.N, {}, budget,
+                      ArrayBytes(r.P, r.indices, r.N, {}));
     return g;
 }
 
@@ -128,9 +172,11 @@ ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFro
     }
 #include "geometry/shape_list.inc"
 #undef PRISM_SHAPE
-    if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject);
-    if (s.type == "plymesh") return PlyMeshShape(s, renderFromObject, ctx);
-    if (s.type == "loopsubdiv") return LoopSubdivShape(s, renderFromObject, ctx);
+    MemoryBudget ownBudget(ctx.budget ? 1 : 0);  // the default limit, without a budget given
+    MemoryBudget &budget = ctx.budget ? *ctx.budget : ownBudget;
+    if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject, budget);
+    if (s.type == "plymesh") return PlyMeshShape(s, renderFromObject, ctx, budget);
+    if (s.type == "loopsubdiv") return LoopSubdivShape(s, renderFromObject, ctx, budget);
     ctx.diag.WarnOnce("shape:" + s.type, s.loc,
                       "shape \"" + s.type + "\" is not supported; every such shape is skipped");
     for (const Param &p : s.params.Params()) p.lookedUp = true;

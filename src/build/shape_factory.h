@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "core/memory.h"
 #include "geometry/shape.h"
 #include "geometry/triangle_mesh.h"
 #include "scene/scene_description.h"
@@ -15,7 +16,10 @@ struct ShapeFactoryContext {
     const SceneDescription &desc;
     Diagnostics &diag;
     Precision precision;
-    uint64_t maxMemory = 0;  // bytes, for PLY meshes (0: the default budget)
+    // Charged, before each is allocated, with every triangle mesh the factory makes (kept) and
+    // what it reads or builds it from (PLY files; checked, not kept), as `shape "type"` at the
+    // shape's location. Null: a budget of the default limit for each shape alone.
+    MemoryBudget *budget = nullptr;
 };
 
 struct ShapeGeometry {
@@ -24,7 +28,7 @@ struct ShapeGeometry {
 };
 
 // Returns empty geometry (after a warning) for shapes Prism skips; throws SceneError for
-// invalid parameters.
+// invalid parameters and MemoryBudgetError when a mesh does not fit the budget.
 ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFromObject,
                                   const ShapeFactoryContext &ctx);
 

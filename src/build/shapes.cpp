@@ -6,6 +6,7 @@
 
 #include "build/lights.h"
 #include "build/shape_factory.h"
+#include "core/memory.h"
 
 namespace prism {
 
@@ -18,6 +19,20 @@ const ObjectDesc *FindObject(const SceneDescription &desc, const std::string &na
 }
 
 namespace {
+
+// What the BVH estimate (core/memory.h EstimateBvhBytes) counts in an Accel: the triangles of
+// its meshes, and one user primitive for each analytic shape or instance.
+uint64_t TrianglesOf(const Accel &accel) {
+    uint64_t n = 0;
+    for (int i = 0; i < accel.NumShapes(); ++i)
+        if (const TriangleMesh *m = accel.Mesh(i)) n += m->NumTriangles();
+    return n;
+}
+uint64_t UserPrimsOf(const Accel &accel) {
+    uint64_t n = 0;
+    for (int i = 0; i < accel.NumShapes(); ++i) n += accel.Mesh(i) ? 0 : 1;
+    return n;
+}
 
 struct ShapeBuilder : BuildStep {
     ShapeBuilder(BuildContext &ctx, MaterialBuilder &m) : BuildStep(ctx), materials(m) {}
@@ -53,12 +68,17 @@ struct ShapeBuilder : BuildStep {
     // `infos` (by accel shape index). Returns the shape index, or -1 if skipped.
     int AddShapeTo(Accel &accel, std::vector<ShapeInfo> &infos, const ShapeDesc &s,
                    const Transform &renderFromObject) {
-        ShapeFactoryContext fctx{desc, diag, settings.precision, settings.maxMemory};
+        ShapeFactoryContext fctx{desc, diag, settings.precision, &budget};
         ShapeGeometry geom = CreateShapeGeometry(s, renderFromObject, fctx);
         if (!geom.mesh && !geom.analytic) return -1;  // skipped with a warning
         if (settings.replaceAnalyticShape && geom.analytic) {  // e.g. --tessellate N
+            MeshCharge charge = [&](uint64_t meshBytes, uint64_t transientBytes) {
+                std::string what = "shape " + Quote(s.type);
+                budget.Check(meshBytes + transientBytes, what, s.loc);
+                budget.Charge(meshBytes, what, s.loc);
+            };
             try {
-                if (auto twin = settings.replaceAnalyticShape(*geom.analytic)) {
+                if (auto twin = settings.replaceAnalyticShape(*geom.analytic, charge)) {
                     geom.mesh = std::move(twin);
                     geom.analytic.reset();
                 }
@@ -111,6 +131,11 @@ struct ShapeBuilder : BuildStep {
                     diag.Warn(s.loc, "area lights inside object instances are not supported (as in pbrt-v3); the shape does not emit");
                 AddShapeTo(*proto, infos, s, s.worldFromObject);
             }
+            // The prototype's BVH, once however many instances use it (the fixed part of the
+            // estimate is charged once, with the top level).
+            budget.Charge(EstimateBvhBytes(TrianglesOf(*proto), UserPrimsOf(*proto)) -
+                              kBvhFixedBytes,
+                          "BVH", obj->loc);
             proto->Commit();
             scene.prototypes.push_back(std::move(infos));
             it = prototypeOf.emplace(inst.object, std::make_pair(proto, int(scene.prototypes.size()) - 1)).first;
@@ -131,6 +156,9 @@ struct ShapeBuilder : BuildStep {
         for (const ShapeDesc &s : desc.shapes) AddShape(s, scene.renderFromWorld * s.worldFromObject);
         for (const InstanceDesc &inst : desc.instances) AddInstance(inst);
         for (const AreaLightDesc *a : usedAreaLights) a->params.ReportUnused(diag, "area light");
+        // Meshes and analytic shapes, each instance as one user primitive.
+        budget.Charge(EstimateBvhBytes(TrianglesOf(*scene.accel), UserPrimsOf(*scene.accel)),
+                      "BVH", desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0});
         auto start = std::chrono::steady_clock::now();
         scene.accel->Commit();
         scene.buildSeconds =

@@ -1,5 +1,7 @@
 #include "build/textures.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 
 #include "core/memory.h"
@@ -63,9 +65,13 @@ struct TextureBuilder : BuildStep {
         std::string key = path + "#" + std::to_string(int(enc));
         auto it = ctx.imageCache.find(key);
         if (it != ctx.imageCache.end()) return it->second;
+        const Param *p = t.params.Find(param);
+        const FileLoc &loc = p ? p->loc : t.loc;
+        const std::string what = "texture " + Quote(file);
         ReadImageOptions ro;
         ro.encoding = enc;
-        ro.maxPixels = int64_t(EffectiveMemoryBudget(settings.maxMemory) / sizeof(float));
+        // The decoder refuses images larger than what remains of the budget before allocating.
+        ro.maxPixels = int64_t(std::min<uint64_t>(budget.Remaining() / sizeof(float), INT64_MAX));
         std::shared_ptr<const Image> img;
         try {
             if (embedded >= 0) {
@@ -77,10 +83,13 @@ struct TextureBuilder : BuildStep {
             } else {
                 img = std::make_shared<Image>(ReadImage(path, ro));
             }
+        } catch (const MemoryBudgetError &e) {
+            budget.Check(e.Requested(), what, loc);  // throws the budget's message here
+            throw SceneError(loc, e.what());
         } catch (const std::exception &e) {
-            const Param *p = t.params.Find(param);
-            throw SceneError(p ? p->loc : t.loc, e.what());
+            throw SceneError(loc, e.what());
         }
+        budget.Charge(img->pixels.size() * sizeof(float), what, loc);
         ctx.imageCache[key] = img;
         return img;
     }
@@ -176,7 +185,10 @@ struct TextureBuilder : BuildStep {
             for (const char *n : {"trilinear", "maxanisotropy", "filter", "encoding"}) ps.MarkUsed(n);
             auto img = LoadImage(t, file, enc, "filename");
             if (f && img->channels >= 3) {
-                // pbrt converts RGB texels of float textures to luminance.
+                // pbrt converts RGB texels of float textures to luminance, in a copy.
+                const Param *fp = ps.Find("filename");
+                budget.Charge(img->pixels.size() * sizeof(float), "texture " + Quote(file),
+                              fp ? fp->loc : t.loc);
                 auto lum = std::make_shared<Image>(*img);
                 for (int y = 0; y < lum->height; ++y)
                     for (int x = 0; x < lum->width; ++x)

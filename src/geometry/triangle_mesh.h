@@ -2,12 +2,19 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/transform.h"
 #include "geometry/interaction.h"
 
 namespace prism {
+
+// Charges a mesh about to be made to a memory budget (the caller supplies where and under
+// which name): `meshBytes` (TriangleMesh::Bytes) are kept, `transientBytes` (the arrays it is
+// made from, freed once it exists) must fit beside them but are not kept. Throws when they do
+// not fit (MemoryBudgetError, core/memory.h).
+using MeshCharge = std::function<void(uint64_t meshBytes, uint64_t transientBytes)>;
 
 class TriangleMesh {
 public:
@@ -16,6 +23,16 @@ public:
     TriangleMesh(const Transform &renderFromObject, bool reverseOrientation,
                  const std::vector<Vec3f> &P, std::vector<uint32_t> indices,
                  const std::vector<Vec3f> &N = {}, std::vector<Vec2f> uv = {});
+
+    // The bytes a mesh of this many vertices and indices holds (positions padded by one float,
+    // indices, and normals and uv when present), for the memory budget before it is made.
+    static uint64_t Bytes(uint64_t vertices, uint64_t indices, bool normals, bool uv) {
+        return (3 * vertices + 1) * sizeof(float) + indices * sizeof(uint32_t) +
+               (normals ? vertices * sizeof(Vec3f) : 0) + (uv ? vertices * sizeof(Vec2f) : 0);
+    }
+    uint64_t MemoryBytes() const {
+        return Bytes(NumVertices(), indices_.size(), HasNormals(), HasUV());
+    }
 
     size_t NumTriangles() const { return indices_.size() / 3; }
     size_t NumVertices() const { return (positions_.size() - 1) / 3; }

@@ -138,11 +138,18 @@ Image DecodeOpened(ImageDecoder &in, const ReadImageOptions &opts,
         nRead = nOut = 4;
     }
     int64_t count = int64_t(spec.width) * int64_t(spec.height) * int64_t(std::max(nRead, nOut));
-    if (count > opts.maxPixels)
-        throw fail("image is too large: " + std::to_string(spec.width) + "x" +
-                   std::to_string(spec.height) + "x" + std::to_string(nOut) + " values need " +
-                   FormatBytes(uint64_t(count) * 4) + ", more than the limit of " +
-                   FormatBytes(uint64_t(opts.maxPixels) * 4) + " (--max-memory)");
+    if (count > opts.maxPixels) {
+        // A memory limit: MemoryBudgetError, so that callers can tell it from a bad file.
+        uint64_t bytes = uint64_t(count) * sizeof(float);
+        uint64_t limit = uint64_t(std::max<int64_t>(opts.maxPixels, 0)) * sizeof(float);
+        throw MemoryBudgetError(FileLoc{},
+                                fail("image is too large: " + std::to_string(spec.width) + "x" +
+                                     std::to_string(spec.height) + "x" + std::to_string(nOut) +
+                                     " values need " + FormatBytes(bytes) +
+                                     ", more than the limit of " + FormatBytes(limit))
+                                    .what(),
+                                bytes, 0, limit);
+    }
 
     std::vector<float> buf(size_t(spec.width) * size_t(spec.height) * size_t(nRead));
     try {

@@ -19,7 +19,8 @@ struct ReadImageOptions {
     // are always linear unless SRGB is forced.
     enum class Encoding { Auto, Linear, SRGB };
     Encoding encoding = Encoding::Auto;
-    // Upper bound on width * height * channels, checked before any pixel memory is allocated.
+    // Upper bound on width * height * channels, checked before any pixel memory is allocated;
+    // more is a MemoryBudgetError (core/memory.h) "image is too large: ...".
     int64_t maxPixels = int64_t(1) << 28;
     // Silence what decoder libraries print to stderr themselves (libpng's "libpng error: ..."):
     // the failure is reported once, through the exception. Off under the fuzzer, whose crash

@@ -17,7 +17,7 @@
 namespace prism {
 
 namespace {
-constexpr int TileSize = 16;
+constexpr int TileSize = RenderTileSize;
 
 enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1 };
 }  // namespace

@@ -10,6 +10,10 @@
 
 namespace prism {
 
+// Tiles are squares of this many pixels (the last row and column may be smaller); the memory
+// estimate of the film (core/memory.h EstimateFilmBytes) and bench's ceiling pass use it.
+inline constexpr int RenderTileSize = 16;
+
 struct RenderStats {
     double renderSeconds = 0;
     RayCounters rays;

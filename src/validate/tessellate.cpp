@@ -33,16 +33,38 @@ int RingsFor(const RevolutionProfile &profile, int nPhi) {
 // ---------------------------------------------------------------------------------------------
 // Tessellation.
 
+namespace {
+
+// The ring count for `nPhi` segments (raised to the minimum); throws std::length_error beyond
+// MaxTessellationTriangles.
+int CheckedRings(const AnalyticShape &shape, const RevolutionProfile &pr, int *nPhi) {
+    *nPhi = std::max(*nPhi, pr.FullCircle() ? 3 : 1);
+    int nV = RingsFor(pr, *nPhi);
+    if (double(*nPhi) * nV * 2 > double(MaxTessellationTriangles))
+        throw std::length_error("tessellating a " + std::string(shape.Name()) + " with " +
+                                std::to_string(*nPhi) + " segments needs more than " +
+                                std::to_string(MaxTessellationTriangles) + " triangles");
+    return nV;
+}
+
+}  // namespace
+
+bool TessellationSize(const AnalyticShape &shape, int nPhi, uint64_t *vertices,
+                      uint64_t *triangles) {
+    RevolutionProfile pr;
+    if (!shape.Revolution(&pr)) return false;
+    int nV = CheckedRings(shape, pr, &nPhi);
+    // Rings of nPhi + 1 columns (poles have one vertex), two triangles per grid cell.
+    *vertices = uint64_t(nV + 1) * uint64_t(nPhi + 1);
+    *triangles = 2 * uint64_t(nPhi) * uint64_t(nV);
+    return true;
+}
+
 bool Tessellate(const AnalyticShape &shape, int nPhi, TessellatedMesh *mesh) {
     RevolutionProfile pr;
     if (!shape.Revolution(&pr)) return false;
     bool full = pr.FullCircle();
-    nPhi = std::max(nPhi, full ? 3 : 1);
-    int nV = RingsFor(pr, nPhi);
-    if (double(nPhi) * nV * 2 > double(MaxTessellationTriangles))
-        throw std::length_error("tessellating a " + std::string(shape.Name()) + " with " +
-                                std::to_string(nPhi) + " segments needs more than " +
-                                std::to_string(MaxTessellationTriangles) + " triangles");
+    int nV = CheckedRings(shape, pr, &nPhi);
     *mesh = TessellatedMesh{};
     mesh->nPhi = nPhi;
     mesh->nV = nV;
@@ -105,7 +127,14 @@ bool Tessellate(const AnalyticShape &shape, int nPhi, TessellatedMesh *mesh) {
     return true;
 }
 
-std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, int nPhi) {
+std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, int nPhi,
+                                                  const MeshCharge &charge) {
+    uint64_t nv = 0, nt = 0;
+    if (charge && TessellationSize(shape, nPhi, &nv, &nt))
+        // The mesh, and the double-precision tessellation and float copies it is made from.
+        charge(TriangleMesh::Bytes(nv, 3 * nt, true, true),
+               nv * (sizeof(Vec3d) * 2 + sizeof(Vec2d) + sizeof(Vec3f) * 2 + sizeof(Vec2f)) +
+                   3 * nt * sizeof(uint32_t));
     TessellatedMesh m;
     if (!Tessellate(shape, nPhi, &m)) return nullptr;
     const Transform &w = shape.RenderFromObject();
@@ -134,8 +163,11 @@ std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, in
                                           std::move(m.indices), N, std::move(uv));
 }
 
-std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &)> TessellateWith(int nPhi) {
-    return [nPhi](const AnalyticShape &shape) { return MakeTessellatedMesh(shape, nPhi); };
+std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &, const MeshCharge &)>
+TessellateWith(int nPhi) {
+    return [nPhi](const AnalyticShape &shape, const MeshCharge &charge) {
+        return MakeTessellatedMesh(shape, nPhi, charge);
+    };
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -34,14 +34,21 @@ int RingsFor(const RevolutionProfile &profile, int nPhi);
 // std::length_error beyond MaxTessellationTriangles (memory stays bounded on any input).
 inline constexpr size_t MaxTessellationTriangles = size_t(1) << 24;
 bool Tessellate(const AnalyticShape &shape, int nPhi, TessellatedMesh *mesh);
+// Upper bounds on the vertices and triangles Tessellate makes, without making them (false if
+// the shape has no profile; std::length_error as Tessellate).
+bool TessellationSize(const AnalyticShape &shape, int nPhi, uint64_t *vertices,
+                      uint64_t *triangles);
 
 // The tessellation as an Embree-ready triangle mesh with the shape's transform and
-// orientation (nullptr if the shape cannot be tessellated).
-std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, int nPhi);
+// orientation (nullptr if the shape cannot be tessellated). `charge`, when given, is called
+// with its size (TessellationSize) before anything is allocated.
+std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, int nPhi,
+                                                  const MeshCharge &charge = {});
 
 // MakeTessellatedMesh with nPhi segments as a BuildSettings::replaceAnalyticShape hook
 // (`prism render --tessellate N`): build/ calls it without depending on validate/.
-std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &)> TessellateWith(int nPhi);
+std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &, const MeshCharge &)>
+TessellateWith(int nPhi);
 
 // Distance in the meridian half-plane from (rho, z) to the profile curve (v clipped to
 // [0, 1]); *vClosest receives the closest parameter. Signed: positive on the side of the

@@ -156,8 +156,11 @@ TEST(Cli, BadOptionsExitWithStatus2) {
 TEST(Cli, MemoryBudgetErrorNamesTheFlagOnce) {
     fs::path dir = TempDir("budget");
     const std::string flag = "(--max-memory)";
-    for (const char *args : {"budget_includes.pbrt' --max-memory 8K", "ply_budget.pbrt' --max-memory 100K"}) {
-        RunResult r = RunPrism("render '" + Source + "/tests/bad/" + args + " --res 16x16 -o a.png", dir);
+    for (const char *args :
+         {"budget_includes.pbrt' --max-memory 8K --res 16x16", "ply_budget.pbrt' --max-memory 100K --res 16x16",
+          "budget_film_texture.pbrt' --max-memory 60K --res 16x16", "tex_big_png.pbrt' --max-memory 40K --res 16x16",
+          "budget_film_ply.pbrt' --max-memory 160K --res 32x32", "budget_resolution.pbrt' --max-memory 1G"}) {
+        RunResult r = RunPrism("render '" + Source + "/tests/bad/" + args + " -o a.png", dir);
         EXPECT_EQ(r.exitCode, 2) << r.err;
         size_t at = r.err.find(flag);
         ASSERT_NE(at, std::string::npos) << r.err;

@@ -51,7 +51,8 @@ TEST(BuildScene, ReplacementHookSeesEveryAnalyticShape) {
     BuildSettings s;
     s.resolution = {4, 4};
     std::vector<std::string> seen;
-    s.replaceAnalyticShape = [&](const AnalyticShape &shape) -> std::unique_ptr<TriangleMesh> {
+    s.replaceAnalyticShape = [&](const AnalyticShape &shape,
+                                 const MeshCharge &) -> std::unique_ptr<TriangleMesh> {
         seen.push_back(shape.Name());
         return nullptr;  // keep the analytic shape
     };
