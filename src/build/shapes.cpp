@@ -9,14 +9,6 @@
 
 namespace prism {
 
-const ObjectDesc *FindObject(const SceneDescription &desc, const std::string &name) {
-    // The last definition wins, as in pbrt-v3 (a redefinition replaces the object).
-    const ObjectDesc *found = nullptr;
-    for (const ObjectDesc &o : desc.objects)
-        if (o.name == name) found = &o;
-    return found;
-}
-
 namespace {
 
 struct ShapeBuilder : BuildStep {

@@ -3,9 +3,7 @@
 #include "scene/load_scene.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 
 #include "core/file_io.h"
@@ -67,10 +65,9 @@ SceneDescription LoadPlyScene(const std::string &path, Bounds3f *bounds, MemoryB
 constexpr const char *kSceneExtensions[] = {".pbrt", ".obj", ".gltf", ".glb", ".ply"};
 
 bool IsSceneExtension(const std::string &extension) {
+    const std::string lower = ToLowerAscii(extension);
     for (const char *e : kSceneExtensions)
-        if (std::equal(extension.begin(), extension.end(), e, e + std::strlen(e),
-                       [](char a, char b) { return std::tolower((unsigned char)a) == b; }))
-            return true;
+        if (lower == e) return true;
     return false;
 }
 
@@ -86,10 +83,9 @@ Bounds3f SceneMeshBounds(const SceneDescription &desc) {
     Bounds3f b;
     for (const ShapeDesc &s : desc.shapes) ExpandMesh(s, s.worldFromObject, b);
     for (const InstanceDesc &inst : desc.instances)
-        for (const ObjectDesc &obj : desc.objects)
-            if (obj.name == inst.object)
-                for (const ShapeDesc &s : obj.shapes)
-                    ExpandMesh(s, inst.worldFromInstance * s.worldFromObject, b);
+        if (const ObjectDesc *obj = FindObject(desc, inst.object))
+            for (const ShapeDesc &s : obj->shapes)
+                ExpandMesh(s, inst.worldFromInstance * s.worldFromObject, b);
     return b;
 }
 
