@@ -37,7 +37,8 @@ std::unique_ptr<TriangleMesh> MakeMesh(const ShapeDesc &s, const Transform &rend
     }
 }
 
-ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromObject) {
+ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
+                                Diagnostics &diag) {
     const ParamSet &ps = s.params;
     std::vector<Vec3f> P = ps.GetPoint3s("P");
     std::vector<int> indices = ps.GetInts("indices");
@@ -49,7 +50,8 @@ ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromO
     std::vector<Vec3f> N = ps.GetNormals("N");
     std::vector<Vec2f> uv = ps.GetPoint2s("uv");
     if (uv.empty()) uv = ps.GetPoint2s("st");
-    for (const char *n : {"S", "faceIndices"}) ps.MarkUsed(n);
+    WarnIgnored(ps, {"S"}, diag, "trianglemesh", "shading tangents are not used");
+    WarnIgnored(ps, {"faceIndices"}, diag, "trianglemesh", "face indices are not used (no ptex)");
     ShapeGeometry g;
     g.mesh = MakeMesh(s, renderFromObject, P, indices, N, uv);
     return g;
@@ -60,11 +62,8 @@ ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject
     std::string file = s.params.GetString("filename", "");
     if (file.empty()) throw SceneError(s.loc, "plymesh needs a \"filename\"");
     PlyMesh ply = ReadPlyFile(ResolveScenePath(ctx.desc, file), ctx.diag, EffectiveMemoryBudget(ctx.maxMemory));
-    for (const char *n : {"displacement", "edgelength"})
-        if (s.params.Has(n)) {
-            ctx.diag.Warn(ParamLoc(s, n), std::string("\"") + n + "\" is not supported; ignored");
-            s.params.MarkUsed(n);
-        }
+    WarnIgnored(s.params, {"displacement", "edgelength"}, ctx.diag, "plymesh",
+                "displacement mapping is not supported");
     ShapeGeometry g;
     g.mesh = MakeMesh(s, renderFromObject, ply.P, ply.indices, ply.N, ply.uv);
     return g;
@@ -128,12 +127,12 @@ ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFro
     }
 #include "geometry/shape_list.inc"
 #undef PRISM_SHAPE
-    if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject);
+    if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject, ctx.diag);
     if (s.type == "plymesh") return PlyMeshShape(s, renderFromObject, ctx);
     if (s.type == "loopsubdiv") return LoopSubdivShape(s, renderFromObject, ctx);
     ctx.diag.WarnOnce("shape:" + s.type, s.loc,
                       "shape \"" + s.type + "\" is not supported; every such shape is skipped");
-    for (const Param &p : s.params.Params()) p.lookedUp = true;
+    s.params.MarkAllUsed();
     return {};
 }
 

@@ -192,6 +192,26 @@ void ParamSet::ReportUnused(Diagnostics &diag, const std::string &context) const
     }
 }
 
+static void WarnIgnoredParam(const Param &p, Diagnostics &diag, std::string_view context,
+                             std::string_view why) {
+    p.lookedUp = true;
+    std::string msg = "parameter " + Quote(p.name) + " (" + std::string(context) + ") has no effect";
+    if (!why.empty()) msg += ": " + std::string(why);
+    diag.WarnOnce("ignored parameter:" + std::string(context) + ":" + p.name, p.loc, msg);
+}
+
+void WarnIgnored(const ParamSet &ps, std::initializer_list<const char *> names, Diagnostics &diag,
+                 std::string_view context, std::string_view why) {
+    for (const char *n : names)
+        if (const Param *p = ps.Find(n)) WarnIgnoredParam(*p, diag, context, why);
+}
+
+void WarnIgnoredRest(const ParamSet &ps, Diagnostics &diag, std::string_view context,
+                     std::string_view why) {
+    for (const Param &p : ps.Params())
+        if (!p.lookedUp) WarnIgnoredParam(p, diag, context, why);
+}
+
 uint64_t ParamStorageBytes(const ParamSet &ps) {
     uint64_t bytes = 0;
     for (const Param &p : ps.Params()) {

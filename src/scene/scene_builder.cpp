@@ -254,9 +254,12 @@ void SceneBuilder::Integrator(const std::string &type, ParsedParameterVector par
 
 void SceneBuilder::Accelerator(const std::string &type, ParsedParameterVector params,
                                const FileLoc &loc) {
-    // Embree builds its own BVH: the parameters are checked and dropped.
-    Entity(type, std::move(params), loc);
-    OptionAllowed("Accelerator", loc);
+    // Embree builds its own BVH: the parameters are checked and dropped, with a warning.
+    SceneEntity e = Entity(type, std::move(params), loc);
+    if (!OptionAllowed("Accelerator", loc)) return;
+    const std::string context = "Accelerator " + Quote(type);
+    diag_.Warn(loc, context + " is replaced by Embree's BVH");
+    WarnIgnoredRest(e.params, diag_, context, "Embree builds its own BVH");
 }
 
 void SceneBuilder::Option(ParsedParameterVector params, const FileLoc &) {
