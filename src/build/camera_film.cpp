@@ -194,7 +194,8 @@ void BuildIntegratorSettings(BuildContext &ctx) {
                     "Prism's Whitted integrator reads only maxdepth");
     if (settings.maxDepth >= 0) maxDepth = settings.maxDepth;
     if (maxDepth < 0 || maxDepth > MaxTraceDepth)
-        throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) + " out of range (0 to 1000)");
+        throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) + " out of range (0 to " +
+                                                  std::to_string(MaxTraceDepth) + ")");
     scene.maxDepth = maxDepth;
 }
 

@@ -56,7 +56,7 @@ const Param *ParamSet::FindTyped(const std::string &name, std::initializer_list<
             return p;
         }
     }
-    throw SceneError(p->loc, "parameter \"" + name + "\" must be " + want + ", not " +
+    throw SceneError(p->loc, "parameter " + Quote(name) + " must be " + want + ", not " +
                                  WrittenType(*p));
 }
 
@@ -144,7 +144,7 @@ std::vector<Vec2f> ParamSet::GetPoint2s(const std::string &name) const {
     const Param *p = FindTyped(name, {ParamType::Point2, ParamType::Float}, "point2");
     if (!p) return {};
     if (p->numbers.size() % 2 != 0)
-        throw SceneError(p->loc, "parameter \"" + name + "\" must have an even number of "
+        throw SceneError(p->loc, "parameter " + Quote(name) + " must have an even number of "
                                  "values, got " + std::to_string(p->numbers.size()));
     std::vector<Vec2f> out(p->numbers.size() / 2);
     for (size_t i = 0; i < out.size(); ++i)
@@ -186,7 +186,7 @@ void ParamSet::MarkAllUsed() const {
 void ParamSet::ReportUnused(Diagnostics &diag, const std::string &context) const {
     for (const Param &p : params_) {
         if (p.lookedUp) continue;
-        std::string msg = "unused parameter \"" + p.name + "\"";
+        std::string msg = "unused parameter " + Quote(p.name);
         if (!context.empty()) msg += " (" + context + ")";
         diag.Warn(p.loc, msg);
     }
