@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "image/image_io.h"
 
 namespace prism {
 
@@ -104,10 +105,7 @@ Precision ParsePrecision(const std::string &s) {
 void CheckOutputPath(const std::string &path) {
     namespace fs = std::filesystem;
     std::string ext = LowerExtension(path);
-    static const char *ok[] = {".exr", ".png", ".pfm", ".hdr", ".tga", ".bmp", ".jpg", ".jpeg"};
-    bool known = false;
-    for (const char *e : ok) known |= ext == e;
-    if (!known)
+    if (!IsWritableImageExtension(ext))
         throw UsageError("unsupported output format \"" + ext + "\" for \"" + path +
                          "\" (use .exr or .png)");
     fs::path dir = fs::path(path).parent_path();

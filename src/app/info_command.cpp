@@ -8,7 +8,6 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "build/shape_factory.h"
-#include "build/shapes.h"
 #include "core/pbrt_defaults.h"
 #include "scene/load_scene.h"
 

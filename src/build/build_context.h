@@ -23,8 +23,6 @@ struct BuildContext {
     std::map<std::string, std::shared_ptr<const Image>> imageCache;  // by path and encoding
 };
 
-inline std::string Quote(const std::string &s) { return "\"" + s + "\""; }
-
 // pbrt-v3 reads "scale" as a spectrum; v4 files write a float. Accept both.
 inline RGB ScaleParam(const ParamSet &ps) {
     const Param *p = ps.Find("scale");

@@ -49,7 +49,7 @@ void BuildFilm(BuildContext &ctx) {
     scene.outputFilename = film.GetString("filename", "");
     scene.filmScale = film.GetFloat("scale", 1.f);
     scene.maxSampleLuminance = film.GetFloat("maxsampleluminance", Infinity);
-    film.MarkUsed("diagonal");
+    WarnIgnored(film, {"diagonal"}, diag, "film", "the film's physical size is not simulated");
     film.ReportUnused(diag, "film");
 }
 
@@ -95,7 +95,7 @@ void BuildCamera(BuildContext &ctx) {
     scene.features.lens = params.lensRadius > 0;
     const Vec2i res = scene.resolution;
     double frame = cp.GetFloat("frameaspectratio", float(double(res.x) / res.y));
-    for (const char *n : {"shutteropen", "shutterclose"}) cp.MarkUsed(n);
+    WarnIgnored(cp, {"shutteropen", "shutterclose"}, diag, "camera", "no motion blur");
     cp.ReportUnused(diag, "camera");
 
     Transform worldFromCamera = cd.cameraFromWorld.Inverse();
@@ -123,15 +123,18 @@ void BuildSampler(BuildContext &ctx) {
     } else {
         spp = sp.GetInt("pixelsamples", desc.sampler.type == "random" ? 4 : 16);
     }
-    sp.MarkUsed("dimensions");
-    sp.MarkUsed("seed");
+    // Prism draws its own stratified (correlated multi-jittered) samples whatever the file
+    // names; only the sample count is read. The default (no Sampler directive) is not named.
+    const std::string context = "sampler " + Quote(desc.sampler.type);
+    if (desc.sampler.type != "stratified" && desc.sampler.loc.Valid())
+        diag.Warn(desc.sampler.loc, context + " is replaced by Prism's stratified sampler");
+    WarnIgnoredRest(sp, diag, context, "Prism's stratified sampler reads only the sample count");
     if (settings.spp > 0) spp = settings.spp;
     const int maxSpp = MaxSamplesPerPixel;
     if (spp <= 0 || spp > maxSpp)
         throw SceneError(desc.sampler.loc, "samples per pixel " + std::to_string(spp) +
                                                " out of range (1 to " + std::to_string(maxSpp) + ")");
     scene.spp = spp;
-    sp.ReportUnused(diag, "sampler");
 }
 
 void BuildPixelFilter(BuildContext &ctx) {
@@ -163,7 +166,7 @@ void BuildPixelFilter(BuildContext &ctx) {
         diag.Warn(desc.filter.loc, "pixel filter " + Quote(ft) + " is not supported; using gaussian");
         f.kind = Filter::Kind::Gaussian;
         f.radiusX = f.radiusY = 2;
-        for (const Param &p : fp.Params()) p.lookedUp = true;
+        fp.MarkAllUsed();
     }
     if (!(f.radiusX > 0 && f.radiusY > 0 && f.radiusX <= 16 && f.radiusY <= 16))
         throw SceneError(desc.filter.loc, "pixel filter width must be in (0, 16]");
@@ -184,10 +187,12 @@ void BuildIntegratorSettings(BuildContext &ctx) {
         diag.Warn(desc.integrator.loc, "integrator " + Quote(desc.integrator.type) +
                                            " is rendered with Whitted (maxdepth " +
                                            std::to_string(settings.maxDepth >= 0 ? settings.maxDepth : maxDepth) + ")");
-    for (const Param &p : ip.Params()) p.lookedUp = true;  // other integrators' settings
+    WarnIgnoredRest(ip, diag, "integrator " + Quote(desc.integrator.type),
+                    "Prism's Whitted integrator reads only maxdepth");
     if (settings.maxDepth >= 0) maxDepth = settings.maxDepth;
     if (maxDepth < 0 || maxDepth > MaxTraceDepth)
-        throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) + " out of range (0 to 1000)");
+        throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) + " out of range (0 to " +
+                                                  std::to_string(MaxTraceDepth) + ")");
     scene.maxDepth = maxDepth;
 }
 

@@ -48,7 +48,7 @@ void BuildLights(BuildContext &ctx) {
         } else {
             diag.WarnOnce("light:" + l.type, l.loc,
                           "light source " + Quote(l.type) + " is not supported; every such light is ignored");
-            for (const Param &p : ps.Params()) p.lookedUp = true;
+            ps.MarkAllUsed();
         }
         ps.ReportUnused(diag, "light " + Quote(l.type));
     }

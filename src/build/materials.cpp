@@ -143,13 +143,17 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex, con
         mat.Kr = mp.RGBTex("Kr", RGB(1));
         mat.Kt = mp.RGBTex("Kt", RGB(1));
         mat.index = mp.Has("eta") ? mp.FloatTex("eta", 1.5f) : mp.FloatTex("index", 1.5f);
-        if (mp.Has("uroughness") || mp.Has("vroughness") || mp.Has("roughness")) {
-            float r = std::max({mp.Src("uroughness").GetFloat("uroughness", 0.f),
-                                mp.Src("vroughness").GetFloat("vroughness", 0.f),
-                                mp.Src("roughness").GetFloat("roughness", 0.f)});
-            if (r > 0)
-                diag.Warn(m.loc, "rough glass is rendered as smooth glass by the Whitted integrator");
+        // Whitted renders glass smooth whatever its roughness (a value or a float texture);
+        // a roughness that may be non-zero is named once per material.
+        bool rough = false;
+        for (const char *n : {"uroughness", "vroughness", "roughness"}) {
+            if (!mp.Has(n)) continue;
+            TexturePtr r = mp.FloatTex(n, 0.f);
+            auto *c = dynamic_cast<const ConstantTexture *>(r.get());
+            if (!c || c->Value().r > 0) rough = true;
         }
+        if (rough)
+            diag.Warn(m.loc, "rough glass is rendered as smooth glass by the Whitted integrator");
         mp.Src("remaproughness").MarkUsed("remaproughness");
     } else if (type == "metal") {
         mat.kind = Material::Kind::Metal;
@@ -274,7 +278,7 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex, con
         mat.kind = Material::Kind::Matte;
         mat.Kd = colour ? mp.RGBTex(colour, RGB(0.5f)) : Constant(RGB(0.5f));
         mat.sigma = Constant(RGB(0));
-        for (const Param &p : m.params.Params()) p.lookedUp = true;
+        m.params.MarkAllUsed();
     }
     if (usedShape) *usedShape = mp.usedShape;
     return mat;

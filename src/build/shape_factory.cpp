@@ -60,7 +60,7 @@ std::unique_ptr<TriangleMesh> MakeMesh(const ShapeDesc &s, const Transform &rend
 }
 
 ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
-                                MemoryBudget &budget) {
+                                Diagnostics &diag, MemoryBudget &budget) {
     const ParamSet &ps = s.params;
     std::vector<Vec3f> P = ps.GetPoint3s("P");
     std::vector<int> indices = ps.GetInts("indices");
@@ -72,7 +72,8 @@ ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromO
     std::vector<Vec3f> N = ps.GetNormals("N");
     std::vector<Vec2f> uv = ps.GetPoint2s("uv");
     if (uv.empty()) uv = ps.GetPoint2s("st");
-    for (const char *n : {"S", "faceIndices"}) ps.MarkUsed(n);
+    WarnIgnored(ps, {"S"}, diag, "trianglemesh", "shading tangents are not used");
+    WarnIgnored(ps, {"faceIndices"}, diag, "trianglemesh", "face indices are not used (no ptex)");
     ShapeGeometry g;
     // The arrays read from the parameters (their storage was charged when the scene was read;
     // these float copies are at most half of it) are freed when this returns.
@@ -89,11 +90,8 @@ ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject
     uint64_t usedBefore = budget.Used();
     PlyMesh ply = ReadPlyFile(ResolveScenePath(ctx.desc, file), ctx.diag, budget);
     uint64_t plyBytes = budget.Used() - usedBefore;
-    for (const char *n : {"displacement", "edgelength"})
-        if (s.params.Has(n)) {
-            ctx.diag.Warn(ParamLoc(s, n), std::string("\"") + n + "\" is not supported; ignored");
-            s.params.MarkUsed(n);
-        }
+    WarnIgnored(s.params, {"displacement", "edgelength"}, ctx.diag, "plymesh",
+                "displacement mapping is not supported");
     ShapeGeometry g;
     g.mesh = MakeMesh(s, renderFromObject, ply.P, ply.indices, ply.N, ply.uv, budget, 0);
     budget.Release(plyBytes);
@@ -174,12 +172,12 @@ ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFro
 #undef PRISM_SHAPE
     MemoryBudget ownBudget(ctx.budget ? 1 : 0);  // the default limit, without a budget given
     MemoryBudget &budget = ctx.budget ? *ctx.budget : ownBudget;
-    if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject, budget);
+    if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject, ctx.diag, budget);
     if (s.type == "plymesh") return PlyMeshShape(s, renderFromObject, ctx, budget);
     if (s.type == "loopsubdiv") return LoopSubdivShape(s, renderFromObject, ctx, budget);
     ctx.diag.WarnOnce("shape:" + s.type, s.loc,
                       "shape \"" + s.type + "\" is not supported; every such shape is skipped");
-    for (const Param &p : s.params.Params()) p.lookedUp = true;
+    s.params.MarkAllUsed();
     return {};
 }
 

@@ -10,14 +10,6 @@
 
 namespace prism {
 
-const ObjectDesc *FindObject(const SceneDescription &desc, const std::string &name) {
-    // The last definition wins, as in pbrt-v3 (a redefinition replaces the object).
-    const ObjectDesc *found = nullptr;
-    for (const ObjectDesc &o : desc.objects)
-        if (o.name == name) found = &o;
-    return found;
-}
-
 namespace {
 
 // What the BVH estimate (core/memory.h EstimateBvhBytes) counts in an Accel: the triangles of

@@ -12,8 +12,4 @@ namespace prism {
 
 void BuildShapesAndInstances(BuildContext &ctx, MaterialBuilder &materials);
 
-// The ObjectBegin group an ObjectInstance names (nullptr if none): the one lookup of instances
-// by name outside the parser.
-const ObjectDesc *FindObject(const SceneDescription &desc, const std::string &name);
-
 }  // namespace prism

@@ -102,7 +102,7 @@ struct TextureBuilder : BuildStep {
         auto spectrumOnly = [&]() {
             diag.Warn(t.loc, "texture class " + Quote(t.type) + " has no float variant (as in pbrt-v3); texture " +
                                  Quote(t.name) + " is ignored");
-            for (const Param &p : ps.Params()) p.lookedUp = true;
+            ps.MarkAllUsed();
             return TexturePtr();
         };
         auto octaves = [&]() {
@@ -165,7 +165,11 @@ struct TextureBuilder : BuildStep {
         if (t.type == "checkerboard") {
             int dim = ps.GetInt("dimension", 2);
             if (dim != 2 && dim != 3) throw SceneError(t.loc, "checkerboard dimension must be 2 or 3");
-            ps.MarkUsed("aamode");  // supersampling replaces pbrt's closed-form filtering
+            // pbrt-v3's default "closedform" filtering is not simulated: the texture is
+            // point-sampled and antialiased by the pixel samples, as with "none".
+            if (ps.GetString("aamode", "none") != "none")
+                WarnIgnored(ps, {"aamode"}, diag, "checkerboard texture",
+                            "closed-form antialiasing is not simulated; the texture is point-sampled");
             return std::make_shared<CheckerboardTexture>(Mapping(t), TexParam(ps, "tex1", f, one),
                                                          TexParam(ps, "tex2", f, zero), dim);
         }
@@ -182,7 +186,17 @@ struct TextureBuilder : BuildStep {
             if (ps.Has("gamma"))
                 enc = ps.GetBool("gamma", false) ? ReadImageOptions::Encoding::SRGB
                                                  : ReadImageOptions::Encoding::Linear;
-            for (const char *n : {"trilinear", "maxanisotropy", "filter", "encoding"}) ps.MarkUsed(n);
+            // pbrt-v4's "encoding" for 8-bit images: "sRGB" and "linear" are honoured.
+            std::string encoding = ps.GetString("encoding", "");
+            if (encoding == "sRGB") enc = ReadImageOptions::Encoding::SRGB;
+            else if (encoding == "linear") enc = ReadImageOptions::Encoding::Linear;
+            else if (!encoding.empty())
+                WarnIgnored(ps, {"encoding"}, diag, "imagemap texture",
+                            "only \"sRGB\" and \"linear\" are read");
+            // Lookups are bilinear, without MIP maps; pbrt-v4's filter "bilinear" is that.
+            if (ps.GetString("filter", "bilinear") == "bilinear") ps.MarkUsed("filter");
+            WarnIgnored(ps, {"filter", "trilinear", "maxanisotropy"}, diag, "imagemap texture",
+                        "Prism looks textures up bilinearly, without MIP maps");
             auto img = LoadImage(t, file, enc, "filename");
             if (f && img->channels >= 3) {
                 // pbrt converts RGB texels of float textures to luminance, in a copy.
@@ -203,7 +217,7 @@ struct TextureBuilder : BuildStep {
         if (t.type == "ptex") {
             diag.Warn(t.loc, "ptex textures are not supported; texture " + Quote(t.name) +
                                  " is a constant 0.5");
-            for (const Param &p : ps.Params()) p.lookedUp = true;
+            ps.MarkAllUsed();
             return Constant(RGB(0.5f));
         }
         diag.Warn(t.loc, "texture class " + Quote(t.type) + " is not supported; texture " +

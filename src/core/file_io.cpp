@@ -123,10 +123,14 @@ std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc, MemoryB
     throw SceneError(loc, "cannot open file " + Quote(path) + ": " + err.reason);
 }
 
+std::string ToLowerAscii(std::string_view s) {
+    std::string r(s);
+    for (char &c : r) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return r;
+}
+
 std::string LowerExtension(const std::string &path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char &c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
+    return ToLowerAscii(std::filesystem::path(path).extension().string());
 }
 
 std::string DirectoryOf(const std::string &path) {

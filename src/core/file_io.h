@@ -45,6 +45,9 @@ std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc,
 std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc, MemoryBudget &budget,
                             std::string_view what);
 
+// `s` with ASCII letters in lower case (file extensions, format names).
+std::string ToLowerAscii(std::string_view s);
+
 // The extension of `path` with its dot, in lower case: "scene.PBRT" -> ".pbrt", "a/b" -> "".
 std::string LowerExtension(const std::string &path);
 

@@ -45,6 +45,9 @@ Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::st
 // file in the same directory and renamed over `path` only after a successful close, so `path`
 // is never left partially written. Throws std::runtime_error on any failure.
 void WriteImage(const std::string &path, const Image &img);
+// Whether WriteImage writes the format of `ext` (the extension with its dot, in lower case as
+// LowerExtension returns it): the one list of output formats.
+bool IsWritableImageExtension(const std::string &ext);
 
 // The exact piecewise sRGB curves (IEC 61966-2-1).
 float SrgbToLinear(float v);

@@ -66,6 +66,11 @@ struct TempFileGuard {
 
 }  // namespace
 
+bool IsWritableImageExtension(const std::string &ext) {
+    OutputFormat format;
+    return LookupOutputFormat(ext, &format);
+}
+
 void WriteImage(const std::string &path, const Image &img) {
     auto fail = [&](const std::string &why) -> std::runtime_error {
         return std::runtime_error("cannot write image " + Quote(path) + ": " + why);

@@ -2,6 +2,7 @@
 // down). fov applies to the shorter image axis through the default screen window.
 #pragma once
 
+#include "core/pbrt_defaults.h"
 #include "core/transform.h"
 #include "geometry/ray.h"
 
@@ -9,7 +10,7 @@ namespace prism {
 
 struct CameraParams {
     bool orthographic = false;
-    double fovDeg = 90;
+    double fovDeg = PbrtDefaultFovDeg;
     double screenWindow[4] = {0, 0, 0, 0};  // x0 x1 y0 y1; all zero → pbrt default
     double lensRadius = 0, focalDistance = 1e6;
 };

@@ -12,6 +12,7 @@
 
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "core/pbrt_defaults.h"
 #include "scene/gltf_converter.h"
 #include "scene/param_builders.h"
 
@@ -371,11 +372,15 @@ void GltfConverter::AddCamera(const tinygltf::Node &node, const Matrix4 &world) 
         if (!(p.yfov > 0 && p.yfov < Pi)) Fail("perspective camera yfov must be in (0, pi)");
         cd.type = "perspective";
         // pbrt's fov spans the shorter image axis; glTF's yfov always spans the vertical one.
-        double aspect = p.aspectRatio > 0 ? p.aspectRatio : 1280.0 / 720.0;
+        // Without an aspect ratio the film keeps pbrt's default resolution; with one, its
+        // longer side keeps pbrt's default width.
+        const int longSide = PbrtDefaultXResolution;
+        double aspect = p.aspectRatio > 0 ? p.aspectRatio
+                                          : double(PbrtDefaultXResolution) / PbrtDefaultYResolution;
         if (p.aspectRatio > 0) {
             ParamSet &film = desc_.film.params;
-            int xres = aspect >= 1 ? 1280 : std::max(1, int(std::lround(1280 * aspect)));
-            int yres = aspect >= 1 ? std::max(1, int(std::lround(1280 / aspect))) : 1280;
+            int xres = aspect >= 1 ? longSide : std::max(1, int(std::lround(longSide * aspect)));
+            int yres = aspect >= 1 ? std::max(1, int(std::lround(longSide / aspect))) : longSide;
             AddInts(film, "xresolution", {xres}, loc_);
             AddInts(film, "yresolution", {yres}, loc_);
         }

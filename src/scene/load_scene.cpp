@@ -3,7 +3,6 @@
 #include "scene/load_scene.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -69,10 +68,9 @@ SceneDescription LoadPlyScene(const std::string &path, Bounds3f *bounds, MemoryB
 constexpr const char *kSceneExtensions[] = {".pbrt", ".obj", ".gltf", ".glb", ".ply"};
 
 bool IsSceneExtension(const std::string &extension) {
+    const std::string lower = ToLowerAscii(extension);
     for (const char *e : kSceneExtensions)
-        if (std::equal(extension.begin(), extension.end(), e, e + std::strlen(e),
-                       [](char a, char b) { return std::tolower((unsigned char)a) == b; }))
-            return true;
+        if (lower == e) return true;
     return false;
 }
 
@@ -121,10 +119,9 @@ Bounds3f SceneMeshBounds(const SceneDescription &desc) {
     Bounds3f b;
     for (const ShapeDesc &s : desc.shapes) ExpandMesh(s, s.worldFromObject, b);
     for (const InstanceDesc &inst : desc.instances)
-        for (const ObjectDesc &obj : desc.objects)
-            if (obj.name == inst.object)
-                for (const ShapeDesc &s : obj.shapes)
-                    ExpandMesh(s, inst.worldFromInstance * s.worldFromObject, b);
+        if (const ObjectDesc *obj = FindObject(desc, inst.object))
+            for (const ShapeDesc &s : obj->shapes)
+                ExpandMesh(s, inst.worldFromInstance * s.worldFromObject, b);
     return b;
 }
 

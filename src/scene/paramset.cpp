@@ -56,7 +56,7 @@ const Param *ParamSet::FindTyped(const std::string &name, std::initializer_list<
             return p;
         }
     }
-    throw SceneError(p->loc, "parameter \"" + name + "\" must be " + want + ", not " +
+    throw SceneError(p->loc, "parameter " + Quote(name) + " must be " + want + ", not " +
                                  WrittenType(*p));
 }
 
@@ -144,7 +144,7 @@ std::vector<Vec2f> ParamSet::GetPoint2s(const std::string &name) const {
     const Param *p = FindTyped(name, {ParamType::Point2, ParamType::Float}, "point2");
     if (!p) return {};
     if (p->numbers.size() % 2 != 0)
-        throw SceneError(p->loc, "parameter \"" + name + "\" must have an even number of "
+        throw SceneError(p->loc, "parameter " + Quote(name) + " must have an even number of "
                                  "values, got " + std::to_string(p->numbers.size()));
     std::vector<Vec2f> out(p->numbers.size() / 2);
     for (size_t i = 0; i < out.size(); ++i)
@@ -186,10 +186,30 @@ void ParamSet::MarkAllUsed() const {
 void ParamSet::ReportUnused(Diagnostics &diag, const std::string &context) const {
     for (const Param &p : params_) {
         if (p.lookedUp) continue;
-        std::string msg = "unused parameter \"" + p.name + "\"";
+        std::string msg = "unused parameter " + Quote(p.name);
         if (!context.empty()) msg += " (" + context + ")";
         diag.Warn(p.loc, msg);
     }
+}
+
+static void WarnIgnoredParam(const Param &p, Diagnostics &diag, std::string_view context,
+                             std::string_view why) {
+    p.lookedUp = true;
+    std::string msg = "parameter " + Quote(p.name) + " (" + std::string(context) + ") has no effect";
+    if (!why.empty()) msg += ": " + std::string(why);
+    diag.WarnOnce("ignored parameter:" + std::string(context) + ":" + p.name, p.loc, msg);
+}
+
+void WarnIgnored(const ParamSet &ps, std::initializer_list<const char *> names, Diagnostics &diag,
+                 std::string_view context, std::string_view why) {
+    for (const char *n : names)
+        if (const Param *p = ps.Find(n)) WarnIgnoredParam(*p, diag, context, why);
+}
+
+void WarnIgnoredRest(const ParamSet &ps, Diagnostics &diag, std::string_view context,
+                     std::string_view why) {
+    for (const Param &p : ps.Params())
+        if (!p.lookedUp) WarnIgnoredParam(p, diag, context, why);
 }
 
 uint64_t ParamStorageBytes(const ParamSet &ps) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/color.h"
@@ -74,6 +75,16 @@ private:
                            const char *want) const;
     std::vector<Param> params_;
 };
+
+// Parameters Prism accepts but does not simulate. Marks each of `names` used and warns once
+// per parameter name and `context` (the first one present, at its own location), so a file
+// with a thousand such textures gets one line per parameter:
+//   parameter "filter" (imagemap texture) has no effect: <why>
+// `why` may be empty. WarnIgnoredRest does the same for every parameter not yet looked up.
+void WarnIgnored(const ParamSet &ps, std::initializer_list<const char *> names, Diagnostics &diag,
+                 std::string_view context, std::string_view why = {});
+void WarnIgnoredRest(const ParamSet &ps, Diagnostics &diag, std::string_view context,
+                     std::string_view why = {});
 
 // Heap bytes held by the values of `ps`: 8 per number (they are doubles), each string's
 // characters plus 32, one bit per bool, plus each Param's own size. For the memory budget.

@@ -254,9 +254,12 @@ void SceneBuilder::Integrator(const std::string &type, ParsedParameterVector par
 
 void SceneBuilder::Accelerator(const std::string &type, ParsedParameterVector params,
                                const FileLoc &loc) {
-    // Embree builds its own BVH: the parameters are checked and dropped.
-    Entity(type, std::move(params), loc);
-    OptionAllowed("Accelerator", loc);
+    // Embree builds its own BVH: the parameters are checked and dropped, with a warning.
+    SceneEntity e = Entity(type, std::move(params), loc);
+    if (!OptionAllowed("Accelerator", loc)) return;
+    const std::string context = "Accelerator " + Quote(type);
+    diag_.Warn(loc, context + " is replaced by Embree's BVH");
+    WarnIgnoredRest(e.params, diag_, context, "Embree builds its own BVH");
 }
 
 void SceneBuilder::Option(ParsedParameterVector params, const FileLoc &) {
@@ -383,7 +386,7 @@ void SceneBuilder::ObjectBegin(const std::string &name, const FileLoc &loc) {
     if (currentObject_)
         throw SceneError(loc, "ObjectBegin inside ObjectBegin " + Quote(currentObject_->name) +
                                   " (started at " + currentObject_->loc.ToString() + ")");
-    if (objectIndex_.count(name)) throw SceneError(loc, "object " + Quote(name) + " redefined");
+    if (FindObject(scene_, name)) throw SceneError(loc, "object " + Quote(name) + " redefined");
     // pbrt-v3 pbrtObjectBegin also begins an attribute scope.
     PushFrame(FrameKind::Object, loc);
     currentObject_ = ObjectDesc{name, loc, {}};
@@ -392,7 +395,6 @@ void SceneBuilder::ObjectBegin(const std::string &name, const FileLoc &loc) {
 void SceneBuilder::ObjectEnd(const FileLoc &loc) {
     if (!currentObject_) throw SceneError(loc, "ObjectEnd without matching ObjectBegin");
     PopFrame(FrameKind::Object, "ObjectEnd", loc);
-    objectIndex_[currentObject_->name] = int(scene_.objects.size());
     scene_.objects.push_back(std::move(*currentObject_));
     currentObject_.reset();
 }
@@ -401,7 +403,7 @@ void SceneBuilder::ObjectInstance(const std::string &name, const FileLoc &loc) {
     CheckWorld("ObjectInstance", loc);
     if (currentObject_)
         throw SceneError(loc, "ObjectInstance inside ObjectBegin " + Quote(currentObject_->name));
-    if (!objectIndex_.count(name)) throw SceneError(loc, "unknown object " + Quote(name));
+    if (!FindObject(scene_, name)) throw SceneError(loc, "unknown object " + Quote(name));
     scene_.instances.push_back({name, ctm_, loc});
 }
 
@@ -424,7 +426,6 @@ void SceneBuilder::Attribute(const std::string &, ParsedParameterVector params,
 void SceneBuilder::EndOfFiles() {
     if (currentObject_) {
         diag_.Warn(currentObject_->loc, "ObjectBegin without matching ObjectEnd");
-        objectIndex_[currentObject_->name] = int(scene_.objects.size());
         scene_.objects.push_back(std::move(*currentObject_));
         currentObject_.reset();
     }

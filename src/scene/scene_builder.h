@@ -135,7 +135,6 @@ private:
     std::vector<UndoEntry> undo_;
     std::unordered_map<std::string, int> namedMaterials_, floatTextures_, spectrumTextures_;
     std::unordered_map<std::string, prism::Transform> namedCoordSys_;
-    std::unordered_map<std::string, int> objectIndex_;
     std::optional<ObjectDesc> currentObject_;
     std::unordered_map<std::string, RGB> spdCache_;
     bool inWorld_ = false, worldEnded_ = false, warnedMotion_ = false;

@@ -6,6 +6,12 @@
 
 namespace prism {
 
+const ObjectDesc *FindObject(const SceneDescription &desc, const std::string &name) {
+    for (auto it = desc.objects.rbegin(); it != desc.objects.rend(); ++it)
+        if (it->name == name) return &*it;
+    return nullptr;
+}
+
 std::string ResolveScenePath(const std::string &baseDir, const std::string &file) {
     std::filesystem::path p(file);
     if (p.is_absolute() || baseDir.empty()) return file;

@@ -107,6 +107,11 @@ struct SceneDescription {
     std::vector<std::string> notes;
 };
 
+// The ObjectBegin group an ObjectInstance named `name` refers to, or nullptr: the last
+// definition, as in pbrt-v3 (a redefinition replaces the object). The one lookup of objects by
+// name: the pbrt scene builder, the render-scene builder and `prism info` use it.
+const ObjectDesc *FindObject(const SceneDescription &desc, const std::string &name);
+
 // A path from a scene file (Include, .spd, texture, PLY, ...) resolved against `baseDir`, the
 // directory of the top-level file (pbrt-v3 semantics); absolute paths are returned unchanged.
 // Every reader and the renderer resolve scene paths here.

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include "build/build_scene.h"
-#include "build/shapes.h"
 #include "scene/pbrt_parser.h"
 
 namespace prism {
@@ -60,16 +59,6 @@ TEST(BuildScene, ReplacementHookSeesEveryAnalyticShape) {
     EXPECT_EQ(seen, (std::vector<std::string>{"sphere", "disk"}));
     EXPECT_EQ(r.features.analyticShapes, 2);
     EXPECT_EQ(r.features.meshes, 1);
-}
-
-TEST(BuildScene, FindObjectReturnsTheLastDefinition) {
-    SceneDescription d;
-    d.objects.push_back(ObjectDesc{"a", {}, {}});
-    d.objects.push_back(ObjectDesc{"b", {}, {}});
-    d.objects.push_back(ObjectDesc{"a", {}, {}});
-    EXPECT_EQ(FindObject(d, "a"), &d.objects[2]);
-    EXPECT_EQ(FindObject(d, "b"), &d.objects[1]);
-    EXPECT_EQ(FindObject(d, "c"), nullptr);
 }
 
 }  // namespace

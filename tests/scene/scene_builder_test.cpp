@@ -211,5 +211,15 @@ TEST(ParamSet, MarkAllUsed) {
     EXPECT_EQ(diag.Count(), 0u);
 }
 
+TEST(SceneDescription, FindObjectReturnsTheLastDefinition) {
+    SceneDescription d;
+    d.objects.push_back(ObjectDesc{"a", {}, {}});
+    d.objects.push_back(ObjectDesc{"b", {}, {}});
+    d.objects.push_back(ObjectDesc{"a", {}, {}});
+    EXPECT_EQ(FindObject(d, "a"), &d.objects[2]);
+    EXPECT_EQ(FindObject(d, "b"), &d.objects[1]);
+    EXPECT_EQ(FindObject(d, "c"), nullptr);
+}
+
 }  // namespace
 }  // namespace prism
