@@ -10,6 +10,9 @@
 
 namespace prism {
 
+// Pixels per side of the square tiles the render loop hands to threads.
+inline constexpr int RenderTileSize = 16;
+
 struct RenderStats {
     double renderSeconds = 0;
     RayCounters rays;
