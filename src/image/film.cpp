@@ -152,6 +152,9 @@ void FilmTile::AddSample(Vec2f pFilm, const RGB &L) {
 }
 
 Film::Film(Vec2i fullResolution, Bounds2i cropPixels, Filter filter)
+    : Film(fullResolution, cropPixels, filter, true) {}
+
+Film::Film(Vec2i fullResolution, Bounds2i cropPixels, Filter filter, bool allocatePixels)
     : fullResolution_(fullResolution), filter_(filter) {
     if (fullResolution.x <= 0 || fullResolution.y <= 0)
         throw std::invalid_argument("film resolution must be positive");
@@ -161,11 +164,11 @@ Film::Film(Vec2i fullResolution, Bounds2i cropPixels, Filter filter)
         throw std::invalid_argument("filter radius must be in (0, " +
                                     std::to_string(int(MaxFilterRadius)) + "]");
     kernel_ = FilterKernel(filter);
-    pixels_.resize(size_t(cropPixels_.Area()));
+    if (allocatePixels) pixels_.resize(size_t(cropPixels_.Area()));
 }
 
-FilmTile Film::MakeTile(const Bounds2i &tilePixels) const {
-    if (tilePixels.Empty()) return FilmTile(Bounds2i(), kernel_);
+Bounds2i Film::TileFootprint(const Bounds2i &tilePixels) const {
+    if (tilePixels.Empty()) return Bounds2i();
     // Samples lie in [pMin, pMax] (closed); invert the splat rule of AddSample.
     double rx = kernel_.radius[0], ry = kernel_.radius[1];
     Bounds2i b;
@@ -175,7 +178,19 @@ FilmTile Film::MakeTile(const Bounds2i &tilePixels) const {
               int(std::floor(tilePixels.pMax.y - 0.5 + ry)) + 1};
     b = Intersect(b, cropPixels_);
     if (b.Empty()) b = Bounds2i();
-    return FilmTile(b, kernel_);
+    return b;
+}
+
+FilmTile Film::MakeTile(const Bounds2i &tilePixels) const {
+    return FilmTile(TileFootprint(tilePixels), kernel_);
+}
+
+void Film::ResetTile(const Bounds2i &tilePixels, FilmTile *tile) const {
+    tile->bounds_ = TileFootprint(tilePixels);
+    tile->kernel_ = kernel_;
+    tile->nonFinite_ = NonFiniteRecord();
+    // assign() keeps the capacity: after the first tiles no allocation.
+    tile->pixels_.assign(size_t(tile->bounds_.Area()), FilmPixel());
 }
 
 void Film::MergeTile(const FilmTile &tile) {
@@ -198,18 +213,106 @@ void Film::MergeTile(const FilmTile &tile) {
     }
 }
 
+namespace {
+// One output pixel: max(0, sum(w L) / sum(w)), 0 for zero weight.
+inline void ResolvePixel(const FilmPixel &p, float *out) {
+    if (p.weight == 0) {
+        out[0] = out[1] = out[2] = 0.f;
+        return;
+    }
+    // std::max(0, NaN) would keep NaN; the comparison form maps it to 0.
+    auto res = [](double v) { return v > 0 ? float(v) : 0.f; };
+    out[0] = res(p.r / p.weight);
+    out[1] = res(p.g / p.weight);
+    out[2] = res(p.b / p.weight);
+}
+}  // namespace
+
 Image Film::ToImage() const {
     Image img(cropPixels_.Width(), cropPixels_.Height(), 3);
-    for (size_t i = 0; i < pixels_.size(); ++i) {
-        const FilmPixel &p = pixels_[i];
-        if (p.weight == 0) continue;
-        // std::max(0, NaN) would keep NaN; the comparison form maps it to 0.
-        auto out = [](double v) { return v > 0 ? float(v) : 0.f; };
-        img.pixels[3 * i + 0] = out(p.r / p.weight);
-        img.pixels[3 * i + 1] = out(p.g / p.weight);
-        img.pixels[3 * i + 2] = out(p.b / p.weight);
-    }
+    for (size_t i = 0; i < pixels_.size(); ++i) ResolvePixel(pixels_[i], &img.pixels[3 * i]);
     return img;
+}
+
+TiledFilm::TiledFilm(Vec2i fullResolution, Bounds2i cropPixels, Filter filter, int tileSize)
+    : film_(fullResolution, cropPixels, filter, false), tileSize_(std::max(1, tileSize)) {
+    const Bounds2i &pb = film_.cropPixels_;
+    nx_ = (pb.Width() + tileSize_ - 1) / tileSize_;
+    ny_ = (pb.Height() + tileSize_ - 1) / tileSize_;
+    width_ = pb.Width();
+    // Ring height: the most rows one tile row's footprints span (they are live together).
+    for (int ty = 0; ty < ny_; ++ty) {
+        Bounds2i f = film_.TileFootprint(TilePixels(ty * nx_));
+        ringRows_ = std::max(ringRows_, f.Height());
+    }
+    ring_.resize(size_t(ringRows_) * size_t(width_));
+    finalY_ = openY_ = pb.pMin.y;
+    image_ = Image(pb.Width(), pb.Height(), 3);
+}
+
+Bounds2i TiledFilm::TilePixels(int t) const {
+    const Bounds2i &pb = film_.cropPixels_;
+    int tx = t % nx_, ty = t / nx_;
+    Bounds2i tb;
+    tb.pMin = {pb.pMin.x + tx * tileSize_, pb.pMin.y + ty * tileSize_};
+    tb.pMax = {std::min(tb.pMin.x + tileSize_, pb.pMax.x),
+               std::min(tb.pMin.y + tileSize_, pb.pMax.y)};
+    return tb;
+}
+
+void TiledFilm::FinalizeRowsBelow(int y) {
+    const Bounds2i &pb = film_.cropPixels_;
+    for (; finalY_ < y; ++finalY_) {
+        const FilmPixel *row = Row(finalY_);
+        float *out = &image_.pixels[size_t(finalY_ - pb.pMin.y) * size_t(width_) * 3];
+        // Rows no tile reached (only possible when cancelled) were never opened: zero.
+        if (finalY_ >= openY_) {
+            std::fill(out, out + size_t(width_) * 3, 0.f);
+            continue;
+        }
+        for (int x = 0; x < width_; ++x) ResolvePixel(row[x], out + 3 * size_t(x));
+    }
+    openY_ = std::max(openY_, finalY_);
+}
+
+void TiledFilm::OpenRowsBelow(int y) {
+    for (; openY_ < y; ++openY_) {
+        FilmPixel *row = Row(openY_);
+        std::fill(row, row + width_, FilmPixel());
+    }
+}
+
+void TiledFilm::MergeNext(const FilmTile *tile) {
+    PRISM_CHECK(next_ < NumTiles());
+    int t = next_++;
+    // Rows above this tile row's footprint are complete: no later tile reaches them.
+    Bounds2i f = film_.TileFootprint(TilePixels(t - t % nx_));
+    FinalizeRowsBelow(f.pMin.y);
+    OpenRowsBelow(f.pMax.y);
+    if (!tile) return;
+    nonFinite_.Merge(tile->nonFinite_);
+    const Bounds2i &tb = tile->bounds_;
+    if (tb.Empty()) return;
+    const Bounds2i &pb = film_.cropPixels_;
+    PRISM_CHECK(tb.pMin.y >= finalY_ && tb.pMax.y <= openY_ && tb.pMin.x >= pb.pMin.x &&
+                tb.pMax.x <= pb.pMax.x);
+    int tileStride = tb.Width();
+    for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
+        const FilmPixel *src = &tile->pixels_[size_t(y - tb.pMin.y) * size_t(tileStride)];
+        FilmPixel *dst = Row(y) + (tb.pMin.x - pb.pMin.x);
+        for (int i = 0; i < tileStride; ++i) {
+            dst[i].r += src[i].r;
+            dst[i].g += src[i].g;
+            dst[i].b += src[i].b;
+            dst[i].weight += src[i].weight;
+        }
+    }
+}
+
+Image TiledFilm::Finish() {
+    while (next_ < NumTiles()) MergeNext(nullptr);
+    FinalizeRowsBelow(film_.cropPixels_.pMax.y);
+    return std::move(image_);
 }
 
 }  // namespace prism

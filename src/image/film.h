@@ -80,6 +80,7 @@ class FilmTile {
 
   private:
     friend class Film;
+    friend class TiledFilm;
     FilmTile(const Bounds2i &bounds, const FilterKernel &kernel);
 
     Bounds2i bounds_;
@@ -104,6 +105,10 @@ class Film {
     // A tile covering every crop pixel that samples with pFilm in [pMin, pMax] (closed, so a
     // sample rounded up onto the far edge still fits) of tilePixels can reach.
     FilmTile MakeTile(const Bounds2i &tilePixels) const;
+    // The same tile in `tile`, reusing its buffer (no allocation once it is large enough).
+    void ResetTile(const Bounds2i &tilePixels, FilmTile *tile) const;
+    // The crop pixels MakeTile(tilePixels) accumulates into.
+    Bounds2i TileFootprint(const Bounds2i &tilePixels) const;
 
     // Adds the tile's weighted sums. Not thread-safe; merge tiles in a fixed order for
     // reproducible output.
@@ -118,11 +123,52 @@ class Film {
     std::optional<Vec2i> FirstNonFinitePixel() const { return nonFinite_.firstPixel; }
 
   private:
+    friend class TiledFilm;
+    Film(Vec2i fullResolution, Bounds2i cropPixels, Filter filter, bool allocatePixels);
+
     Vec2i fullResolution_;
     Bounds2i cropPixels_;
     Filter filter_;
     FilterKernel kernel_;
     std::vector<FilmPixel> pixels_;
+    NonFiniteRecord nonFinite_;
+};
+
+// A film for a regular grid of square tiles merged in row-major order (tile 0, 1, 2, ...): the
+// image is written band by band as tile rows complete, and only the rows that tiles still to
+// come can reach are kept as double sums (a ring of about tileSize + 2 radius rows), so no
+// full-frame accumulator is allocated or zeroed. The result is bit-identical to a Film that
+// merges the same tiles in the same order.
+class TiledFilm {
+  public:
+    TiledFilm(Vec2i fullResolution, Bounds2i cropPixels, Filter filter, int tileSize);
+
+    int NumTiles() const { return nx_ * ny_; }
+    Bounds2i TilePixels(int t) const;
+    // Reuses `tile`'s buffer for tile t.
+    void ResetTile(int t, FilmTile *tile) const { film_.ResetTile(TilePixels(t), tile); }
+
+    // Merges the next tile in order; nullptr for a tile that was not rendered (cancelled).
+    void MergeNext(const FilmTile *tile);
+    int NextTile() const { return next_; }
+    // Merges nothing for the remaining tiles and returns the crop-sized image (Film::ToImage).
+    Image Finish();
+
+    uint64_t NonFiniteCount() const { return nonFinite_.count; }
+    std::optional<Vec2i> FirstNonFinitePixel() const { return nonFinite_.firstPixel; }
+
+  private:
+    FilmPixel *Row(int y) { return &ring_[size_t(y % ringRows_) * size_t(width_)]; }
+    void FinalizeRowsBelow(int y);  // writes image rows [finalY_, y) and frees their ring rows
+    void OpenRowsBelow(int y);      // zeroes ring rows [openY_, y)
+
+    Film film_;  // crop, filter and footprints; its own pixel buffer stays empty
+    int tileSize_, nx_ = 0, ny_ = 0;
+    int width_ = 0, ringRows_ = 1;
+    std::vector<FilmPixel> ring_;
+    int next_ = 0;
+    int finalY_ = 0, openY_ = 0;  // crop rows: [finalY_, openY_) are live in the ring
+    Image image_;
     NonFiniteRecord nonFinite_;
 };
 

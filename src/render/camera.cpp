@@ -22,9 +22,33 @@ Camera::Camera(const CameraParams &p, const Transform &renderFromCamera, Vec2i r
         sx0_ = -1; sx1_ = 1; sy0_ = -1 / frame; sy1_ = 1 / frame;
     }
     tanHalf_ = std::tan(Radians(p.fovDeg) / 2);
+
+    // Raster → screen is sx = sx0 + x ax, sy = sy1 + y ay.
+    double ax = (sx1_ - sx0_) / res_.x, ay = -(sy1_ - sy0_) / res_.y;
+    const Transform &m = renderFromCamera_;
+    if (ortho_) {
+        oX_ = Vec3f(m.Vector(Vec3d(ax, 0, 0)));
+        oY_ = Vec3f(m.Vector(Vec3d(0, ay, 0)));
+        o0_ = Vec3f(m.Point(Vec3d(sx0_, sy1_, 0)));
+        dX_ = dY_ = Vec3f(0, 0, 0);
+        d0_ = Vec3f(Normalize(m.Vector(Vec3d(0, 0, 1))));
+    } else {
+        oX_ = oY_ = Vec3f(0, 0, 0);
+        o0_ = Vec3f(m.Point(Vec3d(0, 0, 0)));
+        dX_ = Vec3f(m.Vector(Vec3d(ax * tanHalf_, 0, 0)));
+        dY_ = Vec3f(m.Vector(Vec3d(0, ay * tanHalf_, 0)));
+        d0_ = Vec3f(m.Vector(Vec3d(sx0_ * tanHalf_, sy1_ * tanHalf_, 1)));
+    }
 }
 
 Ray Camera::GenerateRay(Vec2f pFilm, Vec2f uLens) const {
+    if (lensRadius_ <= 0) {
+        Ray ray;
+        ray.o = o0_ + oX_ * pFilm.x + oY_ * pFilm.y;
+        ray.d = Normalize(d0_ + dX_ * pFilm.x + dY_ * pFilm.y);
+        ray.tMax = Infinity;
+        return ray;
+    }
     // Raster → screen: raster row 0 is the top of the screen window (pbrt ScreenToRaster).
     double sx = sx0_ + (double(pFilm.x) / res_.x) * (sx1_ - sx0_);
     double sy = sy1_ - (double(pFilm.y) / res_.y) * (sy1_ - sy0_);

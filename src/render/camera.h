@@ -29,6 +29,10 @@ private:
     double lensRadius_, focalDistance_;
     Vec2i res_;
     Transform renderFromCamera_;
+    // Without a lens, the ray is affine in pFilm: render-space origin = oX x + oY y + o0 and
+    // (unnormalized) direction = dX x + dY y + d0, folded from renderFromCamera in double and
+    // evaluated per ray in float.
+    Vec3f oX_, oY_, o0_, dX_, dY_, d0_;
 };
 
 }  // namespace prism

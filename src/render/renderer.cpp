@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -17,20 +18,66 @@
 namespace prism {
 
 namespace {
-constexpr int TileSize = RenderTileSize;
-
 enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1 };
+}  // namespace
+
+namespace {
+
+// Finished tiles wait here until every tile before them has been merged, so the film sums
+// tiles in index order whatever the thread count. Workers take tile indices in order from an
+// atomic counter, so only about one tile per thread waits at a time; tile buffers are recycled.
+class TileMerger {
+  public:
+    explicit TileMerger(TiledFilm &film) : film_(film), ready_(size_t(film.NumTiles())) {}
+
+    FilmTile *Acquire() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (free_.empty()) {
+            pool_.push_back(std::make_unique<FilmTile>());
+            return pool_.back().get();
+        }
+        FilmTile *t = free_.back();
+        free_.pop_back();
+        return t;
+    }
+    // Hands over tile t; merges every tile that is now next in order.
+    void Submit(int t, FilmTile *tile) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        ready_[size_t(t)] = tile;
+        for (int n = film_.NextTile(); n < film_.NumTiles() && ready_[size_t(n)];
+             n = film_.NextTile()) {
+            film_.MergeNext(ready_[size_t(n)]);
+            free_.push_back(ready_[size_t(n)]);
+        }
+    }
+    // After the loop: merges what is left (tiles skipped by a cancel merge as empty).
+    bool Flush() {
+        bool complete = true;
+        while (film_.NextTile() < film_.NumTiles()) {
+            const FilmTile *tile = ready_[size_t(film_.NextTile())];
+            complete &= tile != nullptr;
+            film_.MergeNext(tile);
+        }
+        return complete;
+    }
+
+  private:
+    TiledFilm &film_;
+    std::mutex mutex_;
+    std::vector<FilmTile *> ready_;
+    std::vector<std::unique_ptr<FilmTile>> pool_;
+    std::vector<FilmTile *> free_;
+};
+
 }  // namespace
 
 Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &progress,
              const volatile int *cancel) {
     auto start = std::chrono::steady_clock::now();
-    Film film(scene.resolution, scene.pixelBounds, scene.filter);
-    const Bounds2i &pb = scene.pixelBounds;
-    int nx = (pb.pMax.x - pb.pMin.x + TileSize - 1) / TileSize;
-    int ny = (pb.pMax.y - pb.pMin.y + TileSize - 1) / TileSize;
-    int nTiles = nx * ny;
-    std::vector<std::optional<FilmTile>> tiles(static_cast<size_t>(nTiles));
+    TiledFilm film(scene.resolution, scene.pixelBounds, scene.filter, RenderTileSize);
+    int nTiles = film.NumTiles();
+    TileMerger merger(film);
+    std::atomic<int> nextTile{0};
     tbb::enumerable_thread_specific<RayCounters> counters;
     std::atomic<int> done{0};
     WhittedIntegrator integrator(scene);
@@ -53,13 +100,14 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
         RayCounters &rc = counters.local();
-        for (int t = r.begin(); t != r.end(); ++t) {
+        for (int i = r.begin(); i != r.end(); ++i) {
             if (cancel && *cancel) return;
-            int tx = t % nx, ty = t / nx;
-            Bounds2i tb;
-            tb.pMin = {pb.pMin.x + tx * TileSize, pb.pMin.y + ty * TileSize};
-            tb.pMax = {std::min(tb.pMin.x + TileSize, pb.pMax.x), std::min(tb.pMin.y + TileSize, pb.pMax.y)};
-            FilmTile tile = film.MakeTile(tb);
+            // Each body call takes as many tiles as its range holds, but in global order, so
+            // tiles finish nearly in index order and few wait for their merge.
+            int t = nextTile.fetch_add(1);
+            Bounds2i tb = film.TilePixels(t);
+            FilmTile *tile = merger.Acquire();
+            film.ResetTile(t, tile);
             const uint32_t spp = uint32_t(scene.spp);
             for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
                 for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
@@ -78,11 +126,11 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
                             float lum = L.Luminance();
                             if (lum > scene.maxSampleLuminance) L *= scene.maxSampleLuminance / lum;
                         }
-                        tile.AddSample(pFilm, L);
+                        tile->AddSample(pFilm, L);
                     }
                 }
             }
-            tiles[size_t(t)] = std::move(tile);
+            merger.Submit(t, tile);
             done.fetch_add(1);
         }
     });
@@ -95,12 +143,8 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
         reporter.join();
         progress(1.0);
     }
-    bool cancelled = false;
-    for (auto &tile : tiles) {
-        if (tile) film.MergeTile(*tile);
-        else cancelled = true;
-    }
-    Image img = film.ToImage();
+    bool cancelled = !merger.Flush();
+    Image img = film.Finish();
     if (stats) {
         stats->renderSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -55,6 +55,53 @@ Image RenderTiled(const Film &proto, const std::vector<Sample> &samples, int til
     return film.ToImage();
 }
 
+// The same through TiledFilm: reused tile buffers, tiles merged in order, `skip` not rendered.
+Image RenderStreamed(const Film &proto, const std::vector<Sample> &samples, int tileSize,
+                     int skip = -1) {
+    TiledFilm film(proto.FullResolution(), proto.PixelBounds(), proto.GetFilter(), tileSize);
+    FilmTile tile;
+    for (int t = 0; t < film.NumTiles(); ++t) {
+        if (t == skip) {
+            film.MergeNext(nullptr);
+            continue;
+        }
+        Bounds2i tb = film.TilePixels(t);
+        film.ResetTile(t, &tile);
+        for (const Sample &s : samples)
+            if (tb.Inside({int(std::floor(s.p.x)), int(std::floor(s.p.y))}))
+                tile.AddSample(s.p, s.L);
+        film.MergeNext(&tile);
+    }
+    return film.Finish();
+}
+
+TEST(TiledFilm, BitIdenticalToFilmMergingInOrder) {
+    const Filter filters[] = {MakeBoxFilter(), MakeGaussianFilter(2.f), MakeTriangleFilter(1.f),
+                              MakeMitchellFilter(2.5f), MakeBoxFilter(3.7f)};
+    const Bounds2i crops[] = {Full(37, 29), {{3, 5}, {30, 26}}};
+    for (const Filter &f : filters) {
+        for (const Bounds2i &crop : crops) {
+            Film proto({37, 29}, crop, f);
+            auto samples = RandomSamples(proto.PixelBounds(), 3, 7);
+            for (int tileSize : {1, 4, 16, 64}) {
+                Image a = RenderTiled(proto, samples, tileSize);
+                Image b = RenderStreamed(proto, samples, tileSize);
+                EXPECT_TRUE(BitEqual(a, b)) << "tile size " << tileSize;
+            }
+        }
+    }
+}
+
+TEST(TiledFilm, SkippedTileContributesNothing) {
+    Film proto({20, 20}, Full(20, 20), MakeGaussianFilter(2.f));
+    auto samples = RandomSamples(proto.PixelBounds(), 1, 3);
+    // Tile 3 of 4 (pixels [0,10) x [10,20)) not rendered: the same as dropping its samples.
+    std::vector<Sample> kept;
+    for (const Sample &s : samples)
+        if (!(s.p.x < 10 && s.p.y >= 10)) kept.push_back(s);
+    EXPECT_TRUE(BitEqual(RenderTiled(proto, kept, 10), RenderStreamed(proto, samples, 10, 2)));
+}
+
 TEST(Filter, Values) {
     Filter box = MakeBoxFilter();
     EXPECT_EQ(box.Evaluate(0.f, 0.f), 1.f);
