@@ -170,6 +170,16 @@ int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask) {
 
 void Accel::Commit() {
     auto start = std::chrono::steady_clock::now();
+    // Large meshes build with RTC_SCENE_FLAG_COMPACT: on the 1,000,002-triangle knot it halves
+    // the peak memory of the build (131 -> 70 MB resident; Embree's default builder keeps large
+    // temporaries) at no measurable render cost (0.60-0.69 s against 0.60-0.63 s for a
+    // 1600x1200 frame, interleaved). Small scenes keep the default layout.
+    size_t triangles = 0;
+    for (const Impl::Entry &e : impl_->shapes)
+        if (e.mesh) triangles += e.mesh->NumTriangles();
+    if (triangles >= CompactBvhTriangles)
+        rtcSetSceneFlags(impl_->scene, RTCSceneFlags(rtcGetSceneFlags(impl_->scene) |
+                                                     RTC_SCENE_FLAG_COMPACT));
     rtcCommitScene(impl_->scene);
     GetDevice().ThrowIfError("building the BVH");
     impl_->buildSeconds =

@@ -14,6 +14,9 @@
 
 namespace prism {
 
+// Scenes with at least this many triangles are built with Embree's compact layout (accel.cpp).
+inline constexpr size_t CompactBvhTriangles = 500000;
+
 struct AccelOptions {
     Precision precision = Precision::Double;
     bool robust = false;        // RTC_SCENE_FLAG_ROBUST (watertight triangles, robust traversal)
