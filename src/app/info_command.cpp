@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "app/common.h"
+#include "build/build_scene.h"
 #include "build/shape_factory.h"
 #include "core/pbrt_defaults.h"
 #include "scene/load_scene.h"
@@ -62,6 +63,12 @@ int RunInfo(const InfoArgs &a) {
         if (!obj) continue;
         for (const ShapeDesc &s : obj->shapes) account(s, inst.worldFromInstance * s.worldFromObject);
     }
+    // The rest of the build (camera, film, sampler, textures, materials, lights) without the
+    // BVH, for the warnings only a build gives ("sampler \"halton\" is replaced ...").
+    BuildSettings settings;
+    settings.budget = &budget;
+    settings.buildBvh = false;
+    BuildRenderScene(desc, settings, diag);
     for (const MaterialDesc &m : desc.materials) materials[m.type]++;
     for (const TextureDesc &t : desc.textures) textures[t.type]++;
     for (const LightDesc &l : desc.lights) lights[l.type]++;

@@ -51,6 +51,9 @@ struct BuildSettings {
     // Render in camera-centred world space (default). `prism trace` turns it off so that
     // world-space rays are traced without re-rounding.
     bool cameraRelative = true;
+    // false: build everything but the top-level BVH (`prism info`: every build warning, no
+    // Embree commit); the scene cannot be rendered then.
+    bool buildBvh = true;
     ShapeReplacement replaceAnalyticShape;  // empty: every analytic shape stays analytic
 };
 

@@ -148,6 +148,7 @@ struct ShapeBuilder : BuildStep {
         for (const ShapeDesc &s : desc.shapes) AddShape(s, scene.renderFromWorld * s.worldFromObject);
         for (const InstanceDesc &inst : desc.instances) AddInstance(inst);
         for (const AreaLightDesc *a : usedAreaLights) a->params.ReportUnused(diag, "area light");
+        if (!settings.buildBvh) return;
         // Meshes and analytic shapes, each instance as one user primitive.
         budget.Charge(EstimateBvhBytes(TrianglesOf(*scene.accel), UserPrimsOf(*scene.accel)),
                       "BVH", desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0});

@@ -170,6 +170,8 @@ TEST(Cli, MemoryBudgetErrorNamesTheFlagOnce) {
     }
 }
 
+std::string SphereScene(int w, int h, int spp);
+
 TEST(Cli, InfoDescribesScene) {
     fs::path dir = TempDir("info");
     RunResult r = RunPrism("info '" + Source + "/scenes/quadrics.pbrt'", dir);
@@ -181,6 +183,13 @@ TEST(Cli, InfoDescribesScene) {
     EXPECT_NE(r.out.find("bounds:"), std::string::npos);
     EXPECT_NE(r.out.find("warnings:   0"), std::string::npos);
     EXPECT_EQ(RunPrism("info missing.pbrt", dir).exitCode, 2);
+
+    // Warnings that only building the scene gives (sampler, material) are listed too.
+    std::ofstream(dir / "warn.pbrt") << SphereScene(8, 8, 4);
+    r = RunPrism("info warn.pbrt", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("warn.pbrt:4:1: warning: sampler \"halton\" is replaced"), std::string::npos)
+        << r.out;
 }
 
 TEST(Cli, TraceReportsHitsMissesAndLimits) {
