@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace prism::test {
@@ -25,6 +26,19 @@ inline bool SharedPathPresent(const std::filesystem::path &path) {
     if (std::filesystem::exists(path, ec)) return true;
     if (InCI()) ADD_FAILURE() << path << " is missing and CI=true: ../shared must be present in CI";
     return false;
+}
+
+// A folder `name` under the test scratch directory (::testing::TempDir()), created if needed.
+inline std::filesystem::path ScratchDir(const std::string &name) {
+    std::filesystem::path d = std::filesystem::path(::testing::TempDir()) / name;
+    std::filesystem::create_directories(d);
+    return d;
+}
+
+// Writes `contents` (bytes as given) to `path` and returns the path as a string.
+inline std::string WriteTestFile(const std::filesystem::path &path, const std::string &contents) {
+    std::ofstream(path, std::ios::binary) << contents;
+    return path.string();
 }
 
 }  // namespace prism::test

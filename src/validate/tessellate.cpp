@@ -210,6 +210,23 @@ double GoldenMin(F &&f, double lo, double hi, double *xMin, int iters = 70) {
     return best;
 }
 
+// Minimum of f over [0, 1]: a scan of K + 1 samples, then golden section on the bracket
+// around the best one (f may have several local minima; the scan picks the basin).
+template <typename F>
+double ScanThenGoldenMin(F &&f, int K, double *xMin) {
+    int best = 0;
+    double bestF = f(0.0);
+    for (int k = 1; k <= K; ++k) {
+        double fk = f(double(k) / K);
+        if (fk < bestF) {
+            bestF = fk;
+            best = k;
+        }
+    }
+    double lo = std::max(0, best - 1) / double(K), hi = std::min(K, best + 1) / double(K);
+    return GoldenMin(f, lo, hi, xMin, 80);
+}
+
 double Sign(const RevolutionProfile &pr, Vec2d q, Vec2d c, double v) {
     Vec2d t = pr.Tangent(Clamp(v, 0.0, 1.0));
     Vec2d n(t.y, -t.x);
@@ -263,22 +280,11 @@ double ProfileDistance(const RevolutionProfile &pr, Vec2d q, double *vClosest) {
         case Kind::Paraboloid:
         case Kind::Hyperboloid: {
             // Coarse scan, then golden section on the bracket around the best sample.
-            const int K = 48;
             auto d2 = [&](double s) {
                 Vec2d e = q - pr.Point(s);
                 return e.x * e.x + e.y * e.y;
             };
-            int best = 0;
-            double bestD = d2(0);
-            for (int k = 1; k <= K; ++k) {
-                double dk = d2(double(k) / K);
-                if (dk < bestD) {
-                    bestD = dk;
-                    best = k;
-                }
-            }
-            double lo = std::max(0, best - 1) / double(K), hi = std::min(K, best + 1) / double(K);
-            double d2min = GoldenMin(d2, lo, hi, &v, 80);
+            double d2min = ScanThenGoldenMin(d2, 48, &v);
             dist = std::sqrt(d2min) * Sign(pr, q, pr.Point(v), v);
             break;
         }
@@ -300,20 +306,8 @@ double RelativePhi(const RevolutionProfile &pr, const Vec3d &p, double v) {
 // Distance from point p to the 3-D curve B(w), w in [0, 1].
 template <typename Curve>
 double CurvePointDistance(Curve &&B, const Vec3d &p) {
-    const int K = 64;
-    auto d2 = [&](double w) { return LengthSquared(B(w) - p); };
-    int best = 0;
-    double bestD = d2(0);
-    for (int k = 1; k <= K; ++k) {
-        double dk = d2(double(k) / K);
-        if (dk < bestD) {
-            bestD = dk;
-            best = k;
-        }
-    }
     double w;
-    double lo = std::max(0, best - 1) / double(K), hi = std::min(K, best + 1) / double(K);
-    return std::sqrt(GoldenMin(d2, lo, hi, &w, 80));
+    return std::sqrt(ScanThenGoldenMin([&](double x) { return LengthSquared(B(x) - p); }, 64, &w));
 }
 
 }  // namespace

@@ -15,17 +15,14 @@
 #include "render/renderer.h"
 #include "scene/pbrt_parser.h"
 #include "scene/ply_reader.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-fs::path Dir() {
-    fs::path d = fs::path(::testing::TempDir()) / "prism_build_budget";
-    fs::create_directories(d);
-    return d;
-}
+fs::path Dir() { return test::ScratchDir("prism_build_budget"); }
 
 // A 64x64 film with the box filter (radius 0.5), one light, and `world`.
 SceneDescription Parse(const std::string &world, Diagnostics &diag) {

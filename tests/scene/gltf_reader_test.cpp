@@ -1,6 +1,7 @@
 // glTF reader: node transforms, primitives, camera conventions, KHR lights, materials,
 // embedded images, and clean errors for malformed accessors.
 #include "scene/gltf_reader.h"
+#include "test_util.h"
 
 #include <cmath>
 #include <cstring>
@@ -12,9 +13,7 @@ namespace prism {
 namespace {
 
 std::string WriteFile(const std::string &name, const std::string &contents) {
-    std::string path = ::testing::TempDir() + name;
-    std::ofstream(path, std::ios::binary) << contents;
-    return path;
+    return test::WriteTestFile(::testing::TempDir() + name, contents);
 }
 
 std::string Base64(const std::string &in) {

@@ -14,9 +14,7 @@ namespace prism {
 namespace {
 
 std::string WriteFile(const std::string &name, const std::string &contents) {
-    std::string path = ::testing::TempDir() + name;
-    std::ofstream(path, std::ios::binary) << contents;
-    return path;
+    return test::WriteTestFile(::testing::TempDir() + name, contents);
 }
 
 std::string ErrorOf(const std::string &path) {

@@ -13,22 +13,17 @@
 #include "scene/load_scene.h"
 #include "scene/obj_reader.h"
 #include "scene/ply_reader.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-fs::path Dir() {
-    fs::path d = fs::path(::testing::TempDir()) / "prism_memory_budget";
-    fs::create_directories(d);
-    return d;
-}
+fs::path Dir() { return test::ScratchDir("prism_memory_budget"); }
 
 std::string Write(const std::string &name, const std::string &contents) {
-    fs::path p = Dir() / name;
-    std::ofstream(p, std::ios::binary) << contents;
-    return p.string();
+    return test::WriteTestFile(Dir() / name, contents);
 }
 
 // A pbrt file of exactly `bytes` bytes: `body`, then comment lines.

@@ -1,5 +1,6 @@
 // OBJ reader: grouping by material, index forms, normals, and the MTL → pbrt material mapping.
 #include "scene/obj_reader.h"
+#include "test_util.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +12,7 @@ namespace prism {
 namespace {
 
 std::string WriteFile(const std::string &name, const std::string &contents) {
-    std::string path = ::testing::TempDir() + name;
-    std::ofstream(path, std::ios::binary) << contents;
-    return path;
+    return test::WriteTestFile(::testing::TempDir() + name, contents);
 }
 
 size_t Triangles(const ShapeDesc &s) { return s.params.GetInts("indices").size() / 3; }
