@@ -12,18 +12,31 @@ namespace {
 constexpr int MaxPassThrough = 256;
 }  // namespace
 
-RGB WhittedIntegrator::Li(const Ray &rayIn, int depth, RayCounters &counters,
+RGB WhittedIntegrator::Escaped(const Ray &ray) const {
+    RGB L;
+    for (const auto &light : scene_.lights) L += light->Le(ray);
+    return L;
+}
+
+RGB WhittedIntegrator::Li(const Ray &ray, int depth, RayCounters &counters,
                           const SampleContext &sc) const {
-    Ray ray = rayIn;
     SurfaceInteraction si;
+    if (!scene_.accel->Intersect(ray, &si)) return Escaped(ray);
+    return Shade(ray, si, depth, counters, sc);
+}
+
+RGB WhittedIntegrator::LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
+                                const SampleContext &sc) const {
+    if (hit.shape < 0) return Escaped(ray);
+    return Shade(ray, scene_.accel->Interaction(ray, hit), 0, counters, sc);
+}
+
+RGB WhittedIntegrator::Shade(const Ray &rayIn, SurfaceInteraction si, int depth,
+                             RayCounters &counters, const SampleContext &sc) const {
+    Ray ray = rayIn;
     const Material *mat = nullptr;
     const ShapeInfo *shape = nullptr;
     for (int pass = 0;; ++pass) {
-        if (!scene_.accel->Intersect(ray, &si)) {
-            RGB L;
-            for (const auto &light : scene_.lights) L += light->Le(ray);
-            return L;
-        }
         shape = &scene_.Info(si);
         mat = &scene_.materials[size_t(shape->material)];
         if (!mat->IsPassThrough()) break;
@@ -31,6 +44,7 @@ RGB WhittedIntegrator::Li(const Ray &rayIn, int depth, RayCounters &counters,
         // pbrt: a surface without a BSDF continues the ray without counting a bounce.
         ray = si.SpawnRay(ray.d);
         counters.passThrough++;
+        if (!scene_.accel->Intersect(ray, &si)) return Escaped(ray);
     }
 
     TextureContext tc{si.uv, si.p};
@@ -64,6 +78,14 @@ RGB WhittedIntegrator::Li(const Ray &rayIn, int depth, RayCounters &counters,
         }
     }
 
+    AddSpecular(si, bsdf, depth, counters, sc, L);
+    return L;
+}
+
+void WhittedIntegrator::AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
+                                    RayCounters &counters, const SampleContext &sc,
+                                    RGB &L) const {
+    const Vec3f &wo = si.wo;
     // Specular recursion, for the delta lobes of every BSDF part (mix materials have several).
     if (depth + 1 < scene_.maxDepth) {
         Vec3f wi;
@@ -79,7 +101,6 @@ RGB WhittedIntegrator::Li(const Ray &rayIn, int depth, RayCounters &counters,
             }
         }
     }
-    return L;
 }
 
 }  // namespace prism

@@ -6,6 +6,8 @@
 #include <cstdint>
 
 #include "core/color.h"
+#include "geometry/accel.h"
+#include "geometry/interaction.h"
 #include "geometry/ray.h"
 
 namespace prism {
@@ -30,13 +32,27 @@ struct SampleContext {
     uint32_t sample = 0, spp = 1;
 };
 
+struct BSDF;
+
 class WhittedIntegrator {
 public:
     explicit WhittedIntegrator(const RenderScene &scene) : scene_(scene) {}
     // Radiance along a ray; depth counts specular bounces (camera rays are depth 0).
     RGB Li(const Ray &ray, int depth, RayCounters &counters, const SampleContext &sc = {}) const;
+    // The same for a camera ray whose closest hit is already known (hit.shape < 0: a miss),
+    // e.g. from a packet traced through Accel::IntersectPacket.
+    RGB LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
+                 const SampleContext &sc = {}) const;
 
 private:
+    // Adds the specular reflection and transmission of every BSDF part to L.
+    void AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
+                     RayCounters &counters, const SampleContext &sc, RGB &L) const;
+    // Radiance of a ray that leaves the scene (infinite lights).
+    RGB Escaped(const Ray &ray) const;
+    // Radiance along ray given its closest hit si (continues through pass-through surfaces).
+    RGB Shade(const Ray &ray, SurfaceInteraction si, int depth, RayCounters &counters,
+              const SampleContext &sc) const;
     const RenderScene &scene_;
 };
 

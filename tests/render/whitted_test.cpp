@@ -83,6 +83,43 @@ TEST(Whitted, ShadowRayBlockedByOccluder) {
     EXPECT_EQ(shadowed, RGB(0));
 }
 
+TEST(Whitted, CameraPacketsMatchSingleRaysExactly) {
+    // LiCamera from hits traced in a 16-ray packet (rtcIntersect16) returns exactly Li's
+    // radiance, rays and counters: floor, occluder, mirror, two lights, misses.
+    TestScene ts;
+    ts.scene.lights.push_back(std::make_unique<PointLight>(Vec3f(0, 4, 0), RGB(10)));
+    ts.scene.lights.push_back(std::make_unique<PointLight>(Vec3f(3, 2, -1), RGB(5, 6, 7)));
+    int s = ts.scene.accel->AddAnalytic(
+        std::make_unique<Sphere>(Translate(Vec3d(0, 2, 0)), false, 0.5, -0.5, 0.5, 360));
+    ts.AddShapeInfo(s, 0);
+    Material mirror;
+    mirror.kind = Material::Kind::Mirror;
+    mirror.Kr = Const(RGB(0.9f));
+    ts.AddQuad({{2, -1, -5}, {2, 5, -5}, {2, 5, 5}, {2, -1, 5}}, ts.AddMaterial(mirror));
+    ts.Li(Ray{{0, 3, -3}, {0, 0, 1}, Infinity});  // commits
+    WhittedIntegrator integrator(ts.scene);
+    for (int n = 1; n <= 16; n += 5) {
+        Ray rays[16];
+        RawHit hits[16];
+        SampleContext scs[16];
+        for (int i = 0; i < n; ++i) {
+            Vec3f target(-3.f + 0.4f * float(i), 0.f, float(i % 4) - 1.5f);
+            Vec3f eye(-1.f, 3.f, -4.f);
+            rays[i] = Ray{eye, Normalize(target - eye), Infinity};
+            if (i % 7 == 6) rays[i].d = Vec3f(0, 1, 0);  // a miss
+            scs[i] = SampleContext{i, n, 0, 1};
+        }
+        ts.scene.accel->IntersectPacket(rays, n, hits);
+        RayCounters cp, c1;
+        for (int i = 0; i < n; ++i) {
+            RGB single = integrator.Li(rays[i], 0, c1, scs[i]);
+            EXPECT_EQ(integrator.LiCamera(rays[i], hits[i], cp, scs[i]), single) << "ray " << i;
+        }
+        EXPECT_EQ(cp.shadow, c1.shadow);
+        EXPECT_EQ(cp.reflection, c1.reflection);
+    }
+}
+
 TEST(Whitted, MirrorReturnsKrTimesRadiance) {
     // The floor point P seen directly, and via a vertical mirror with Kr 0.9 at x = 2.
     TestScene ts;
