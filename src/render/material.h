@@ -33,6 +33,9 @@ public:
     bool MayReflectSpecularly() const;
     // BSDF parts this material can add (mixes add their children's; uber's opacity adds one).
     int MaxParts() const;
+    // The surface data a hit on this material reads (SurfaceNeeds), decided from its textures:
+    // uv when any texture is not constant, dpdu when a glossy lobe may be anisotropic.
+    unsigned SurfaceNeeds() const;
     BSDF GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) const;
     // Adds this material's lobes to `bsdf`, scaled by `weight` (used by mix).
     void AddParts(BSDF &bsdf, const TextureContext &tc, const RGB &weight) const;
