@@ -1,6 +1,7 @@
 #include "geometry/triangle_mesh.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -52,9 +53,10 @@ Bounds3f TriangleMesh::RenderBounds() const {
     return b;
 }
 
-Vec3f TriangleMesh::GeometricNormal(size_t prim) const {
-    const uint32_t *v = Triangle(prim);
-    Vec3f p0 = Position(v[0]), p1 = Position(v[1]), p2 = Position(v[2]);
+namespace {
+
+// The unit normal (p1-p0) x (p2-p0), flipped if asked; zero for degenerate triangles.
+inline Vec3f UnitNormal(const Vec3f &p0, const Vec3f &p1, const Vec3f &p2, bool flip) {
     Vec3f e1 = p1 - p0, e2 = p2 - p0;
     // In float, each component of e1 x e2 is off by at most ~2 ulp of |e1| |e2|, so the unit
     // normal is off by ~2 ulp / sin(angle between the edges). Where that angle is large
@@ -63,15 +65,24 @@ Vec3f TriangleMesh::GeometricNormal(size_t prim) const {
     // rounding is the final one.
     Vec3f nf = Cross(e1, e2);
     float len2 = LengthSquared(nf);
-    if (len2 * 256 >= LengthSquared(e1) * LengthSquared(e2) && std::isfinite(len2)) {
+    // (Tiny or huge triangles, where the squares leave float's normal range, take double too.)
+    if (len2 >= std::numeric_limits<float>::min() && std::isfinite(len2) &&
+        len2 * 256 >= LengthSquared(e1) * LengthSquared(e2)) {
         nf = nf / std::sqrt(len2);
-        return flipNormals_ ? -nf : nf;
+        return flip ? -nf : nf;
     }
     Vec3d n = Cross(Vec3d(e1), Vec3d(e2));
     double len = Length(n);
     if (!(len > 0)) return {0, 0, 0};
     n = n / len;
-    return Vec3f(flipNormals_ ? -n : n);
+    return Vec3f(flip ? -n : n);
+}
+
+}  // namespace
+
+Vec3f TriangleMesh::GeometricNormal(size_t prim) const {
+    const uint32_t *v = Triangle(prim);
+    return UnitNormal(Position(v[0]), Position(v[1]), Position(v[2]), flipNormals_);
 }
 
 SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, float t,
@@ -92,7 +103,7 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
     }
     if (needs & NeedUV) si.uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
 
-    Vec3f n = GeometricNormal(prim);
+    Vec3f n = UnitNormal(p0, p1, p2, flipNormals_);
     if (n == Vec3f(0, 0, 0)) n = Normalize(-rayDir);  // degenerate: never NaN
     if (needs & NeedDpdu) {
         // Partial derivatives from the uv parameterization (pbrt-v3 Triangle::Intersect).

@@ -134,7 +134,22 @@ BSDF Material::GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) c
     return b;
 }
 
+void Material::Prepare() {
+    fixed_ = false;
+    fixedParts_.clear();
+    if (kind == Kind::None || (SurfaceNeeds() & NeedUV)) return;
+    // Every texture is constant: the parts do not depend on the hit.
+    BSDF b;
+    AddParts(b, TextureContext{}, RGB(1));
+    for (int i = 0; i < b.NumParts(); ++i) fixedParts_.push_back({b.Weight(i), b.Part(i)});
+    fixed_ = true;
+}
+
 void Material::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const {
+    if (fixed_) {
+        for (const FixedPart &fp : fixedParts_) b.AddPart(weight * fp.weight) = fp.lobes;
+        return;
+    }
     if (kind == Kind::Mix) {
         // pbrt-v3 MixMaterial: m1's BxDFs scaled by amount, m2's by 1 - amount (per channel).
         RGB s1 = amount->Evaluate(tc).Clamped(0.f, 1.f);

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/interaction.h"
 #include "render/bsdf.h"
@@ -39,6 +40,18 @@ public:
     BSDF GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) const;
     // Adds this material's lobes to `bsdf`, scaled by `weight` (used by mix).
     void AddParts(BSDF &bsdf, const TextureContext &tc, const RGB &weight) const;
+    // Called once the parameters are final (build/materials.cpp): a material whose textures
+    // are all constant gets its lobes built here once, and AddParts then copies them instead
+    // of evaluating textures and remapping roughness at every hit.
+    void Prepare();
+
+private:
+    struct FixedPart {
+        RGB weight;
+        BxDFLobes lobes;
+    };
+    std::vector<FixedPart> fixedParts_;
+    bool fixed_ = false;
 };
 
 // Roughness (after remapping) below which a metal is treated as a polished conductor: a delta
