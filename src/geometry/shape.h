@@ -27,8 +27,8 @@ struct ObjectHit {
     double t = 0;       // ray parameter (units of the render-space ray's direction)
     Vec3d p;            // object-space hit point, re-projected onto the surface where possible
     Vec3d pError;       // conservative absolute error of p
-    double phi = 0;     // azimuth of the hit (full spheres leave it 0: Sphere::Geometry
-                        // computes it from p when uv is needed)
+    double phi = 0;     // azimuth of the hit (full spheres, cylinders and disks leave it 0:
+                        // their Geometry computes it from p when uv is needed)
 };
 
 // A point sampled on a shape's surface for direct lighting, with the density of choosing it
