@@ -38,6 +38,7 @@ MaterialBuilder::MaterialBuilder(BuildContext &ctx) : BuildStep(ctx) {
     def.typeName = "matte";
     def.Kd = Constant(RGB(0.5f));
     def.sigma = Constant(RGB(0));
+    def.Prepare();
     scene.materials.push_back(def);
 }
 
@@ -292,11 +293,13 @@ int MaterialBuilder::MaterialForShape(const ShapeDesc &s) {
     bool usedShape = false;
     Material m = MakeMaterial(md, s.material, &s.params, &usedShape);
     if (usedShape) {
+        m.Prepare();
         scene.materials.push_back(std::move(m));
         return int(scene.materials.size()) - 1;
     }
     int &shared = sharedMaterial_[size_t(s.material)];
     if (shared < 0) {
+        m.Prepare();
         scene.materials.push_back(std::move(m));
         shared = int(scene.materials.size()) - 1;
         md.params.ReportUnused(diag, "material " + Quote(md.type));

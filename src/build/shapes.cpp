@@ -94,6 +94,7 @@ struct ShapeBuilder : BuildStep {
         if (int(infos.size()) <= index) infos.resize(size_t(index) + 1);
         infos[size_t(index)] = {material, -1, s.directiveIndex, s.type, -1};
         const Material &m = scene.materials[size_t(material)];
+        accel.SetSurfaceNeeds(index, m.SurfaceNeeds());
         if (m.MayReflectSpecularly()) scene.features.specularReflection = true;
         if (m.MayTransmit()) scene.features.transmission = true;
         return index;

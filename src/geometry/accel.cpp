@@ -88,6 +88,7 @@ struct Accel::Impl {
         std::unique_ptr<AnalyticShape> analytic;
         std::shared_ptr<const Accel> prototype;  // instances
         Transform renderFromInstance;
+        unsigned needs = NeedAll;  // SurfaceNeeds of the shape's material
     };
     std::vector<Entry> shapes;
     std::vector<int> shapeOfGeom;  // geomID -> shape index
@@ -211,6 +212,10 @@ bool Accel::IntersectRaw(const Ray &r, RawHit *hit) const {
     return true;
 }
 
+void Accel::SetSurfaceNeeds(int shape, unsigned needs) {
+    impl_->shapes[size_t(shape)].needs = needs;
+}
+
 SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
     const Impl::Entry &e = impl_->shapes[hit.shape];
     SurfaceInteraction si;
@@ -249,7 +254,7 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         return si;
     }
     if (e.mesh) {
-        si = e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d);
+        si = e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d, e.needs);
     } else {
         // Phase 2: re-run the same root routine on the winning shape to recover the hit in
         // full precision (the callback could only report a float t).
@@ -261,7 +266,7 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
             oh.p = e.analytic->RenderFromObject().Inverse().Point(pW);
             oh.pError = Abs(oh.p) * 1e-6;
         }
-        si = e.analytic->Interaction(oh, r.d);
+        si = e.analytic->Interaction(oh, r.d, e.needs);
         si.t = hit.t;
     }
     si.shape = hit.shape;

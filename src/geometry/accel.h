@@ -49,6 +49,8 @@ public:
     // instance level: prototypes hold meshes and analytic shapes only, and analytic shapes
     // apply their own object transform inside the instance.
     int AddInstance(std::shared_ptr<const Accel> prototype, const Transform &renderFromInstance);
+    // The surface data Interaction computes for hits on `shape` (SurfaceNeeds; default all).
+    void SetSurfaceNeeds(int shape, unsigned needs);
     // Builds the BVH. Throws std::runtime_error with Embree's message on failure.
     void Commit();
 

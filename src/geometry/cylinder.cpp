@@ -72,7 +72,8 @@ bool Cylinder::IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real
         if (!(l > 0)) continue;
         p.x *= radius_ / l;
         p.y *= radius_ / l;
-        double phi = Azimuth(p.x, p.y);
+        // The azimuth (an atan2) only where it can clip; Geometry computes it for uv.
+        double phi = phiMax_ < 2 * Pi ? Azimuth(p.x, p.y) : 0;
         if (p.z < zMin_ || p.z > zMax_ || phi > phiMax_) continue;
         hit->t = double(t);
         hit->p = p;
@@ -89,7 +90,8 @@ template bool Cylinder::IntersectT<double>(Vec3d, Vec3d, double, double, double,
 LocalGeometry Cylinder::Geometry(const ObjectHit &hit) const {
     const Vec3d &p = hit.p;
     LocalGeometry g;
-    g.uv = {hit.phi / phiMax_, (p.z - zMin_) / (zMax_ - zMin_)};
+    double phi = phiMax_ < 2 * Pi ? hit.phi : Azimuth(p.x, p.y);
+    g.uv = {phi / phiMax_, (p.z - zMin_) / (zMax_ - zMin_)};
     g.dpdu = Vec3d(-phiMax_ * p.y, phiMax_ * p.x, 0);
     g.dpdv = Vec3d(0, 0, zMax_ - zMin_);
     // cross(dpdu, dpdv) = phiMax (zmax - zmin) (x, y, 0): outward.

@@ -17,6 +17,7 @@ class Cylinder final : public AnalyticShapeT<Cylinder> {
     double Implicit(const Vec3d &p) const override { return std::hypot(p.x, p.y) - radius_; }
     Vec3d ImplicitGradient(const Vec3d &p) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
+    Vec3d GeometricNormal(const ObjectHit &hit) const override { return {hit.p.x, hit.p.y, 0}; }
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 
     template <typename Real>

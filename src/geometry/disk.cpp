@@ -46,7 +46,8 @@ bool Disk::IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real tSl
     p.z = height_;
     double dist2 = p.x * p.x + p.y * p.y;
     if (dist2 > radius_ * radius_ || dist2 < innerRadius_ * innerRadius_) return false;
-    double phi = Azimuth(p.x, p.y);
+    // The azimuth (an atan2) only where it can clip; Geometry computes it for uv.
+    double phi = phiMax_ < 2 * Pi ? Azimuth(p.x, p.y) : 0;
     if (phi > phiMax_) return false;
     hit->t = double(t);
     hit->p = p;
@@ -63,7 +64,8 @@ LocalGeometry Disk::Geometry(const ObjectHit &hit) const {
     const Vec3d &p = hit.p;
     LocalGeometry g;
     double dist = std::hypot(p.x, p.y);
-    g.uv = {hit.phi / phiMax_, (radius_ - dist) / (radius_ - innerRadius_)};
+    double phi = phiMax_ < 2 * Pi ? hit.phi : Azimuth(p.x, p.y);
+    g.uv = {phi / phiMax_, (radius_ - dist) / (radius_ - innerRadius_)};
     g.dpdu = Vec3d(-phiMax_ * p.y, phiMax_ * p.x, 0);
     // At the centre the radial direction is undefined; use phi = 0's.
     Vec3d radial = dist > 0 ? Vec3d(p.x / dist, p.y / dist, 0) : Vec3d(1, 0, 0);

@@ -18,6 +18,7 @@ class Disk final : public AnalyticShapeT<Disk> {
     double Implicit(const Vec3d &p) const override { return p.z - height_; }
     Vec3d ImplicitGradient(const Vec3d &) const override { return {0, 0, 1}; }
     LocalGeometry Geometry(const ObjectHit &hit) const override;
+    Vec3d GeometricNormal(const ObjectHit &) const override { return {0, 0, 1}; }
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 
     template <typename Real>

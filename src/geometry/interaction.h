@@ -8,13 +8,20 @@
 
 namespace prism {
 
+// What a hit's material reads beyond p, n, ns, wo and t (Material::SurfaceNeeds, set per shape
+// with Accel::SetSurfaceNeeds). Shapes skip what is not asked for and leave it zero: uv for
+// textures that are not constant, dpdu/dpdv for a tangent frame (anisotropic roughness). A
+// zero dpdu makes BSDF::SetFrame fall back to CoordinateSystem(ns), which only rotates the
+// frame about ns and so changes no isotropic BSDF beyond float rounding.
+enum SurfaceNeeds : unsigned { NeedNone = 0, NeedUV = 1, NeedDpdu = 2, NeedAll = 3 };
+
 struct SurfaceInteraction {
     Vec3f p;        // render-space hit point
     Vec3f pError;   // conservative absolute error of p, per component
     Vec3f n;        // unit geometric normal, pbrt orientation (not turned toward the ray)
     Vec3f ns;       // unit shading normal, in n's hemisphere
-    Vec3f dpdu, dpdv;
-    Vec2f uv;
+    Vec3f dpdu, dpdv;  // zero unless NeedDpdu
+    Vec2f uv;          // zero unless NeedUV
     Vec3f wo;       // unit direction back along the incoming ray
     float t = 0;    // ray parameter in units of the incoming ray's direction
     int shape = -1; // index of the shape in the render scene

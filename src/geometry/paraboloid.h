@@ -18,6 +18,9 @@ class Paraboloid final : public AnalyticShapeT<Paraboloid> {
     double Implicit(const Vec3d &p) const override;  // k (x^2 + y^2) - z, positive outside
     Vec3d ImplicitGradient(const Vec3d &p) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
+    Vec3d GeometricNormal(const ObjectHit &hit) const override {
+        return {2 * k_ * hit.p.x, 2 * k_ * hit.p.y, -1};
+    }
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 
     template <typename Real>

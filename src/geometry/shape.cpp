@@ -56,9 +56,14 @@ bool AnalyticShape::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
     return std::isfinite(ss->pdf) && ss->pdf > 0;
 }
 
-SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir) const {
-    LocalGeometry g = Geometry(hit);
+SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir,
+                                              unsigned needs) const {
     SurfaceInteraction si;
+    LocalGeometry g;
+    if (needs == NeedNone)
+        g.n = GeometricNormal(hit);
+    else
+        g = Geometry(hit);
     Vec3d pW = renderFromObject_.Point(hit.p);
     Vec3d errW = renderFromObject_.PointError(hit.p, hit.pError, MachineEpsilon<double>());
     si.p = Vec3f(pW);
@@ -70,9 +75,11 @@ SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f 
     Vec3d n = Normalize(renderFromObject_.Normal(g.n));
     if (flipNormals_) n = -n;
     si.n = si.ns = Vec3f(n);
-    si.dpdu = Vec3f(renderFromObject_.Vector(g.dpdu));
-    si.dpdv = Vec3f(renderFromObject_.Vector(g.dpdv));
-    si.uv = Vec2f(float(g.uv.x), float(g.uv.y));
+    if (needs & NeedDpdu) {
+        si.dpdu = Vec3f(renderFromObject_.Vector(g.dpdu));
+        si.dpdv = Vec3f(renderFromObject_.Vector(g.dpdv));
+    }
+    if (needs & NeedUV) si.uv = Vec2f(float(g.uv.x), float(g.uv.y));
     si.wo = Normalize(-rayDir);
     si.t = float(hit.t);
     return si;

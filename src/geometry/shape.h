@@ -27,7 +27,8 @@ struct ObjectHit {
     double t = 0;       // ray parameter (units of the render-space ray's direction)
     Vec3d p;            // object-space hit point, re-projected onto the surface where possible
     Vec3d pError;       // conservative absolute error of p
-    double phi = 0;     // azimuth of the hit (used by partial shapes)
+    double phi = 0;     // azimuth of the hit (full spheres, cylinders and disks leave it 0:
+                        // their Geometry computes it from p when uv is needed)
 };
 
 // A point sampled on a shape's surface for direct lighting, with the density of choosing it
@@ -77,6 +78,9 @@ public:
                            Precision precision, ObjectHit *hit) const = 0;
     // Object-space differential geometry at a hit found by Intersect.
     virtual LocalGeometry Geometry(const ObjectHit &hit) const = 0;
+    // The unnormalized object-space normal alone (Geometry(hit).n), for hits whose material
+    // needs neither uv nor dpdu; shapes override it when that is cheaper.
+    virtual Vec3d GeometricNormal(const ObjectHit &hit) const { return Geometry(hit).n; }
 
     // Uniform sampling of the object-space surface by area: the point, its unnormalized
     // normal (pbrt orientation before flips) and the object-space area density. Shapes that
@@ -103,7 +107,9 @@ public:
     // robust (docs/HARD_CASES.md E2), so the box must absorb its rounding.
     Bounds3f RenderBounds() const;
     // Phase 2: the full render-space interaction for a hit.
-    SurfaceInteraction Interaction(const ObjectHit &hit, const Vec3f &rayDir) const;
+    // `needs` (SurfaceNeeds) says whether uv and dpdu/dpdv are computed; the rest always is.
+    SurfaceInteraction Interaction(const ObjectHit &hit, const Vec3f &rayDir,
+                                   unsigned needs = NeedAll) const;
 
     const Transform &RenderFromObject() const { return renderFromObject_; }
     bool FlipNormals() const { return flipNormals_; }

@@ -106,10 +106,14 @@ bool Sphere::IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real t
         // Re-project onto the surface, in double regardless of Real.
         Vec3d p(pr);
         p *= radius_ / Length(p);
-        double phi = Azimuth(p.x, p.y);
-        if (partial_ && ((zMin_ > -radius_ && p.z < zMin_) || (zMax_ < radius_ && p.z > zMax_) ||
-                         phi > phiMax_))
-            continue;
+        // The azimuth (an atan2) only where it can clip; Geometry computes it for uv.
+        double phi = 0;
+        if (partial_) {
+            phi = Azimuth(p.x, p.y);
+            if ((zMin_ > -radius_ && p.z < zMin_) || (zMax_ < radius_ && p.z > zMax_) ||
+                phi > phiMax_)
+                continue;
+        }
         hit->t = double(t);
         hit->p = p;
         hit->pError = Abs(p) * double(Gamma<Real>(5));
@@ -126,7 +130,7 @@ template bool Sphere::IntersectT<double>(Vec3d, Vec3d, double, double, double,
 LocalGeometry Sphere::Geometry(const ObjectHit &hit) const {
     const Vec3d &p = hit.p;
     LocalGeometry g;
-    double u = hit.phi / phiMax_;
+    double u = (partial_ ? hit.phi : Azimuth(p.x, p.y)) / phiMax_;
     double cosTheta = Clamp(p.z / radius_, -1.0, 1.0);
     double theta = std::acos(cosTheta);
     double v = (theta - thetaZMin_) / (thetaZMax_ - thetaZMin_);

@@ -15,6 +15,7 @@ public:
     double Implicit(const Vec3d &p) const override { return Length(p) - radius_; }
     Vec3d ImplicitGradient(const Vec3d &p) const override { return Normalize(p); }
     LocalGeometry Geometry(const ObjectHit &hit) const override;
+    Vec3d GeometricNormal(const ObjectHit &hit) const override { return hit.p; }
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
     bool SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) const override;
     // Full spheres under similarity transforms sample the cone they subtend (pbrt-v3

@@ -1,6 +1,7 @@
 #include "geometry/triangle_mesh.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -52,18 +53,40 @@ Bounds3f TriangleMesh::RenderBounds() const {
     return b;
 }
 
-Vec3f TriangleMesh::GeometricNormal(size_t prim) const {
-    const uint32_t *v = Triangle(prim);
-    Vec3f p0 = Position(v[0]), p1 = Position(v[1]), p2 = Position(v[2]);
-    Vec3d n = Cross(Vec3d(p1 - p0), Vec3d(p2 - p0));
+namespace {
+
+// The unit normal (p1-p0) x (p2-p0), flipped if asked; zero for degenerate triangles.
+inline Vec3f UnitNormal(const Vec3f &p0, const Vec3f &p1, const Vec3f &p2, bool flip) {
+    Vec3f e1 = p1 - p0, e2 = p2 - p0;
+    // In float, each component of e1 x e2 is off by at most ~2 ulp of |e1| |e2|, so the unit
+    // normal is off by ~2 ulp / sin(angle between the edges). Where that angle is large
+    // (sin >= 1/16: at most 32 ulp, the double result rounded to float is within a few ulp
+    // of it) float is enough; slivers take the exact-in-double cross product, whose only
+    // rounding is the final one.
+    Vec3f nf = Cross(e1, e2);
+    float len2 = LengthSquared(nf);
+    // (Tiny or huge triangles, where the squares leave float's normal range, take double too.)
+    if (len2 >= std::numeric_limits<float>::min() && std::isfinite(len2) &&
+        len2 * 256 >= LengthSquared(e1) * LengthSquared(e2)) {
+        nf = nf / std::sqrt(len2);
+        return flip ? -nf : nf;
+    }
+    Vec3d n = Cross(Vec3d(e1), Vec3d(e2));
     double len = Length(n);
     if (!(len > 0)) return {0, 0, 0};
     n = n / len;
-    return Vec3f(flipNormals_ ? -n : n);
+    return Vec3f(flip ? -n : n);
+}
+
+}  // namespace
+
+Vec3f TriangleMesh::GeometricNormal(size_t prim) const {
+    const uint32_t *v = Triangle(prim);
+    return UnitNormal(Position(v[0]), Position(v[1]), Position(v[2]), flipNormals_);
 }
 
 SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, float t,
-                                             const Vec3f &rayDir) const {
+                                             const Vec3f &rayDir, unsigned needs) const {
     const uint32_t *vi = Triangle(prim);
     Vec3f p0 = Position(vi[0]), p1 = Position(vi[1]), p2 = Position(vi[2]);
     float b0 = 1 - u - v, b1 = u, b2 = v;
@@ -73,21 +96,27 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
     si.pError = (Abs(p0 * b0) + Abs(p1 * b1) + Abs(p2 * b2)) * Gamma<float>(7);
 
     Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
-    if (!uv_.empty()) { uv0 = uv_[vi[0]]; uv1 = uv_[vi[1]]; uv2 = uv_[vi[2]]; }
-    si.uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
+    if (needs != NeedNone && !uv_.empty()) {
+        uv0 = uv_[vi[0]];
+        uv1 = uv_[vi[1]];
+        uv2 = uv_[vi[2]];
+    }
+    if (needs & NeedUV) si.uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
 
-    Vec3f n = GeometricNormal(prim);
+    Vec3f n = UnitNormal(p0, p1, p2, flipNormals_);
     if (n == Vec3f(0, 0, 0)) n = Normalize(-rayDir);  // degenerate: never NaN
-    // Partial derivatives from the uv parameterization (pbrt-v3 Triangle::Intersect).
-    Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
-    Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
-    double det = double(duv02.x) * duv12.y - double(duv02.y) * duv12.x;
-    if (std::abs(det) < 1e-12) {
-        CoordinateSystem(n, &si.dpdu, &si.dpdv);
-    } else {
-        float invdet = float(1 / det);
-        si.dpdu = (dp02 * duv12.y - dp12 * duv02.y) * invdet;
-        si.dpdv = (dp12 * duv02.x - dp02 * duv12.x) * invdet;
+    if (needs & NeedDpdu) {
+        // Partial derivatives from the uv parameterization (pbrt-v3 Triangle::Intersect).
+        Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+        Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
+        double det = double(duv02.x) * duv12.y - double(duv02.y) * duv12.x;
+        if (std::abs(det) < 1e-12) {
+            CoordinateSystem(n, &si.dpdu, &si.dpdv);
+        } else {
+            float invdet = float(1 / det);
+            si.dpdu = (dp02 * duv12.y - dp12 * duv02.y) * invdet;
+            si.dpdv = (dp12 * duv02.x - dp02 * duv12.x) * invdet;
+        }
     }
     si.n = si.ns = n;
     if (!normals_.empty()) {

@@ -50,8 +50,10 @@ public:
     // Geometric normal as the trace command defines it: (p1-p0) x (p2-p0), flipped by
     // ReverseOrientation XOR handedness; unit length; zero for degenerate triangles.
     Vec3f GeometricNormal(size_t prim) const;
-    // Phase 2 for a hit with Embree barycentrics (u, v) of vertices 1 and 2.
-    SurfaceInteraction Interaction(size_t prim, float u, float v, float t, const Vec3f &rayDir) const;
+    // Phase 2 for a hit with Embree barycentrics (u, v) of vertices 1 and 2; uv and dpdu/dpdv
+    // only as `needs` (SurfaceNeeds) asks.
+    SurfaceInteraction Interaction(size_t prim, float u, float v, float t, const Vec3f &rayDir,
+                                   unsigned needs = NeedAll) const;
 
 private:
     std::vector<float> positions_;

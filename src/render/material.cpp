@@ -75,6 +75,47 @@ bool Material::MayTransmit() const {
     }
 }
 
+namespace {
+
+bool Varies(const TexturePtr &t) { return t && !t->IsConstant(); }
+
+// False when u and v roughness are one constant value (or both absent): the lobe is isotropic.
+bool MaybeAnisotropic(const TexturePtr &u, const TexturePtr &v) {
+    if (!u && !v) return false;
+    if (u == v) return false;
+    auto *cu = dynamic_cast<const ConstantTexture *>(u.get());
+    auto *cv = dynamic_cast<const ConstantTexture *>(v.get());
+    return !cu || !cv || cu->Value().r != cv->Value().r;
+}
+
+}  // namespace
+
+unsigned Material::SurfaceNeeds() const {
+    if (kind == Kind::None) return NeedNone;
+    unsigned needs = NeedNone;
+    if (kind == Kind::Mix) {
+        needs |= mix1->SurfaceNeeds() | mix2->SurfaceNeeds();
+        if (Varies(amount)) needs |= NeedUV;
+        return needs;
+    }
+    for (const TexturePtr *t : {&Kd, &Ks, &Kr, &Kt, &sigma, &roughness, &uRoughness, &vRoughness,
+                                &index, &opacity, &reflect, &transmit, &amount})
+        if (Varies(*t)) needs |= NeedUV;
+    switch (kind) {
+    case Kind::Metal:
+    case Kind::Substrate:
+        if (MaybeAnisotropic(uRoughness, vRoughness)) needs |= NeedDpdu;
+        break;
+    case Kind::Uber:
+        if (vRoughness && MaybeAnisotropic(uRoughness ? uRoughness : roughness, vRoughness))
+            needs |= NeedDpdu;
+        break;
+    default:
+        break;
+    }
+    return needs;
+}
+
 int Material::MaxParts() const {
     switch (kind) {
     case Kind::Mix:
@@ -93,7 +134,22 @@ BSDF Material::GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) c
     return b;
 }
 
+void Material::Prepare() {
+    fixed_ = false;
+    fixedParts_.clear();
+    if (kind == Kind::None || (SurfaceNeeds() & NeedUV)) return;
+    // Every texture is constant: the parts do not depend on the hit.
+    BSDF b;
+    AddParts(b, TextureContext{}, RGB(1));
+    for (int i = 0; i < b.NumParts(); ++i) fixedParts_.push_back({b.Weight(i), b.Part(i)});
+    fixed_ = true;
+}
+
 void Material::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const {
+    if (fixed_) {
+        for (const FixedPart &fp : fixedParts_) b.AddPart(weight * fp.weight) = fp.lobes;
+        return;
+    }
     if (kind == Kind::Mix) {
         // pbrt-v3 MixMaterial: m1's BxDFs scaled by amount, m2's by 1 - amount (per channel).
         RGB s1 = amount->Evaluate(tc).Clamped(0.f, 1.f);

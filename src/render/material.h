@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/interaction.h"
 #include "render/bsdf.h"
@@ -33,9 +34,24 @@ public:
     bool MayReflectSpecularly() const;
     // BSDF parts this material can add (mixes add their children's; uber's opacity adds one).
     int MaxParts() const;
+    // The surface data a hit on this material reads (SurfaceNeeds), decided from its textures:
+    // uv when any texture is not constant, dpdu when a glossy lobe may be anisotropic.
+    unsigned SurfaceNeeds() const;
     BSDF GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) const;
     // Adds this material's lobes to `bsdf`, scaled by `weight` (used by mix).
     void AddParts(BSDF &bsdf, const TextureContext &tc, const RGB &weight) const;
+    // Called once the parameters are final (build/materials.cpp): a material whose textures
+    // are all constant gets its lobes built here once, and AddParts then copies them instead
+    // of evaluating textures and remapping roughness at every hit.
+    void Prepare();
+
+private:
+    struct FixedPart {
+        RGB weight;
+        BxDFLobes lobes;
+    };
+    std::vector<FixedPart> fixedParts_;
+    bool fixed_ = false;
 };
 
 // Roughness (after remapping) below which a metal is treated as a polished conductor: a delta

@@ -111,5 +111,31 @@ TEST(Accel, ReverseOrientationFlipsNormals) {
     EXPECT_NEAR(si.n.z, 1.f, 1e-6f);  // handedness swap flips too
 }
 
+// The triangle normal: float where the edges' angle keeps it within a few tens of ulps of the
+// double result, double for slivers; Interaction without uv/dpdu keeps p, pError and n.
+TEST(TriangleMesh, NormalAndLeanInteraction) {
+    std::vector<Vec3f> P = {{0, 0, 0}, {1, 0, 0}, {0.3f, 1, 0.2f},          // well shaped
+                            {0, 0, 0}, {1000, 0, 0}, {500, 0.001f, 0.0003f}};  // sliver
+    std::vector<uint32_t> idx = {0, 1, 2, 3, 4, 5};
+    TriangleMesh mesh(Transform(), false, P, idx, {}, {{0, 0}, {1, 0}, {0, 1}, {0, 0}, {1, 0}, {0, 1}});
+    for (size_t prim : {size_t(0), size_t(1)}) {
+        const uint32_t *v = mesh.Triangle(prim);
+        Vec3d e1 = Vec3d(P[v[1]] - P[v[0]]), e2 = Vec3d(P[v[2]] - P[v[0]]);
+        Vec3d exact = Normalize(Cross(e1, e2));
+        Vec3f n = mesh.GeometricNormal(prim);
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(n[i], exact[i], 4e-6) << prim;
+        Vec3f d = Normalize(Vec3f(0.1f, 0.2f, -1));
+        SurfaceInteraction full = mesh.Interaction(prim, 0.25f, 0.5f, 3, d);
+        SurfaceInteraction lean = mesh.Interaction(prim, 0.25f, 0.5f, 3, d, NeedNone);
+        EXPECT_EQ(full.p, lean.p);
+        EXPECT_EQ(full.pError, lean.pError);
+        EXPECT_EQ(full.n, lean.n);
+        EXPECT_EQ(full.ns, lean.ns);
+        EXPECT_EQ(lean.uv, Vec2f(0, 0));
+        EXPECT_EQ(lean.dpdu, Vec3f(0, 0, 0));
+        EXPECT_NE(full.dpdu, Vec3f(0, 0, 0));
+    }
+}
+
 }  // namespace
 }  // namespace prism

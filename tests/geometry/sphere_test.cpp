@@ -310,5 +310,33 @@ TEST(Sphere, DegenerateRaysNeverNaN) {
     EXPECT_NEAR(si.n.z, -1.f, 1e-5f);
 }
 
+// Interaction without uv/dpdu (NeedNone) gives the same point, error bound and normals as the
+// full one: the spawn offsets do not depend on what the material reads.
+TEST(Sphere, InteractionWithoutSurfaceDataKeepsPointAndNormal) {
+    Transform m = Translate(Vec3d(0.3, -1.2, 4.0)) * Scale(2, 2, 2);
+    for (bool partial : {false, true}) {
+        Sphere s(m, false, 1.5, partial ? -1.0 : -1.5, 1.5, partial ? 300 : 360);
+        PCG32 rng(7);
+        int hits = 0;
+        for (int i = 0; i < 200; ++i) {
+            Vec3f o(0, 0, 0);
+            Vec3f d = Normalize(Vec3f(0.3f, -1.2f, 4.0f) +
+                                Vec3f(rng.Uniform() - 0.5f, rng.Uniform() - 0.5f, rng.Uniform() - 0.5f) * 6.f);
+            ObjectHit hit;
+            if (!s.Intersect(o, d, 0, Infinity, Precision::Double, &hit)) continue;
+            ++hits;
+            SurfaceInteraction full = s.Interaction(hit, d), lean = s.Interaction(hit, d, NeedNone);
+            EXPECT_EQ(full.p, lean.p);
+            EXPECT_EQ(full.pError, lean.pError);
+            EXPECT_EQ(full.n, lean.n);
+            EXPECT_EQ(full.ns, lean.ns);
+            EXPECT_EQ(lean.uv, Vec2f(0, 0));
+            EXPECT_GE(full.uv.x, 0.f);
+            EXPECT_LE(full.uv.x, 1.f);
+        }
+        EXPECT_GT(hits, 50);
+    }
+}
+
 }  // namespace
 }  // namespace prism

@@ -281,5 +281,73 @@ TEST(MaterialScene, LoopSubdivShapeBecomesAMesh) {
                  SceneError);
 }
 
+// A texture that varies with uv (any non-constant texture makes a material read uv).
+struct UTexture final : Texture {
+    RGB Evaluate(const TextureContext &c) const override { return RGB(c.uv.x); }
+};
+
+TEST(Material, SurfaceNeedsFollowTexturesAndAnisotropy) {
+    EXPECT_EQ(Matte(RGB(0.5f))->SurfaceNeeds(), unsigned(NeedNone));
+    auto textured = Matte(RGB(0.5f));
+    textured->Kd = std::make_shared<UTexture>();
+    EXPECT_EQ(textured->SurfaceNeeds(), unsigned(NeedUV));
+    Material metal;
+    metal.kind = Material::Kind::Metal;
+    metal.uRoughness = Const(0.1f);
+    metal.vRoughness = Const(0.1f);
+    EXPECT_EQ(metal.SurfaceNeeds(), unsigned(NeedNone));  // isotropic: no tangent frame
+    metal.vRoughness = Const(0.3f);
+    EXPECT_EQ(metal.SurfaceNeeds(), unsigned(NeedDpdu));
+    metal.vRoughness = std::make_shared<UTexture>();
+    EXPECT_EQ(metal.SurfaceNeeds(), unsigned(NeedAll));
+    Material uber = Uber(0.5f, 0.5f, 0, 0, 1);
+    EXPECT_EQ(uber.SurfaceNeeds(), unsigned(NeedNone));
+    uber.vRoughness = Const(0.4f);
+    EXPECT_EQ(uber.SurfaceNeeds(), unsigned(NeedDpdu));
+    Material mix;
+    mix.kind = Material::Kind::Mix;
+    mix.mix1 = Matte(RGB(0.2f));
+    mix.mix2 = Matte(RGB(0.8f));
+    mix.amount = Const(0.3f);
+    EXPECT_EQ(mix.SurfaceNeeds(), unsigned(NeedNone));
+    mix.amount = std::make_shared<UTexture>();
+    EXPECT_EQ(mix.SurfaceNeeds(), unsigned(NeedUV));
+}
+
+// Prepare builds the parts once; the BSDF a hit gets must be exactly the one built per hit.
+TEST(Material, PreparedPartsEqualPerHitParts) {
+    Material mix;
+    mix.kind = Material::Kind::Mix;
+    mix.mix1 = Matte(RGB(0.2f, 0.4f, 0.6f));
+    auto uber = std::make_shared<Material>(Uber(0.3f, 0.4f, 0.2f, 0.1f, 0.7f));
+    mix.mix2 = uber;
+    mix.amount = Const(RGB(0.3f, 0.5f, 0.9f));
+    std::vector<Material> materials = {*Matte(RGB(0.5f)), Uber(0.3f, 0.4f, 0.2f, 0.1f, 0.7f), mix};
+    for (Material &m : materials) {
+        BSDF a = m.GetBSDF(FlatHit(), {});
+        m.Prepare();
+        BSDF b = m.GetBSDF(FlatHit(), {});
+        ASSERT_EQ(a.NumParts(), b.NumParts());
+        for (float theta : {0.1f, 0.7f, 1.3f}) {
+            Vec3f wo(std::sin(theta), 0, std::cos(theta)), wi(-0.3f, 0.2f, 0.93f);
+            wi = Normalize(wi);
+            RGB fa = a.f(wo, wi), fb = b.f(wo, wi);
+            EXPECT_EQ(fa.r, fb.r);
+            EXPECT_EQ(fa.g, fb.g);
+            EXPECT_EQ(fa.b, fb.b);
+            for (int i = 0; i < a.NumParts(); ++i) {
+                Vec3f wa, wb;
+                RGB ra, rb;
+                bool ha = a.SampleSpecularReflection(i, wo, &wa, &ra);
+                ASSERT_EQ(ha, b.SampleSpecularReflection(i, wo, &wb, &rb));
+                if (ha) EXPECT_EQ(ra.g, rb.g);
+                ha = a.SampleSpecularTransmission(i, wo, &wa, &ra);
+                ASSERT_EQ(ha, b.SampleSpecularTransmission(i, wo, &wb, &rb));
+                if (ha) EXPECT_EQ(ra.g, rb.g);
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace prism
