@@ -145,6 +145,9 @@ struct ShapeBuilder : BuildStep {
     void Build() {
         AccelOptions ao;
         ao.precision = settings.precision;
+        const Bounds2i &pb = scene.pixelBounds;
+        ao.expectedSamples = uint64_t(std::max(0, pb.pMax.x - pb.pMin.x)) *
+                             uint64_t(std::max(0, pb.pMax.y - pb.pMin.y)) * uint64_t(scene.spp);
         scene.accel = std::make_unique<Accel>(ao);
         for (const ShapeDesc &s : desc.shapes) AddShape(s, scene.renderFromWorld * s.worldFromObject);
         for (const InstanceDesc &inst : desc.instances) AddInstance(inst);

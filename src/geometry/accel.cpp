@@ -93,7 +93,7 @@ struct Accel::Impl {
     std::vector<Entry> shapes;
     std::vector<int> shapeOfGeom;  // geomID -> shape index
     double buildSeconds = 0;
-    bool committed = false;
+    bool committed = false, highQuality = false;
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
@@ -178,6 +178,14 @@ void Accel::Commit() {
     size_t triangles = 0;
     for (const Impl::Entry &e : impl_->shapes)
         if (e.mesh) triangles += e.mesh->NumTriangles();
+    // Build quality by the work the BVH will serve. Measured on the 400k-triangle knot at
+    // 1600x1200, 1 spp (interleaved, bench ceiling's scene): HIGH doubles the build
+    // (0.12 -> 0.25 s) and saves 2-4% of the render (0.46 -> 0.45 s), LOW saves nothing and
+    // renders 4% slower. HIGH wins once the render traces some 40 camera samples per triangle.
+    impl_->highQuality = impl_->options.highQuality ||
+                         (triangles > 0 && impl_->options.expectedSamples >=
+                                               HighQualitySamplesPerTriangle * triangles);
+    if (impl_->highQuality) rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
     if (triangles >= CompactBvhTriangles)
         rtcSetSceneFlags(impl_->scene, RTCSceneFlags(rtcGetSceneFlags(impl_->scene) |
                                                      RTC_SCENE_FLAG_COMPACT));
@@ -331,6 +339,7 @@ int Accel::NumShapes() const { return int(impl_->shapes.size()); }
 const TriangleMesh *Accel::Mesh(int s) const { return impl_->shapes[s].mesh.get(); }
 const AnalyticShape *Accel::Analytic(int s) const { return impl_->shapes[s].analytic.get(); }
 double Accel::BuildSeconds() const { return impl_->buildSeconds; }
+bool Accel::BuiltWithHighQuality() const { return impl_->highQuality; }
 
 
 }  // namespace prism

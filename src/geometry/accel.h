@@ -16,11 +16,16 @@ namespace prism {
 
 // Scenes with at least this many triangles are built with Embree's compact layout (accel.cpp).
 inline constexpr size_t CompactBvhTriangles = 500000;
+inline constexpr uint64_t HighQualitySamplesPerTriangle = 40;
 
 struct AccelOptions {
     Precision precision = Precision::Double;
     bool robust = false;        // RTC_SCENE_FLAG_ROBUST (watertight triangles, robust traversal)
     bool highQuality = false;   // RTC_BUILD_QUALITY_HIGH (spatial splits)
+    // Camera samples the render will trace (pixels x spp; 0: unknown). With at least
+    // HighQualitySamplesPerTriangle per triangle the BVH is built with HIGH quality even when
+    // highQuality is false: the slower build then pays for itself (accel.cpp).
+    uint64_t expectedSamples = 0;
 };
 
 // Which queries see a shape (Embree geometry masks): camera and specular rays use
@@ -71,6 +76,7 @@ public:
     const TriangleMesh *Mesh(int shape) const;          // nullptr if analytic
     const AnalyticShape *Analytic(int shape) const;     // nullptr if mesh
     double BuildSeconds() const;
+    bool BuiltWithHighQuality() const;  // after Commit(): whether the HIGH builder ran
 
 private:
     struct Impl;

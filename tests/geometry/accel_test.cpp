@@ -139,3 +139,27 @@ TEST(TriangleMesh, NormalAndLeanInteraction) {
 
 }  // namespace
 }  // namespace prism
+
+namespace prism {
+
+// The BVH is built with HIGH quality once the render will trace at least
+// HighQualitySamplesPerTriangle camera samples per triangle; the hits do not change.
+TEST(Accel, BuildQualityFollowsTheExpectedWork) {
+    std::vector<Vec3f> P = {{-1, -1, 5}, {1, -1, 5}, {1, 1, 5}, {-1, 1, 5}};
+    for (uint64_t samples : {uint64_t(0), 2 * HighQualitySamplesPerTriangle - 1,
+                             2 * HighQualitySamplesPerTriangle}) {
+        AccelOptions ao;
+        ao.expectedSamples = samples;
+        Accel accel(ao);
+        accel.AddMesh(std::make_unique<TriangleMesh>(Transform(), false, P,
+                                                     std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+        accel.Commit();
+        EXPECT_EQ(accel.BuiltWithHighQuality(), samples >= 2 * HighQualitySamplesPerTriangle)
+            << samples;
+        SurfaceInteraction si;
+        ASSERT_TRUE(accel.Intersect(Ray{{0.5f, 0.5f, 0}, {0, 0, 1}, Infinity}, &si));
+        EXPECT_NEAR(si.t, 5.0f, 1e-6f);
+    }
+}
+
+}  // namespace prism
