@@ -45,6 +45,6 @@ inline std::string WriteTestFile(const std::filesystem::path &path, const std::s
 
 // In a test body: skips the test when `path` under ../shared is missing, and fails it instead in
 // CI (CI=true).
-#define PRISM_REQUIRE_SHARED(where)                                            \
-    if (!::prism::test::SharedPathPresent(where))                              \
+#define PRISM_REQUIRE_SHARED(where)               \
+    if (!::prism::test::SharedPathPresent(where)) \
     GTEST_SKIP() << std::filesystem::path(where).string() << " not present"

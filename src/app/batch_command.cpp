@@ -2,12 +2,12 @@
 // scenes unattended. Each scene renders in its own child process (`prism render`), so a scene
 // that crashes or runs out of memory cannot take the batch or the finished images with it.
 // report.json and summary.txt are rewritten (atomically) after every scene.
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -42,7 +42,7 @@ struct BatchArgs {
 struct Job {
     std::string scene, output;
     std::string status = "pending";  // ok, failed, skipped, interrupted
-    double seconds = 0;  // whole child process
+    double seconds = 0;              // whole child process
     // The child's own phases, from its statistics line; negative when it printed none.
     double parseSeconds = -1, setupSeconds = -1, bvhSeconds = -1, renderSeconds = -1;
     int exitCode = 0;
@@ -73,7 +73,8 @@ std::vector<std::string> CollectScenes(const std::string &input) {
             if (e.is_regular_file() && IsSceneFile(e.path())) scenes.push_back(e.path().string());
         std::sort(scenes.begin(), scenes.end());
         std::set<std::string> referenced = ReferencedByScenes(scenes);
-        std::erase_if(scenes, [&](const std::string &s) { return referenced.count(CanonicalPath(s)) > 0; });
+        std::erase_if(scenes,
+                      [&](const std::string &s) { return referenced.count(CanonicalPath(s)) > 0; });
         return scenes;
     }
     std::ifstream in(input);
@@ -93,7 +94,8 @@ std::vector<std::string> CollectScenes(const std::string &input) {
 
 // Output names: the scene's path relative to the common root with separators replaced, so
 // scenes with the same file name in different folders do not collide.
-std::vector<std::string> OutputNames(const std::vector<std::string> &scenes, const std::string &ext) {
+std::vector<std::string> OutputNames(const std::vector<std::string> &scenes,
+                                     const std::string &ext) {
     std::vector<std::string> names;
     std::set<std::string> used;
     for (const std::string &s : scenes) {
@@ -112,13 +114,23 @@ std::string JsonEscape(const std::string &s) {
     std::string o;
     for (char c : s) {
         switch (c) {
-        case '"': o += "\\\""; break;
-        case '\\': o += "\\\\"; break;
-        case '\n': o += "\\n"; break;
-        case '\t': o += "\\t"; break;
-        default:
-            if (static_cast<unsigned char>(c) < 0x20) o += fmt::format("\\u{:04x}", int(c));
-            else o += c;
+            case '"':
+                o += "\\\"";
+                break;
+            case '\\':
+                o += "\\\\";
+                break;
+            case '\n':
+                o += "\\n";
+                break;
+            case '\t':
+                o += "\\t";
+                break;
+            default:
+                if (static_cast<unsigned char>(c) < 0x20)
+                    o += fmt::format("\\u{:04x}", int(c));
+                else
+                    o += c;
         }
     }
     return o;
@@ -134,14 +146,16 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
     std::string json = "{\n  \"scenes\": [\n";
     for (size_t i = 0; i < jobs.size(); ++i) {
         const Job &j = jobs[i];
-        json += fmt::format("    {{\"scene\": \"{}\", \"output\": \"{}\", \"status\": \"{}\", "
-                            "\"seconds\": {:.3f}, \"exit_code\": {}, \"error\": \"{}\", ",
-                            JsonEscape(j.scene), JsonEscape(j.output), j.status, j.seconds,
-                            j.exitCode, JsonEscape(j.error));
+        json += fmt::format(
+            "    {{\"scene\": \"{}\", \"output\": \"{}\", \"status\": \"{}\", "
+            "\"seconds\": {:.3f}, \"exit_code\": {}, \"error\": \"{}\", ",
+            JsonEscape(j.scene), JsonEscape(j.output), j.status, j.seconds, j.exitCode,
+            JsonEscape(j.error));
         if (j.renderSeconds >= 0)
-            json += fmt::format("\"phases\": {{\"parse\": {:.3f}, \"setup\": {:.3f}, \"bvh\": {:.3f}, "
-                                "\"render\": {:.3f}}}, ",
-                                j.parseSeconds, j.setupSeconds, j.bvhSeconds, j.renderSeconds);
+            json += fmt::format(
+                "\"phases\": {{\"parse\": {:.3f}, \"setup\": {:.3f}, \"bvh\": {:.3f}, "
+                "\"render\": {:.3f}}}, ",
+                j.parseSeconds, j.setupSeconds, j.bvhSeconds, j.renderSeconds);
         json += "\"warnings\": [";
         for (size_t k = 0; k < j.warnings.size(); ++k)
             json += (k ? ", \"" : "\"") + JsonEscape(j.warnings[k]) + "\"";
@@ -157,16 +171,19 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
                         wallSeconds, renderSum);
     WriteFileAtomically((fs::path(outDir) / "report.json").string(), json);
 
-    std::string txt = fmt::format("{:<11} {:>8}  {:>5}  {}\n", "status", "seconds", "warn", "scene");
+    std::string txt =
+        fmt::format("{:<11} {:>8}  {:>5}  {}\n", "status", "seconds", "warn", "scene");
     for (const Job &j : jobs) {
-        txt += fmt::format("{:<11} {:>8.2f}  {:>5}  {}\n", j.status, j.seconds, j.warnings.size(), j.scene);
+        txt += fmt::format("{:<11} {:>8.2f}  {:>5}  {}\n", j.status, j.seconds, j.warnings.size(),
+                           j.scene);
         if (!j.error.empty()) txt += "            error: " + j.error + "\n";
     }
     txt += fmt::format("\n{} ok, {} skipped (up to date), {} failed, {} interrupted, {} not run\n",
                        counts["ok"], counts["skipped"], counts["failed"], counts["interrupted"],
                        counts["pending"]);
-    txt += fmt::format("batch {:.2f} s; the renders' render phases add up to {:.2f} s ({:.0f}%)\n",
-                       wallSeconds, renderSum, wallSeconds > 0 ? 100 * renderSum / wallSeconds : 0.0);
+    txt +=
+        fmt::format("batch {:.2f} s; the renders' render phases add up to {:.2f} s ({:.0f}%)\n",
+                    wallSeconds, renderSum, wallSeconds > 0 ? 100 * renderSum / wallSeconds : 0.0);
     WriteFileAtomically((fs::path(outDir) / "summary.txt").string(), txt);
 }
 
@@ -180,12 +197,22 @@ std::string SelfExecutable() {
 void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob) {
     j.logPath = j.output + ".log.tmp";
     std::vector<std::string> args = {exe, "render", j.scene, "-o", j.output, "--no-progress"};
-    if (a.spp > 0) { args.push_back("--spp"); args.push_back(std::to_string(a.spp)); }
-    if (!a.res.empty()) { args.push_back("--res"); args.push_back(a.res); }
+    if (a.spp > 0) {
+        args.push_back("--spp");
+        args.push_back(std::to_string(a.spp));
+    }
+    if (!a.res.empty()) {
+        args.push_back("--res");
+        args.push_back(a.res);
+    }
     // Concurrent renders share the default budget, so together they stay within it.
     std::string budget = a.maxMemory;
-    if (budget.empty() && a.jobs > 1) budget = std::to_string(DefaultMemoryBudget() / uint64_t(a.jobs));
-    if (!budget.empty()) { args.push_back("--max-memory"); args.push_back(budget); }
+    if (budget.empty() && a.jobs > 1)
+        budget = std::to_string(DefaultMemoryBudget() / uint64_t(a.jobs));
+    if (!budget.empty()) {
+        args.push_back("--max-memory");
+        args.push_back(budget);
+    }
     args.push_back("--threads");
     args.push_back(std::to_string(threadsPerJob));
     j.start = std::chrono::steady_clock::now();
@@ -216,20 +243,25 @@ void Finish(Job &j, int status) {
             j.parseSeconds = p, j.setupSeconds = su, j.bvhSeconds = b, j.renderSeconds = r;
             continue;
         }
-        if (line.find("warning:") != std::string::npos) j.warnings.push_back(line);
-        else if (line.find("error:") != std::string::npos && j.error.empty()) j.error = line;
+        if (line.find("warning:") != std::string::npos)
+            j.warnings.push_back(line);
+        else if (line.find("error:") != std::string::npos && j.error.empty())
+            j.error = line;
     }
     std::error_code ec;
     fs::remove(j.logPath, ec);
     if (WIFEXITED(status)) {
         j.exitCode = WEXITSTATUS(status);
-        j.status = j.exitCode == 0 ? "ok" : (j.exitCode == ExitInterrupted ? "interrupted" : "failed");
-        if (j.status == "failed" && j.error.empty()) j.error = "exit status " + std::to_string(j.exitCode);
+        j.status =
+            j.exitCode == 0 ? "ok" : (j.exitCode == ExitInterrupted ? "interrupted" : "failed");
+        if (j.status == "failed" && j.error.empty())
+            j.error = "exit status " + std::to_string(j.exitCode);
     } else if (WIFSIGNALED(status)) {
         int sig = WTERMSIG(status);
         j.exitCode = 128 + sig;
         j.status = (sig == SIGINT && g_interrupted) ? "interrupted" : "failed";
-        if (j.status == "failed") j.error = std::string("render process killed by signal ") + strsignal(sig);
+        if (j.status == "failed")
+            j.error = std::string("render process killed by signal ") + strsignal(sig);
     }
     j.pid = -1;
 }
@@ -241,7 +273,8 @@ int RunBatch(const BatchArgs &a) {
     ParseMaxMemory(a.maxMemory);  // a bad value is a usage error now, not one per scene
     std::error_code ec;
     fs::create_directories(a.outDir, ec);
-    if (!fs::is_directory(a.outDir)) throw UsageError("cannot create output directory \"" + a.outDir + "\"");
+    if (!fs::is_directory(a.outDir))
+        throw UsageError("cannot create output directory \"" + a.outDir + "\"");
     std::vector<std::string> names = OutputNames(scenes, a.format);
     std::vector<Job> jobs(scenes.size());
     for (size_t i = 0; i < scenes.size(); ++i) {
@@ -258,10 +291,10 @@ int RunBatch(const BatchArgs &a) {
     int nJobs = std::max(1, a.jobs);
     int threadsPerJob = a.threads > 0 ? a.threads : std::max(1, cores / nJobs);
 
-    struct sigaction sa{};
+    struct sigaction sa {};
     sa.sa_handler = OnSigint;
     sigemptyset(&sa.sa_mask);
-    struct sigaction old{};
+    struct sigaction old {};
     sigaction(SIGINT, &sa, &old);
 
     size_t next = 0;
@@ -293,8 +326,9 @@ int RunBatch(const BatchArgs &a) {
             Finish(j, status);
             --running;
             if (!a.quiet)
-                std::fprintf(stderr, "batch: %s %s (%.1fs)%s%s\n", j.status.c_str(), j.scene.c_str(),
-                             j.seconds, j.error.empty() ? "" : ": ", j.error.c_str());
+                std::fprintf(stderr, "batch: %s %s (%.1fs)%s%s\n", j.status.c_str(),
+                             j.scene.c_str(), j.seconds, j.error.empty() ? "" : ": ",
+                             j.error.c_str());
             WriteReports(a.outDir, jobs, SecondsSince(batchStart));
         }
     }
@@ -316,16 +350,26 @@ int RunBatch(const BatchArgs &a) {
 
 void AddBatchCommand(CLI::App &app, int *exitCode) {
     auto args = std::make_shared<BatchArgs>();
-    CLI::App *cmd = app.add_subcommand("batch", "Render many scenes; keeps going past failures and writes a report");
-    cmd->add_option("input", args->input, "A directory (searched recursively) or a file listing scenes, one per line")->required();
-    cmd->add_option("-o,--output", args->outDir, "Output directory for images, report.json and summary.txt")->required();
-    cmd->add_option("--jobs", args->jobs, "Scenes rendered at once (cores are shared between them)")->check(CLI::Range(1, 256));
+    CLI::App *cmd = app.add_subcommand(
+        "batch", "Render many scenes; keeps going past failures and writes a report");
+    cmd->add_option("input", args->input,
+                    "A directory (searched recursively) or a file listing scenes, one per line")
+        ->required();
+    cmd->add_option("-o,--output", args->outDir,
+                    "Output directory for images, report.json and summary.txt")
+        ->required();
+    cmd->add_option("--jobs", args->jobs, "Scenes rendered at once (cores are shared between them)")
+        ->check(CLI::Range(1, 256));
     cmd->add_flag("--force", args->force, "Re-render scenes whose output is up to date");
-    cmd->add_option("--format", args->format, "Image format: png or exr")->check(CLI::IsMember({"png", "exr"}));
-    cmd->add_option("--spp", args->spp, "Samples per pixel for every scene")->check(CLI::Range(1, 1 << 16));
+    cmd->add_option("--format", args->format, "Image format: png or exr")
+        ->check(CLI::IsMember({"png", "exr"}));
+    cmd->add_option("--spp", args->spp, "Samples per pixel for every scene")
+        ->check(CLI::Range(1, 1 << 16));
     cmd->add_option("--res", args->res, "Resolution WxH for every scene");
-    cmd->add_option("--threads", args->threads, "Threads per scene (default: cores / jobs)")->check(CLI::Range(1, 4096));
-    cmd->add_option("--max-memory", args->maxMemory, "Memory budget of each render, e.g. 4G (default: 75% of RAM)");
+    cmd->add_option("--threads", args->threads, "Threads per scene (default: cores / jobs)")
+        ->check(CLI::Range(1, 4096));
+    cmd->add_option("--max-memory", args->maxMemory,
+                    "Memory budget of each render, e.g. 4G (default: 75% of RAM)");
     cmd->add_flag("-q,--quiet", args->quiet, "No progress lines");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunBatch(*args); }); });
 }

@@ -25,7 +25,8 @@ int RunGuarded(const std::function<int()> &fn) {
         // The libraries report a limit without naming the flag that sets it.
         const std::string flag = " (--max-memory)";
         if (dynamic_cast<const MemoryBudgetError *>(&e) &&
-            (what.size() < flag.size() || what.compare(what.size() - flag.size(), flag.size(), flag) != 0))
+            (what.size() < flag.size() ||
+             what.compare(what.size() - flag.size(), flag.size(), flag) != 0))
             what += flag;
         std::fprintf(stderr, "%s\n", what.c_str());
         return ExitBadInput;
@@ -62,7 +63,8 @@ Vec2i ParseResolution(const std::string &s) {
     std::vector<float> v = SplitFloats(s, 'x');
     if (v.size() != 2 || v[0] != float(int(v[0])) || v[1] != float(int(v[1])) || v[0] < 1 ||
         v[1] < 1)
-        throw UsageError("--res expects WxH with positive integers, e.g. 640x480 (got \"" + s + "\")");
+        throw UsageError("--res expects WxH with positive integers, e.g. 640x480 (got \"" + s +
+                         "\")");
     if (v[0] > MaxImageResolution || v[1] > MaxImageResolution)
         throw SceneError("--res " + s + " is out of range (1 to " +
                          std::to_string(MaxImageResolution) + " per axis)");
@@ -73,14 +75,17 @@ std::array<float, 4> ParseCrop(const std::string &s) {
     std::vector<float> v = SplitFloats(s, ',');
     if (v.size() != 4) throw UsageError("--crop expects x0,x1,y0,y1 (got \"" + s + "\")");
     for (float f : v)
-        if (!(f >= 0 && f <= 1)) throw UsageError("--crop values must lie in [0,1] (got \"" + s + "\")");
-    if (!(v[0] < v[1] && v[2] < v[3])) throw UsageError("--crop window is empty (got \"" + s + "\")");
+        if (!(f >= 0 && f <= 1))
+            throw UsageError("--crop values must lie in [0,1] (got \"" + s + "\")");
+    if (!(v[0] < v[1] && v[2] < v[3]))
+        throw UsageError("--crop window is empty (got \"" + s + "\")");
     return {v[0], v[1], v[2], v[3]};
 }
 
 Transform ParseLookAt(const std::string &s) {
     std::vector<float> v = SplitFloats(s, ',');
-    if (v.size() != 9) throw UsageError("--lookat expects ex,ey,ez,lx,ly,lz,ux,uy,uz (got \"" + s + "\")");
+    if (v.size() != 9)
+        throw UsageError("--lookat expects ex,ey,ez,lx,ly,lz,ux,uy,uz (got \"" + s + "\")");
     try {
         return LookAt({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}).Inverse();
     } catch (const std::invalid_argument &e) {

@@ -20,8 +20,8 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-Vec2i ParseResolution(const std::string &s);             // "640x480"
-std::array<float, 4> ParseCrop(const std::string &s);    // "x0,x1,y0,y1"
+Vec2i ParseResolution(const std::string &s);           // "640x480"
+std::array<float, 4> ParseCrop(const std::string &s);  // "x0,x1,y0,y1"
 Precision ParsePrecision(const std::string &s);
 // --max-memory: "512M", "8G", ... (core/memory.h); "" gives 0, the default budget.
 uint64_t ParseMaxMemory(const std::string &s);

@@ -1,6 +1,5 @@
 // `prism info SCENE`: what a scene file contains, without building a BVH.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -61,7 +60,8 @@ int RunInfo(const InfoArgs &a) {
     for (const InstanceDesc &inst : desc.instances) {
         const ObjectDesc *obj = FindObject(desc, inst.object);
         if (!obj) continue;
-        for (const ShapeDesc &s : obj->shapes) account(s, inst.worldFromInstance * s.worldFromObject);
+        for (const ShapeDesc &s : obj->shapes)
+            account(s, inst.worldFromInstance * s.worldFromObject);
     }
     // The rest of the build (camera, film, sampler, textures, materials, lights) without the
     // BVH, for the warnings only a build gives ("sampler \"halton\" is replaced ...").
@@ -75,22 +75,30 @@ int RunInfo(const InfoArgs &a) {
     int areaShapes = 0;
     for (const ShapeDesc &s : desc.shapes) areaShapes += s.areaLight >= 0;
 
-    std::printf("scene:      %s (%s), loaded in %.3f s\n", a.scene.c_str(), desc.format.c_str(), loadSeconds);
+    std::printf("scene:      %s (%s), loaded in %.3f s\n", a.scene.c_str(), desc.format.c_str(),
+                loadSeconds);
     std::printf("shapes:     %zu (%s)\n", desc.shapes.size(), Counts(shapes).c_str());
     std::printf("triangles:  %zu\n", triangles);
     std::printf("instances:  %zu of %zu objects\n", desc.instances.size(), desc.objects.size());
     std::printf("materials:  %zu (%s)\n", desc.materials.size(), Counts(materials).c_str());
     std::printf("textures:   %zu (%s)\n", desc.textures.size(), Counts(textures).c_str());
-    std::printf("lights:     %zu (%s); %d emissive shapes\n", desc.lights.size(), Counts(lights).c_str(), areaShapes);
+    std::printf("lights:     %zu (%s); %d emissive shapes\n", desc.lights.size(),
+                Counts(lights).c_str(), areaShapes);
     if (!bounds.IsEmpty())
-        std::printf("bounds:     %s - %s\n", ToString(bounds.pMin).c_str(), ToString(bounds.pMax).c_str());
+        std::printf("bounds:     %s - %s\n", ToString(bounds.pMin).c_str(),
+                    ToString(bounds.pMax).c_str());
     const CameraDesc &cam = desc.camera;
     Transform worldFromCamera = cam.cameraFromWorld.Inverse();
-    std::printf("camera:     %s, eye %s, looking along %s%s\n", cam.specified ? cam.type.c_str() : "perspective (default)",
-                ToString(worldFromCamera.Point(Vec3d(0, 0, 0))).c_str(),
-                ToString(Normalize(worldFromCamera.Vector(Vec3d(0, 0, 1)))).c_str(),
-                cam.params.Has("fov") ? (", fov " + std::to_string(cam.params.GetFloat("fov", PbrtDefaultFovDeg))).c_str() : "");
-    std::printf("film:       %dx%d\n", desc.film.params.GetInt("xresolution", PbrtDefaultXResolution),
+    std::printf(
+        "camera:     %s, eye %s, looking along %s%s\n",
+        cam.specified ? cam.type.c_str() : "perspective (default)",
+        ToString(worldFromCamera.Point(Vec3d(0, 0, 0))).c_str(),
+        ToString(Normalize(worldFromCamera.Vector(Vec3d(0, 0, 1)))).c_str(),
+        cam.params.Has("fov")
+            ? (", fov " + std::to_string(cam.params.GetFloat("fov", PbrtDefaultFovDeg))).c_str()
+            : "");
+    std::printf("film:       %dx%d\n",
+                desc.film.params.GetInt("xresolution", PbrtDefaultXResolution),
                 desc.film.params.GetInt("yresolution", PbrtDefaultYResolution));
     std::printf("integrator: %s\n", desc.integrator.type.c_str());
     std::vector<Warning> w = diag.Warnings();

@@ -13,9 +13,9 @@ void WriteFileAtomically(const std::string &path, const std::string &contents) {
     namespace fs = std::filesystem;
     static std::atomic<int> counter{0};
     fs::path target(path);
-    fs::path tmp = target.parent_path() /
-                   ("." + target.filename().string() + ".tmp-" + std::to_string(getpid()) + "-" +
-                    std::to_string(counter++));
+    fs::path tmp =
+        target.parent_path() / ("." + target.filename().string() + ".tmp-" +
+                                std::to_string(getpid()) + "-" + std::to_string(counter++));
     FILE *f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw std::runtime_error("cannot write \"" + path + "\"");
     bool ok = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();

@@ -1,9 +1,9 @@
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
-#include <tbb/global_control.h>
 #include <signal.h>
+#include <tbb/global_control.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -11,8 +11,8 @@
 
 #include "app/commands.h"
 #include "app/common.h"
-#include "image/image_io.h"
 #include "build/build_scene.h"
+#include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "validate/tessellate.h"
@@ -35,8 +35,10 @@ struct RenderArgs {
     bool quiet = false, noProgress = false;
 };
 
-void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool tty, int *lastQuarter) {
-    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool tty,
+                   int *lastQuarter) {
+    double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     double eta = f > 0 ? elapsed * (1 - f) / f : 0;
     if (tty) {
         const int width = 40;
@@ -100,7 +102,8 @@ int RunRender(const RenderArgs &a) {
     if (!a.quiet && !a.noProgress)
         progress = [&](double f) { PrintProgress(f, start, tty, &lastQuarter); };
     RenderStats stats;
-    struct sigaction sa{}, old{};
+    struct sigaction sa {
+    }, old{};
     sa.sa_handler = OnInterrupt;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, &old);
@@ -123,10 +126,9 @@ int RunRender(const RenderArgs &a) {
                      out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
                      scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
                      a.precision.c_str(), parseSeconds, setupSeconds, scene.buildSeconds,
-                     stats.renderSeconds,
-                     (unsigned long long)r.camera, (unsigned long long)r.shadow,
-                     (unsigned long long)r.reflection, (unsigned long long)r.refraction,
-                     (unsigned long long)r.passThrough,
+                     stats.renderSeconds, (unsigned long long)r.camera,
+                     (unsigned long long)r.shadow, (unsigned long long)r.reflection,
+                     (unsigned long long)r.refraction, (unsigned long long)r.passThrough,
                      stats.renderSeconds > 0 ? r.Total() / stats.renderSeconds * 1e-6 : 0.0);
         const SceneFeatures &f = scene.features;
         auto yn = [](bool b) { return b ? "on" : "off"; };
@@ -136,9 +138,10 @@ int RunRender(const RenderArgs &a) {
                      yn(f.specularReflection), yn(f.transmission), yn(f.areaLights),
                      yn(f.environment), yn(f.textures), yn(f.lens));
         if (stats.nonFiniteSamples > 0)
-            std::fprintf(stderr, "warning: %llu NaN/Inf samples were written as 0 (first at pixel %d,%d)\n",
-                         (unsigned long long)stats.nonFiniteSamples,
-                         stats.firstNonFinitePixel->x, stats.firstNonFinitePixel->y);
+            std::fprintf(stderr,
+                         "warning: %llu NaN/Inf samples were written as 0 (first at pixel %d,%d)\n",
+                         (unsigned long long)stats.nonFiniteSamples, stats.firstNonFinitePixel->x,
+                         stats.firstNonFinitePixel->y);
     }
     return ExitOk;
 }
@@ -147,29 +150,40 @@ int RunRender(const RenderArgs &a) {
 
 void AddRenderCommand(CLI::App &app, int *exitCode) {
     auto args = std::make_shared<RenderArgs>();
-    CLI::App *cmd = app.add_subcommand("render", "Render a scene (.pbrt, .obj, .gltf, .glb, .ply) to an image");
+    CLI::App *cmd =
+        app.add_subcommand("render", "Render a scene (.pbrt, .obj, .gltf, .glb, .ply) to an image");
     cmd->add_option("scene", args->scene, "Scene file")->required();
-    cmd->add_option("-o,--output", args->output, "Output image (.exr linear float, .png sRGB); default: the Film's filename");
-    cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the Sampler)")->check(CLI::Range(1, 1 << 16));
-    cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+    cmd->add_option("-o,--output", args->output,
+                    "Output image (.exr linear float, .png sRGB); default: the Film's filename");
+    cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the Sampler)")
+        ->check(CLI::Range(1, 1 << 16));
+    cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
     cmd->add_option("--res", args->res, "Resolution WxH (overrides the Film)");
-    cmd->add_option("--maxdepth", args->maxDepth, "Maximum specular depth (overrides the Integrator)")->check(CLI::Range(0, 1000));
-    cmd->add_option("--crop", args->crop, "Crop window x0,x1,y0,y1 in [0,1] (like Film \"cropwindow\")");
+    cmd->add_option("--maxdepth", args->maxDepth,
+                    "Maximum specular depth (overrides the Integrator)")
+        ->check(CLI::Range(0, 1000));
+    cmd->add_option("--crop", args->crop,
+                    "Crop window x0,x1,y0,y1 in [0,1] (like Film \"cropwindow\")");
     cmd->add_option("--precision", args->precision, "Arithmetic of the analytic intersectors")
         ->check(CLI::IsMember({"float", "double"}));
-    cmd->add_option("--light-samples", args->lightSamples, "Shadow rays per area/infinite light (overrides nsamples)")
+    cmd->add_option("--light-samples", args->lightSamples,
+                    "Shadow rays per area/infinite light (overrides nsamples)")
         ->check(CLI::Range(1, 4096));
-    cmd->add_option("--lookat", args->lookAt, "Camera ex,ey,ez,lx,ly,lz,ux,uy,uz (replaces the scene's camera)");
+    cmd->add_option("--lookat", args->lookAt,
+                    "Camera ex,ey,ez,lx,ly,lz,ux,uy,uz (replaces the scene's camera)");
     cmd->add_option("--fov", args->fov, "Field of view in degrees on the shorter image axis")
         ->check(CLI::Range(0.001, 179.999));
-    cmd->add_option("--tessellate", args->tessellate,
-                    "Replace every analytic shape by its triangle twin with N segments around the axis")
+    cmd->add_option(
+           "--tessellate", args->tessellate,
+           "Replace every analytic shape by its triangle twin with N segments around the axis")
         ->check(CLI::Range(3, 4096));
     cmd->add_option("--max-memory", args->maxMemory,
                     "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM), for scene "
                     "files, meshes, BVH, textures and film together; more is an error");
     cmd->add_flag("-q,--quiet", args->quiet, "No progress, statistics or warnings");
-    cmd->add_flag("--no-progress", args->noProgress, "No progress display (statistics and warnings stay)");
+    cmd->add_flag("--no-progress", args->noProgress,
+                  "No progress display (statistics and warnings stay)");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunRender(*args); }); });
 }
 

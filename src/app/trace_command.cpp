@@ -2,7 +2,6 @@
 // validate intersectors. One output line per ray, %.9g:
 //   hit t px py pz nx ny nz shape prim   |   miss      (or 1/0 with --occluded)
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -52,7 +51,8 @@ bool ParseRayLine(const std::string &line, const std::string &file, int lineNo, 
         throw SceneError(FileLoc{file, lineNo, 1}, "ray direction is zero");
     if (ray->o.HasNaN() || ray->d.HasNaN() || std::isnan(ray->tMin) || std::isnan(ray->tMax) ||
         !(ray->tMin >= 0) || ray->tMin > ray->tMax)
-        throw SceneError(FileLoc{file, lineNo, 1}, "invalid ray (NaN, negative tmin or tmin > tmax)");
+        throw SceneError(FileLoc{file, lineNo, 1},
+                         "invalid ray (NaN, negative tmin or tmin > tmax)");
     return true;
 }
 
@@ -91,12 +91,13 @@ int RunTrace(const TraceArgs &a) {
         // The geometric normal as pbrt orients it: not turned toward the ray, not bent toward
         // shading normals.
         Vec3f n = si.n;
-        if (const TriangleMesh *mesh = scene.accel->Mesh(hit.shape)) n = mesh->GeometricNormal(size_t(hit.prim));
+        if (const TriangleMesh *mesh = scene.accel->Mesh(hit.shape))
+            n = mesh->GeometricNormal(size_t(hit.prim));
         std::snprintf(buf, sizeof(buf), "hit %.9g %.9g %.9g %.9g %.9g %.9g %.9g %d %d\n",
                       // + 0.0 prints -0 as 0
                       double(hit.t) + 0.0, double(si.p.x) + 0.0, double(si.p.y) + 0.0,
-                      double(si.p.z) + 0.0, double(n.x) + 0.0, double(n.y) + 0.0, double(n.z) + 0.0, scene.shapes[size_t(hit.shape)].directiveIndex,
-                      hit.prim);
+                      double(si.p.z) + 0.0, double(n.x) + 0.0, double(n.y) + 0.0, double(n.z) + 0.0,
+                      scene.shapes[size_t(hit.shape)].directiveIndex, hit.prim);
         out += buf;
     }
     if (a.output.empty())
@@ -110,12 +111,15 @@ int RunTrace(const TraceArgs &a) {
 
 void AddTraceCommand(CLI::App &app, int *exitCode) {
     auto args = std::make_shared<TraceArgs>();
-    CLI::App *cmd = app.add_subcommand("trace", "Trace world-space rays from a file against a scene");
+    CLI::App *cmd =
+        app.add_subcommand("trace", "Trace world-space rays from a file against a scene");
     cmd->add_option("scene", args->scene, "Scene file")->required();
-    cmd->add_option("--rays", args->rays, "Ray file: 'ox oy oz dx dy dz [tmin tmax]' per line")->required();
+    cmd->add_option("--rays", args->rays, "Ray file: 'ox oy oz dx dy dz [tmin tmax]' per line")
+        ->required();
     cmd->add_option("-o,--output", args->output, "Output file (default: standard output)");
     cmd->add_flag("--occluded", args->occluded, "Occlusion query: print 1 or 0 per ray");
-    cmd->add_option("--max-memory", args->maxMemory, "Memory budget, e.g. 512M or 8G (default: 75% of RAM)");
+    cmd->add_option("--max-memory", args->maxMemory,
+                    "Memory budget, e.g. 512M or 8G (default: 75% of RAM)");
     cmd->add_option("--precision", args->precision, "Arithmetic of the analytic intersectors")
         ->check(CLI::IsMember({"float", "double"}));
     cmd->add_flag("-q,--quiet", args->quiet, "No warnings");

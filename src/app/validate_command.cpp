@@ -14,14 +14,14 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/output_file.h"
-#include "validate/tessellate.h"
+#include "build/build_scene.h"
+#include "build/shape_factory.h"
 #include "image/image.h"
 #include "image/image_io.h"
 #include "render/renderer.h"
-#include "build/build_scene.h"
-#include "build/shape_factory.h"
-#include "validate/validate.h"
 #include "scene/load_scene.h"
+#include "validate/tessellate.h"
+#include "validate/validate.h"
 
 namespace prism {
 
@@ -207,9 +207,10 @@ int RunValidate(const ValidateArgs &a) {
     if (status == ExitOutOfBand)
         std::printf("FAIL: disagreements outside the chord-error band (exit %d)\n", status);
     else if (status == ExitBadSlope)
-        std::printf("FAIL: a convergence slope is off: mean |dt| outside [-2.3, -1.7] or the "
-                    "shading-normal error falling slower than n^-1.7 (exit %d)\n",
-                    status);
+        std::printf(
+            "FAIL: a convergence slope is off: mean |dt| outside [-2.3, -1.7] or the "
+            "shading-normal error falling slower than n^-1.7 (exit %d)\n",
+            status);
     else
         std::printf("ok: every disagreement lies inside the chord-error band\n");
     return status;

@@ -1,11 +1,11 @@
 #include "bench/ceiling.h"
 
+#include <pmmintrin.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <xmmintrin.h>
-#include <pmmintrin.h>
 
 #include <algorithm>
 #include <chrono>
@@ -90,8 +90,8 @@ PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) 
                     for (uint32_t s = 0; s < spp; ++s) {
                         Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : CMJSample(s, spp, filmSeed);
                         Vec2f pFilm(float(x) + u.x, float(y) + u.y);
-                        Vec2f uLens = scene.features.lens ? CMJSample(s, spp, lensSeed)
-                                                          : Vec2f(0.5f, 0.5f);
+                        Vec2f uLens =
+                            scene.features.lens ? CMJSample(s, spp, lensSeed) : Vec2f(0.5f, 0.5f);
                         sc.rays.push_back(scene.camera->GenerateRay(pFilm, uLens));
                     }
                 }
@@ -101,7 +101,8 @@ PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) 
             if (traversal == CeilingTraversal::Packet16) {
                 sc.hits.resize(n);
                 for (size_t i = 0; i < n; i += 16)
-                    accel.IntersectPacket(&sc.rays[i], int(std::min<size_t>(16, n - i)), &sc.hits[i]);
+                    accel.IntersectPacket(&sc.rays[i], int(std::min<size_t>(16, n - i)),
+                                          &sc.hits[i]);
                 for (size_t i = 0; i < n; ++i) {
                     if (sc.hits[i].shape < 0) continue;
                     pc.hits++;
@@ -156,7 +157,8 @@ CeilingResult RunCeiling(const CeilingOptions &o, std::FILE *log) {
     res.width = scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x;
     res.height = scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y;
     res.spp = scene.spp;
-    res.threads = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    res.threads =
+        int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
     res.triangles = scene.features.triangles;
     if (log)
         std::fprintf(log, "%s: %dx%d, %d spp, %d threads, %zu triangles, %zu lights, %s\n",

@@ -20,14 +20,16 @@ struct CeilingOptions {
     int width = 0, height = 0;  // 0: the scene's Film
     int threads = 0;            // 0: all cores
     int repeats = 3;
-    int spp = 0;                // 0: the scene's Sampler
+    int spp = 0;  // 0: the scene's Sampler
     CeilingTraversal traversal = CeilingTraversal::Packet16;
 };
 
 struct CeilingRepeat {
     uint64_t ceilingRays = 0, renderRays = 0;
     double ceilingSeconds = 0, renderSeconds = 0;
-    double CeilingMrays() const { return ceilingSeconds > 0 ? ceilingRays / ceilingSeconds * 1e-6 : 0; }
+    double CeilingMrays() const {
+        return ceilingSeconds > 0 ? ceilingRays / ceilingSeconds * 1e-6 : 0;
+    }
     double RenderMrays() const { return renderSeconds > 0 ? renderRays / renderSeconds * 1e-6 : 0; }
 };
 

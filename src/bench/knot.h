@@ -18,7 +18,7 @@ struct KnotMesh {
 KnotMesh BuildKnot(int nu, int nv);
 
 struct KnotFiles {
-    size_t vertices = 0, triangles = 0;  // triangles include the 2 ground triangles
+    size_t vertices = 0, triangles = 0;      // triangles include the 2 ground triangles
     std::string pbrt, ply, pov, povInclude;  // written paths ("" when not written)
 };
 

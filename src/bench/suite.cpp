@@ -47,8 +47,8 @@ std::string ShellQuote(const std::string &s) {
 }
 
 std::string GitCommit(const std::string &sourceDir) {
-    std::string c = CommandOutput("git -C " + ShellQuote(sourceDir) +
-                                  " rev-parse --short HEAD 2>/dev/null");
+    std::string c =
+        CommandOutput("git -C " + ShellQuote(sourceDir) + " rev-parse --short HEAD 2>/dev/null");
     if (c.empty()) return "unknown";
     std::string dirty = CommandOutput("git -C " + ShellQuote(sourceDir) +
                                       " status --porcelain --untracked-files=no 2>/dev/null");
@@ -101,8 +101,11 @@ std::string TargetStatus(double value, const std::string &target) {
     std::string op;
     double x = 0;
     if (!(in >> op >> x)) return "";
-    bool ok = op == ">=" ? value >= x : op == "<=" ? value <= x : op == "<" ? value < x
-              : op == ">" ? value > x : false;
+    bool ok = op == ">="   ? value >= x
+              : op == "<=" ? value <= x
+              : op == "<"  ? value < x
+              : op == ">"  ? value > x
+                           : false;
     return ok ? "met" : "missed";
 }
 
@@ -156,7 +159,7 @@ int RunSuite(const SuiteOptions &options) {
     // the report lists the sections in the issue's order.
     using Section = void (*)(SuiteContext &);
     const std::vector<std::pair<int, Section>> order{
-        {4, MeasureMemorySection}, {3, MeasureStartupSection}, {0, MeasureCeilingSection},
+        {4, MeasureMemorySection}, {3, MeasureStartupSection},       {0, MeasureCeilingSection},
         {1, MeasurePovRaySection}, {2, MeasureThreadScalingSection}, {5, MeasureBatchSection}};
     std::vector<std::string> sections(order.size());
     std::vector<std::vector<BenchMetric>> sectionMetrics(order.size());
@@ -174,7 +177,8 @@ int RunSuite(const SuiteOptions &options) {
         ctx.metrics.insert(ctx.metrics.end(), sectionMetrics[i].begin(), sectionMetrics[i].end());
     }
 
-    std::string targets = "## Targets of issue 10\n\n| target | measured | status |\n|---|---|---|\n";
+    std::string targets =
+        "## Targets of issue 10\n\n| target | measured | status |\n|---|---|---|\n";
     for (const BenchMetric &m : ctx.metrics) {
         if (m.target.empty()) continue;
         std::string unit = m.unit.empty() ? "" : " " + m.unit;
@@ -182,9 +186,9 @@ int RunSuite(const SuiteOptions &options) {
                                FormatValue(m.value), unit, m.status);
     }
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::string report = head + ctx.markdown + targets +
-                         fmt::format("\nSuite time {:.0f} s; load average at the end {}.\n",
-                                     total, LoadAverage());
+    std::string report =
+        head + ctx.markdown + targets +
+        fmt::format("\nSuite time {:.0f} s; load average at the end {}.\n", total, LoadAverage());
     std::fputs(report.c_str(), stdout);
     std::fflush(stdout);
 

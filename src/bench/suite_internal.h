@@ -16,7 +16,7 @@ struct SuiteContext {
     std::string sourceDir;  // the source tree (scenes/whitted.pbrt)
     int povRuns = 5, startupRuns = 20, memoryRuns = 3, ceilingRepeats = 3;
     std::string povRes = "800x600";  // POV-Ray comparison and thread scaling
-    std::string markdown;   // the section being measured (RunSuite collects them)
+    std::string markdown;            // the section being measured (RunSuite collects them)
     std::vector<BenchMetric> metrics;
     // Render-phase rates (Mrays/s) of the Whitted scene at 1 spp by thread count, from the
     // POV-Ray comparison; the thread-scaling section measures them itself when empty.

@@ -27,14 +27,18 @@ ChildRun RunPrism(const SuiteContext &ctx, const std::vector<std::string> &args)
     argv.insert(argv.end(), args.begin(), args.end());
     ChildRun r = RunChild(argv);
     if (r.exitStatus != 0)
-        throw std::runtime_error(fmt::format("`{}` failed (exit {}): {}", fmt::join(argv, " "),
-                                             r.exitStatus, r.err));
+        throw std::runtime_error(
+            fmt::format("`{}` failed (exit {}): {}", fmt::join(argv, " "), r.exitStatus, r.err));
     return r;
 }
 
 std::vector<std::string> PrismWhittedArgs(const SuiteContext &ctx, int spp, int threads) {
-    return {"render", ctx.whittedScene, "-o", ctx.tmp + "/whitted_prism.png", "--res", ctx.povRes,
-            "--spp", std::to_string(spp), "--threads", std::to_string(threads), "--no-progress"};
+    return {"render",       ctx.whittedScene,
+            "-o",           ctx.tmp + "/whitted_prism.png",
+            "--res",        ctx.povRes,
+            "--spp",        std::to_string(spp),
+            "--threads",    std::to_string(threads),
+            "--no-progress"};
 }
 
 }  // namespace
@@ -66,8 +70,10 @@ void MeasureCeilingSection(SuiteContext &ctx) {
 }
 
 void MeasurePovRaySection(SuiteContext &ctx) {
-    ctx.markdown += fmt::format("## Against POV-Ray 3.7 (Whitted scene, {}, depth 5)\n\n", ctx.povRes);
-    std::string pbrt = ctx.sharedDir + "/peers/whitted.pbrt", pov = ctx.sharedDir + "/peers/whitted.pov";
+    ctx.markdown +=
+        fmt::format("## Against POV-Ray 3.7 (Whitted scene, {}, depth 5)\n\n", ctx.povRes);
+    std::string pbrt = ctx.sharedDir + "/peers/whitted.pbrt",
+                pov = ctx.sharedDir + "/peers/whitted.pov";
     if (!OnPath("povray") || !fs::exists(pbrt) || !fs::exists(pov)) {
         ctx.markdown += fmt::format("Skipped: {}.\n\n", !OnPath("povray")
                                                             ? "`povray` is not on PATH"
@@ -90,7 +96,8 @@ void MeasurePovRaySection(SuiteContext &ctx) {
         ctx.povRuns);
     for (bool aa : {false, true}) {
         for (int threads : {1, 2}) {
-            Progress(fmt::format("POV-Ray comparison, {}, {} thread(s)", aa ? "AA" : "no AA", threads));
+            Progress(
+                fmt::format("POV-Ray comparison, {}, {} thread(s)", aa ? "AA" : "no AA", threads));
             std::vector<double> pw, vw, pr, vt, mr;
             for (int i = 0; i < ctx.povRuns; ++i) {
                 ChildRun p = RunPrism(ctx, PrismWhittedArgs(ctx, aa ? 4 : 1, threads));
@@ -108,7 +115,8 @@ void MeasurePovRaySection(SuiteContext &ctx) {
                 ChildRun v = RunChild(argv, dir);
                 double trace = ParsePovTime(v.err, "Trace Time");
                 if (v.exitStatus != 0 || trace < 0 || ps.render < 0)
-                    throw std::runtime_error("POV-Ray or Prism run failed: " + v.err.substr(0, 2000));
+                    throw std::runtime_error("POV-Ray or Prism run failed: " +
+                                             v.err.substr(0, 2000));
                 pw.push_back(p.wallSeconds);
                 vw.push_back(v.wallSeconds);
                 pr.push_back(ps.render);
@@ -116,10 +124,10 @@ void MeasurePovRaySection(SuiteContext &ctx) {
                 mr.push_back(ps.mrays);
             }
             double spw = Median(vw) / Median(pw), spr = Median(vt) / Median(pr);
-            ctx.markdown += fmt::format("| {} | {} | {} | {} | {:.2f}x | {} | {} | {:.2f}x |\n",
-                                        aa ? "4 spp / +A0.0 +AM2" : "none", threads,
-                                        Sec(Median(pw)), Sec(Median(vw)), spw, Sec(Median(pr)),
-                                        Sec(Median(vt)), spr);
+            ctx.markdown +=
+                fmt::format("| {} | {} | {} | {} | {:.2f}x | {} | {} | {:.2f}x |\n",
+                            aa ? "4 spp / +A0.0 +AM2" : "none", threads, Sec(Median(pw)),
+                            Sec(Median(vw)), spw, Sec(Median(pr)), Sec(Median(vt)), spr);
             std::string key = fmt::format("whitted {} {}T", aa ? "aa" : "noaa", threads);
             ctx.Add("povray", key + " prism whole", Median(pw), "s");
             ctx.Add("povray", key + " povray whole", Median(vw), "s");
@@ -168,8 +176,9 @@ void MeasureStartupSection(SuiteContext &ctx) {
     std::vector<double> help, tiny;
     for (int i = 0; i < ctx.startupRuns; ++i) {
         help.push_back(RunPrism(ctx, {"--help"}).wallSeconds);
-        tiny.push_back(RunPrism(ctx, {"render", scene, "--res", "8x6", "-o", ctx.tmp + "/tiny.png",
-                                      "--quiet"}).wallSeconds);
+        tiny.push_back(
+            RunPrism(ctx, {"render", scene, "--res", "8x6", "-o", ctx.tmp + "/tiny.png", "--quiet"})
+                .wallSeconds);
     }
     ctx.markdown += fmt::format(
         "## Start-up (whole process, median of {})\n\n| `prism --help` | `prism render "
@@ -212,8 +221,8 @@ void MeasureMemorySection(SuiteContext &ctx) {
         "median of {}; peak RSS (ru_maxrss of each child) above the same render of an empty "
         "scene.\n\n| load (parse + setup) | BVH build | peak RSS | empty-scene RSS | bytes per "
         "triangle |\n|---|---|---|---|---|\n| {} | {} | {:.1f} MiB | {:.1f} MiB | {:.1f} |\n\n",
-        kf.triangles, ctx.memoryRuns, Sec(Median(load)), Sec(Median(bvh)),
-        Median(rssKnot) / 1024, Median(rssEmpty) / 1024, perTri);
+        kf.triangles, ctx.memoryRuns, Sec(Median(load)), Sec(Median(bvh)), Median(rssKnot) / 1024,
+        Median(rssEmpty) / 1024, perTri);
     ctx.Add("memory", "1M load", Median(load), "s");
     ctx.Add("memory", "1M BVH build", Median(bvh), "s");
     ctx.Add("memory", "1M peak RSS", Median(rssKnot) / 1024, "MiB");

@@ -19,7 +19,7 @@ struct BuildContext {
     Diagnostics &diag;
     RenderScene &scene;
     MemoryBudget &budget;  // settings.budget, or the build's own
-    std::map<std::string, TexturePtr> floatTextures, rgbTextures;     // by texture name
+    std::map<std::string, TexturePtr> floatTextures, rgbTextures;    // by texture name
     std::map<std::string, std::shared_ptr<const Image>> imageCache;  // by path and encoding
 };
 
@@ -34,7 +34,11 @@ inline RGB ScaleParam(const ParamSet &ps) {
 // reads like pbrt-v4's *::Create functions.
 struct BuildStep {
     explicit BuildStep(BuildContext &c)
-        : ctx(c), desc(c.desc), settings(c.settings), diag(c.diag), scene(c.scene),
+        : ctx(c),
+          desc(c.desc),
+          settings(c.settings),
+          diag(c.diag),
+          scene(c.scene),
           budget(c.budget) {}
     BuildContext &ctx;
     const SceneDescription &desc;

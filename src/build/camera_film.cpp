@@ -38,8 +38,9 @@ void BuildFilm(BuildContext &ctx) {
     std::vector<float> cw = film.GetFloats("cropwindow");
     if (cw.size() == 4) std::copy(cw.begin(), cw.end(), crop.begin());
     if (settings.crop) crop = *settings.crop;
-    crop = {Clamp(std::min(crop[0], crop[1]), 0.f, 1.f), Clamp(std::max(crop[0], crop[1]), 0.f, 1.f),
-            Clamp(std::min(crop[2], crop[3]), 0.f, 1.f), Clamp(std::max(crop[2], crop[3]), 0.f, 1.f)};
+    crop = {
+        Clamp(std::min(crop[0], crop[1]), 0.f, 1.f), Clamp(std::max(crop[0], crop[1]), 0.f, 1.f),
+        Clamp(std::min(crop[2], crop[3]), 0.f, 1.f), Clamp(std::max(crop[2], crop[3]), 0.f, 1.f)};
     Bounds2i pb;
     pb.pMin = {int(std::ceil(xres * crop[0])), int(std::ceil(yres * crop[2]))};
     pb.pMax = {int(std::ceil(xres * crop[1])), int(std::ceil(yres * crop[3]))};
@@ -56,9 +57,9 @@ void BuildFilm(BuildContext &ctx) {
 void ChargeFilmMemory(BuildContext &ctx) {
     const Bounds2i &pb = ctx.scene.pixelBounds;
     const Vec2i res = ctx.scene.resolution;
-    uint64_t bytes = EstimateFilmBytes(uint64_t(pb.pMax.x - pb.pMin.x), uint64_t(pb.pMax.y - pb.pMin.y),
-                                       ctx.scene.filter.radiusX, ctx.scene.filter.radiusY,
-                                       RenderTileSize);
+    uint64_t bytes =
+        EstimateFilmBytes(uint64_t(pb.pMax.x - pb.pMin.x), uint64_t(pb.pMax.y - pb.pMin.y),
+                          ctx.scene.filter.radiusX, ctx.scene.filter.radiusY, RenderTileSize);
     // A resolution from the settings has no location in the file.
     const Param *p = ctx.desc.film.params.Find("xresolution");
     FileLoc loc = ctx.settings.resolution.x > 0 ? FileLoc{} : p ? p->loc : ctx.desc.film.loc;
@@ -133,7 +134,8 @@ void BuildSampler(BuildContext &ctx) {
     const int maxSpp = MaxSamplesPerPixel;
     if (spp <= 0 || spp > maxSpp)
         throw SceneError(desc.sampler.loc, "samples per pixel " + std::to_string(spp) +
-                                               " out of range (1 to " + std::to_string(maxSpp) + ")");
+                                               " out of range (1 to " + std::to_string(maxSpp) +
+                                               ")");
     scene.spp = spp;
 }
 
@@ -163,7 +165,8 @@ void BuildPixelFilter(BuildContext &ctx) {
         f.B = fp.GetFloat("B", 1.f / 3);
         f.C = fp.GetFloat("C", 1.f / 3);
     } else {
-        diag.Warn(desc.filter.loc, "pixel filter " + Quote(ft) + " is not supported; using gaussian");
+        diag.Warn(desc.filter.loc,
+                  "pixel filter " + Quote(ft) + " is not supported; using gaussian");
         f.kind = Filter::Kind::Gaussian;
         f.radiusX = f.radiusY = 2;
         fp.MarkAllUsed();
@@ -184,14 +187,16 @@ void BuildIntegratorSettings(BuildContext &ctx) {
     int maxDepth = ip.GetInt("maxdepth", 5);
     // Only an Integrator the file names is worth a warning (pbrt's default is "path").
     if (desc.integrator.type != "whitted" && desc.integrator.loc.Valid())
-        diag.Warn(desc.integrator.loc, "integrator " + Quote(desc.integrator.type) +
-                                           " is rendered with Whitted (maxdepth " +
-                                           std::to_string(settings.maxDepth >= 0 ? settings.maxDepth : maxDepth) + ")");
+        diag.Warn(desc.integrator.loc,
+                  "integrator " + Quote(desc.integrator.type) +
+                      " is rendered with Whitted (maxdepth " +
+                      std::to_string(settings.maxDepth >= 0 ? settings.maxDepth : maxDepth) + ")");
     WarnIgnoredRest(ip, diag, "integrator " + Quote(desc.integrator.type),
                     "Prism's Whitted integrator reads only maxdepth");
     if (settings.maxDepth >= 0) maxDepth = settings.maxDepth;
     if (maxDepth < 0 || maxDepth > MaxTraceDepth)
-        throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) + " out of range (0 to " +
+        throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) +
+                                                  " out of range (0 to " +
                                                   std::to_string(MaxTraceDepth) + ")");
     scene.maxDepth = maxDepth;
 }

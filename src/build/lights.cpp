@@ -17,13 +17,14 @@ void BuildLights(BuildContext &ctx) {
         if (l.type == "point") {
             RGB I = ps.GetRGB("I", RGB(1)) * sc;
             Vec3f from = ps.GetPoint3("from", Vec3f(0, 0, 0));
-            scene.lights.push_back(std::make_unique<PointLight>(
-                Vec3f(renderFromLight.Point(Vec3d(from))), I));
+            scene.lights.push_back(
+                std::make_unique<PointLight>(Vec3f(renderFromLight.Point(Vec3d(from))), I));
         } else if (l.type == "spot") {
             RGB I = ps.GetRGB("I", RGB(1)) * sc;
             Vec3f from = ps.GetPoint3("from", Vec3f(0, 0, 0));
             Vec3f to = ps.GetPoint3("to", Vec3f(0, 0, 1));
-            if (from == to) throw SceneError(l.loc, "spot light \"from\" and \"to\" are the same point");
+            if (from == to)
+                throw SceneError(l.loc, "spot light \"from\" and \"to\" are the same point");
             float cone = ps.GetFloat("coneangle", 30.f), delta = ps.GetFloat("conedeltaangle", 5.f);
             Vec3d dir = Normalize(renderFromLight.Vector(Vec3d(to) - Vec3d(from)));
             scene.lights.push_back(std::make_unique<SpotLight>(
@@ -33,21 +34,25 @@ void BuildLights(BuildContext &ctx) {
             Vec3f from = ps.GetPoint3("from", Vec3f(0, 0, 0));
             Vec3f to = ps.GetPoint3("to", Vec3f(0, 0, 1));
             Vec3d w = renderFromLight.Vector(Vec3d(from) - Vec3d(to));
-            if (!(Length(w) > 0)) throw SceneError(l.loc, "distant light \"from\" and \"to\" are the same point");
+            if (!(Length(w) > 0))
+                throw SceneError(l.loc, "distant light \"from\" and \"to\" are the same point");
             scene.lights.push_back(std::make_unique<DistantLight>(Vec3f(Normalize(w)), L));
         } else if (l.type == "infinite") {
             RGB L = ps.GetRGB("L", RGB(1)) * sc;
             std::string mapname = ps.GetString("mapname", "");
             std::shared_ptr<const Image> map;
-            if (!mapname.empty()) map = LoadSceneImage(ctx, l, mapname, ReadImageOptions::Encoding::Auto, "mapname");
+            if (!mapname.empty())
+                map = LoadSceneImage(ctx, l, mapname, ReadImageOptions::Encoding::Auto, "mapname");
             int n = ps.GetInt("nsamples", ps.GetInt("samples", 1));
             if (ctx.settings.lightSamples > 0) n = ctx.settings.lightSamples;
-            if (n < 1 || n > 4096) throw SceneError(l.loc, "infinite light nsamples must be 1 to 4096");
+            if (n < 1 || n > 4096)
+                throw SceneError(l.loc, "infinite light nsamples must be 1 to 4096");
             scene.lights.push_back(std::make_unique<InfiniteLight>(renderFromLight, L, map, n));
             scene.features.environment = true;
         } else {
-            diag.WarnOnce("light:" + l.type, l.loc,
-                          "light source " + Quote(l.type) + " is not supported; every such light is ignored");
+            diag.WarnOnce(
+                "light:" + l.type, l.loc,
+                "light source " + Quote(l.type) + " is not supported; every such light is ignored");
             ps.MarkAllUsed();
         }
         ps.ReportUnused(diag, "light " + Quote(l.type));
@@ -61,8 +66,9 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
     const AreaLightDesc &a = desc.areaLights[size_t(s.areaLight)];
     const ParamSet &ps = a.params;
     if (a.type != "diffuse" && a.type != "area") {  // pbrt-v3 accepts both names
-        diag.WarnOnce("arealight:" + a.type, a.loc,
-                      "area light " + Quote(a.type) + " is not supported; shapes using it do not emit");
+        diag.WarnOnce(
+            "arealight:" + a.type, a.loc,
+            "area light " + Quote(a.type) + " is not supported; shapes using it do not emit");
         return nullptr;
     }
     RGB L = ps.GetRGB("L", RGB(1)) * ScaleParam(ps);
@@ -72,10 +78,12 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
     if (n < 1 || n > 4096) throw SceneError(a.loc, "area light nsamples must be 1 to 4096");
     const AnalyticShape *analytic = scene.accel->Analytic(shape);
     if (analytic && !analytic->CanSample()) {
-        diag.Warn(s.loc, "area lights on \"" + s.type + "\" shapes are not supported; the shape does not emit");
+        diag.Warn(s.loc, "area lights on \"" + s.type +
+                             "\" shapes are not supported; the shape does not emit");
         return nullptr;
     }
-    scene.lights.push_back(std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L, twoSided, n));
+    scene.lights.push_back(
+        std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L, twoSided, n));
     scene.shapes[size_t(shape)].areaLight = int(scene.lights.size()) - 1;
     scene.features.areaLights = true;
     return &a;

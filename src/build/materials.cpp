@@ -22,7 +22,9 @@ struct MaterialBuilder::MaterialParams {
         }
         return mat;
     }
-    TexturePtr RGBTex(const std::string &n, RGB def) { return TextureParam(ctx, Src(n), n, false, def); }
+    TexturePtr RGBTex(const std::string &n, RGB def) {
+        return TextureParam(ctx, Src(n), n, false, def);
+    }
     TexturePtr FloatTex(const std::string &n, float def) {
         return TextureParam(ctx, Src(n), n, true, RGB(def));
     }
@@ -42,7 +44,6 @@ MaterialBuilder::MaterialBuilder(BuildContext &ctx) : BuildStep(ctx) {
     scene.materials.push_back(def);
 }
 
-
 // The material a mix names: the latest definition before the mix (pbrt-v3 resolves names
 // when the mix is declared), else a later one (pbrt-v4 files may refer forward).
 int MaterialBuilder::ResolveNamedMaterial(const std::string &name, int from) const {
@@ -54,7 +55,7 @@ int MaterialBuilder::ResolveNamedMaterial(const std::string &name, int from) con
 }
 
 std::shared_ptr<const Material> MaterialBuilder::NamedMaterialRef(const std::string &name, int from,
-                                                 const FileLoc &loc, int depth) {
+                                                                  const FileLoc &loc, int depth) {
     int index = ResolveNamedMaterial(name, from);
     if (index < 0) {
         diag.Warn(loc, "unknown named material " + Quote(name) + " in mix; using matte");
@@ -105,18 +106,23 @@ void MaterialBuilder::Roughness(Material &mat, MaterialParams &mp, float def) {
 
 // `descIndex` is the material's position in desc.materials (mix names resolve from there);
 // `depth` counts enclosing mixes.
-Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex, const ParamSet *shapeParams,
-                      bool *usedShape, int depth) {
+Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
+                                       const ParamSet *shapeParams, bool *usedShape, int depth) {
     MaterialParams mp{ctx, shapeParams, m.params};
     Material mat;
     mat.typeName = m.type;
     std::string type = m.type;
     // pbrt-v4 names mapped onto the same models.
-    if (type == "diffuse") type = "matte";
-    else if (type == "dielectric") type = "glass";
-    else if (type == "conductor") type = "metal";
-    else if (type == "interface") type = "none";
-    else if (type == "diffusetransmission") type = "translucent";
+    if (type == "diffuse")
+        type = "matte";
+    else if (type == "dielectric")
+        type = "glass";
+    else if (type == "conductor")
+        type = "metal";
+    else if (type == "interface")
+        type = "none";
+    else if (type == "diffusetransmission")
+        type = "translucent";
     mp.mat.MarkUsed("type");
     if (mp.Has("bumpmap") || mp.Has("displacement")) {
         const Param *p = m.params.Find("bumpmap");

@@ -11,13 +11,13 @@
 namespace prism {
 
 class MaterialBuilder : BuildStep {
-public:
+  public:
     // Adds material 0, pbrt's default (matte, Kd 0.5), to ctx.scene.
     explicit MaterialBuilder(BuildContext &ctx);
     // The RenderScene material index for a shape; materials are created when first used.
     int MaterialForShape(const ShapeDesc &s);
 
-private:
+  private:
     struct MaterialParams;
     Material MakeMaterial(const MaterialDesc &m, int descIndex, const ParamSet *shapeParams,
                           bool *usedShape, int depth = 0);

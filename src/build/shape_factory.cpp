@@ -45,7 +45,8 @@ std::unique_ptr<TriangleMesh> MakeMesh(const ShapeDesc &s, const Transform &rend
     std::vector<uint32_t> indices;
     indices.reserve(idx.size());
     for (int i : idx) {
-        if (i < 0) throw SceneError(ParamLoc(s, "indices"), "negative vertex index " + std::to_string(i));
+        if (i < 0)
+            throw SceneError(ParamLoc(s, "indices"), "negative vertex index " + std::to_string(i));
         indices.push_back(uint32_t(i));
     }
     for (const Vec3f &p : P)
@@ -77,7 +78,8 @@ ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromO
     ShapeGeometry g;
     // The arrays read from the parameters (their storage was charged when the scene was read;
     // these float copies are at most half of it) are freed when this returns.
-    g.mesh = MakeMesh(s, renderFromObject, P, indices, N, uv, budget, ArrayBytes(P, indices, N, uv));
+    g.mesh =
+        MakeMesh(s, renderFromObject, P, indices, N, uv, budget, ArrayBytes(P, indices, N, uv));
     return g;
 }
 
@@ -100,17 +102,19 @@ ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject
 
 // scene/'s ParamSet seen through geometry/'s ShapeParams, for the shapes' CreateShape<T>.
 class ShapeDescParams final : public ShapeParams {
-public:
+  public:
     explicit ShapeDescParams(const ShapeDesc &s) : s_(s) {}
     const std::string &Type() const override { return s_.type; }
     bool Has(const char *name) const override { return s_.params.Has(name); }
-    float Float(const char *name, float def) const override { return s_.params.GetFloat(name, def); }
+    float Float(const char *name, float def) const override {
+        return s_.params.GetFloat(name, def);
+    }
     Vec3f Point3(const char *name, Vec3f def) const override {
         return s_.params.GetPoint3(name, def);
     }
     FileLoc Loc(const char *name) const override { return ParamLoc(s_, name); }
 
-private:
+  private:
     const ShapeDesc &s_;
 };
 
@@ -149,8 +153,9 @@ ShapeGeometry LoopSubdivShape(const ShapeDesc &s, const Transform &renderFromObj
                          std::string("loopsubdiv: ") + e.what());
     }
     if (r.droppedFaces > 0)
-        ctx.diag.Warn(ParamLoc(s, "indices"), "loopsubdiv: skipped " + std::to_string(r.droppedFaces) +
-                                                  " degenerate triangle(s)");
+        ctx.diag.Warn(
+            ParamLoc(s, "indices"),
+            "loopsubdiv: skipped " + std::to_string(r.droppedFaces) + " degenerate triangle(s)");
     if (r.indices.empty()) throw SceneError(s.loc, "loopsubdiv has no non-degenerate triangles");
     ShapeGeometry g;
     g.mesh = MakeMesh(s, renderFromObject, r.P, r.indices, r.N, {}, budget,
@@ -162,11 +167,11 @@ ShapeGeometry LoopSubdivShape(const ShapeDesc &s, const Transform &renderFromObj
 
 ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFromObject,
                                   const ShapeFactoryContext &ctx) {
-#define PRISM_SHAPE(T, name)                                                       \
-    if (s.type == name) {                                                          \
-        ShapeGeometry g;                                                           \
+#define PRISM_SHAPE(T, name)                                                                     \
+    if (s.type == name) {                                                                        \
+        ShapeGeometry g;                                                                         \
         g.analytic = CreateShape<T>(ShapeDescParams(s), renderFromObject, s.reverseOrientation); \
-        return g;                                                                  \
+        return g;                                                                                \
     }
 #include "geometry/shape_list.inc"
 #undef PRISM_SHAPE

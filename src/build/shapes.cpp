@@ -41,8 +41,9 @@ struct ShapeBuilder : BuildStep {
             const Param *p = ps.Find(n);
             if (!p) continue;
             if (p->type == ParamType::Texture) {
-                diag.WarnOnce(std::string("texalpha:") + n, p->loc,
-                              std::string("textured \"") + n + "\" is not supported; treated as opaque");
+                diag.WarnOnce(
+                    std::string("texalpha:") + n, p->loc,
+                    std::string("textured \"") + n + "\" is not supported; treated as opaque");
                 ps.MarkUsed(n);
                 continue;
             }
@@ -62,7 +63,7 @@ struct ShapeBuilder : BuildStep {
                    const Transform &renderFromObject) {
         ShapeFactoryContext fctx{desc, diag, settings.precision, &budget};
         ShapeGeometry geom = CreateShapeGeometry(s, renderFromObject, fctx);
-        if (!geom.mesh && !geom.analytic) return -1;  // skipped with a warning
+        if (!geom.mesh && !geom.analytic) return -1;           // skipped with a warning
         if (settings.replaceAnalyticShape && geom.analytic) {  // e.g. --tessellate N
             MeshCharge charge = [&](uint64_t meshBytes, uint64_t transientBytes) {
                 std::string what = "shape " + Quote(s.type);
@@ -121,20 +122,25 @@ struct ShapeBuilder : BuildStep {
             std::vector<ShapeInfo> infos;
             for (const ShapeDesc &s : obj->shapes) {
                 if (s.areaLight >= 0)
-                    diag.Warn(s.loc, "area lights inside object instances are not supported (as in pbrt-v3); the shape does not emit");
+                    diag.Warn(s.loc,
+                              "area lights inside object instances are not supported (as in "
+                              "pbrt-v3); the shape does not emit");
                 AddShapeTo(*proto, infos, s, s.worldFromObject);
             }
             // The prototype's BVH, once however many instances use it (the fixed part of the
             // estimate is charged once, with the top level).
-            budget.Charge(EstimateBvhBytes(TrianglesOf(*proto), UserPrimsOf(*proto)) -
-                              kBvhFixedBytes,
-                          "BVH", obj->loc);
+            budget.Charge(
+                EstimateBvhBytes(TrianglesOf(*proto), UserPrimsOf(*proto)) - kBvhFixedBytes, "BVH",
+                obj->loc);
             proto->Commit();
             scene.prototypes.push_back(std::move(infos));
-            it = prototypeOf.emplace(inst.object, std::make_pair(proto, int(scene.prototypes.size()) - 1)).first;
+            it = prototypeOf
+                     .emplace(inst.object, std::make_pair(proto, int(scene.prototypes.size()) - 1))
+                     .first;
         }
         if (it->second.first->NumShapes() == 0) return;
-        int index = scene.accel->AddInstance(it->second.first, scene.renderFromWorld * inst.worldFromInstance);
+        int index = scene.accel->AddInstance(it->second.first,
+                                             scene.renderFromWorld * inst.worldFromInstance);
         if (int(scene.shapes.size()) <= index) scene.shapes.resize(size_t(index) + 1);
         ShapeInfo info;
         info.type = "instance";
@@ -149,13 +155,14 @@ struct ShapeBuilder : BuildStep {
         ao.expectedSamples = uint64_t(std::max(0, pb.pMax.x - pb.pMin.x)) *
                              uint64_t(std::max(0, pb.pMax.y - pb.pMin.y)) * uint64_t(scene.spp);
         scene.accel = std::make_unique<Accel>(ao);
-        for (const ShapeDesc &s : desc.shapes) AddShape(s, scene.renderFromWorld * s.worldFromObject);
+        for (const ShapeDesc &s : desc.shapes)
+            AddShape(s, scene.renderFromWorld * s.worldFromObject);
         for (const InstanceDesc &inst : desc.instances) AddInstance(inst);
         for (const AreaLightDesc *a : usedAreaLights) a->params.ReportUnused(diag, "area light");
         if (!settings.buildBvh) return;
         // Meshes and analytic shapes, each instance as one user primitive.
-        budget.Charge(EstimateBvhBytes(TrianglesOf(*scene.accel), UserPrimsOf(*scene.accel)),
-                      "BVH", desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0});
+        budget.Charge(EstimateBvhBytes(TrianglesOf(*scene.accel), UserPrimsOf(*scene.accel)), "BVH",
+                      desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0});
         auto start = std::chrono::steady_clock::now();
         scene.accel->Commit();
         scene.buildSeconds =

@@ -15,7 +15,6 @@ namespace {
 struct TextureBuilder : BuildStep {
     using BuildStep::BuildStep;
 
-    
     // A texture-valued parameter of a texture ("tex1", "amount", ...): texture name or value.
     TexturePtr TexParam(const ParamSet &ps, const std::string &name, bool isFloat, RGB def) {
         const Param *p = ps.Find(name);
@@ -100,8 +99,9 @@ struct TextureBuilder : BuildStep {
         const ParamSet &ps = t.params;
         bool f = t.isFloat;
         auto spectrumOnly = [&]() {
-            diag.Warn(t.loc, "texture class " + Quote(t.type) + " has no float variant (as in pbrt-v3); texture " +
-                                 Quote(t.name) + " is ignored");
+            diag.Warn(t.loc, "texture class " + Quote(t.type) +
+                                 " has no float variant (as in pbrt-v3); texture " + Quote(t.name) +
+                                 " is ignored");
             ps.MarkAllUsed();
             return TexturePtr();
         };
@@ -133,7 +133,8 @@ struct TextureBuilder : BuildStep {
             int n = octaves();
             return std::make_shared<NoiseTexture>(kind, m3, n, ps.GetFloat("roughness", .5f));
         }
-        if (t.type == "windy") return std::make_shared<NoiseTexture>(NoiseTexture::Kind::Windy, m3, 0, 0.f);
+        if (t.type == "windy")
+            return std::make_shared<NoiseTexture>(NoiseTexture::Kind::Windy, m3, 0, 0.f);
         if (t.type == "marble") {
             if (f) return spectrumOnly();
             int n = octaves();
@@ -164,12 +165,14 @@ struct TextureBuilder : BuildStep {
                                                 TexParam(ps, "amount", true, RGB(0.5f)));
         if (t.type == "checkerboard") {
             int dim = ps.GetInt("dimension", 2);
-            if (dim != 2 && dim != 3) throw SceneError(t.loc, "checkerboard dimension must be 2 or 3");
+            if (dim != 2 && dim != 3)
+                throw SceneError(t.loc, "checkerboard dimension must be 2 or 3");
             // pbrt-v3's default "closedform" filtering is not simulated: the texture is
             // point-sampled and antialiased by the pixel samples, as with "none".
             if (ps.GetString("aamode", "none") != "none")
-                WarnIgnored(ps, {"aamode"}, diag, "checkerboard texture",
-                            "closed-form antialiasing is not simulated; the texture is point-sampled");
+                WarnIgnored(
+                    ps, {"aamode"}, diag, "checkerboard texture",
+                    "closed-form antialiasing is not simulated; the texture is point-sampled");
             return std::make_shared<CheckerboardTexture>(Mapping(t), TexParam(ps, "tex1", f, one),
                                                          TexParam(ps, "tex2", f, zero), dim);
         }
@@ -178,18 +181,23 @@ struct TextureBuilder : BuildStep {
             if (file.empty()) throw SceneError(t.loc, "imagemap texture needs a \"filename\"");
             std::string wrapName = ps.GetString("wrap", "repeat");
             WrapMode wrap = WrapMode::Repeat;
-            if (wrapName == "black") wrap = WrapMode::Black;
-            else if (wrapName == "clamp") wrap = WrapMode::Clamp;
+            if (wrapName == "black")
+                wrap = WrapMode::Black;
+            else if (wrapName == "clamp")
+                wrap = WrapMode::Clamp;
             else if (wrapName != "repeat")
-                diag.Warn(ps.Find("wrap")->loc, "unknown wrap mode " + Quote(wrapName) + "; using repeat");
+                diag.Warn(ps.Find("wrap")->loc,
+                          "unknown wrap mode " + Quote(wrapName) + "; using repeat");
             auto enc = ReadImageOptions::Encoding::Auto;
             if (ps.Has("gamma"))
                 enc = ps.GetBool("gamma", false) ? ReadImageOptions::Encoding::SRGB
                                                  : ReadImageOptions::Encoding::Linear;
             // pbrt-v4's "encoding" for 8-bit images: "sRGB" and "linear" are honoured.
             std::string encoding = ps.GetString("encoding", "");
-            if (encoding == "sRGB") enc = ReadImageOptions::Encoding::SRGB;
-            else if (encoding == "linear") enc = ReadImageOptions::Encoding::Linear;
+            if (encoding == "sRGB")
+                enc = ReadImageOptions::Encoding::SRGB;
+            else if (encoding == "linear")
+                enc = ReadImageOptions::Encoding::Linear;
             else if (!encoding.empty())
                 WarnIgnored(ps, {"encoding"}, diag, "imagemap texture",
                             "only \"sRGB\" and \"linear\" are read");
@@ -246,8 +254,8 @@ TexturePtr TextureParam(BuildContext &ctx, const ParamSet &ps, const std::string
 }
 
 std::shared_ptr<const Image> LoadSceneImage(BuildContext &ctx, const SceneEntity &entity,
-                                            const std::string &file,
-                                            ReadImageOptions::Encoding enc, const char *param) {
+                                            const std::string &file, ReadImageOptions::Encoding enc,
+                                            const char *param) {
     return TextureBuilder(ctx).LoadImage(entity, file, enc, param);
 }
 

@@ -22,7 +22,7 @@ TexturePtr TextureParam(BuildContext &ctx, const ParamSet &ps, const std::string
 // Reads (once per path and encoding) the image an entity's parameter `param` names, within the
 // memory budget; errors point at that parameter.
 std::shared_ptr<const Image> LoadSceneImage(BuildContext &ctx, const SceneEntity &entity,
-                                            const std::string &file,
-                                            ReadImageOptions::Encoding enc, const char *param);
+                                            const std::string &file, ReadImageOptions::Encoding enc,
+                                            const char *param);
 
 }  // namespace prism

@@ -20,9 +20,24 @@ struct RGB {
     RGB operator/(const RGB &o) const { return {r / o.r, g / o.g, b / o.b}; }
     RGB operator*(float s) const { return {r * s, g * s, b * s}; }
     RGB operator/(float s) const { return {r / s, g / s, b / s}; }
-    RGB &operator+=(const RGB &o) { r += o.r; g += o.g; b += o.b; return *this; }
-    RGB &operator*=(const RGB &o) { r *= o.r; g *= o.g; b *= o.b; return *this; }
-    RGB &operator*=(float s) { r *= s; g *= s; b *= s; return *this; }
+    RGB &operator+=(const RGB &o) {
+        r += o.r;
+        g += o.g;
+        b += o.b;
+        return *this;
+    }
+    RGB &operator*=(const RGB &o) {
+        r *= o.r;
+        g *= o.g;
+        b *= o.b;
+        return *this;
+    }
+    RGB &operator*=(float s) {
+        r *= s;
+        g *= s;
+        b *= s;
+        return *this;
+    }
     bool operator==(const RGB &) const = default;
 
     bool IsBlack() const { return r == 0 && g == 0 && b == 0; }

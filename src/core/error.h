@@ -28,13 +28,13 @@ struct FileLoc {
 };
 
 class SceneError : public std::runtime_error {
-public:
+  public:
     SceneError(const FileLoc &loc, const std::string &msg);
     explicit SceneError(const std::string &msg) : std::runtime_error(msg) {}
     const FileLoc &Loc() const { return loc_; }
     const std::string &Message() const { return msg_; }
 
-private:
+  private:
     FileLoc loc_;
     std::string msg_;
 };
@@ -48,7 +48,7 @@ struct Warning {
 // Thread-safe collector of warnings. Identical warnings are kept once (with a count), so a
 // per-pixel or per-shape problem does not flood the terminal.
 class Diagnostics {
-public:
+  public:
     explicit Diagnostics(bool echo = false) : echo_(echo) {}
     void Warn(const FileLoc &loc, const std::string &message);
     void Warn(const std::string &message) { Warn(FileLoc{}, message); }
@@ -60,7 +60,7 @@ public:
     size_t Count() const;
     void SetEcho(bool echo) { echo_ = echo; }
 
-private:
+  private:
     mutable std::mutex mutex_;
     std::vector<Warning> warnings_;
     std::vector<std::pair<std::string, int>> once_;

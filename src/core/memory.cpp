@@ -30,15 +30,23 @@ bool ParseMemorySize(const std::string &s, uint64_t *bytes) {
     if (end == begin || !std::isfinite(v) || !(v > 0)) return false;
     std::string unit(end);
     for (char &c : unit) c = char(std::toupper((unsigned char)c));
-    if (unit.size() >= 3 && unit.substr(unit.size() - 2) == "IB") unit.resize(unit.size() - 2);
-    else if (unit.size() >= 2 && unit.back() == 'B') unit.pop_back();
+    if (unit.size() >= 3 && unit.substr(unit.size() - 2) == "IB")
+        unit.resize(unit.size() - 2);
+    else if (unit.size() >= 2 && unit.back() == 'B')
+        unit.pop_back();
     double scale = 1;
-    if (unit == "" || unit == "B") scale = 1;
-    else if (unit == "K") scale = 1024.0;
-    else if (unit == "M") scale = 1024.0 * 1024;
-    else if (unit == "G") scale = 1024.0 * 1024 * 1024;
-    else if (unit == "T") scale = 1024.0 * 1024 * 1024 * 1024;
-    else return false;
+    if (unit == "" || unit == "B")
+        scale = 1;
+    else if (unit == "K")
+        scale = 1024.0;
+    else if (unit == "M")
+        scale = 1024.0 * 1024;
+    else if (unit == "G")
+        scale = 1024.0 * 1024 * 1024;
+    else if (unit == "T")
+        scale = 1024.0 * 1024 * 1024 * 1024;
+    else
+        return false;
     double b = std::floor(v * scale);
     if (!(b >= 1) || b >= 9.2e18) return false;
     *bytes = uint64_t(b);
@@ -103,8 +111,8 @@ uint64_t Saturate(u128 v) {
 }  // namespace
 
 uint64_t EstimateBvhBytes(uint64_t triangles, uint64_t userPrims) {
-    return Saturate(u128(triangles) * kBvhBytesPerTriangle + u128(userPrims) * kBvhBytesPerUserPrim +
-                    kBvhFixedBytes);
+    return Saturate(u128(triangles) * kBvhBytesPerTriangle +
+                    u128(userPrims) * kBvhBytesPerUserPrim + kBvhFixedBytes);
 }
 
 uint64_t EstimateFilmBytes(uint64_t width, uint64_t height, double filterRadiusX,

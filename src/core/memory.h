@@ -31,7 +31,7 @@ std::string FormatBytes(uint64_t bytes);
 // Thrown when an allocation would exceed the memory budget. A SceneError (exit status 2, caught
 // wherever scene errors are); the app recognises it to name its flag after the message.
 class MemoryBudgetError : public SceneError {
-public:
+  public:
     MemoryBudgetError(const FileLoc &loc, const std::string &msg, uint64_t requested,
                       uint64_t committed, uint64_t limit)
         : SceneError(loc, msg), requested_(requested), committed_(committed), limit_(limit) {}
@@ -39,7 +39,7 @@ public:
     uint64_t Committed() const { return committed_; }  // bytes charged before it
     uint64_t Limit() const { return limit_; }
 
-private:
+  private:
     uint64_t requested_, committed_, limit_;
 };
 
@@ -48,7 +48,7 @@ private:
 // that live until the render ends (meshes, BVH, textures, film) are charged once and kept;
 // scene files are charged too, as the description parsed from them is of comparable size.
 class MemoryBudget {
-public:
+  public:
     // `limit` in bytes; 0 means DefaultMemoryBudget() (75% of RAM).
     explicit MemoryBudget(uint64_t limit = 0) : limit_(EffectiveMemoryBudget(limit)) {}
     MemoryBudget(const MemoryBudget &) = delete;
@@ -78,7 +78,7 @@ public:
     // The message Charge throws for `bytes` with `committed` bytes already charged.
     std::string ExceededMessage(uint64_t bytes, uint64_t committed, std::string_view what) const;
 
-private:
+  private:
     uint64_t limit_;
     std::atomic<uint64_t> used_{0};
 };

@@ -8,7 +8,7 @@ namespace prism {
 
 // PCG32 (O'Neill 2014): small, fast, statistically good stream generator.
 class PCG32 {
-public:
+  public:
     explicit PCG32(uint64_t seed = 0x853c49e6748fea9bULL, uint64_t stream = 0xda3e39cb94b95bdbULL) {
         Seed(seed, stream);
     }
@@ -32,7 +32,7 @@ public:
         return double(v >> 11) * 0x1p-53;
     }
 
-private:
+  private:
     uint64_t state_, inc_;
 };
 

@@ -136,8 +136,8 @@ Vec3d Transform::PointError(const Vec3d &p, const Vec3d &pErr, double eps) const
     for (int i = 0; i < 3; ++i) {
         double a = std::abs(m[i][0] * p.x) + std::abs(m[i][1] * p.y) + std::abs(m[i][2] * p.z) +
                    std::abs(m[i][3]);
-        double e = std::abs(m[i][0]) * pErr.x + std::abs(m[i][1]) * pErr.y +
-                   std::abs(m[i][2]) * pErr.z;
+        double e =
+            std::abs(m[i][0]) * pErr.x + std::abs(m[i][1]) * pErr.y + std::abs(m[i][2]) * pErr.z;
         r[i] = g3 * a + (g3 + 1) * e;
     }
     return r;
@@ -156,14 +156,20 @@ std::string Transform::ToString() const {
 
 Transform Translate(const Vec3d &d) {
     Matrix4 m = Matrix4::Identity(), mi = Matrix4::Identity();
-    m.m[0][3] = d.x; m.m[1][3] = d.y; m.m[2][3] = d.z;
-    mi.m[0][3] = -d.x; mi.m[1][3] = -d.y; mi.m[2][3] = -d.z;
+    m.m[0][3] = d.x;
+    m.m[1][3] = d.y;
+    m.m[2][3] = d.z;
+    mi.m[0][3] = -d.x;
+    mi.m[1][3] = -d.y;
+    mi.m[2][3] = -d.z;
     return {m, mi};
 }
 
 Transform Scale(double x, double y, double z) {
     Matrix4 m = Matrix4::Identity();
-    m.m[0][0] = x; m.m[1][1] = y; m.m[2][2] = z;
+    m.m[0][0] = x;
+    m.m[1][1] = y;
+    m.m[2][2] = z;
     return Transform(m);
 }
 

@@ -23,7 +23,7 @@ struct Matrix4 {
 };
 
 class Transform {
-public:
+  public:
     Transform() : m_(Matrix4::Identity()), mInv_(Matrix4::Identity()) {}
     // Throws std::invalid_argument if m is singular.
     explicit Transform(const Matrix4 &m);
@@ -52,7 +52,7 @@ public:
 
     std::string ToString() const;
 
-private:
+  private:
     Matrix4 m_, mInv_;
 };
 

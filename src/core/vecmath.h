@@ -43,16 +43,36 @@ struct Vec3 {
     Vec3 operator-(const Vec3 &o) const { return {x - o.x, y - o.y, z - o.z}; }
     Vec3 operator-() const { return {-x, -y, -z}; }
     Vec3 operator*(T s) const { return {x * s, y * s, z * s}; }
-    Vec3 operator/(T s) const { T inv = T(1) / s; return {x * inv, y * inv, z * inv}; }
-    Vec3 &operator+=(const Vec3 &o) { x += o.x; y += o.y; z += o.z; return *this; }
-    Vec3 &operator-=(const Vec3 &o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-    Vec3 &operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
+    Vec3 operator/(T s) const {
+        T inv = T(1) / s;
+        return {x * inv, y * inv, z * inv};
+    }
+    Vec3 &operator+=(const Vec3 &o) {
+        x += o.x;
+        y += o.y;
+        z += o.z;
+        return *this;
+    }
+    Vec3 &operator-=(const Vec3 &o) {
+        x -= o.x;
+        y -= o.y;
+        z -= o.z;
+        return *this;
+    }
+    Vec3 &operator*=(T s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
     bool operator==(const Vec3 &) const = default;
     bool HasNaN() const { return std::isnan(x) || std::isnan(y) || std::isnan(z); }
 };
 
 template <typename T>
-inline Vec3<T> operator*(T s, const Vec3<T> &v) { return v * s; }
+inline Vec3<T> operator*(T s, const Vec3<T> &v) {
+    return v * s;
+}
 
 using Vec2f = Vec2<float>;
 using Vec2d = Vec2<double>;
@@ -60,38 +80,56 @@ using Vec2i = Vec2<int>;
 using Vec3f = Vec3<float>;
 using Vec3d = Vec3<double>;
 
-template <typename T> inline T Dot(const Vec3<T> &a, const Vec3<T> &b) {
+template <typename T>
+inline T Dot(const Vec3<T> &a, const Vec3<T> &b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-template <typename T> inline T AbsDot(const Vec3<T> &a, const Vec3<T> &b) {
+template <typename T>
+inline T AbsDot(const Vec3<T> &a, const Vec3<T> &b) {
     return std::abs(Dot(a, b));
 }
-template <typename T> inline Vec3<T> Cross(const Vec3<T> &a, const Vec3<T> &b) {
+template <typename T>
+inline Vec3<T> Cross(const Vec3<T> &a, const Vec3<T> &b) {
     // Computed in double for float inputs: products of two floats are exact in double,
     // which removes the catastrophic cancellation of a*b - c*d.
     using D = std::conditional_t<std::is_same_v<T, float>, double, T>;
     return {T(D(a.y) * b.z - D(a.z) * b.y), T(D(a.z) * b.x - D(a.x) * b.z),
             T(D(a.x) * b.y - D(a.y) * b.x)};
 }
-template <typename T> inline T LengthSquared(const Vec3<T> &v) { return Dot(v, v); }
-template <typename T> inline T Length(const Vec3<T> &v) { return std::sqrt(Dot(v, v)); }
-template <typename T> inline Vec3<T> Normalize(const Vec3<T> &v) { return v / Length(v); }
-template <typename T> inline Vec3<T> Abs(const Vec3<T> &v) {
+template <typename T>
+inline T LengthSquared(const Vec3<T> &v) {
+    return Dot(v, v);
+}
+template <typename T>
+inline T Length(const Vec3<T> &v) {
+    return std::sqrt(Dot(v, v));
+}
+template <typename T>
+inline Vec3<T> Normalize(const Vec3<T> &v) {
+    return v / Length(v);
+}
+template <typename T>
+inline Vec3<T> Abs(const Vec3<T> &v) {
     return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
 }
-template <typename T> inline Vec3<T> Min(const Vec3<T> &a, const Vec3<T> &b) {
+template <typename T>
+inline Vec3<T> Min(const Vec3<T> &a, const Vec3<T> &b) {
     return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
 }
-template <typename T> inline Vec3<T> Max(const Vec3<T> &a, const Vec3<T> &b) {
+template <typename T>
+inline Vec3<T> Max(const Vec3<T> &a, const Vec3<T> &b) {
     return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
-template <typename T> inline T MaxComponent(const Vec3<T> &v) {
+template <typename T>
+inline T MaxComponent(const Vec3<T> &v) {
     return std::max(v.x, std::max(v.y, v.z));
 }
-template <typename T> inline Vec3<T> FaceForward(const Vec3<T> &n, const Vec3<T> &v) {
+template <typename T>
+inline Vec3<T> FaceForward(const Vec3<T> &n, const Vec3<T> &v) {
     return Dot(n, v) < T(0) ? -n : n;
 }
-template <typename T> inline T Distance(const Vec3<T> &a, const Vec3<T> &b) {
+template <typename T>
+inline T Distance(const Vec3<T> &a, const Vec3<T> &b) {
     return Length(a - b);
 }
 
@@ -120,27 +158,49 @@ struct Bounds3 {
     }
     Vec3<T> Diagonal() const { return pMax - pMin; }
     Vec3<T> Center() const { return (pMin + pMax) * T(0.5); }
-    void Expand(const Vec3<T> &p) { pMin = Min(pMin, p); pMax = Max(pMax, p); }
-    void Expand(const Bounds3 &b) { pMin = Min(pMin, b.pMin); pMax = Max(pMax, b.pMax); }
+    void Expand(const Vec3<T> &p) {
+        pMin = Min(pMin, p);
+        pMax = Max(pMax, p);
+    }
+    void Expand(const Bounds3 &b) {
+        pMin = Min(pMin, b.pMin);
+        pMax = Max(pMax, b.pMax);
+    }
 };
 using Bounds3f = Bounds3<float>;
 using Bounds3d = Bounds3<double>;
 
 // Floating-point helpers for conservative error bounds (pbrt-v3 §3.9 conventions).
 template <typename T>
-constexpr T MachineEpsilon() { return std::numeric_limits<T>::epsilon() * T(0.5); }
+constexpr T MachineEpsilon() {
+    return std::numeric_limits<T>::epsilon() * T(0.5);
+}
 template <typename T>
-constexpr T Gamma(int n) { return (n * MachineEpsilon<T>()) / (1 - n * MachineEpsilon<T>()); }
+constexpr T Gamma(int n) {
+    return (n * MachineEpsilon<T>()) / (1 - n * MachineEpsilon<T>());
+}
 
 inline float NextFloatUp(float v) { return std::nextafter(v, Infinity); }
 inline float NextFloatDown(float v) { return std::nextafter(v, -Infinity); }
 
-template <typename T> inline T Clamp(T v, T lo, T hi) { return v < lo ? lo : (v > hi ? hi : v); }
-template <typename T> inline T Lerp(T t, T a, T b) { return (1 - t) * a + t * b; }
+template <typename T>
+inline T Clamp(T v, T lo, T hi) {
+    return v < lo ? lo : (v > hi ? hi : v);
+}
+template <typename T>
+inline T Lerp(T t, T a, T b) {
+    return (1 - t) * a + t * b;
+}
 inline double Radians(double deg) { return deg * (Pi / 180.0); }
 inline double Degrees(double rad) { return rad * (180.0 / Pi); }
-template <typename T> inline T SafeSqrt(T x) { return std::sqrt(std::max(T(0), x)); }
-template <typename T> inline T SafeACos(T x) { return std::acos(Clamp(x, T(-1), T(1))); }
+template <typename T>
+inline T SafeSqrt(T x) {
+    return std::sqrt(std::max(T(0), x));
+}
+template <typename T>
+inline T SafeACos(T x) {
+    return std::acos(Clamp(x, T(-1), T(1)));
+}
 
 std::string ToString(const Vec3f &v);
 std::string ToString(const Vec3d &v);

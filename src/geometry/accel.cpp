@@ -57,8 +57,12 @@ Device &GetDevice() {
 }
 
 void InitRay(const Ray &r, RTCRay *ray, unsigned mask) {
-    ray->org_x = r.o.x; ray->org_y = r.o.y; ray->org_z = r.o.z;
-    ray->dir_x = r.d.x; ray->dir_y = r.d.y; ray->dir_z = r.d.z;
+    ray->org_x = r.o.x;
+    ray->org_y = r.o.y;
+    ray->org_z = r.o.z;
+    ray->dir_x = r.d.x;
+    ray->dir_y = r.d.y;
+    ray->dir_z = r.d.z;
     ray->tnear = r.tMin;
     ray->tfar = r.tMax;
     ray->time = 0;
@@ -68,8 +72,12 @@ void InitRay(const Ray &r, RTCRay *ray, unsigned mask) {
 }
 
 void InitRay16(const Ray &r, int i, unsigned mask, RTCRay16 *ray) {
-    ray->org_x[i] = r.o.x; ray->org_y[i] = r.o.y; ray->org_z[i] = r.o.z;
-    ray->dir_x[i] = r.d.x; ray->dir_y[i] = r.d.y; ray->dir_z[i] = r.d.z;
+    ray->org_x[i] = r.o.x;
+    ray->org_y[i] = r.o.y;
+    ray->org_z[i] = r.o.z;
+    ray->dir_x[i] = r.d.x;
+    ray->dir_y[i] = r.d.y;
+    ray->dir_z[i] = r.d.z;
     ray->tnear[i] = r.tMin;
     ray->tfar[i] = r.tMax;
     ray->time[i] = 0;
@@ -106,8 +114,8 @@ Accel::Accel(const AccelOptions &options) : impl_(std::make_unique<Impl>()) {
     impl_->scene = rtcNewScene(dev.device);
     dev.ThrowIfError("rtcNewScene");
     rtcSetSceneFlags(impl_->scene, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
-    rtcSetSceneBuildQuality(impl_->scene,
-                            options.highQuality ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+    rtcSetSceneBuildQuality(
+        impl_->scene, options.highQuality ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
 }
 
 Accel::~Accel() = default;
@@ -123,8 +131,8 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask) {
     RTCGeometry geom = rtcNewGeometry(dev.device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                mesh->PositionData(), 0, 3 * sizeof(float), mesh->NumVertices());
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                               mesh->IndexData(), 0, 3 * sizeof(uint32_t), mesh->NumTriangles());
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh->IndexData(),
+                               0, 3 * sizeof(uint32_t), mesh->NumTriangles());
     rtcSetGeometryMask(geom, mask);
     rtcCommitGeometry(geom);
     unsigned id = rtcAttachGeometry(impl_->scene, geom);
@@ -136,7 +144,8 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask) {
     return shape;
 }
 
-int Accel::AddInstance(std::shared_ptr<const Accel> prototype, const Transform &renderFromInstance) {
+int Accel::AddInstance(std::shared_ptr<const Accel> prototype,
+                       const Transform &renderFromInstance) {
     PRISM_CHECK(!impl_->committed);
     PRISM_CHECK(prototype && prototype->impl_->committed);
     Device &dev = GetDevice();
@@ -160,8 +169,8 @@ int Accel::AddInstance(std::shared_ptr<const Accel> prototype, const Transform &
 int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask) {
     PRISM_CHECK(!impl_->committed);
     Device &dev = GetDevice();
-    unsigned id = AttachUserGeometry(dev.device, impl_->scene, shape.get(),
-                                     impl_->options.precision, mask);
+    unsigned id =
+        AttachUserGeometry(dev.device, impl_->scene, shape.get(), impl_->options.precision, mask);
     dev.ThrowIfError("adding an analytic shape");
     int index = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, index);
@@ -187,8 +196,8 @@ void Accel::Commit() {
                                                HighQualitySamplesPerTriangle * triangles);
     if (impl_->highQuality) rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
     if (triangles >= CompactBvhTriangles)
-        rtcSetSceneFlags(impl_->scene, RTCSceneFlags(rtcGetSceneFlags(impl_->scene) |
-                                                     RTC_SCENE_FLAG_COMPACT));
+        rtcSetSceneFlags(impl_->scene,
+                         RTCSceneFlags(rtcGetSceneFlags(impl_->scene) | RTC_SCENE_FLAG_COMPACT));
     rtcCommitScene(impl_->scene);
     GetDevice().ThrowIfError("building the BVH");
     impl_->buildSeconds =
@@ -318,7 +327,8 @@ void Accel::IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded
         unsigned inst = rh.hit.instID[0][i];
         if (inst != RTC_INVALID_GEOMETRY_ID) {
             h.shape = impl_->shapeOfGeom[inst];
-            h.instanceShape = impl_->shapes[size_t(h.shape)].prototype->impl_->shapeOfGeom[rh.hit.geomID[i]];
+            h.instanceShape =
+                impl_->shapes[size_t(h.shape)].prototype->impl_->shapeOfGeom[rh.hit.geomID[i]];
         } else {
             h.shape = impl_->shapeOfGeom[rh.hit.geomID[i]];
         }
@@ -340,6 +350,5 @@ const TriangleMesh *Accel::Mesh(int s) const { return impl_->shapes[s].mesh.get(
 const AnalyticShape *Accel::Analytic(int s) const { return impl_->shapes[s].analytic.get(); }
 double Accel::BuildSeconds() const { return impl_->buildSeconds; }
 bool Accel::BuiltWithHighQuality() const { return impl_->highQuality; }
-
 
 }  // namespace prism

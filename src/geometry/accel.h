@@ -20,8 +20,8 @@ inline constexpr uint64_t HighQualitySamplesPerTriangle = 40;
 
 struct AccelOptions {
     Precision precision = Precision::Double;
-    bool robust = false;        // RTC_SCENE_FLAG_ROBUST (watertight triangles, robust traversal)
-    bool highQuality = false;   // RTC_BUILD_QUALITY_HIGH (spatial splits)
+    bool robust = false;       // RTC_SCENE_FLAG_ROBUST (watertight triangles, robust traversal)
+    bool highQuality = false;  // RTC_BUILD_QUALITY_HIGH (spatial splits)
     // Camera samples the render will trace (pixels x spp; 0: unknown). With at least
     // HighQualitySamplesPerTriangle per triangle the BVH is built with HIGH quality even when
     // highQuality is false: the slower build then pays for itself (accel.cpp).
@@ -41,7 +41,7 @@ struct RawHit {
 };
 
 class Accel {
-public:
+  public:
     explicit Accel(const AccelOptions &options = {});
     ~Accel();
     Accel(const Accel &) = delete;
@@ -73,12 +73,12 @@ public:
     SurfaceInteraction Interaction(const Ray &ray, const RawHit &hit) const;
 
     int NumShapes() const;
-    const TriangleMesh *Mesh(int shape) const;          // nullptr if analytic
-    const AnalyticShape *Analytic(int shape) const;     // nullptr if mesh
+    const TriangleMesh *Mesh(int shape) const;       // nullptr if analytic
+    const AnalyticShape *Analytic(int shape) const;  // nullptr if mesh
     double BuildSeconds() const;
     bool BuiltWithHighQuality() const;  // after Commit(): whether the HIGH builder ran
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

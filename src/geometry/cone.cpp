@@ -83,14 +83,13 @@ bool Cone::Revolution(RevolutionProfile *pr) const {
 // at the offending parameter.
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Cone>(const ShapeParams &params,
-                                           const Transform &renderFromObject,
-                                           bool reverseOrientation) {
+                                                 const Transform &renderFromObject,
+                                                 bool reverseOrientation) {
     float radius = params.PositiveFloat("radius", 1.f);
     float height = params.PositiveFloat("height", 1.f);
     float phimax = params.PhiMax();
     return params.Construct("height", [&] {
-        return std::make_unique<Cone>(renderFromObject, reverseOrientation, radius, height,
-                                      phimax);
+        return std::make_unique<Cone>(renderFromObject, reverseOrientation, radius, height, phimax);
     });
 }
 

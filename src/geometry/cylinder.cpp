@@ -123,15 +123,15 @@ bool Cylinder::Revolution(RevolutionProfile *pr) const {
 // at the offending parameter.
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Cylinder>(const ShapeParams &params,
-                                           const Transform &renderFromObject,
-                                           bool reverseOrientation) {
+                                                     const Transform &renderFromObject,
+                                                     bool reverseOrientation) {
     float radius = params.PositiveFloat("radius", 1.f);
     float zmin = params.FiniteFloat("zmin", -1.f), zmax = params.FiniteFloat("zmax", 1.f);
     float phimax = params.PhiMax();
     if (zmin == zmax) throw SceneError(params.Loc("zmax"), "cylinder zmin and zmax must differ");
     return params.Construct("zmax", [&] {
-        return std::make_unique<Cylinder>(renderFromObject, reverseOrientation, radius, zmin,
-                                          zmax, phimax);
+        return std::make_unique<Cylinder>(renderFromObject, reverseOrientation, radius, zmin, zmax,
+                                          phimax);
     });
 }
 

@@ -102,8 +102,8 @@ bool Disk::Revolution(RevolutionProfile *pr) const {
 // at the offending parameter.
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Disk>(const ShapeParams &params,
-                                           const Transform &renderFromObject,
-                                           bool reverseOrientation) {
+                                                 const Transform &renderFromObject,
+                                                 bool reverseOrientation) {
     float height = params.FiniteFloat("height", 0.f);
     float radius = params.PositiveFloat("radius", 1.f);
     float inner = params.Float("innerradius", 0.f);

@@ -21,8 +21,8 @@ RotationalQuadric HyperboloidQuadric(double a, double c) {
 }
 }  // namespace
 
-Hyperboloid::Hyperboloid(const Transform &renderFromObject, bool reverseOrientation, const Vec3d &p1,
-                         const Vec3d &p2, double phiMaxDeg)
+Hyperboloid::Hyperboloid(const Transform &renderFromObject, bool reverseOrientation,
+                         const Vec3d &p1, const Vec3d &p2, double phiMaxDeg)
     : AnalyticShapeT(renderFromObject, reverseOrientation),
       p1_(p1),
       p2_(p2),
@@ -131,8 +131,8 @@ bool Hyperboloid::Revolution(RevolutionProfile *pr) const {
 // at the offending parameter.
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Hyperboloid>(const ShapeParams &params,
-                                           const Transform &renderFromObject,
-                                           bool reverseOrientation) {
+                                                        const Transform &renderFromObject,
+                                                        bool reverseOrientation) {
     Vec3f p1 = params.Point3("p1", Vec3f(0, 0, 0));
     Vec3f p2 = params.Point3("p2", Vec3f(1, 1, 1));
     float phimax = params.PhiMax();
@@ -146,7 +146,8 @@ std::unique_ptr<AnalyticShape> CreateShape<Hyperboloid>(const ShapeParams &param
 
 template <>
 std::unique_ptr<AnalyticShape> CanonicalShape<Hyperboloid>(const Transform &renderFromObject) {
-    return std::make_unique<Hyperboloid>(renderFromObject, false, Vec3d(1, -1, -1), Vec3d(1, 1, 1), 360);
+    return std::make_unique<Hyperboloid>(renderFromObject, false, Vec3d(1, -1, -1), Vec3d(1, 1, 1),
+                                         360);
 }
 
 PRISM_USER_GEOMETRY(Hyperboloid)

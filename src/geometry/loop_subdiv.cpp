@@ -19,11 +19,11 @@ double Gamma(int n) { return 1.0 / (n + 3.0 / (8.0 * Beta(n))); }
 
 // The edges of a triangle mesh and, per vertex, the sums its subdivision masks need.
 struct Topology {
-    std::vector<int> faceEdge;                // 3 per face: edge (f[i], f[i+1 mod 3])
+    std::vector<int> faceEdge;  // 3 per face: edge (f[i], f[i+1 mod 3])
     std::vector<std::array<int, 2>> edgeVerts;
     std::vector<std::array<int, 2>> edgeOpposite;  // opposite vertices of the first two faces
-    std::vector<int> edgeFaces;               // faces using the edge (2: interior)
-    std::vector<int> valence, boundaryEdges;  // per vertex
+    std::vector<int> edgeFaces;                    // faces using the edge (2: interior)
+    std::vector<int> valence, boundaryEdges;       // per vertex
     std::vector<Vec3d> neighbourSum, boundarySum;
 
     Topology(const std::vector<Vec3d> &p, const std::vector<Face> &faces) {
@@ -149,7 +149,7 @@ bool OrderedRing(const std::vector<std::pair<int, int>> &pairs, bool boundary,
         if (next < 0) return false;
         cur = next;
         if (!boundary && step + 1 == pairs.size()) return cur == start;  // the fan closes
-        if (cur == start) return false;                                 // closed too early
+        if (cur == start) return false;                                  // closed too early
         ring->push_back(cur);
     }
     return boundary;

@@ -14,9 +14,9 @@ inline constexpr int MaxLoopSubdivLevels = 8;
 inline constexpr uint64_t MaxLoopSubdivTriangles = uint64_t(1) << 22;
 
 struct LoopSubdivResult {
-    std::vector<Vec3f> P, N;        // limit positions and normals (object space)
-    std::vector<int> indices;       // 3 per triangle, same winding as the input
-    int droppedFaces = 0;           // degenerate input faces (repeated vertex) that were skipped
+    std::vector<Vec3f> P, N;   // limit positions and normals (object space)
+    std::vector<int> indices;  // 3 per triangle, same winding as the input
+    int droppedFaces = 0;      // degenerate input faces (repeated vertex) that were skipped
 };
 
 // Subdivides `levels` times. Vertices on edges used by one face (or by more than two) follow

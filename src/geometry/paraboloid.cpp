@@ -95,8 +95,8 @@ bool Paraboloid::Revolution(RevolutionProfile *pr) const {
 // at the offending parameter.
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Paraboloid>(const ShapeParams &params,
-                                           const Transform &renderFromObject,
-                                           bool reverseOrientation) {
+                                                       const Transform &renderFromObject,
+                                                       bool reverseOrientation) {
     float radius = params.PositiveFloat("radius", 1.f);
     float zmin = params.FiniteFloat("zmin", 0.f), zmax = params.FiniteFloat("zmax", 1.f);
     float phimax = params.PhiMax();

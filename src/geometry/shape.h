@@ -24,18 +24,18 @@ enum class Precision { Float, Double };
 
 // Result of the root routine, in object space.
 struct ObjectHit {
-    double t = 0;       // ray parameter (units of the render-space ray's direction)
-    Vec3d p;            // object-space hit point, re-projected onto the surface where possible
-    Vec3d pError;       // conservative absolute error of p
-    double phi = 0;     // azimuth of the hit (full spheres, cylinders and disks leave it 0:
-                        // their Geometry computes it from p when uv is needed)
+    double t = 0;    // ray parameter (units of the render-space ray's direction)
+    Vec3d p;         // object-space hit point, re-projected onto the surface where possible
+    Vec3d pError;    // conservative absolute error of p
+    double phi = 0;  // azimuth of the hit (full spheres, cylinders and disks leave it 0:
+                     // their Geometry computes it from p when uv is needed)
 };
 
 // A point sampled on a shape's surface for direct lighting, with the density of choosing it
 // expressed in solid angle as seen from the reference point.
 struct ShapeSample {
-    Vec3f p, n;        // render-space point and unit normal (pbrt orientation, flips applied)
-    float pdf = 0;     // solid-angle density at the reference point
+    Vec3f p, n;     // render-space point and unit normal (pbrt orientation, flips applied)
+    float pdf = 0;  // solid-angle density at the reference point
 };
 
 // Object-space differential geometry at a hit.
@@ -62,7 +62,7 @@ struct Affine3 {
 };
 
 class AnalyticShape {
-public:
+  public:
     AnalyticShape(const Transform &renderFromObject, bool reverseOrientation);
     virtual ~AnalyticShape() = default;
 
@@ -122,7 +122,7 @@ public:
             return objectFromRenderD_;
     }
 
-protected:
+  protected:
     Transform renderFromObject_;
     bool reverseOrientation_, flipNormals_;
     Affine3<float> objectFromRenderF_;
@@ -137,12 +137,12 @@ protected:
 // the ray origin (negligible in double, decisive in float for far-from-origin shapes).
 template <typename Derived>
 class AnalyticShapeT : public AnalyticShape {
-public:
+  public:
     using AnalyticShape::AnalyticShape;
 
     template <typename Real>
     bool IntersectRender(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
-                        ObjectHit *hit) const {
+                         ObjectHit *hit) const {
         const Affine3<Real> &m = ObjectFromRender<Real>();
         Vec3<Real> ow(o), dw(d);
         Vec3<Real> oo = m.Point(ow), dd = m.Vector(dw);

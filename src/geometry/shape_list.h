@@ -22,12 +22,11 @@ std::unique_ptr<AnalyticShape> CreateShape(const ShapeParams &params,
 template <typename T>
 std::unique_ptr<AnalyticShape> CanonicalShape(const Transform &renderFromObject);
 
-#define PRISM_SHAPE(T, name)                                                                  \
-    class T;                                                                                  \
-    template <>                                                                               \
-    std::unique_ptr<AnalyticShape> CreateShape<T>(const ShapeParams &, const Transform &,     \
-                                                  bool);                                      \
-    template <>                                                                               \
+#define PRISM_SHAPE(T, name)                                                                     \
+    class T;                                                                                     \
+    template <>                                                                                  \
+    std::unique_ptr<AnalyticShape> CreateShape<T>(const ShapeParams &, const Transform &, bool); \
+    template <>                                                                                  \
     std::unique_ptr<AnalyticShape> CanonicalShape<T>(const Transform &);
 #include "geometry/shape_list.inc"
 #undef PRISM_SHAPE

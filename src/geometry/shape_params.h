@@ -15,7 +15,7 @@ namespace prism {
 class AnalyticShape;
 
 class ShapeParams {
-public:
+  public:
     virtual ~ShapeParams() = default;
     virtual const std::string &Type() const = 0;  // the shape's name, for messages
     virtual bool Has(const char *name) const = 0;

@@ -20,11 +20,13 @@ Sphere::Sphere(const Transform &renderFromObject, bool reverseOrientation, doubl
       thetaZMax_(std::acos(Clamp(std::max(zMin, zMax) / radius, -1.0, 1.0))),
       phiMax_(Radians(Clamp(phiMaxDeg, 0.0, 360.0))) {
     partial_ = zMin_ > -radius_ || zMax_ < radius_ || phiMax_ < 2 * Pi;
-    Vec3d ex = renderFromObject.Vector(Vec3d(1, 0, 0)), ey = renderFromObject.Vector(Vec3d(0, 1, 0)),
+    Vec3d ex = renderFromObject.Vector(Vec3d(1, 0, 0)),
+          ey = renderFromObject.Vector(Vec3d(0, 1, 0)),
           ez = renderFromObject.Vector(Vec3d(0, 0, 1));
     double lx = Length(ex), ly = Length(ey), lz = Length(ez);
     similarity_ = std::abs(lx - ly) <= 1e-9 * lx && std::abs(lx - lz) <= 1e-9 * lx &&
-                  std::abs(Dot(ex, ey)) <= 1e-9 * lx * ly && std::abs(Dot(ex, ez)) <= 1e-9 * lx * lz &&
+                  std::abs(Dot(ex, ey)) <= 1e-9 * lx * ly &&
+                  std::abs(Dot(ex, ez)) <= 1e-9 * lx * lz &&
                   std::abs(Dot(ey, ez)) <= 1e-9 * ly * lz;
 }
 
@@ -95,9 +97,10 @@ bool Sphere::IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real t
     // Conservative bound on the roots' rounding error: c/q carries the error of |o|^2 - r^2,
     // q/a a few ulps of itself, and the object-space origin the error of its transform.
     Real oo = Dot(o, o);
-    Real tErr = Gamma<Real>(8) * ((oo + r * r) / std::max(std::abs(q), std::numeric_limits<Real>::min()) +
-                                  std::abs(t0) + std::abs(t1)) +
-                Gamma<Real>(4) * std::sqrt(oo / a) + tSlack;
+    Real tErr =
+        Gamma<Real>(8) * ((oo + r * r) / std::max(std::abs(q), std::numeric_limits<Real>::min()) +
+                          std::abs(t0) + std::abs(t1)) +
+        Gamma<Real>(4) * std::sqrt(oo / a) + tSlack;
     Real lo = std::max(tMin, tErr);
     for (Real t : {t0, t1}) {
         if (!(t > lo)) continue;
@@ -124,8 +127,7 @@ bool Sphere::IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real t
 }
 
 template bool Sphere::IntersectT<float>(Vec3f, Vec3f, float, float, float, ObjectHit *) const;
-template bool Sphere::IntersectT<double>(Vec3d, Vec3d, double, double, double,
-                                         ObjectHit *) const;
+template bool Sphere::IntersectT<double>(Vec3d, Vec3d, double, double, double, ObjectHit *) const;
 
 LocalGeometry Sphere::Geometry(const ObjectHit &hit) const {
     const Vec3d &p = hit.p;
@@ -163,8 +165,8 @@ bool Sphere::Revolution(RevolutionProfile *pr) const {
 // at the offending parameter.
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Sphere>(const ShapeParams &params,
-                                           const Transform &renderFromObject,
-                                           bool reverseOrientation) {
+                                                   const Transform &renderFromObject,
+                                                   bool reverseOrientation) {
     float radius = params.PositiveFloat("radius", 1.f);
     return std::make_unique<Sphere>(renderFromObject, reverseOrientation, radius,
                                     params.Float("zmin", -radius), params.Float("zmax", radius),

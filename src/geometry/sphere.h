@@ -6,7 +6,7 @@
 namespace prism {
 
 class Sphere final : public AnalyticShapeT<Sphere> {
-public:
+  public:
     Sphere(const Transform &renderFromObject, bool reverseOrientation, double radius, double zMin,
            double zMax, double phiMaxDeg);
 
@@ -29,7 +29,7 @@ public:
     double Radius() const { return radius_; }
     bool IsPartial() const { return partial_; }
 
-private:
+  private:
     double radius_, zMin_, zMax_, thetaZMin_, thetaZMax_, phiMax_;
     bool partial_;
     bool similarity_;  // transform is rotation + uniform scale + translation

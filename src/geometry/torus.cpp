@@ -238,12 +238,12 @@ bool Torus::Revolution(RevolutionProfile *pr) const {
     return true;
 }
 
-// pbrt parameters (pbrt-v3 names and defaults; the torus is Prism's own); each value is checked so the error points
-// at the offending parameter.
+// pbrt parameters (pbrt-v3 names and defaults; the torus is Prism's own); each value is checked so
+// the error points at the offending parameter.
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Torus>(const ShapeParams &params,
-                                           const Transform &renderFromObject,
-                                           bool reverseOrientation) {
+                                                  const Transform &renderFromObject,
+                                                  bool reverseOrientation) {
     float major = params.PositiveFloat("majorradius", 1.f);
     float minor = params.PositiveFloat("minorradius", 0.25f);
     float phimax = params.PhiMax();

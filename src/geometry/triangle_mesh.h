@@ -17,7 +17,7 @@ namespace prism {
 using MeshCharge = std::function<void(uint64_t meshBytes, uint64_t transientBytes)>;
 
 class TriangleMesh {
-public:
+  public:
     // Object-space data; transformed to render space here (in double, rounded once).
     // Throws std::invalid_argument for inconsistent sizes or out-of-range indices.
     TriangleMesh(const Transform &renderFromObject, bool reverseOrientation,
@@ -55,7 +55,7 @@ public:
     SurfaceInteraction Interaction(size_t prim, float u, float v, float t, const Vec3f &rayDir,
                                    unsigned needs = NeedAll) const;
 
-private:
+  private:
     std::vector<float> positions_;
     std::vector<uint32_t> indices_;
     std::vector<Vec3f> normals_;

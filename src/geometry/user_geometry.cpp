@@ -7,9 +7,9 @@ namespace prism {
 
 unsigned AttachUserGeometry(RTCDevice device, RTCScene scene, const AnalyticShape *shape,
                             Precision precision, unsigned mask) {
-#define PRISM_SHAPE(T, name)                                                         \
-    if (unsigned id = AttachShape<T>(device, scene, *shape, precision, mask);        \
-        id != RTC_INVALID_GEOMETRY_ID)                                               \
+#define PRISM_SHAPE(T, name)                                                  \
+    if (unsigned id = AttachShape<T>(device, scene, *shape, precision, mask); \
+        id != RTC_INVALID_GEOMETRY_ID)                                        \
         return id;
 #include "geometry/shape_list.inc"
 #undef PRISM_SHAPE

@@ -39,8 +39,12 @@ inline void BoundsFunc(const RTCBoundsFunctionArguments *args) {
     const auto *shape = static_cast<const S *>(args->geometryUserPtr);
     Bounds3f b = shape->RenderBounds();
     RTCBounds *o = args->bounds_o;
-    o->lower_x = b.pMin.x; o->lower_y = b.pMin.y; o->lower_z = b.pMin.z;
-    o->upper_x = b.pMax.x; o->upper_y = b.pMax.y; o->upper_z = b.pMax.z;
+    o->lower_x = b.pMin.x;
+    o->lower_y = b.pMin.y;
+    o->lower_z = b.pMin.z;
+    o->upper_x = b.pMax.x;
+    o->upper_y = b.pMax.y;
+    o->upper_z = b.pMax.z;
 }
 
 // [validate hook] Shapes outside the list below (test-only intersectors, e.g. the broken
@@ -48,7 +52,7 @@ inline void BoundsFunc(const RTCBoundsFunctionArguments *args) {
 // through the virtual Intersect: one indirect call per candidate, fine for them.
 template <typename S, typename Real>
 inline bool RootRoutine(const S *shape, const Vec3f &o, const Vec3f &d, float tnear, float tfar,
-                 ObjectHit *hit) {
+                        ObjectHit *hit) {
     if constexpr (std::is_same_v<S, AnalyticShape>)
         return shape->Intersect(o, d, tnear, tfar,
                                 std::is_same_v<Real, float> ? Precision::Float : Precision::Double,
@@ -109,7 +113,7 @@ inline void OccludedFunc(const RTCOccludedFunctionNArguments *args) {
 
 template <typename S>
 inline unsigned Attach(RTCDevice device, RTCScene scene, const S *shape, Precision precision,
-                unsigned mask) {
+                       unsigned mask) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, const_cast<S *>(shape));
@@ -130,13 +134,13 @@ inline unsigned Attach(RTCDevice device, RTCScene scene, const S *shape, Precisi
 
 }  // namespace user_geometry_detail
 
-#define PRISM_USER_GEOMETRY(T)                                                                  \
-    template <>                                                                                 \
-    unsigned AttachShape<T>(RTCDevice device, RTCScene scene, const AnalyticShape &shape,       \
-                            Precision precision, unsigned mask) {                               \
-        const T *t = dynamic_cast<const T *>(&shape);                                           \
-        return t ? user_geometry_detail::Attach(device, scene, t, precision, mask)              \
-                 : RTC_INVALID_GEOMETRY_ID;                                                     \
+#define PRISM_USER_GEOMETRY(T)                                                            \
+    template <>                                                                           \
+    unsigned AttachShape<T>(RTCDevice device, RTCScene scene, const AnalyticShape &shape, \
+                            Precision precision, unsigned mask) {                         \
+        const T *t = dynamic_cast<const T *>(&shape);                                     \
+        return t ? user_geometry_detail::Attach(device, scene, t, precision, mask)        \
+                 : RTC_INVALID_GEOMETRY_ID;                                               \
     }
 
 }  // namespace prism

@@ -17,7 +17,8 @@ float Mitchell1D(float x, float B, float C) {
     float x2 = x * x, x3 = x2 * x;
     if (x > 1)
         return ((-B - 6 * C) * x3 + (6 * B + 30 * C) * x2 + (-12 * B - 48 * C) * x +
-                (8 * B + 24 * C)) * (1.f / 6.f);
+                (8 * B + 24 * C)) *
+               (1.f / 6.f);
     return ((12 - 9 * B - 6 * C) * x3 + (-18 + 12 * B + 6 * C) * x2 + (6 - 2 * B)) * (1.f / 6.f);
 }
 
@@ -43,14 +44,14 @@ float FilterKernel::Evaluate1D(int axis, float d) const {
     float r = radius[axis];
     if (!(std::abs(d) <= r)) return 0.f;
     switch (kind) {
-    case Filter::Kind::Box:
-        return 1.f;
-    case Filter::Kind::Gaussian:
-        return std::max(0.f, std::exp(-alpha * d * d) - expRadius[axis]);
-    case Filter::Kind::Triangle:
-        return std::max(0.f, r - std::abs(d));
-    case Filter::Kind::Mitchell:
-        return Mitchell1D(2.f * d * invRadius[axis], B, C);
+        case Filter::Kind::Box:
+            return 1.f;
+        case Filter::Kind::Gaussian:
+            return std::max(0.f, std::exp(-alpha * d * d) - expRadius[axis]);
+        case Filter::Kind::Triangle:
+            return std::max(0.f, r - std::abs(d));
+        case Filter::Kind::Mitchell:
+            return Mitchell1D(2.f * d * invRadius[axis], B, C);
     }
     return 0.f;
 }

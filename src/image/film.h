@@ -20,7 +20,7 @@ struct Filter {
     enum class Kind { Box, Gaussian, Triangle, Mitchell };
     Kind kind = Kind::Box;
     float radiusX = 0.5f, radiusY = 0.5f;
-    float alpha = 2.f;              // gaussian falloff
+    float alpha = 2.f;               // gaussian falloff
     float B = 1.f / 3, C = 1.f / 3;  // mitchell-netravali parameters
 
     // Zero outside the radius (the box is 1 on the closed [-r, r]^2).

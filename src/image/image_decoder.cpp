@@ -75,7 +75,7 @@ bool PngReadRows(png_structp png, png_bytep *rows) {
 }
 
 class PngDecoder : public ImageDecoder {
-public:
+  public:
     // `file` (owned) is positioned after the signature, or `data` holds the whole file.
     PngDecoder(FILE *file, const unsigned char *data, size_t size) {
         state_.file = file;
@@ -127,7 +127,7 @@ public:
         }
     }
 
-private:
+  private:
     // The wording follows what OpenImageIO reported for the same failures.
     [[noreturn]] void Fail() {
         if (state_.eof) throw std::runtime_error("Read error: hit end of file");
@@ -145,7 +145,7 @@ private:
 
 // An OpenEXR input stream over a FILE* or memory; a short read is an error.
 class ExrIStream : public Imf::IStream {
-public:
+  public:
     ExrIStream(FILE *file, const unsigned char *data, size_t size, const std::string &name)
         : Imf::IStream(name.c_str()), file_(file), mem_(data), size_(size) {}
     ~ExrIStream() override {
@@ -176,14 +176,14 @@ public:
         if (file_) std::clearerr(file_);
     }
 
-private:
+  private:
     FILE *file_;
     const unsigned char *mem_;
     size_t size_, pos_ = 0;
 };
 
 class ExrDecoder : public ImageDecoder {
-public:
+  public:
     ExrDecoder(std::unique_ptr<ExrIStream> stream, std::unique_ptr<Imf::InputFile> file,
                std::vector<std::string> channels)
         : stream_(std::move(stream)), file_(std::move(file)), channels_(std::move(channels)) {
@@ -219,7 +219,7 @@ public:
         }
     }
 
-private:
+  private:
     std::unique_ptr<ExrIStream> stream_;
     std::unique_ptr<Imf::InputFile> file_;
     std::vector<std::string> channels_;
@@ -263,8 +263,8 @@ std::unique_ptr<ImageDecoder> OpenExr(FILE *file, const unsigned char *data, siz
 
 }  // namespace
 
-std::unique_ptr<ImageDecoder> OpenDirectDecoder(const std::string &path,
-                                                const unsigned char *data, size_t size) {
+std::unique_ptr<ImageDecoder> OpenDirectDecoder(const std::string &path, const unsigned char *data,
+                                                size_t size) {
     static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     static const unsigned char kExr[4] = {0x76, 0x2f, 0x31, 0x01};
     unsigned char magic[8] = {};

@@ -12,7 +12,7 @@
 namespace prism {
 
 class ImageDecoder {
-public:
+  public:
     virtual ~ImageDecoder() = default;
     virtual PrismOiioSpec Spec() const = 0;
     // Reads channels [0, nchannels) of the whole image as interleaved float, top row first;
@@ -26,8 +26,8 @@ public:
 // is an OpenEXR file whose layout the direct reader leaves to OpenImageIO (channels other than
 // Y, YA, RGB, RGBA; multi-part, deep or integer channels). Throws std::runtime_error with a
 // short reason when the file is PNG or OpenEXR but malformed.
-std::unique_ptr<ImageDecoder> OpenDirectDecoder(const std::string &path,
-                                                const unsigned char *data, size_t size);
+std::unique_ptr<ImageDecoder> OpenDirectDecoder(const std::string &path, const unsigned char *data,
+                                                size_t size);
 
 // ReadImage through OpenImageIO even for PNG and OpenEXR (the tests compare the two readers).
 Image ReadImageWithOiio(const std::string &path, ReadImageOptions opts = {});

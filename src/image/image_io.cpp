@@ -2,11 +2,6 @@
 // Writing lives in image_write.cpp.
 #include "image/image_io.h"
 
-#include "core/file_io.h"
-#include "core/memory.h"
-#include "image/image_decoder.h"
-#include "image/oiio_loader.h"
-
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -15,12 +10,17 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <mutex>
 #include <optional>
-#include <fstream>
 #include <stdexcept>
 #include <system_error>
+
+#include "core/file_io.h"
+#include "core/memory.h"
+#include "image/image_decoder.h"
+#include "image/oiio_loader.h"
 
 namespace prism {
 
@@ -47,7 +47,6 @@ uint8_t LinearToSrgb8(float v) {
 
 namespace {
 
-
 const std::array<float, 256> &Srgb8Table() {
     static const std::array<float, 256> table = [] {
         std::array<float, 256> t{};
@@ -66,7 +65,7 @@ namespace {
 // error lines (the direct PNG reader silences libpng itself). Decoding runs with stderr pointed
 // at /dev/null; the lock serializes decoders (they are not called from render threads).
 class QuietStderr {
-public:
+  public:
     QuietStderr() : lock_(Mutex()) {
         std::fflush(stderr);
         saved_ = ::dup(2);
@@ -84,7 +83,7 @@ public:
     QuietStderr(const QuietStderr &) = delete;
     QuietStderr &operator=(const QuietStderr &) = delete;
 
-private:
+  private:
     static std::mutex &Mutex() {
         static std::mutex m;
         return m;
@@ -95,7 +94,7 @@ private:
 
 // An image opened by the OpenImageIO module.
 class OiioDecoder : public ImageDecoder {
-public:
+  public:
     OiioDecoder(const PrismOiioModule &module, PrismOiioInput *in) : module_(module), in_(in) {}
     ~OiioDecoder() override { module_.close(in_); }
     OiioDecoder(const OiioDecoder &) = delete;
@@ -111,7 +110,7 @@ public:
             throw std::runtime_error(err);
     }
 
-private:
+  private:
     const PrismOiioModule &module_;
     PrismOiioInput *in_;
 };
@@ -142,13 +141,13 @@ Image DecodeOpened(ImageDecoder &in, const ReadImageOptions &opts,
         // A memory limit: MemoryBudgetError, so that callers can tell it from a bad file.
         uint64_t bytes = uint64_t(count) * sizeof(float);
         uint64_t limit = uint64_t(std::max<int64_t>(opts.maxPixels, 0)) * sizeof(float);
-        throw MemoryBudgetError(FileLoc{},
-                                fail("image is too large: " + std::to_string(spec.width) + "x" +
-                                     std::to_string(spec.height) + "x" + std::to_string(nOut) +
-                                     " values need " + FormatBytes(bytes) +
-                                     ", more than the limit of " + FormatBytes(limit))
-                                    .what(),
-                                bytes, 0, limit);
+        throw MemoryBudgetError(
+            FileLoc{},
+            fail("image is too large: " + std::to_string(spec.width) + "x" +
+                 std::to_string(spec.height) + "x" + std::to_string(nOut) + " values need " +
+                 FormatBytes(bytes) + ", more than the limit of " + FormatBytes(limit))
+                .what(),
+            bytes, 0, limit);
     }
 
     std::vector<float> buf(size_t(spec.width) * size_t(spec.height) * size_t(nRead));
@@ -285,8 +284,8 @@ Image ReadImageFile(const std::string &path, const ReadImageOptions &opts, bool 
     std::optional<QuietStderr> quiet;
     if (opts.quietDecoders) quiet.emplace();
     std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw fail(fs::exists(path, ec) ? "not a regular file"
-                                                                         : "file not found");
+    if (!fs::is_regular_file(path, ec))
+        throw fail(fs::exists(path, ec) ? "not a regular file" : "file not found");
     {
         // OpenEXR files (by magic number, whatever the extension) get their header checked.
         std::ifstream f(path, std::ios::binary);

@@ -1,12 +1,5 @@
 // Atomic image writing: PNG through libpng, EXR through OpenEXR, PFM by hand, and the other
 // formats (HDR, TGA, BMP, JPEG) through the OpenImageIO module.
-#include "image/image_io.h"
-
-#include "core/error.h"
-#include "core/file_io.h"
-#include "image/image_write_formats.h"
-#include "image/oiio_loader.h"
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,6 +10,12 @@
 #include <stdexcept>
 #include <system_error>
 #include <vector>
+
+#include "core/error.h"
+#include "core/file_io.h"
+#include "image/image_io.h"
+#include "image/image_write_formats.h"
+#include "image/oiio_loader.h"
 
 namespace prism {
 
@@ -32,12 +31,18 @@ struct OutputFormat {
 };
 
 bool LookupOutputFormat(const std::string &ext, OutputFormat *f) {
-    if (ext == ".exr") *f = {OutKind::Float, true, true};
-    else if (ext == ".pfm") *f = {OutKind::Float, true, false};
-    else if (ext == ".hdr") *f = {OutKind::Float, false, false};
-    else if (ext == ".png" || ext == ".tga" || ext == ".bmp") *f = {OutKind::Srgb8, true, true};
-    else if (ext == ".jpg" || ext == ".jpeg") *f = {OutKind::Srgb8, true, false};
-    else return false;
+    if (ext == ".exr")
+        *f = {OutKind::Float, true, true};
+    else if (ext == ".pfm")
+        *f = {OutKind::Float, true, false};
+    else if (ext == ".hdr")
+        *f = {OutKind::Float, false, false};
+    else if (ext == ".png" || ext == ".tga" || ext == ".bmp")
+        *f = {OutKind::Srgb8, true, true};
+    else if (ext == ".jpg" || ext == ".jpeg")
+        *f = {OutKind::Srgb8, true, false};
+    else
+        return false;
     return true;
 }
 
@@ -78,8 +83,7 @@ void WriteImage(const std::string &path, const Image &img) {
     std::string ext = LowerExtension(path);
     OutputFormat format;
     if (!LookupOutputFormat(ext, &format))
-        throw std::runtime_error("unsupported output format " + Quote(ext) +
-                                 " (use .exr or .png)");
+        throw std::runtime_error("unsupported output format " + Quote(ext) + " (use .exr or .png)");
     if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4 ||
         img.pixels.size() != size_t(img.width) * size_t(img.height) * size_t(img.channels))
         throw fail("invalid image (size " + std::to_string(img.width) + "x" +
@@ -142,16 +146,15 @@ void WriteImage(const std::string &path, const Image &img) {
             WritePng(tmpName, img.width, img.height, nOut, alpha,
                      static_cast<const uint8_t *>(data));
         } else if (ext == ".exr") {
-            WriteExr(tmpName, img.width, img.height, nOut, alpha,
-                     static_cast<const float *>(data));
+            WriteExr(tmpName, img.width, img.height, nOut, alpha, static_cast<const float *>(data));
         } else {
             const PrismOiioModule &module = OiioModule();
             bool isFloat = format.kind == OutKind::Float;
             const char *compression = ext == ".jpg" || ext == ".jpeg" ? "jpeg:95" : "";
             char err[512] = "";
             if (!module.write(tmpName.c_str(), img.width, img.height, nOut, alpha ? nOut - 1 : -1,
-                              isFloat ? 1 : 0, data, isFloat ? "Linear" : "sRGB", compression,
-                              err, sizeof(err)))
+                              isFloat ? 1 : 0, data, isFloat ? "Linear" : "sRGB", compression, err,
+                              sizeof(err)))
                 throw std::runtime_error(err);
         }
     } catch (const std::runtime_error &e) {

@@ -27,7 +27,7 @@ std::string ErrnoText(const char *what, int err) {
 
 // Owns a FILE*; Close() reports a failed final flush (e.g. a full disk).
 class File {
-public:
+  public:
     explicit File(const std::string &path) : f_(std::fopen(path.c_str(), "wb")) {
         if (!f_) throw std::runtime_error(ErrnoText("could not create the file", errno));
     }
@@ -46,7 +46,7 @@ public:
         if (bad || rc != 0) throw std::runtime_error(ErrnoText("write error", err));
     }
 
-private:
+  private:
     FILE *f_;
 };
 
@@ -54,7 +54,7 @@ private:
 // OutputFile's destructor (which writes the line offset table and swallows exceptions) is
 // still reported. It throws Iex exceptions, the only kind that destructor catches.
 class ExrStream : public Imf::OStream {
-public:
+  public:
     ExrStream(FILE *f, const std::string &name) : Imf::OStream(name.c_str()), f_(f) {}
     void write(const char c[], int n) override {
         if (std::fwrite(c, 1, size_t(n), f_) != size_t(n)) {
@@ -74,7 +74,7 @@ public:
     bool failed() const { return failed_; }
     int error() const { return error_; }
 
-private:
+  private:
     FILE *f_;
     bool failed_ = false;
     int error_ = 0;
@@ -98,8 +98,8 @@ void WritePng(const std::string &path, int width, int height, int channels, bool
                                   nullptr)) {
         int err = errno;
         std::string msg = std::ferror(file.get()) ? ErrnoText("write error", err)
-                          : image.message[0]     ? std::string(image.message)
-                                                 : std::string("libpng error");
+                          : image.message[0]      ? std::string(image.message)
+                                                  : std::string("libpng error");
         png_image_free(&image);
         throw std::runtime_error(msg);
     }

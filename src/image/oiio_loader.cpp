@@ -55,8 +55,8 @@ const PrismOiioModule *Load(std::string *error) {
             note(path, why ? why : "dlopen failed");
             continue;
         }
-        auto entry = reinterpret_cast<PrismOiioModuleEntryFn>(
-            dlsym(handle, PRISM_OIIO_MODULE_ENTRY));
+        auto entry =
+            reinterpret_cast<PrismOiioModuleEntryFn>(dlsym(handle, PRISM_OIIO_MODULE_ENTRY));
         const PrismOiioModule *module = entry ? entry() : nullptr;
         if (!module || module->version != PRISM_OIIO_MODULE_VERSION) {
             note(path, "not a compatible Prism OpenImageIO module");
@@ -64,9 +64,7 @@ const PrismOiioModule *Load(std::string *error) {
         }
         return module;
     }
-    *error = "the OpenImageIO module " PRISM_OIIO_MODULE_NAME
-             " could not be loaded; tried" +
-             tried;
+    *error = "the OpenImageIO module " PRISM_OIIO_MODULE_NAME " could not be loaded; tried" + tried;
     return nullptr;
 }
 

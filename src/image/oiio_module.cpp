@@ -26,7 +26,8 @@ void CopyError(const std::string &msg, char *err, size_t errSize) {
 
 // OIIO keeps error messages per object and globally; fetch whichever is set (this also clears
 // them, so OIIO does not print them on destruction) and keep the first line only.
-template <typename T> void ReportError(T *obj, char *err, size_t errSize) {
+template <typename T>
+void ReportError(T *obj, char *err, size_t errSize) {
     std::string msg = obj ? obj->geterror() : std::string();
     if (msg.empty()) msg = OIIO::geterror();
     if (msg.empty()) msg = "unknown error";
@@ -154,8 +155,8 @@ int Write(const char *path, int width, int height, int channels, int alphaChanne
     }
 }
 
-const PrismOiioModule kModule = {PRISM_OIIO_MODULE_VERSION, OpenFile, OpenMemory, GetSpec,
-                                 ReadFloat, Close, Write};
+const PrismOiioModule kModule = {
+    PRISM_OIIO_MODULE_VERSION, OpenFile, OpenMemory, GetSpec, ReadFloat, Close, Write};
 
 }  // namespace
 

@@ -2,12 +2,15 @@
 
 #include <cmath>
 
-
 namespace prism {
 
 DiffuseAreaLight::DiffuseAreaLight(const AnalyticShape *analytic, const TriangleMesh *mesh,
                                    const RGB &L, bool twoSided, int nSamples)
-    : analytic_(analytic), mesh_(mesh), Lemit_(L), twoSided_(twoSided), nSamples_(std::max(1, nSamples)) {
+    : analytic_(analytic),
+      mesh_(mesh),
+      Lemit_(L),
+      twoSided_(twoSided),
+      nSamples_(std::max(1, nSamples)) {
     if (mesh_) {
         std::vector<double> areas(mesh_->NumTriangles());
         for (size_t i = 0; i < areas.size(); ++i) {
@@ -35,8 +38,9 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
         double prob;
         int tri = triangleAreas_.SampleDiscrete(u.x, &prob);
         // Remap u.x within the chosen triangle's CDF interval to keep stratification.
-        double uxr = prob > 0 ? Clamp((u.x - triangleAreas_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1)
-                              : 0.5;
+        double uxr = prob > 0
+                         ? Clamp((u.x - triangleAreas_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1)
+                         : 0.5;
         double su0 = std::sqrt(uxr);
         double b0 = 1 - su0, b1 = u.y * su0;
         const uint32_t *v = mesh_->Triangle(size_t(tri));

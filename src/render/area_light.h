@@ -12,7 +12,7 @@
 namespace prism {
 
 class DiffuseAreaLight final : public Light {
-public:
+  public:
     // Exactly one of analytic/mesh is set; both outlive the light (owned by the Accel).
     DiffuseAreaLight(const AnalyticShape *analytic, const TriangleMesh *mesh, const RGB &L,
                      bool twoSided, int nSamples);
@@ -25,7 +25,7 @@ public:
     }
     bool IsArea() const override { return true; }
 
-private:
+  private:
     const AnalyticShape *analytic_;
     const TriangleMesh *mesh_;
     RGB Lemit_;

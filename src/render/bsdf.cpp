@@ -16,8 +16,10 @@ float FrDielectric(float cosThetaI, float etaI, float etaT) {
     float sinThetaT = etaI / etaT * sinThetaI;
     if (sinThetaT >= 1) return 1;  // total internal reflection
     float cosThetaT = std::sqrt(std::max(0.f, 1 - sinThetaT * sinThetaT));
-    float rParl = ((etaT * cosThetaI) - (etaI * cosThetaT)) / ((etaT * cosThetaI) + (etaI * cosThetaT));
-    float rPerp = ((etaI * cosThetaI) - (etaT * cosThetaT)) / ((etaI * cosThetaI) + (etaT * cosThetaT));
+    float rParl =
+        ((etaT * cosThetaI) - (etaI * cosThetaT)) / ((etaT * cosThetaI) + (etaI * cosThetaT));
+    float rPerp =
+        ((etaI * cosThetaI) - (etaT * cosThetaT)) / ((etaI * cosThetaI) + (etaT * cosThetaT));
     return (rParl * rParl + rPerp * rPerp) / 2;
 }
 
@@ -51,9 +53,12 @@ float RoughnessToAlpha(float roughness) {
 
 RGB Fresnel::Evaluate(float cosThetaI) const {
     switch (kind) {
-    case FresnelKind::None: return RGB(1);
-    case FresnelKind::Dielectric: return RGB(FrDielectric(cosThetaI, etaI, etaT));
-    case FresnelKind::Conductor: return FrConductor(std::abs(cosThetaI), RGB(1), eta, k);
+        case FresnelKind::None:
+            return RGB(1);
+        case FresnelKind::Dielectric:
+            return RGB(FrDielectric(cosThetaI, etaI, etaT));
+        case FresnelKind::Conductor:
+            return FrConductor(std::abs(cosThetaI), RGB(1), eta, k);
     }
     return RGB(1);
 }
@@ -147,8 +152,9 @@ RGB MicrofacetTransmissionF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi
 RGB FresnelBlendF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
     auto pow5 = [](float v) { return (v * v) * (v * v) * v; };
     float cosI = std::abs(wi.z), cosO = std::abs(wo.z);
-    RGB diffuse = l.blendRd * (RGB(1) - l.blendRs) *
-                  (28.f / (23.f * float(Pi)) * (1 - pow5(1 - .5f * cosI)) * (1 - pow5(1 - .5f * cosO)));
+    RGB diffuse =
+        l.blendRd * (RGB(1) - l.blendRs) *
+        (28.f / (23.f * float(Pi)) * (1 - pow5(1 - .5f * cosI)) * (1 - pow5(1 - .5f * cosO)));
     Vec3f wh = wi + wo;
     if (wh.x == 0 && wh.y == 0 && wh.z == 0) return RGB(0);
     wh = Normalize(wh);
@@ -183,7 +189,8 @@ RGB BxDFLobes::f(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
                     sinAlpha = sinThetaI;
                     tanBeta = sinThetaO / std::abs(wo.z);
                 }
-                result += kd * float(InvPi) * (orenNayarA + orenNayarB * maxCos * sinAlpha * tanBeta);
+                result +=
+                    kd * float(InvPi) * (orenNayarA + orenNayarB * maxCos * sinAlpha * tanBeta);
             }
         }
         if (!ks.IsBlack()) result += MicrofacetReflectionF(*this, wo, wi);

@@ -29,27 +29,27 @@ struct Fresnel {
 // default-constructed value scatters nothing.
 struct BxDFLobes {
     // Non-delta lobes, evaluated for light samples.
-    RGB kd;                    // Lambertian albedo (f = kd / pi)
+    RGB kd;  // Lambertian albedo (f = kd / pi)
     float orenNayarA = 1, orenNayarB = 0;
     bool orenNayar = false;
-    RGB kdTransmit;            // Lambertian transmission (translucent)
-    RGB ks;                    // microfacet reflection scale
+    RGB kdTransmit;                // Lambertian transmission (translucent)
+    RGB ks;                        // microfacet reflection scale
     float alphaX = 0, alphaY = 0;  // Trowbridge–Reitz roughness of all glossy lobes
     Fresnel glossyFresnel;
-    RGB ksTransmit;            // microfacet transmission scale (translucent)
-    float glossyEta = 1.5f;    // its relative index (outside 1, inside glossyEta)
-    RGB blendRd, blendRs;      // FresnelBlend (substrate): diffuse and specular reflectance
+    RGB ksTransmit;          // microfacet transmission scale (translucent)
+    float glossyEta = 1.5f;  // its relative index (outside 1, inside glossyEta)
+    RGB blendRd, blendRs;    // FresnelBlend (substrate): diffuse and specular reflectance
     bool fresnelBlend = false;
 
     // Delta lobes, followed by recursion.
-    RGB kr;                    // specular reflection scale
-    Fresnel specularFresnel;   // None: mirror; Dielectric: glass; Conductor: polished metal
-    RGB kt;                    // specular transmission scale
-    float eta = 1.5f;          // relative index for transmission (1: straight through)
+    RGB kr;                   // specular reflection scale
+    Fresnel specularFresnel;  // None: mirror; Dielectric: glass; Conductor: polished metal
+    RGB kt;                   // specular transmission scale
+    float eta = 1.5f;         // relative index for transmission (1: straight through)
 
     bool HasNonSpecular() const {
-        return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() ||
-               !ksTransmit.IsBlack() || fresnelBlend;
+        return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() || !ksTransmit.IsBlack() ||
+               fresnelBlend;
     }
     // f for local directions; `reflect` says whether the geometric normal puts wo and wi on
     // the same side (pbrt BSDF::f picks reflection or transmission lobes with it).
@@ -101,7 +101,7 @@ struct BSDF {
     bool SampleSpecularReflection(int part, const Vec3f &woWorld, Vec3f *wi, RGB *weight) const;
     bool SampleSpecularTransmission(int part, const Vec3f &woWorld, Vec3f *wi, RGB *weight) const;
 
-private:
+  private:
     int n_ = 0;
     union {
         RGB weight_[MaxParts];

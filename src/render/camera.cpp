@@ -4,8 +4,7 @@
 
 namespace prism {
 
-Camera::Camera(const CameraParams &p, const Transform &renderFromCamera, Vec2i res,
-               double frame)
+Camera::Camera(const CameraParams &p, const Transform &renderFromCamera, Vec2i res, double frame)
     : ortho_(p.orthographic),
       lensRadius_(p.lensRadius),
       focalDistance_(p.focalDistance),
@@ -14,12 +13,20 @@ Camera::Camera(const CameraParams &p, const Transform &renderFromCamera, Vec2i r
     bool custom = p.screenWindow[0] != 0 || p.screenWindow[1] != 0 || p.screenWindow[2] != 0 ||
                   p.screenWindow[3] != 0;
     if (custom) {
-        sx0_ = p.screenWindow[0]; sx1_ = p.screenWindow[1];
-        sy0_ = p.screenWindow[2]; sy1_ = p.screenWindow[3];
+        sx0_ = p.screenWindow[0];
+        sx1_ = p.screenWindow[1];
+        sy0_ = p.screenWindow[2];
+        sy1_ = p.screenWindow[3];
     } else if (frame > 1) {
-        sx0_ = -frame; sx1_ = frame; sy0_ = -1; sy1_ = 1;
+        sx0_ = -frame;
+        sx1_ = frame;
+        sy0_ = -1;
+        sy1_ = 1;
     } else {
-        sx0_ = -1; sx1_ = 1; sy0_ = -1 / frame; sy1_ = 1 / frame;
+        sx0_ = -1;
+        sx1_ = 1;
+        sy0_ = -1 / frame;
+        sy1_ = 1 / frame;
     }
     tanHalf_ = std::tan(Radians(p.fovDeg) / 2);
 
@@ -64,11 +71,14 @@ Ray Camera::GenerateRay(Vec2f pFilm, Vec2f uLens) const {
         // Thin lens: concentric disk sample, focus on the plane z = focalDistance.
         double ux = 2.0 * uLens.x - 1, uy = 2.0 * uLens.y - 1, r, theta;
         if (ux == 0 && uy == 0) {
-            r = 0; theta = 0;
+            r = 0;
+            theta = 0;
         } else if (std::abs(ux) > std::abs(uy)) {
-            r = ux; theta = (Pi / 4) * (uy / ux);
+            r = ux;
+            theta = (Pi / 4) * (uy / ux);
         } else {
-            r = uy; theta = Pi / 2 - (Pi / 4) * (ux / uy);
+            r = uy;
+            theta = Pi / 2 - (Pi / 4) * (ux / uy);
         }
         Vec3d pLens(lensRadius_ * r * std::cos(theta), lensRadius_ * r * std::sin(theta), 0);
         double ft = focalDistance_ / d.z;

@@ -16,14 +16,14 @@ struct CameraParams {
 };
 
 class Camera {
-public:
+  public:
     // renderFromCamera maps camera space to the render space (world translated to the eye).
     Camera(const CameraParams &params, const Transform &renderFromCamera, Vec2i fullResolution,
            double frameAspectRatio);
     // pFilm: continuous raster position; uLens in [0,1)^2 (used only with a lens).
     Ray GenerateRay(Vec2f pFilm, Vec2f uLens) const;
 
-private:
+  private:
     bool ortho_;
     double sx0_, sx1_, sy0_, sy1_, tanHalf_;
     double lensRadius_, focalDistance_;

@@ -42,8 +42,8 @@ int Distribution1D::SampleDiscrete(double u, double *prob) const {
 Distribution2D::Distribution2D(const std::vector<double> &f, int nu, int nv) {
     std::vector<double> marginal;
     for (int v = 0; v < nv; ++v) {
-        conditional_.emplace_back(std::vector<double>(f.begin() + size_t(v) * nu,
-                                                      f.begin() + size_t(v + 1) * nu));
+        conditional_.emplace_back(
+            std::vector<double>(f.begin() + size_t(v) * nu, f.begin() + size_t(v + 1) * nu));
         marginal.push_back(conditional_.back().Integral());
     }
     marginal_ = Distribution1D(marginal);

@@ -9,7 +9,7 @@
 namespace prism {
 
 class Distribution1D {
-public:
+  public:
     Distribution1D() = default;
     explicit Distribution1D(std::vector<double> f);
     // Continuous sample in [0,1) with density pdf (relative to the unit interval).
@@ -21,20 +21,20 @@ public:
     double Func(int i) const { return func_[size_t(i)]; }
     double Cdf(int i) const { return cdf_[size_t(i)]; }
 
-private:
+  private:
     std::vector<double> func_, cdf_;
     double integral_ = 0;
 };
 
 class Distribution2D {
-public:
+  public:
     Distribution2D() = default;
     // f is nu x nv, row-major by v (f[v * nu + u]).
     Distribution2D(const std::vector<double> &f, int nu, int nv);
     Vec2d SampleContinuous(Vec2d u, double *pdf) const;
     double Pdf(Vec2d p) const;
 
-private:
+  private:
     std::vector<Distribution1D> conditional_;
     Distribution1D marginal_;
 };

@@ -8,7 +8,10 @@ namespace prism {
 
 InfiniteLight::InfiniteLight(const Transform &renderFromLight, const RGB &L,
                              std::shared_ptr<const Image> map, int nSamples)
-    : renderFromLight_(renderFromLight), L_(L), map_(std::move(map)), nSamples_(std::max(1, nSamples)) {
+    : renderFromLight_(renderFromLight),
+      L_(L),
+      map_(std::move(map)),
+      nSamples_(std::max(1, nSamples)) {
     if (map_) {
         // Sample texels in proportion to luminance times sin(theta) (the equirectangular
         // area distortion), as pbrt-v3's InfiniteAreaLight does.
@@ -17,7 +20,8 @@ InfiniteLight::InfiniteLight(const Transform &renderFromLight, const RGB &L,
         for (int y = 0; y < h; ++y) {
             double sinTheta = std::sin(Pi * (y + 0.5) / h);
             for (int x = 0; x < w; ++x)
-                f[size_t(y) * size_t(w) + size_t(x)] = double(map_->GetRGB(x, y).Luminance()) * sinTheta;
+                f[size_t(y) * size_t(w) + size_t(x)] =
+                    double(map_->GetRGB(x, y).Luminance()) * sinTheta;
         }
         distribution_ = Distribution2D(f, w, h);
     }

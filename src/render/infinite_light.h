@@ -13,16 +13,16 @@ namespace prism {
 struct Image;
 
 class InfiniteLight final : public Light {
-public:
+  public:
     // lightFromRender rotates render-space directions into the map's frame (z = pole).
-    InfiniteLight(const Transform &renderFromLight, const RGB &L,
-                  std::shared_ptr<const Image> map, int nSamples);
+    InfiniteLight(const Transform &renderFromLight, const RGB &L, std::shared_ptr<const Image> map,
+                  int nSamples);
     const char *Name() const override { return "infinite"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
     RGB Le(const Ray &ray) const override;
     int NumSamples() const override { return nSamples_; }
 
-private:
+  private:
     RGB Lookup(const Vec3f &wRender) const;
     Transform renderFromLight_;
     RGB L_;

@@ -18,7 +18,9 @@ bool PointLight::SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) 
 
 SpotLight::SpotLight(const Vec3f &pos, const Vec3f &dir, const RGB &I, float coneAngle,
                      float coneDelta)
-    : pos_(pos), dir_(dir), I_(I),
+    : pos_(pos),
+      dir_(dir),
+      I_(I),
       cosTotalWidth_(float(std::cos(Radians(coneAngle)))),
       cosFalloffStart_(float(std::cos(Radians(coneAngle - coneDelta)))) {}
 

@@ -12,14 +12,14 @@ namespace prism {
 
 struct LightSample {
     RGB Li;
-    Vec3f wi;          // unit direction toward the light
-    Vec3f pLight;      // for finite lights: the point to reach
+    Vec3f wi;               // unit direction toward the light
+    Vec3f pLight;           // for finite lights: the point to reach
     bool infinite = false;  // distant/infinite: the shadow ray is unbounded along wi
     float pdf = 1;
 };
 
 class Light {
-public:
+  public:
     virtual ~Light() = default;
     virtual const char *Name() const = 0;
     // u: a 2-D sample in [0,1)^2 (ignored by delta lights).
@@ -31,38 +31,38 @@ public:
 };
 
 class PointLight final : public Light {
-public:
+  public:
     PointLight(const Vec3f &pos, const RGB &I) : pos_(pos), I_(I) {}
     const char *Name() const override { return "point"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
 
-private:
+  private:
     Vec3f pos_;
     RGB I_;
 };
 
 class SpotLight final : public Light {
-public:
+  public:
     // dir: unit axis from the light toward `to`; angles in degrees.
     SpotLight(const Vec3f &pos, const Vec3f &dir, const RGB &I, float coneAngle, float coneDelta);
     const char *Name() const override { return "spot"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
     float Falloff(const Vec3f &wFromLight) const;
 
-private:
+  private:
     Vec3f pos_, dir_;
     RGB I_;
     float cosTotalWidth_, cosFalloffStart_;
 };
 
 class DistantLight final : public Light {
-public:
+  public:
     // wLight: unit direction *toward* the light (from - to).
     DistantLight(const Vec3f &wLight, const RGB &L) : w_(wLight), L_(L) {}
     const char *Name() const override { return "distant"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
 
-private:
+  private:
     Vec3f w_;
     RGB L_;
 };

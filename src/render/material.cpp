@@ -39,39 +39,39 @@ Fresnel Dielectric(float etaI, float etaT) {
 
 bool Material::MayReflectSpecularly() const {
     switch (kind) {
-    case Kind::Mirror:
-    case Kind::Glass:
-        return true;
-    case Kind::Metal: {
-        // Constant roughness lets us decide up front; textured roughness may go either way.
-        auto *cu = dynamic_cast<const ConstantTexture *>(uRoughness.get());
-        auto *cv = dynamic_cast<const ConstantTexture *>(vRoughness.get());
-        if (!cu || !cv) return true;
-        float au = remapRoughness ? RoughnessToAlpha(cu->Value().r) : cu->Value().r;
-        float av = remapRoughness ? RoughnessToAlpha(cv->Value().r) : cv->Value().r;
-        return std::max(au, av) <= SpecularMetalAlpha;
-    }
-    case Kind::Uber:
-        return MaybeNonBlack(Kr);
-    case Kind::Mix:
-        return mix1->MayReflectSpecularly() || mix2->MayReflectSpecularly();
-    default:
-        return false;
+        case Kind::Mirror:
+        case Kind::Glass:
+            return true;
+        case Kind::Metal: {
+            // Constant roughness lets us decide up front; textured roughness may go either way.
+            auto *cu = dynamic_cast<const ConstantTexture *>(uRoughness.get());
+            auto *cv = dynamic_cast<const ConstantTexture *>(vRoughness.get());
+            if (!cu || !cv) return true;
+            float au = remapRoughness ? RoughnessToAlpha(cu->Value().r) : cu->Value().r;
+            float av = remapRoughness ? RoughnessToAlpha(cv->Value().r) : cv->Value().r;
+            return std::max(au, av) <= SpecularMetalAlpha;
+        }
+        case Kind::Uber:
+            return MaybeNonBlack(Kr);
+        case Kind::Mix:
+            return mix1->MayReflectSpecularly() || mix2->MayReflectSpecularly();
+        default:
+            return false;
     }
 }
 
 bool Material::MayTransmit() const {
     switch (kind) {
-    case Kind::Glass:
-        return true;
-    case Kind::Uber:
-        return MaybeNonBlack(Kt) || MaybeBelowOne(opacity);
-    case Kind::Mix:
-        // A "none" child lets part of the light straight through.
-        return mix1->MayTransmit() || mix2->MayTransmit() || mix1->IsPassThrough() ||
-               mix2->IsPassThrough();
-    default:
-        return false;
+        case Kind::Glass:
+            return true;
+        case Kind::Uber:
+            return MaybeNonBlack(Kt) || MaybeBelowOne(opacity);
+        case Kind::Mix:
+            // A "none" child lets part of the light straight through.
+            return mix1->MayTransmit() || mix2->MayTransmit() || mix1->IsPassThrough() ||
+                   mix2->IsPassThrough();
+        default:
+            return false;
     }
 }
 
@@ -102,28 +102,28 @@ unsigned Material::SurfaceNeeds() const {
                                 &index, &opacity, &reflect, &transmit, &amount})
         if (Varies(*t)) needs |= NeedUV;
     switch (kind) {
-    case Kind::Metal:
-    case Kind::Substrate:
-        if (MaybeAnisotropic(uRoughness, vRoughness)) needs |= NeedDpdu;
-        break;
-    case Kind::Uber:
-        if (vRoughness && MaybeAnisotropic(uRoughness ? uRoughness : roughness, vRoughness))
-            needs |= NeedDpdu;
-        break;
-    default:
-        break;
+        case Kind::Metal:
+        case Kind::Substrate:
+            if (MaybeAnisotropic(uRoughness, vRoughness)) needs |= NeedDpdu;
+            break;
+        case Kind::Uber:
+            if (vRoughness && MaybeAnisotropic(uRoughness ? uRoughness : roughness, vRoughness))
+                needs |= NeedDpdu;
+            break;
+        default:
+            break;
     }
     return needs;
 }
 
 int Material::MaxParts() const {
     switch (kind) {
-    case Kind::Mix:
-        return mix1->MaxParts() + mix2->MaxParts();
-    case Kind::Uber:
-        return MaybeBelowOne(opacity) ? 2 : 1;
-    default:
-        return 1;
+        case Kind::Mix:
+            return mix1->MaxParts() + mix2->MaxParts();
+        case Kind::Uber:
+            return MaybeBelowOne(opacity) ? 2 : 1;
+        default:
+            return 1;
     }
 }
 
@@ -170,113 +170,113 @@ void Material::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) co
     }
     BxDFLobes &l = b.AddPart(weight);
     switch (kind) {
-    case Kind::Matte: {
-        l.kd = Kd->Evaluate(tc).Clamped(0.f);
-        float sig = sigma ? EvalFloat(sigma, tc) : 0.f;
-        if (sig > 0) {
-            float s = float(Radians(sig));
-            float s2 = s * s;
-            l.orenNayar = true;
-            l.orenNayarA = 1 - s2 / (2 * (s2 + 0.33f));
-            l.orenNayarB = 0.45f * s2 / (s2 + 0.09f);
+        case Kind::Matte: {
+            l.kd = Kd->Evaluate(tc).Clamped(0.f);
+            float sig = sigma ? EvalFloat(sigma, tc) : 0.f;
+            if (sig > 0) {
+                float s = float(Radians(sig));
+                float s2 = s * s;
+                l.orenNayar = true;
+                l.orenNayarA = 1 - s2 / (2 * (s2 + 0.33f));
+                l.orenNayarB = 0.45f * s2 / (s2 + 0.09f);
+            }
+            break;
         }
-        break;
-    }
-    case Kind::Plastic: {
-        l.kd = Kd->Evaluate(tc).Clamped(0.f);
-        l.ks = Ks->Evaluate(tc).Clamped(0.f);
-        float a = Alpha(*this, roughness, tc);
-        l.alphaX = l.alphaY = std::max(a, 1e-4f);
-        // pbrt-v3 plastic.cpp constructs FresnelDielectric(1.5, 1): kept as is so highlights
-        // match the reference renderer (it saturates toward grazing angles).
-        l.glossyFresnel = Dielectric(1.5f, 1.f);
-        break;
-    }
-    case Kind::Mirror:
-        l.kr = Kr->Evaluate(tc).Clamped(0.f);
-        l.specularFresnel.kind = FresnelKind::None;
-        break;
-    case Kind::Glass: {
-        l.kr = Kr->Evaluate(tc).Clamped(0.f);
-        l.kt = Kt->Evaluate(tc).Clamped(0.f);
-        l.eta = EvalFloat(index, tc);
-        l.specularFresnel = Dielectric(1.f, l.eta);
-        break;
-    }
-    case Kind::Metal: {
-        float au = Alpha(*this, uRoughness, tc), av = Alpha(*this, vRoughness, tc);
-        Fresnel fr;
-        fr.kind = FresnelKind::Conductor;
-        fr.eta = metalEta;
-        fr.k = metalK;
-        if (std::max(au, av) <= SpecularMetalAlpha) {
-            l.kr = RGB(1);
-            l.specularFresnel = fr;
-        } else {
-            l.ks = RGB(1);
-            l.alphaX = std::max(au, 1e-4f);
-            l.alphaY = std::max(av, 1e-4f);
-            l.glossyFresnel = fr;
+        case Kind::Plastic: {
+            l.kd = Kd->Evaluate(tc).Clamped(0.f);
+            l.ks = Ks->Evaluate(tc).Clamped(0.f);
+            float a = Alpha(*this, roughness, tc);
+            l.alphaX = l.alphaY = std::max(a, 1e-4f);
+            // pbrt-v3 plastic.cpp constructs FresnelDielectric(1.5, 1): kept as is so highlights
+            // match the reference renderer (it saturates toward grazing angles).
+            l.glossyFresnel = Dielectric(1.5f, 1.f);
+            break;
         }
-        break;
-    }
-    case Kind::Uber: {
-        // pbrt-v3 uber.cpp: every lobe is scaled by the opacity.
-        RGB op = opacity ? opacity->Evaluate(tc).Clamped(0.f, 1.f) : RGB(1);
-        float e = EvalFloat(index, tc);
-        l.kd = op * Kd->Evaluate(tc).Clamped(0.f);
-        l.ks = op * Ks->Evaluate(tc).Clamped(0.f);
-        if (!l.ks.IsBlack()) {
-            float au = Alpha(*this, uRoughness ? uRoughness : roughness, tc);
-            float av = vRoughness ? Alpha(*this, vRoughness, tc) : au;
-            l.alphaX = std::max(au, 1e-4f);
-            l.alphaY = std::max(av, 1e-4f);
-            l.glossyFresnel = Dielectric(1.f, e);
+        case Kind::Mirror:
+            l.kr = Kr->Evaluate(tc).Clamped(0.f);
+            l.specularFresnel.kind = FresnelKind::None;
+            break;
+        case Kind::Glass: {
+            l.kr = Kr->Evaluate(tc).Clamped(0.f);
+            l.kt = Kt->Evaluate(tc).Clamped(0.f);
+            l.eta = EvalFloat(index, tc);
+            l.specularFresnel = Dielectric(1.f, l.eta);
+            break;
         }
-        l.kr = op * Kr->Evaluate(tc).Clamped(0.f);
-        l.kt = op * Kt->Evaluate(tc).Clamped(0.f);
-        l.specularFresnel = Dielectric(1.f, e);
-        l.eta = e;
-        break;
-    }
-    case Kind::Substrate: {
-        // pbrt-v3 substrate.cpp: one FresnelBlend lobe.
-        RGB d = Kd->Evaluate(tc).Clamped(0.f), s = Ks->Evaluate(tc).Clamped(0.f);
-        if (d.IsBlack() && s.IsBlack()) break;
-        l.fresnelBlend = true;
-        l.blendRd = d;
-        l.blendRs = s;
-        l.alphaX = std::max(Alpha(*this, uRoughness, tc), 1e-4f);
-        l.alphaY = std::max(Alpha(*this, vRoughness, tc), 1e-4f);
-        break;
-    }
-    case Kind::Translucent: {
-        // pbrt-v3 translucent.cpp: Lambertian reflection r·Kd and transmission t·Kd, microfacet
-        // reflection r·Ks and transmission t·Ks through an eta = 1.5 interface.
-        const float eta = 1.5f;
-        RGB r = reflect->Evaluate(tc).Clamped(0.f), t = transmit->Evaluate(tc).Clamped(0.f);
-        if (r.IsBlack() && t.IsBlack()) break;
-        RGB kd = Kd->Evaluate(tc).Clamped(0.f);
-        l.kd = r * kd;
-        l.kdTransmit = t * kd;
-        RGB ks = Ks->Evaluate(tc).Clamped(0.f);
-        if (!ks.IsBlack()) {
-            float a = std::max(Alpha(*this, roughness, tc), 1e-4f);
-            l.alphaX = l.alphaY = a;
-            l.ks = r * ks;
-            l.glossyFresnel = Dielectric(1.f, eta);
-            l.ksTransmit = t * ks;
-            l.glossyEta = eta;
+        case Kind::Metal: {
+            float au = Alpha(*this, uRoughness, tc), av = Alpha(*this, vRoughness, tc);
+            Fresnel fr;
+            fr.kind = FresnelKind::Conductor;
+            fr.eta = metalEta;
+            fr.k = metalK;
+            if (std::max(au, av) <= SpecularMetalAlpha) {
+                l.kr = RGB(1);
+                l.specularFresnel = fr;
+            } else {
+                l.ks = RGB(1);
+                l.alphaX = std::max(au, 1e-4f);
+                l.alphaY = std::max(av, 1e-4f);
+                l.glossyFresnel = fr;
+            }
+            break;
         }
-        break;
-    }
-    case Kind::None:
-        // Only reached inside a mix: the "none" share of the light continues unchanged.
-        l.kt = RGB(1);
-        l.eta = 1;
-        break;
-    case Kind::Mix:
-        break;
+        case Kind::Uber: {
+            // pbrt-v3 uber.cpp: every lobe is scaled by the opacity.
+            RGB op = opacity ? opacity->Evaluate(tc).Clamped(0.f, 1.f) : RGB(1);
+            float e = EvalFloat(index, tc);
+            l.kd = op * Kd->Evaluate(tc).Clamped(0.f);
+            l.ks = op * Ks->Evaluate(tc).Clamped(0.f);
+            if (!l.ks.IsBlack()) {
+                float au = Alpha(*this, uRoughness ? uRoughness : roughness, tc);
+                float av = vRoughness ? Alpha(*this, vRoughness, tc) : au;
+                l.alphaX = std::max(au, 1e-4f);
+                l.alphaY = std::max(av, 1e-4f);
+                l.glossyFresnel = Dielectric(1.f, e);
+            }
+            l.kr = op * Kr->Evaluate(tc).Clamped(0.f);
+            l.kt = op * Kt->Evaluate(tc).Clamped(0.f);
+            l.specularFresnel = Dielectric(1.f, e);
+            l.eta = e;
+            break;
+        }
+        case Kind::Substrate: {
+            // pbrt-v3 substrate.cpp: one FresnelBlend lobe.
+            RGB d = Kd->Evaluate(tc).Clamped(0.f), s = Ks->Evaluate(tc).Clamped(0.f);
+            if (d.IsBlack() && s.IsBlack()) break;
+            l.fresnelBlend = true;
+            l.blendRd = d;
+            l.blendRs = s;
+            l.alphaX = std::max(Alpha(*this, uRoughness, tc), 1e-4f);
+            l.alphaY = std::max(Alpha(*this, vRoughness, tc), 1e-4f);
+            break;
+        }
+        case Kind::Translucent: {
+            // pbrt-v3 translucent.cpp: Lambertian reflection r·Kd and transmission t·Kd, microfacet
+            // reflection r·Ks and transmission t·Ks through an eta = 1.5 interface.
+            const float eta = 1.5f;
+            RGB r = reflect->Evaluate(tc).Clamped(0.f), t = transmit->Evaluate(tc).Clamped(0.f);
+            if (r.IsBlack() && t.IsBlack()) break;
+            RGB kd = Kd->Evaluate(tc).Clamped(0.f);
+            l.kd = r * kd;
+            l.kdTransmit = t * kd;
+            RGB ks = Ks->Evaluate(tc).Clamped(0.f);
+            if (!ks.IsBlack()) {
+                float a = std::max(Alpha(*this, roughness, tc), 1e-4f);
+                l.alphaX = l.alphaY = a;
+                l.ks = r * ks;
+                l.glossyFresnel = Dielectric(1.f, eta);
+                l.ksTransmit = t * ks;
+                l.glossyEta = eta;
+            }
+            break;
+        }
+        case Kind::None:
+            // Only reached inside a mix: the "none" share of the light continues unchanged.
+            l.kt = RGB(1);
+            l.eta = 1;
+            break;
+        case Kind::Mix:
+            break;
     }
 }
 

@@ -14,8 +14,19 @@
 namespace prism {
 
 class Material {
-public:
-    enum class Kind { Matte, Plastic, Mirror, Glass, Metal, Uber, Substrate, Translucent, Mix, None };
+  public:
+    enum class Kind {
+        Matte,
+        Plastic,
+        Mirror,
+        Glass,
+        Metal,
+        Uber,
+        Substrate,
+        Translucent,
+        Mix,
+        None
+    };
 
     Kind kind = Kind::Matte;
     std::string typeName;  // as written in the scene, for `prism info`
@@ -45,7 +56,7 @@ public:
     // of evaluating textures and remapping roughness at every hit.
     void Prepare();
 
-private:
+  private:
     struct FixedPart {
         RGB weight;
         BxDFLobes lobes;

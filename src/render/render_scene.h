@@ -32,12 +32,12 @@ struct ShapeInfo {
     int areaLight = -1;      // index into RenderScene::lights when the shape emits
     int directiveIndex = 0;  // Shape directive order in the scene file
     std::string type;
-    int prototype = -1;      // instances: index into RenderScene::prototypes
+    int prototype = -1;  // instances: index into RenderScene::prototypes
 };
 
 struct RenderScene {
     std::unique_ptr<Accel> accel;
-    std::vector<ShapeInfo> shapes;  // by accel shape index
+    std::vector<ShapeInfo> shapes;                   // by accel shape index
     std::vector<std::vector<ShapeInfo>> prototypes;  // ObjectBegin groups, by prototype shape
     // The shape a hit belongs to (looking inside instances).
     const ShapeInfo &Info(const SurfaceInteraction &si) const {
@@ -48,18 +48,18 @@ struct RenderScene {
     std::vector<Material> materials;
     std::vector<std::unique_ptr<Light>> lights;
     std::unique_ptr<Camera> camera;
-    Transform renderFromWorld;      // world translated so the camera sits at the origin
+    Transform renderFromWorld;  // world translated so the camera sits at the origin
     Vec2i resolution{PbrtDefaultXResolution, PbrtDefaultYResolution};
-    Bounds2i pixelBounds;           // crop window in pixels
+    Bounds2i pixelBounds;  // crop window in pixels
     Filter filter;
     float filmScale = 1;
     float maxSampleLuminance = Infinity;
     int spp = 1;
     int maxDepth = 5;
-    std::string outputFilename;     // Film "filename"
+    std::string outputFilename;  // Film "filename"
     std::string integratorName;
     SceneFeatures features;
-    double buildSeconds = 0;        // BVH build only
+    double buildSeconds = 0;  // BVH build only
 };
 
 }  // namespace prism

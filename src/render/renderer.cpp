@@ -1,10 +1,10 @@
 #include "render/renderer.h"
 
+#include <pmmintrin.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <xmmintrin.h>
-#include <pmmintrin.h>
 
 #include <algorithm>
 #include <atomic>
@@ -100,7 +100,8 @@ void RenderTile(const RenderScene &scene, const WhittedIntegrator &integrator, B
     size_t slot[16];
     for (int by = tb.pMin.y; by < tb.pMax.y; by += PacketH) {
         for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += PacketW) {
-            const int ex = std::min(bx + PacketW, tb.pMax.x), ey = std::min(by + PacketH, tb.pMax.y);
+            const int ex = std::min(bx + PacketW, tb.pMax.x),
+                      ey = std::min(by + PacketH, tb.pMax.y);
             for (uint32_t s = 0; s < spp; ++s) {
                 int m = 0;
                 for (int y = by; y < ey; ++y) {

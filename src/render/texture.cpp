@@ -10,22 +10,22 @@ namespace prism {
 
 Vec2f TextureMapping::Map(const TextureContext &ctx) const {
     switch (kind) {
-    case Kind::UV:
-        return {su * ctx.uv.x + du, sv * ctx.uv.y + dv};
-    case Kind::Spherical: {
-        Vec3d v = Normalize(textureFromRender.Point(Vec3d(ctx.p)));
-        double theta = SafeACos(v.z), phi = std::atan2(v.y, v.x);
-        if (phi < 0) phi += 2 * Pi;
-        return {float(theta * InvPi), float(phi * (0.5 * InvPi))};
-    }
-    case Kind::Cylindrical: {
-        Vec3d v = textureFromRender.Point(Vec3d(ctx.p));
-        return {float((Pi + std::atan2(v.y, v.x)) * (0.5 * InvPi)), float(v.z)};
-    }
-    case Kind::Planar: {
-        Vec3f v = Vec3f(textureFromRender.Point(Vec3d(ctx.p)));
-        return {du + Dot(v, v1), dv + Dot(v, v2)};
-    }
+        case Kind::UV:
+            return {su * ctx.uv.x + du, sv * ctx.uv.y + dv};
+        case Kind::Spherical: {
+            Vec3d v = Normalize(textureFromRender.Point(Vec3d(ctx.p)));
+            double theta = SafeACos(v.z), phi = std::atan2(v.y, v.x);
+            if (phi < 0) phi += 2 * Pi;
+            return {float(theta * InvPi), float(phi * (0.5 * InvPi))};
+        }
+        case Kind::Cylindrical: {
+            Vec3d v = textureFromRender.Point(Vec3d(ctx.p));
+            return {float((Pi + std::atan2(v.y, v.x)) * (0.5 * InvPi)), float(v.z)};
+        }
+        case Kind::Planar: {
+            Vec3f v = Vec3f(textureFromRender.Point(Vec3d(ctx.p)));
+            return {du + Dot(v, v1), dv + Dot(v, v2)};
+        }
     }
     return ctx.uv;
 }
@@ -48,17 +48,17 @@ ImageTexture::ImageTexture(TextureMapping mapping, std::shared_ptr<const Image> 
 RGB ImageTexture::Texel(int x, int y) const {
     int w = image_->width, h = image_->height;
     switch (wrap_) {
-    case WrapMode::Repeat:
-        x = ((x % w) + w) % w;
-        y = ((y % h) + h) % h;
-        break;
-    case WrapMode::Clamp:
-        x = Clamp(x, 0, w - 1);
-        y = Clamp(y, 0, h - 1);
-        break;
-    case WrapMode::Black:
-        if (x < 0 || x >= w || y < 0 || y >= h) return RGB(0);
-        break;
+        case WrapMode::Repeat:
+            x = ((x % w) + w) % w;
+            y = ((y % h) + h) % h;
+            break;
+        case WrapMode::Clamp:
+            x = Clamp(x, 0, w - 1);
+            y = Clamp(y, 0, h - 1);
+            break;
+        case WrapMode::Black:
+            if (x < 0 || x >= w || y < 0 || y >= h) return RGB(0);
+            break;
     }
     // Texture t runs upward; image rows run downward.
     return image_->GetRGB(x, h - 1 - y);
@@ -114,16 +114,16 @@ RGB DotsTexture::Evaluate(const TextureContext &c) const {
 RGB NoiseTexture::Evaluate(const TextureContext &c) const {
     Vec3f p = mapping_.Map(c);
     switch (kind_) {
-    case Kind::FBm:
-        return RGB(FBm(p, omega_, octaves_));
-    case Kind::Wrinkled:
-        return RGB(Turbulence(p, omega_, octaves_));
-    case Kind::Windy: {
-        // Low-frequency wind strength modulating higher-frequency waves (pbrt-v3 WindyTexture).
-        float windStrength = FBm(p * .1f, .5f, 3);
-        float waveHeight = FBm(p, .5f, 6);
-        return RGB(std::abs(windStrength) * waveHeight);
-    }
+        case Kind::FBm:
+            return RGB(FBm(p, omega_, octaves_));
+        case Kind::Wrinkled:
+            return RGB(Turbulence(p, omega_, octaves_));
+        case Kind::Windy: {
+            // Low-frequency wind strength modulating higher-frequency waves (pbrt-v3 WindyTexture).
+            float windStrength = FBm(p * .1f, .5f, 3);
+            float waveHeight = FBm(p, .5f, 6);
+            return RGB(std::abs(windStrength) * waveHeight);
+        }
     }
     return RGB(0);
 }

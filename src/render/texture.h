@@ -21,7 +21,7 @@ struct TextureContext {
 };
 
 class Texture {
-public:
+  public:
     virtual ~Texture() = default;
     virtual RGB Evaluate(const TextureContext &ctx) const = 0;
     virtual bool IsConstant() const { return false; }
@@ -29,13 +29,13 @@ public:
 using TexturePtr = std::shared_ptr<const Texture>;
 
 class ConstantTexture final : public Texture {
-public:
+  public:
     explicit ConstantTexture(RGB v) : value_(v) {}
     RGB Evaluate(const TextureContext &) const override { return value_; }
     bool IsConstant() const override { return true; }
     RGB Value() const { return value_; }
 
-private:
+  private:
     RGB value_;
 };
 
@@ -55,16 +55,18 @@ struct TextureMapping3D {
 };
 
 class ScaleTexture final : public Texture {
-public:
+  public:
     ScaleTexture(TexturePtr a, TexturePtr b) : a_(std::move(a)), b_(std::move(b)) {}
-    RGB Evaluate(const TextureContext &c) const override { return a_->Evaluate(c) * b_->Evaluate(c); }
+    RGB Evaluate(const TextureContext &c) const override {
+        return a_->Evaluate(c) * b_->Evaluate(c);
+    }
 
-private:
+  private:
     TexturePtr a_, b_;
 };
 
 class MixTexture final : public Texture {
-public:
+  public:
     MixTexture(TexturePtr a, TexturePtr b, TexturePtr amount)
         : a_(std::move(a)), b_(std::move(b)), amount_(std::move(amount)) {}
     RGB Evaluate(const TextureContext &c) const override {
@@ -72,17 +74,17 @@ public:
         return a_->Evaluate(c) * (1 - t) + b_->Evaluate(c) * t;
     }
 
-private:
+  private:
     TexturePtr a_, b_, amount_;
 };
 
 class CheckerboardTexture final : public Texture {
-public:
+  public:
     CheckerboardTexture(TextureMapping mapping, TexturePtr tex1, TexturePtr tex2, int dimension)
         : mapping_(mapping), tex1_(std::move(tex1)), tex2_(std::move(tex2)), dim_(dimension) {}
     RGB Evaluate(const TextureContext &c) const override;
 
-private:
+  private:
     TextureMapping mapping_;
     TexturePtr tex1_, tex2_;
     int dim_;
@@ -92,12 +94,12 @@ enum class WrapMode { Repeat, Black, Clamp };
 
 // Bilinear lookup in a linear-RGB image; t = 0 is the bottom row (pbrt flips images in y).
 class ImageTexture final : public Texture {
-public:
+  public:
     ImageTexture(TextureMapping mapping, std::shared_ptr<const Image> image, WrapMode wrap,
                  float scale, bool invert);
     RGB Evaluate(const TextureContext &c) const override;
 
-private:
+  private:
     RGB Texel(int x, int y) const;
     TextureMapping mapping_;
     std::shared_ptr<const Image> image_;
@@ -109,48 +111,48 @@ private:
 // pbrt-v3 BilerpTexture: bilinear interpolation of four corner values over (s, t), which is
 // not wrapped (values extrapolate outside [0, 1]^2).
 class BilerpTexture final : public Texture {
-public:
+  public:
     BilerpTexture(TextureMapping mapping, RGB v00, RGB v01, RGB v10, RGB v11)
         : mapping_(mapping), v00_(v00), v01_(v01), v10_(v10), v11_(v11) {}
     RGB Evaluate(const TextureContext &c) const override;
 
-private:
+  private:
     TextureMapping mapping_;
     RGB v00_, v01_, v10_, v11_;
 };
 
 // pbrt-v3 UVTexture: (frac(s), frac(t), 0), for checking parameterizations.
 class UVTexture final : public Texture {
-public:
+  public:
     explicit UVTexture(TextureMapping mapping) : mapping_(mapping) {}
     RGB Evaluate(const TextureContext &c) const override;
 
-private:
+  private:
     TextureMapping mapping_;
 };
 
 // pbrt-v3 DotsTexture: polka dots of radius 0.35 on the unit (s, t) grid, each cell's dot
 // present and jittered according to Perlin noise.
 class DotsTexture final : public Texture {
-public:
+  public:
     DotsTexture(TextureMapping mapping, TexturePtr inside, TexturePtr outside)
         : mapping_(mapping), inside_(std::move(inside)), outside_(std::move(outside)) {}
     RGB Evaluate(const TextureContext &c) const override;
 
-private:
+  private:
     TextureMapping mapping_;
     TexturePtr inside_, outside_;
 };
 
 // pbrt-v3's noise textures over the 3-D texture-space point (see render/noise.h).
 class NoiseTexture final : public Texture {
-public:
+  public:
     enum class Kind { FBm, Wrinkled, Windy };
     NoiseTexture(Kind kind, TextureMapping3D mapping, int octaves, float omega)
         : kind_(kind), mapping_(mapping), octaves_(octaves), omega_(omega) {}
     RGB Evaluate(const TextureContext &c) const override;
 
-private:
+  private:
     Kind kind_;
     TextureMapping3D mapping_;
     int octaves_;
@@ -159,12 +161,16 @@ private:
 
 // pbrt-v3 MarbleTexture: sin(p.y + variation·FBm) through a Bézier spline of marble colours.
 class MarbleTexture final : public Texture {
-public:
+  public:
     MarbleTexture(TextureMapping3D mapping, int octaves, float omega, float scale, float variation)
-        : mapping_(mapping), octaves_(octaves), omega_(omega), scale_(scale), variation_(variation) {}
+        : mapping_(mapping),
+          octaves_(octaves),
+          omega_(omega),
+          scale_(scale),
+          variation_(variation) {}
     RGB Evaluate(const TextureContext &c) const override;
 
-private:
+  private:
     TextureMapping3D mapping_;
     int octaves_;
     float omega_, scale_, variation_;

@@ -53,7 +53,8 @@ RGB WhittedIntegrator::Shade(const Ray &rayIn, SurfaceInteraction si, int depth,
     RGB L;
     // Emission of an area light seen directly or through specular paths.
     if (shape->areaLight >= 0)
-        L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(shape->areaLight)]).L(si.n, wo);
+        L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(shape->areaLight)])
+                 .L(si.n, wo);
 
     // Direct lighting through the non-specular lobes: one shadow ray per delta light, and a
     // stratified set of shadow rays per area or environment light (distribution ray tracing).
@@ -64,7 +65,8 @@ RGB WhittedIntegrator::Shade(const Ray &rayIn, SurfaceInteraction si, int depth,
             uint32_t seed = PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919));
             RGB Lj;
             for (int k = 0; k < n; ++k) {
-                Vec2f u = CMJSample(sc.sample * uint32_t(n) + uint32_t(k), sc.spp * uint32_t(n), seed);
+                Vec2f u =
+                    CMJSample(sc.sample * uint32_t(n) + uint32_t(k), sc.spp * uint32_t(n), seed);
                 LightSample ls;
                 if (!light.SampleLi(si, u, &ls) || ls.Li.IsBlack() || !(ls.pdf > 0)) continue;
                 RGB f = bsdf.f(wo, ls.wi);
@@ -83,8 +85,7 @@ RGB WhittedIntegrator::Shade(const Ray &rayIn, SurfaceInteraction si, int depth,
 }
 
 void WhittedIntegrator::AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
-                                    RayCounters &counters, const SampleContext &sc,
-                                    RGB &L) const {
+                                    RayCounters &counters, const SampleContext &sc, RGB &L) const {
     const Vec3f &wo = si.wo;
     // Specular recursion, for the delta lobes of every BSDF part (mix materials have several).
     if (depth + 1 < scene_.maxDepth) {

@@ -19,8 +19,11 @@ struct RayCounters {
     uint64_t camera = 0, shadow = 0, reflection = 0, refraction = 0, passThrough = 0;
     uint64_t Total() const { return camera + shadow + reflection + refraction + passThrough; }
     RayCounters &operator+=(const RayCounters &o) {
-        camera += o.camera; shadow += o.shadow; reflection += o.reflection;
-        refraction += o.refraction; passThrough += o.passThrough;
+        camera += o.camera;
+        shadow += o.shadow;
+        reflection += o.reflection;
+        refraction += o.refraction;
+        passThrough += o.passThrough;
         return *this;
     }
 };
@@ -35,7 +38,7 @@ struct SampleContext {
 struct BSDF;
 
 class WhittedIntegrator {
-public:
+  public:
     explicit WhittedIntegrator(const RenderScene &scene) : scene_(scene) {}
     // Radiance along a ray; depth counts specular bounces (camera rays are depth 0).
     RGB Li(const Ray &ray, int depth, RayCounters &counters, const SampleContext &sc = {}) const;
@@ -44,7 +47,7 @@ public:
     RGB LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
                  const SampleContext &sc = {}) const;
 
-private:
+  private:
     // Adds the specular reflection and transmission of every BSDF part to L.
     void AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
                      RayCounters &counters, const SampleContext &sc, RGB &L) const;

@@ -2,12 +2,12 @@
 // tinygltf model to a SceneDescription.
 #pragma once
 
+#include <tiny_gltf.h>
+
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <tiny_gltf.h>
 
 #include "core/transform.h"
 #include "scene/scene_description.h"
@@ -27,14 +27,14 @@ double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const c
                  double def);
 
 class GltfConverter {
-public:
+  public:
     GltfConverter(const tinygltf::Model &model, const std::string &path, Diagnostics &diag,
-               SceneDescription &desc)
+                  SceneDescription &desc)
         : model_(model), loc_{path}, diag_(diag), desc_(desc) {}
 
     void Read();
 
-private:
+  private:
     AccessorView View(int accessorIndex, const std::string &what);
     std::vector<Vec3f> ReadVec3(int accessor, const std::string &what);
     std::vector<Vec2f> ReadTexcoords(int accessor);
@@ -60,6 +60,5 @@ private:
     std::set<int> warnedModes_;
     bool haveCamera_ = false;
 };
-
 
 }  // namespace prism::gltf_internal

@@ -72,8 +72,8 @@ std::string GltfConverter::TextureFor(int textureIndex) {
         }
     }
     if (name.empty())
-        diag_.Warn(loc_, "texture " + std::to_string(textureIndex) +
-                             " has no usable image; ignored");
+        diag_.Warn(loc_,
+                   "texture " + std::to_string(textureIndex) + " has no usable image; ignored");
     textureNames_[textureIndex] = name;
     return name;
 }
@@ -115,8 +115,8 @@ void GltfConverter::ConvertMaterials() {
             AddFloat(ps, "index", ExtNumber(m.extensions, "KHR_materials_ior", "ior", 1.5), loc_);
             AddRGB(ps, "Kr", 1, 1, 1, loc_);
             AddRGB(ps, "Kt", base[0], base[1], base[2], loc_);
-        } else if (metallic >= 0.5 && !(pbr.metallicRoughnessTexture.index >= 0 &&
-                                         pbr.baseColorTexture.index >= 0)) {
+        } else if (metallic >= 0.5 &&
+                   !(pbr.metallicRoughnessTexture.index >= 0 && pbr.baseColorTexture.index >= 0)) {
             md.type = "metal";
             double k[3];
             for (int i = 0; i < 3; ++i) {
@@ -167,7 +167,8 @@ void GltfConverter::ConvertMaterials() {
                 al.type = "diffuse";
                 al.loc = loc_;
                 AddRGB(al.params, "L", e[0] * strength, e[1] * strength, e[2] * strength, loc_);
-                // OBJ/glTF carry no sample count: 16 stratified shadow rays give clean soft shadows.
+                // OBJ/glTF carry no sample count: 16 stratified shadow rays give clean soft
+                // shadows.
                 AddInts(al.params, "nsamples", {16}, loc_);
                 light = int(desc_.areaLights.size());
                 desc_.areaLights.push_back(std::move(al));

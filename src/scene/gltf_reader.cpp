@@ -125,25 +125,41 @@ Matrix4 NodeLocalMatrix(const tinygltf::Node &n, const FileLoc &loc) {
 
 int ComponentSize(int type) {
     switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_INT: case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return 8;
-    default: return 0;
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return 2;
+        case TINYGLTF_COMPONENT_TYPE_INT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return 4;
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+            return 8;
+        default:
+            return 0;
     }
 }
 
 int ComponentCount(int type) {
     switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
+        case TINYGLTF_TYPE_SCALAR:
+            return 1;
+        case TINYGLTF_TYPE_VEC2:
+            return 2;
+        case TINYGLTF_TYPE_VEC3:
+            return 3;
+        case TINYGLTF_TYPE_VEC4:
+            return 4;
+        case TINYGLTF_TYPE_MAT2:
+            return 4;
+        case TINYGLTF_TYPE_MAT3:
+            return 9;
+        case TINYGLTF_TYPE_MAT4:
+            return 16;
+        default:
+            return 0;
     }
 }
 
@@ -171,8 +187,9 @@ AccessorView GltfConverter::View(int index, const std::string &what) {
     const tinygltf::Buffer &buf = model_.buffers[size_t(bv.buffer)];
     uint64_t elemSize = uint64_t(cs) * uint64_t(v.components);
     uint64_t stride = bv.byteStride ? bv.byteStride : elemSize;
-    if (stride < elemSize) Fail(name + ": byteStride " + std::to_string(stride) +
-                                " is smaller than the element size " + std::to_string(elemSize));
+    if (stride < elemSize)
+        Fail(name + ": byteStride " + std::to_string(stride) +
+             " is smaller than the element size " + std::to_string(elemSize));
     // All in 64-bit with the count bounded first, so nothing can overflow.
     uint64_t viewEnd = uint64_t(bv.byteOffset) + uint64_t(bv.byteLength);
     if (bv.byteOffset > buf.data.size() || viewEnd > buf.data.size())
@@ -194,28 +211,45 @@ AccessorView GltfConverter::View(int index, const std::string &what) {
 double Component(const AccessorView &v, size_t i, int c) {
     const unsigned char *p = v.data + i * v.stride;
     switch (v.componentType) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float x; std::memcpy(&x, p + 4 * c, 4); return x; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
-        double x = p[c];
-        return v.normalized ? x / 255.0 : x;
-    }
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-        int8_t x; std::memcpy(&x, p + c, 1);
-        return v.normalized ? std::max(x / 127.0, -1.0) : x;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t x; std::memcpy(&x, p + 2 * c, 2);
-        return v.normalized ? x / 65535.0 : x;
-    }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        int16_t x; std::memcpy(&x, p + 2 * c, 2);
-        return v.normalized ? std::max(x / 32767.0, -1.0) : x;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        uint32_t x; std::memcpy(&x, p + 4 * c, 4); return x;
-    }
-    case TINYGLTF_COMPONENT_TYPE_INT: { int32_t x; std::memcpy(&x, p + 4 * c, 4); return x; }
-    case TINYGLTF_COMPONENT_TYPE_DOUBLE: { double x; std::memcpy(&x, p + 8 * c, 8); return x; }
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+            float x;
+            std::memcpy(&x, p + 4 * c, 4);
+            return x;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            double x = p[c];
+            return v.normalized ? x / 255.0 : x;
+        }
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            int8_t x;
+            std::memcpy(&x, p + c, 1);
+            return v.normalized ? std::max(x / 127.0, -1.0) : x;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t x;
+            std::memcpy(&x, p + 2 * c, 2);
+            return v.normalized ? x / 65535.0 : x;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            int16_t x;
+            std::memcpy(&x, p + 2 * c, 2);
+            return v.normalized ? std::max(x / 32767.0, -1.0) : x;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            uint32_t x;
+            std::memcpy(&x, p + 4 * c, 4);
+            return x;
+        }
+        case TINYGLTF_COMPONENT_TYPE_INT: {
+            int32_t x;
+            std::memcpy(&x, p + 4 * c, 4);
+            return x;
+        }
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE: {
+            double x;
+            std::memcpy(&x, p + 8 * c, 8);
+            return x;
+        }
     }
     return 0;
 }
@@ -227,8 +261,8 @@ std::vector<Vec3f> GltfConverter::ReadVec3(int accessor, const std::string &what
         Fail(what + " accessor must have float components");
     std::vector<Vec3f> out(v.count);
     for (size_t i = 0; i < v.count; ++i) {
-        out[i] = Vec3f(float(Component(v, i, 0)), float(Component(v, i, 1)),
-                       float(Component(v, i, 2)));
+        out[i] =
+            Vec3f(float(Component(v, i, 0)), float(Component(v, i, 1)), float(Component(v, i, 2)));
         if (!std::isfinite(out[i].x) || !std::isfinite(out[i].y) || !std::isfinite(out[i].z))
             Fail(what + " accessor contains a value that is not a finite number");
     }
@@ -283,8 +317,8 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
         }
         auto pos = prim.attributes.find("POSITION");
         if (pos == prim.attributes.end()) {
-            diag_.Warn(loc_, "mesh \"" + mesh.name +
-                                 "\" has a primitive without POSITION; skipped");
+            diag_.Warn(loc_,
+                       "mesh \"" + mesh.name + "\" has a primitive without POSITION; skipped");
             continue;
         }
         std::vector<Vec3f> P = ReadVec3(pos->second, "POSITION");
@@ -336,7 +370,9 @@ Matrix4 RigidPart(const Matrix4 &m) {
     c[2] = Cross(c[0], c[1]);  // right-handed, like the glTF camera frame
     Matrix4 r = Matrix4::Identity();
     for (int j = 0; j < 3; ++j) {
-        r.m[0][j] = c[j].x; r.m[1][j] = c[j].y; r.m[2][j] = c[j].z;
+        r.m[0][j] = c[j].x;
+        r.m[1][j] = c[j].y;
+        r.m[2][j] = c[j].z;
     }
     for (int i = 0; i < 3; ++i) r.m[i][3] = m.m[i][3];
     return r;
@@ -518,7 +554,7 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
     bool ok;
     try {
         ok = LowerExtension(path) == ".glb" ? ctx.LoadBinaryFromFile(&model, &err, &warn, path)
-                           : ctx.LoadASCIIFromFile(&model, &err, &warn, path);
+                                            : ctx.LoadASCIIFromFile(&model, &err, &warn, path);
     } catch (const std::exception &e) {
         throw SceneError(loc, std::string("cannot parse glTF file: ") + e.what());
     }

@@ -12,9 +12,9 @@
 #include "core/memory.h"
 #include "scene/gltf_reader.h"
 #include "scene/obj_reader.h"
-#include "scene/tokenizer.h"
 #include "scene/param_builders.h"
 #include "scene/ply_reader.h"
+#include "scene/tokenizer.h"
 
 namespace prism {
 

@@ -23,9 +23,10 @@ struct LoadOptions {
     // images) and the mesh parameters it builds or parses (trianglemesh arrays, OBJ and glTF
     // geometry); the charges are kept, so the builder and the renderer charge the rest to the
     // same budget. A top-level .ply is checked too, but its charge is given back: the builder
-    // reads the mesh again through the "plymesh" shape and charges it then. Anything that would exceed it is refused with a
-    // MemoryBudgetError (a SceneError) before it is read or allocated. When null, a budget of
-    // `maxMemory` bytes (0: 75% of physical RAM) is used for this call alone.
+    // reads the mesh again through the "plymesh" shape and charges it then. Anything that would
+    // exceed it is refused with a MemoryBudgetError (a SceneError) before it is read or allocated.
+    // When null, a budget of `maxMemory` bytes (0: 75% of physical RAM) is used for this call
+    // alone.
     MemoryBudget *budget = nullptr;
     uint64_t maxMemory = 0;
 };

@@ -3,6 +3,8 @@
 // illumination models onto pbrt-v3 materials.
 #include "scene/obj_reader.h"
 
+#include <tiny_obj_loader.h>
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -11,8 +13,6 @@
 #include <map>
 #include <sstream>
 #include <unordered_map>
-
-#include <tiny_obj_loader.h>
 
 #include "core/file_io.h"
 #include "core/memory.h"
@@ -139,8 +139,7 @@ void ValidateIndex(const tinyobj::index_t &idx, const tinyobj::attrib_t &a, cons
     auto Bad = [&](const char *what, int i, size_t n) {
         std::string who = shapeName.empty() ? "a face" : "a face of \"" + shapeName + "\"";
         // tinyobjloader has already resolved relative (negative) indices.
-        if (i < 0)
-            throw SceneError(loc, who + " refers to a " + what + " before the first one");
+        if (i < 0) throw SceneError(loc, who + " refers to a " + what + " before the first one");
         throw SceneError(loc, who + " refers to " + what + " " + std::to_string(i + 1) +
                                   ", but there are " + std::to_string(n));
     };
@@ -197,9 +196,9 @@ void CheckNumbers(const std::string &path, const std::string &text) {
             double v;
             auto r = std::from_chars(b, e, v);
             if (r.ec != std::errc() || r.ptr != e || !std::isfinite(v))
-                throw SceneError(FileLoc{path, lineNo, int(p) + 1},
-                                 "bad number \"" + line.substr(p, end - p) + "\" in \"" + kw +
-                                     "\" line");
+                throw SceneError(
+                    FileLoc{path, lineNo, int(p) + 1},
+                    "bad number \"" + line.substr(p, end - p) + "\" in \"" + kw + "\" line");
             p = end;
         }
     }
@@ -208,7 +207,7 @@ void CheckNumbers(const std::string &path, const std::string &text) {
 // tinyobjloader's MaterialFileReader, reading through the shared file reader: MTL files are
 // looked up in the OBJ's directory; one that cannot be read is a warning, as in tinyobjloader.
 class MtlReader : public tinyobj::MaterialReader {
-public:
+  public:
     MtlReader(std::string dir, MemoryBudget *budget, FileLoc loc)
         : dir_(std::move(dir)), budget_(budget), loc_(std::move(loc)) {}
     bool operator()(const std::string &name, std::vector<tinyobj::material_t> *materials,
@@ -220,7 +219,8 @@ public:
         if (!ReadFileContents(dir_.empty() ? name : dir_ + "/" + name, &text, &error,
                               budget_ ? budget_->Remaining() : UINT64_MAX)) {
             if (error.tooLarge && budget_) budget_->Check(error.size, what, loc_);  // throws
-            if (warn) *warn += "Material file [ " + name + " ] not found in a path : " + dir_ + "\n";
+            if (warn)
+                *warn += "Material file [ " + name + " ] not found in a path : " + dir_ + "\n";
             return false;
         }
         if (budget_) budget_->Charge(text.size(), what, loc_);
@@ -229,7 +229,7 @@ public:
         return true;
     }
 
-private:
+  private:
     std::string dir_;
     MemoryBudget *budget_;
     FileLoc loc_;
@@ -294,8 +294,8 @@ SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag, MemoryB
                 throw SceneError(fileLoc, "inconsistent face data in shape \"" + shape.name + "\"");
             int mat = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
             if (mat < -1 || mat >= nMaterials) mat = -1;
-            for (size_t k = 0; k < n; ++k) ValidateIndex(mesh.indices[offset + k], attrib, fileLoc,
-                                                         shape.name);
+            for (size_t k = 0; k < n; ++k)
+                ValidateIndex(mesh.indices[offset + k], attrib, fileLoc, shape.name);
             MeshBuilder &b = byMaterial[mat];
             // tinyobjloader already triangulated; fan anything else defensively.
             for (size_t k = 1; k + 1 < n; ++k) {

@@ -10,17 +10,28 @@ namespace prism {
 
 const char *ParamTypeName(ParamType t) {
     switch (t) {
-    case ParamType::Float: return "float";
-    case ParamType::Integer: return "integer";
-    case ParamType::Bool: return "bool";
-    case ParamType::String: return "string";
-    case ParamType::Point2: return "point2";
-    case ParamType::Vector2: return "vector2";
-    case ParamType::Point3: return "point3";
-    case ParamType::Vector3: return "vector3";
-    case ParamType::Normal: return "normal";
-    case ParamType::RGB: return "rgb";
-    case ParamType::Texture: return "texture";
+        case ParamType::Float:
+            return "float";
+        case ParamType::Integer:
+            return "integer";
+        case ParamType::Bool:
+            return "bool";
+        case ParamType::String:
+            return "string";
+        case ParamType::Point2:
+            return "point2";
+        case ParamType::Vector2:
+            return "vector2";
+        case ParamType::Point3:
+            return "point3";
+        case ParamType::Vector3:
+            return "vector3";
+        case ParamType::Normal:
+            return "normal";
+        case ParamType::RGB:
+            return "rgb";
+        case ParamType::Texture:
+            return "texture";
     }
     return "unknown";
 }
@@ -56,8 +67,8 @@ const Param *ParamSet::FindTyped(const std::string &name, std::initializer_list<
             return p;
         }
     }
-    throw SceneError(p->loc, "parameter " + Quote(name) + " must be " + want + ", not " +
-                                 WrittenType(*p));
+    throw SceneError(p->loc,
+                     "parameter " + Quote(name) + " must be " + want + ", not " + WrittenType(*p));
 }
 
 // The parser rejects non-integral and out-of-range integers; this guard only keeps a
@@ -144,8 +155,10 @@ std::vector<Vec2f> ParamSet::GetPoint2s(const std::string &name) const {
     const Param *p = FindTyped(name, {ParamType::Point2, ParamType::Float}, "point2");
     if (!p) return {};
     if (p->numbers.size() % 2 != 0)
-        throw SceneError(p->loc, "parameter " + Quote(name) + " must have an even number of "
-                                 "values, got " + std::to_string(p->numbers.size()));
+        throw SceneError(p->loc, "parameter " + Quote(name) +
+                                     " must have an even number of "
+                                     "values, got " +
+                                     std::to_string(p->numbers.size()));
     std::vector<Vec2f> out(p->numbers.size() / 2);
     for (size_t i = 0; i < out.size(); ++i)
         out[i] = {float(p->numbers[2 * i]), float(p->numbers[2 * i + 1])};
@@ -195,7 +208,8 @@ void ParamSet::ReportUnused(Diagnostics &diag, const std::string &context) const
 static void WarnIgnoredParam(const Param &p, Diagnostics &diag, std::string_view context,
                              std::string_view why) {
     p.lookedUp = true;
-    std::string msg = "parameter " + Quote(p.name) + " (" + std::string(context) + ") has no effect";
+    std::string msg =
+        "parameter " + Quote(p.name) + " (" + std::string(context) + ") has no effect";
     if (!why.empty()) msg += ": " + std::string(why);
     diag.WarnOnce("ignored parameter:" + std::string(context) + ":" + p.name, p.loc, msg);
 }
@@ -289,8 +303,8 @@ static Param ConvertParameter(ParsedParameter &in, const SpectrumFileReader &spe
         needMultiple(2);
         for (size_t i = 0; i < numbers.size(); i += 2) {
             if (!(numbers[i] > 0))
-                throw SceneError(p.loc, "parameter " + qname +
-                                            ": blackbody temperature must be positive");
+                throw SceneError(p.loc,
+                                 "parameter " + qname + ": blackbody temperature must be positive");
             RGB c = BlackbodyToRGB(numbers[i], numbers[i + 1]);
             p.numbers.insert(p.numbers.end(), {c.r, c.g, c.b});
         }
@@ -305,8 +319,8 @@ static Param ConvertParameter(ParsedParameter &in, const SpectrumFileReader &spe
             c = spectrumFile(strings[0], p.loc);
         } else {
             if (numbers.size() < 2)
-                throw SceneError(p.loc, "parameter " + qname +
-                                            ": expected (wavelength, value) pairs");
+                throw SceneError(p.loc,
+                                 "parameter " + qname + ": expected (wavelength, value) pairs");
             needMultiple(2);
             std::vector<std::pair<double, double>> samples(numbers.size() / 2);
             for (size_t i = 0; i < samples.size(); ++i)
@@ -318,8 +332,10 @@ static Param ConvertParameter(ParsedParameter &in, const SpectrumFileReader &spe
         needStrings();
         p.type = ParamType::Bool;
         for (const std::string &s : strings) {
-            if (s == "true") p.bools.push_back(true);
-            else if (s == "false") p.bools.push_back(false);
+            if (s == "true")
+                p.bools.push_back(true);
+            else if (s == "false")
+                p.bools.push_back(false);
             else
                 throw SceneError(p.loc, "parameter " + qname +
                                             ": expected \"true\" or \"false\", got " + Quote(s));

@@ -17,7 +17,17 @@
 namespace prism {
 
 enum class ParamType {
-    Float, Integer, Bool, String, Point2, Vector2, Point3, Vector3, Normal, RGB, Texture
+    Float,
+    Integer,
+    Bool,
+    String,
+    Point2,
+    Vector2,
+    Point3,
+    Vector3,
+    Normal,
+    RGB,
+    Texture
 };
 const char *ParamTypeName(ParamType t);
 
@@ -34,7 +44,7 @@ struct Param {
 };
 
 class ParamSet {
-public:
+  public:
     // Adds or replaces (a later parameter of the same name wins, as in pbrt).
     void Add(Param p);
     bool Has(const std::string &name) const { return Find(name) != nullptr; }
@@ -70,7 +80,7 @@ public:
     // Warns (with location) for every parameter never looked up: "unused parameter "foo"".
     void ReportUnused(Diagnostics &diag, const std::string &context) const;
 
-private:
+  private:
     const Param *FindTyped(const std::string &name, std::initializer_list<ParamType> ok,
                            const char *want) const;
     std::vector<Param> params_;

@@ -14,39 +14,92 @@ namespace prism {
 namespace {
 
 enum class Directive {
-    AttributeBegin, AttributeEnd, TransformBegin, TransformEnd, Translate, Scale, Rotate, LookAt,
-    Transform, ConcatTransform, Identity, CoordinateSystem, CoordSysTransform, ActiveTransform,
-    TransformTimes, ReverseOrientation, Camera, Film, Sampler, PixelFilter, Integrator,
-    Accelerator, WorldBegin, WorldEnd, Include, Import, Material, MakeNamedMaterial,
-    NamedMaterial, Texture, LightSource, AreaLightSource, Shape, ObjectBegin, ObjectEnd,
-    ObjectInstance, MakeNamedMedium, MediumInterface, Option, ColorSpace, Attribute
+    AttributeBegin,
+    AttributeEnd,
+    TransformBegin,
+    TransformEnd,
+    Translate,
+    Scale,
+    Rotate,
+    LookAt,
+    Transform,
+    ConcatTransform,
+    Identity,
+    CoordinateSystem,
+    CoordSysTransform,
+    ActiveTransform,
+    TransformTimes,
+    ReverseOrientation,
+    Camera,
+    Film,
+    Sampler,
+    PixelFilter,
+    Integrator,
+    Accelerator,
+    WorldBegin,
+    WorldEnd,
+    Include,
+    Import,
+    Material,
+    MakeNamedMaterial,
+    NamedMaterial,
+    Texture,
+    LightSource,
+    AreaLightSource,
+    Shape,
+    ObjectBegin,
+    ObjectEnd,
+    ObjectInstance,
+    MakeNamedMedium,
+    MediumInterface,
+    Option,
+    ColorSpace,
+    Attribute
 };
 
 const std::unordered_map<std::string_view, Directive> &DirectiveTable() {
     static const std::unordered_map<std::string_view, Directive> table = {
-        {"AttributeBegin", Directive::AttributeBegin}, {"AttributeEnd", Directive::AttributeEnd},
-        {"TransformBegin", Directive::TransformBegin}, {"TransformEnd", Directive::TransformEnd},
-        {"Translate", Directive::Translate}, {"Scale", Directive::Scale},
-        {"Rotate", Directive::Rotate}, {"LookAt", Directive::LookAt},
-        {"Transform", Directive::Transform}, {"ConcatTransform", Directive::ConcatTransform},
-        {"Identity", Directive::Identity}, {"CoordinateSystem", Directive::CoordinateSystem},
+        {"AttributeBegin", Directive::AttributeBegin},
+        {"AttributeEnd", Directive::AttributeEnd},
+        {"TransformBegin", Directive::TransformBegin},
+        {"TransformEnd", Directive::TransformEnd},
+        {"Translate", Directive::Translate},
+        {"Scale", Directive::Scale},
+        {"Rotate", Directive::Rotate},
+        {"LookAt", Directive::LookAt},
+        {"Transform", Directive::Transform},
+        {"ConcatTransform", Directive::ConcatTransform},
+        {"Identity", Directive::Identity},
+        {"CoordinateSystem", Directive::CoordinateSystem},
         {"CoordSysTransform", Directive::CoordSysTransform},
         {"ActiveTransform", Directive::ActiveTransform},
         {"TransformTimes", Directive::TransformTimes},
-        {"ReverseOrientation", Directive::ReverseOrientation}, {"Camera", Directive::Camera},
-        {"Film", Directive::Film}, {"Sampler", Directive::Sampler},
-        {"PixelFilter", Directive::PixelFilter}, {"Integrator", Directive::Integrator},
-        {"Accelerator", Directive::Accelerator}, {"WorldBegin", Directive::WorldBegin},
-        {"WorldEnd", Directive::WorldEnd}, {"Include", Directive::Include},
-        {"Import", Directive::Import}, {"Material", Directive::Material},
+        {"ReverseOrientation", Directive::ReverseOrientation},
+        {"Camera", Directive::Camera},
+        {"Film", Directive::Film},
+        {"Sampler", Directive::Sampler},
+        {"PixelFilter", Directive::PixelFilter},
+        {"Integrator", Directive::Integrator},
+        {"Accelerator", Directive::Accelerator},
+        {"WorldBegin", Directive::WorldBegin},
+        {"WorldEnd", Directive::WorldEnd},
+        {"Include", Directive::Include},
+        {"Import", Directive::Import},
+        {"Material", Directive::Material},
         {"MakeNamedMaterial", Directive::MakeNamedMaterial},
-        {"NamedMaterial", Directive::NamedMaterial}, {"Texture", Directive::Texture},
-        {"LightSource", Directive::LightSource}, {"AreaLightSource", Directive::AreaLightSource},
-        {"Shape", Directive::Shape}, {"ObjectBegin", Directive::ObjectBegin},
-        {"ObjectEnd", Directive::ObjectEnd}, {"ObjectInstance", Directive::ObjectInstance},
+        {"NamedMaterial", Directive::NamedMaterial},
+        {"Texture", Directive::Texture},
+        {"LightSource", Directive::LightSource},
+        {"AreaLightSource", Directive::AreaLightSource},
+        {"Shape", Directive::Shape},
+        {"ObjectBegin", Directive::ObjectBegin},
+        {"ObjectEnd", Directive::ObjectEnd},
+        {"ObjectInstance", Directive::ObjectInstance},
         {"MakeNamedMedium", Directive::MakeNamedMedium},
-        {"MediumInterface", Directive::MediumInterface}, {"Option", Directive::Option},
-        {"ColorSpace", Directive::ColorSpace}, {"Attribute", Directive::Attribute},
+        {"MediumInterface", Directive::MediumInterface},
+        {"Option", Directive::Option},
+        {"ColorSpace", Directive::ColorSpace},
+        {"Attribute", Directive::Attribute},
     };
     return table;
 }
@@ -56,14 +109,13 @@ bool IsBoolWord(const Token &t) {
 }
 
 class PbrtParser {
-public:
+  public:
     PbrtParser(PbrtTarget &target, const PbrtParseOptions &opts, const std::string &filename)
         : target_(target), opts_(opts), baseDir_(DirectoryOf(filename)) {}
 
-    void ParseFile(std::string text, const std::string &displayName,
-                   const std::string &canonical);
+    void ParseFile(std::string text, const std::string &displayName, const std::string &canonical);
 
-private:
+  private:
     void ParseDirective(Tokenizer &tok, const Token &dir);
     void Include(const Token &dir, const std::string &name);
 
@@ -129,8 +181,8 @@ std::vector<double> PbrtParser::ReadNumbers(Tokenizer &tok, const Token &dir, si
 std::string PbrtParser::ReadString(Tokenizer &tok, const Token &dir, const char *what) {
     const Token &t = tok.Peek();
     if (t.kind != TokenKind::String)
-        throw SceneError(dir.Loc(), std::string(dir.text) + " expects a quoted " + what +
-                                        ", got " + Tokenizer::Describe(t));
+        throw SceneError(dir.Loc(), std::string(dir.text) + " expects a quoted " + what + ", got " +
+                                        Tokenizer::Describe(t));
     return Tokenizer::StringValue(tok.Next());
 }
 
@@ -212,8 +264,8 @@ void PbrtParser::Include(const Token &dir, const std::string &name) {
         throw SceneError(dir.Loc(), "includes nested deeper than " +
                                         std::to_string(opts_.maxIncludeDepth) + " levels");
     if (opts_.confineIncludes && !IsInsideDirectory(canonical, baseDir_))
-        throw SceneError(dir.Loc(), "included file " + Quote(name) +
-                                        " is outside the scene directory");
+        throw SceneError(dir.Loc(),
+                         "included file " + Quote(name) + " is outside the scene directory");
     std::string text = opts_.budget ? ReadFileOrThrow(path, dir.Loc(), *opts_.budget,
                                                       "included file " + Quote(name))
                                     : ReadFileOrThrow(path, dir.Loc());
@@ -230,144 +282,181 @@ void PbrtParser::ParseDirective(Tokenizer &tok, const Token &dir) {
     auto str = [&](const char *what) { return ReadString(tok, dir, what); };
     auto params = [&] { return ReadParams(tok); };
     switch (it->second) {
-    case Directive::AttributeBegin: t.AttributeBegin(loc); break;
-    case Directive::AttributeEnd: t.AttributeEnd(loc); break;
-    case Directive::TransformBegin: t.TransformBegin(loc); break;
-    case Directive::TransformEnd: t.TransformEnd(loc); break;
-    case Directive::Translate: {
-        auto v = ReadNumbers(tok, dir, 3);
-        t.Translate(v[0], v[1], v[2], loc);
-        break;
-    }
-    case Directive::Scale: {
-        auto v = ReadNumbers(tok, dir, 3);
-        t.Scale(v[0], v[1], v[2], loc);
-        break;
-    }
-    case Directive::Rotate: {
-        auto v = ReadNumbers(tok, dir, 4);
-        t.Rotate(v[0], v[1], v[2], v[3], loc);
-        break;
-    }
-    case Directive::LookAt: {
-        auto v = ReadNumbers(tok, dir, 9);
-        t.LookAt(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], loc);
-        break;
-    }
-    case Directive::Transform: t.Transform(ReadNumbers(tok, dir, 16).data(), loc); break;
-    case Directive::ConcatTransform:
-        t.ConcatTransform(ReadNumbers(tok, dir, 16).data(), loc);
-        break;
-    case Directive::Identity: t.Identity(loc); break;
-    case Directive::CoordinateSystem: t.CoordinateSystem(str("name"), loc); break;
-    case Directive::CoordSysTransform: t.CoordSysTransform(str("name"), loc); break;
-    case Directive::ActiveTransform: {
-        Token w = tok.Next();
-        if (w.Is(TokenKind::Word, "StartTime")) t.ActiveTransform(ActiveTransformKind::StartTime, loc);
-        else if (w.Is(TokenKind::Word, "EndTime")) t.ActiveTransform(ActiveTransformKind::EndTime, loc);
-        else if (w.Is(TokenKind::Word, "All")) t.ActiveTransform(ActiveTransformKind::All, loc);
-        else
-            throw SceneError(loc, "ActiveTransform expects StartTime, EndTime or All, got " +
-                                      Tokenizer::Describe(w));
-        break;
-    }
-    case Directive::TransformTimes: {
-        auto v = ReadNumbers(tok, dir, 2);
-        t.TransformTimes(v[0], v[1], loc);
-        break;
-    }
-    case Directive::ReverseOrientation: t.ReverseOrientation(loc); break;
-    case Directive::Camera: {
-        std::string type = str("camera type");
-        t.Camera(type, params(), loc);
-        break;
-    }
-    case Directive::Film: {
-        std::string type = str("type");
-        t.Film(type, params(), loc);
-        break;
-    }
-    case Directive::Sampler: {
-        std::string type = str("type");
-        t.Sampler(type, params(), loc);
-        break;
-    }
-    case Directive::PixelFilter: {
-        std::string type = str("type");
-        t.PixelFilter(type, params(), loc);
-        break;
-    }
-    case Directive::Integrator: {
-        std::string type = str("type");
-        t.Integrator(type, params(), loc);
-        break;
-    }
-    case Directive::Accelerator: {
-        std::string type = str("type");
-        t.Accelerator(type, params(), loc);
-        break;
-    }
-    case Directive::WorldBegin: t.WorldBegin(loc); break;
-    case Directive::WorldEnd:
-        t.WorldEnd(loc);
-        worldEnded_ = true;
-        break;
-    case Directive::Include:
-    case Directive::Import: Include(dir, str("file name")); break;
-    case Directive::Material: {
-        std::string type = str("material type");
-        t.Material(type, params(), loc);
-        break;
-    }
-    case Directive::MakeNamedMaterial: {
-        std::string name = str("material name");
-        t.MakeNamedMaterial(name, params(), loc);
-        break;
-    }
-    case Directive::NamedMaterial: t.NamedMaterial(str("material name"), loc); break;
-    case Directive::Texture: {
-        std::string name = str("texture name");
-        std::string kind = str("texture type (\"float\" or \"spectrum\")");
-        std::string type = str("texture class");
-        t.Texture(name, kind, type, params(), loc);
-        break;
-    }
-    case Directive::LightSource: {
-        std::string type = str("light type");
-        t.LightSource(type, params(), loc);
-        break;
-    }
-    case Directive::AreaLightSource: {
-        std::string type = str("area light type");
-        t.AreaLightSource(type, params(), loc);
-        break;
-    }
-    case Directive::Shape: {
-        std::string type = str("shape type");
-        t.Shape(type, params(), loc);
-        break;
-    }
-    case Directive::ObjectBegin: t.ObjectBegin(str("object name"), loc); break;
-    case Directive::ObjectEnd: t.ObjectEnd(loc); break;
-    case Directive::ObjectInstance: t.ObjectInstance(str("object name"), loc); break;
-    case Directive::MakeNamedMedium: {
-        std::string name = str("medium name");
-        t.MakeNamedMedium(name, params(), loc);
-        break;
-    }
-    case Directive::MediumInterface: {
-        std::string inside = str("medium name"), outside;
-        if (tok.Peek().kind == TokenKind::String) outside = Tokenizer::StringValue(tok.Next());
-        t.MediumInterface(inside, outside, loc);
-        break;
-    }
-    case Directive::Option: t.Option(params(), loc); break;
-    case Directive::ColorSpace: t.ColorSpace(str("color space name"), loc); break;
-    case Directive::Attribute: {
-        std::string target = str("attribute target");
-        t.Attribute(target, params(), loc);
-        break;
-    }
+        case Directive::AttributeBegin:
+            t.AttributeBegin(loc);
+            break;
+        case Directive::AttributeEnd:
+            t.AttributeEnd(loc);
+            break;
+        case Directive::TransformBegin:
+            t.TransformBegin(loc);
+            break;
+        case Directive::TransformEnd:
+            t.TransformEnd(loc);
+            break;
+        case Directive::Translate: {
+            auto v = ReadNumbers(tok, dir, 3);
+            t.Translate(v[0], v[1], v[2], loc);
+            break;
+        }
+        case Directive::Scale: {
+            auto v = ReadNumbers(tok, dir, 3);
+            t.Scale(v[0], v[1], v[2], loc);
+            break;
+        }
+        case Directive::Rotate: {
+            auto v = ReadNumbers(tok, dir, 4);
+            t.Rotate(v[0], v[1], v[2], v[3], loc);
+            break;
+        }
+        case Directive::LookAt: {
+            auto v = ReadNumbers(tok, dir, 9);
+            t.LookAt(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], loc);
+            break;
+        }
+        case Directive::Transform:
+            t.Transform(ReadNumbers(tok, dir, 16).data(), loc);
+            break;
+        case Directive::ConcatTransform:
+            t.ConcatTransform(ReadNumbers(tok, dir, 16).data(), loc);
+            break;
+        case Directive::Identity:
+            t.Identity(loc);
+            break;
+        case Directive::CoordinateSystem:
+            t.CoordinateSystem(str("name"), loc);
+            break;
+        case Directive::CoordSysTransform:
+            t.CoordSysTransform(str("name"), loc);
+            break;
+        case Directive::ActiveTransform: {
+            Token w = tok.Next();
+            if (w.Is(TokenKind::Word, "StartTime"))
+                t.ActiveTransform(ActiveTransformKind::StartTime, loc);
+            else if (w.Is(TokenKind::Word, "EndTime"))
+                t.ActiveTransform(ActiveTransformKind::EndTime, loc);
+            else if (w.Is(TokenKind::Word, "All"))
+                t.ActiveTransform(ActiveTransformKind::All, loc);
+            else
+                throw SceneError(loc, "ActiveTransform expects StartTime, EndTime or All, got " +
+                                          Tokenizer::Describe(w));
+            break;
+        }
+        case Directive::TransformTimes: {
+            auto v = ReadNumbers(tok, dir, 2);
+            t.TransformTimes(v[0], v[1], loc);
+            break;
+        }
+        case Directive::ReverseOrientation:
+            t.ReverseOrientation(loc);
+            break;
+        case Directive::Camera: {
+            std::string type = str("camera type");
+            t.Camera(type, params(), loc);
+            break;
+        }
+        case Directive::Film: {
+            std::string type = str("type");
+            t.Film(type, params(), loc);
+            break;
+        }
+        case Directive::Sampler: {
+            std::string type = str("type");
+            t.Sampler(type, params(), loc);
+            break;
+        }
+        case Directive::PixelFilter: {
+            std::string type = str("type");
+            t.PixelFilter(type, params(), loc);
+            break;
+        }
+        case Directive::Integrator: {
+            std::string type = str("type");
+            t.Integrator(type, params(), loc);
+            break;
+        }
+        case Directive::Accelerator: {
+            std::string type = str("type");
+            t.Accelerator(type, params(), loc);
+            break;
+        }
+        case Directive::WorldBegin:
+            t.WorldBegin(loc);
+            break;
+        case Directive::WorldEnd:
+            t.WorldEnd(loc);
+            worldEnded_ = true;
+            break;
+        case Directive::Include:
+        case Directive::Import:
+            Include(dir, str("file name"));
+            break;
+        case Directive::Material: {
+            std::string type = str("material type");
+            t.Material(type, params(), loc);
+            break;
+        }
+        case Directive::MakeNamedMaterial: {
+            std::string name = str("material name");
+            t.MakeNamedMaterial(name, params(), loc);
+            break;
+        }
+        case Directive::NamedMaterial:
+            t.NamedMaterial(str("material name"), loc);
+            break;
+        case Directive::Texture: {
+            std::string name = str("texture name");
+            std::string kind = str("texture type (\"float\" or \"spectrum\")");
+            std::string type = str("texture class");
+            t.Texture(name, kind, type, params(), loc);
+            break;
+        }
+        case Directive::LightSource: {
+            std::string type = str("light type");
+            t.LightSource(type, params(), loc);
+            break;
+        }
+        case Directive::AreaLightSource: {
+            std::string type = str("area light type");
+            t.AreaLightSource(type, params(), loc);
+            break;
+        }
+        case Directive::Shape: {
+            std::string type = str("shape type");
+            t.Shape(type, params(), loc);
+            break;
+        }
+        case Directive::ObjectBegin:
+            t.ObjectBegin(str("object name"), loc);
+            break;
+        case Directive::ObjectEnd:
+            t.ObjectEnd(loc);
+            break;
+        case Directive::ObjectInstance:
+            t.ObjectInstance(str("object name"), loc);
+            break;
+        case Directive::MakeNamedMedium: {
+            std::string name = str("medium name");
+            t.MakeNamedMedium(name, params(), loc);
+            break;
+        }
+        case Directive::MediumInterface: {
+            std::string inside = str("medium name"), outside;
+            if (tok.Peek().kind == TokenKind::String) outside = Tokenizer::StringValue(tok.Next());
+            t.MediumInterface(inside, outside, loc);
+            break;
+        }
+        case Directive::Option:
+            t.Option(params(), loc);
+            break;
+        case Directive::ColorSpace:
+            t.ColorSpace(str("color space name"), loc);
+            break;
+        case Directive::Attribute: {
+            std::string target = str("attribute target");
+            t.Attribute(target, params(), loc);
+            break;
+        }
     }
 }
 

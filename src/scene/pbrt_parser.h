@@ -30,7 +30,7 @@ enum class ActiveTransformKind { StartTime, EndTime, All };
 // Receives the directives of a pbrt file in order (as pbrt-v4's ParserTarget). Every call
 // gets the location of its directive; parameter lists are passed as written.
 class PbrtTarget {
-public:
+  public:
     virtual ~PbrtTarget() = default;
 
     // Transforms and scopes.
@@ -41,8 +41,8 @@ public:
     virtual void Translate(double dx, double dy, double dz, const FileLoc &loc) = 0;
     virtual void Scale(double sx, double sy, double sz, const FileLoc &loc) = 0;
     virtual void Rotate(double angle, double ax, double ay, double az, const FileLoc &loc) = 0;
-    virtual void LookAt(double ex, double ey, double ez, double lx, double ly, double lz,
-                        double ux, double uy, double uz, const FileLoc &loc) = 0;
+    virtual void LookAt(double ex, double ey, double ez, double lx, double ly, double lz, double ux,
+                        double uy, double uz, const FileLoc &loc) = 0;
     virtual void Transform(const double m[16], const FileLoc &loc) = 0;
     virtual void ConcatTransform(const double m[16], const FileLoc &loc) = 0;
     virtual void Identity(const FileLoc &loc) = 0;
@@ -78,9 +78,8 @@ public:
     virtual void NamedMaterial(const std::string &name, const FileLoc &loc) = 0;
     // `kind` is the texture's value type as written ("float", "spectrum", ...); `type` its
     // class ("imagemap", "checkerboard", ...).
-    virtual void Texture(const std::string &name, const std::string &kind,
-                         const std::string &type, ParsedParameterVector params,
-                         const FileLoc &loc) = 0;
+    virtual void Texture(const std::string &name, const std::string &kind, const std::string &type,
+                         ParsedParameterVector params, const FileLoc &loc) = 0;
     virtual void LightSource(const std::string &type, ParsedParameterVector params,
                              const FileLoc &loc) = 0;
     virtual void AreaLightSource(const std::string &type, ParsedParameterVector params,

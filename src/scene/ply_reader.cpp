@@ -21,21 +21,32 @@ enum class PlyFormat { Ascii, BinaryLE, BinaryBE };
 
 int TypeSize(PlyType t) {
     switch (t) {
-    case PlyType::Int8: case PlyType::UInt8: return 1;
-    case PlyType::Int16: case PlyType::UInt16: return 2;
-    case PlyType::Int32: case PlyType::UInt32: case PlyType::Float32: return 4;
-    case PlyType::Float64: return 8;
+        case PlyType::Int8:
+        case PlyType::UInt8:
+            return 1;
+        case PlyType::Int16:
+        case PlyType::UInt16:
+            return 2;
+        case PlyType::Int32:
+        case PlyType::UInt32:
+        case PlyType::Float32:
+            return 4;
+        case PlyType::Float64:
+            return 8;
     }
     return 1;
 }
 
 bool ParseType(const std::string &s, PlyType *t) {
-    static const struct { const char *name; PlyType type; } table[] = {
-        {"char", PlyType::Int8},     {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
-        {"uint8", PlyType::UInt8},   {"short", PlyType::Int16},     {"int16", PlyType::Int16},
-        {"ushort", PlyType::UInt16}, {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
-        {"int32", PlyType::Int32},   {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
-        {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64},
+    static const struct {
+        const char *name;
+        PlyType type;
+    } table[] = {
+        {"char", PlyType::Int8},      {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
+        {"uint8", PlyType::UInt8},    {"short", PlyType::Int16},     {"int16", PlyType::Int16},
+        {"ushort", PlyType::UInt16},  {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
+        {"int32", PlyType::Int32},    {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
+        {"float", PlyType::Float32},  {"float32", PlyType::Float32}, {"double", PlyType::Float64},
         {"float64", PlyType::Float64}};
     for (const auto &e : table)
         if (s == e.name) {
@@ -131,10 +142,14 @@ PlyHeader ParseHeader(const std::string &path, const std::string &buf) {
         if (kw == "format") {
             if (tok.size() < 2) throw SceneError(loc, "bad format line");
             const std::string &f = tok[1].text;
-            if (f == "ascii") h.format = PlyFormat::Ascii;
-            else if (f == "binary_little_endian") h.format = PlyFormat::BinaryLE;
-            else if (f == "binary_big_endian") h.format = PlyFormat::BinaryBE;
-            else throw SceneError(At(1), "bad format line: unknown format \"" + f + "\"");
+            if (f == "ascii")
+                h.format = PlyFormat::Ascii;
+            else if (f == "binary_little_endian")
+                h.format = PlyFormat::BinaryLE;
+            else if (f == "binary_big_endian")
+                h.format = PlyFormat::BinaryBE;
+            else
+                throw SceneError(At(1), "bad format line: unknown format \"" + f + "\"");
             haveFormat = true;
         } else if (kw == "element") {
             if (tok.size() != 3) throw SceneError(loc, "bad element line");
@@ -191,10 +206,13 @@ uint64_t MinElementBytes(const PlyElement &e, PlyFormat f) {
 // Reads scalars one at a time from the data section. Returns false at the end of the file;
 // throws for malformed ascii numbers.
 class DataReader {
-public:
+  public:
     DataReader(const std::string &path, const std::string &buf, const PlyHeader &h)
-        : path_(path), p_(buf.data() + h.dataOffset), end_(buf.data() + buf.size()),
-          format_(h.format), line_(h.dataLine) {}
+        : path_(path),
+          p_(buf.data() + h.dataOffset),
+          end_(buf.data() + buf.size()),
+          format_(h.format),
+          line_(h.dataLine) {}
 
     bool Read(PlyType t, double *v) {
         if (format_ == PlyFormat::Ascii) return ReadAscii(v);
@@ -207,14 +225,52 @@ public:
         if ((format_ == PlyFormat::BinaryLE) != little)
             for (int i = 0; i < size / 2; ++i) std::swap(b[i], b[size - 1 - i]);
         switch (t) {
-        case PlyType::Int8: { int8_t x; std::memcpy(&x, b, 1); *v = x; break; }
-        case PlyType::UInt8: { *v = b[0]; break; }
-        case PlyType::Int16: { int16_t x; std::memcpy(&x, b, 2); *v = x; break; }
-        case PlyType::UInt16: { uint16_t x; std::memcpy(&x, b, 2); *v = x; break; }
-        case PlyType::Int32: { int32_t x; std::memcpy(&x, b, 4); *v = x; break; }
-        case PlyType::UInt32: { uint32_t x; std::memcpy(&x, b, 4); *v = x; break; }
-        case PlyType::Float32: { float x; std::memcpy(&x, b, 4); *v = x; break; }
-        case PlyType::Float64: { double x; std::memcpy(&x, b, 8); *v = x; break; }
+            case PlyType::Int8: {
+                int8_t x;
+                std::memcpy(&x, b, 1);
+                *v = x;
+                break;
+            }
+            case PlyType::UInt8: {
+                *v = b[0];
+                break;
+            }
+            case PlyType::Int16: {
+                int16_t x;
+                std::memcpy(&x, b, 2);
+                *v = x;
+                break;
+            }
+            case PlyType::UInt16: {
+                uint16_t x;
+                std::memcpy(&x, b, 2);
+                *v = x;
+                break;
+            }
+            case PlyType::Int32: {
+                int32_t x;
+                std::memcpy(&x, b, 4);
+                *v = x;
+                break;
+            }
+            case PlyType::UInt32: {
+                uint32_t x;
+                std::memcpy(&x, b, 4);
+                *v = x;
+                break;
+            }
+            case PlyType::Float32: {
+                float x;
+                std::memcpy(&x, b, 4);
+                *v = x;
+                break;
+            }
+            case PlyType::Float64: {
+                double x;
+                std::memcpy(&x, b, 8);
+                *v = x;
+                break;
+            }
         }
         return true;
     }
@@ -237,7 +293,7 @@ public:
         return format_ == PlyFormat::Ascii ? FileLoc{path_, line_, 0} : FileLoc{path_};
     }
 
-private:
+  private:
     bool ReadAscii(double *v) {
         while (p_ < end_ && (*p_ == ' ' || *p_ == '\t' || *p_ == '\r' || *p_ == '\n')) {
             if (*p_ == '\n') ++line_;
@@ -326,7 +382,7 @@ void ReadFaces(const PlyElement &e, DataReader &r, uint64_t nVertices, PlyMesh &
     std::vector<int> face;
     auto Truncated = [&](uint64_t i) {
         return SceneError(FileLoc{r.Loc().file}, "file ends after " + std::to_string(i) + " of " +
-                                                      std::to_string(e.count) + " faces");
+                                                     std::to_string(e.count) + " faces");
     };
     for (uint64_t i = 0; i < e.count; ++i) {
         face.clear();
@@ -377,12 +433,13 @@ void SkipElement(const PlyElement &e, DataReader &r) {
         for (const PlyProperty &p : e.props) {
             double n;
             uint64_t c;
-            bool ok = p.isList ? r.Read(p.countType, &n) && ListCount(n, &c) && r.Skip(p.valueType, c)
-                               : r.Read(p.valueType, &n);
+            bool ok = p.isList
+                          ? r.Read(p.countType, &n) && ListCount(n, &c) && r.Skip(p.valueType, c)
+                          : r.Read(p.valueType, &n);
             if (!ok)
                 throw SceneError(FileLoc{r.Loc().file}, "file ends after " + std::to_string(i) +
-                                                            " of " + std::to_string(e.count) +
-                                                            " " + Plural(e.name));
+                                                            " of " + std::to_string(e.count) + " " +
+                                                            Plural(e.name));
         }
 }
 
@@ -404,8 +461,8 @@ PlyMesh ReadPlyFile(const std::string &path, Diagnostics &diag, MemoryBudget &bu
         FileReadError error;
         if (!ReadFileContents(path, &buf, &error, budget.Remaining())) {
             if (!error.tooLarge)
-                throw SceneError(FileLoc{path}, "cannot open file " + Quote(path) + ": " +
-                                                    error.reason);
+                throw SceneError(FileLoc{path},
+                                 "cannot open file " + Quote(path) + ": " + error.reason);
             budget.Check(error.size, "file", FileLoc{path});
             buf = ReadFileOrThrow(path, FileLoc{path});  // memory was released meanwhile
         }
@@ -444,8 +501,7 @@ PlyMesh ReadPlyFile(const std::string &path, Diagnostics &diag, MemoryBudget &bu
         uint64_t faces = 0;
         for (const PlyElement &e : h.elements)
             if (e.name == "face") faces += e.count;
-        budget.Charge(PlyMeshBytes(buf.size(), vertexElem->count, faces), "mesh",
-                      vertexElem->loc);
+        budget.Charge(PlyMeshBytes(buf.size(), vertexElem->count, faces), "mesh", vertexElem->loc);
     }
 
     PlyMesh mesh;

@@ -87,9 +87,12 @@ void SceneBuilder::ApplyTransform(const prism::Transform &t, bool replace) {
 
 std::unordered_map<std::string, int> &SceneBuilder::Names(Namespace ns) {
     switch (ns) {
-    case Namespace::Material: return namedMaterials_;
-    case Namespace::FloatTexture: return floatTextures_;
-    case Namespace::SpectrumTexture: return spectrumTextures_;
+        case Namespace::Material:
+            return namedMaterials_;
+        case Namespace::FloatTexture:
+            return floatTextures_;
+        case Namespace::SpectrumTexture:
+            return spectrumTextures_;
     }
     return namedMaterials_;
 }
@@ -110,8 +113,7 @@ void SceneBuilder::PushFrame(FrameKind kind, const FileLoc &loc) {
 
 void SceneBuilder::PopFrame(FrameKind kind, const char *directive, const FileLoc &loc) {
     if (frames_.empty())
-        throw SceneError(loc, std::string(directive) + " without matching " +
-                                  FrameName(int(kind)));
+        throw SceneError(loc, std::string(directive) + " without matching " + FrameName(int(kind)));
     if (frames_.back().kind != kind) {
         const Frame &top = frames_.back();
         throw SceneError(loc, std::string(directive) + " does not match " +
@@ -126,8 +128,10 @@ void SceneBuilder::PopFrame(FrameKind kind, const char *directive, const FileLoc
     while (undo_.size() > f.undoMark) {
         UndoEntry &u = undo_.back();
         auto &map = Names(u.ns);
-        if (u.previous) map[u.name] = *u.previous;
-        else map.erase(u.name);
+        if (u.previous)
+            map[u.name] = *u.previous;
+        else
+            map.erase(u.name);
         undo_.pop_back();
     }
 }
@@ -135,9 +139,9 @@ void SceneBuilder::PopFrame(FrameKind kind, const char *directive, const FileLoc
 void SceneBuilder::WarnUnclosedFrames() {
     for (const Frame &f : frames_)
         if (f.kind != FrameKind::Object)
-            diag_.Warn(f.loc, std::string(FrameName(int(f.kind))) + " without matching " +
-                                  (f.kind == FrameKind::Attribute ? "AttributeEnd"
-                                                                  : "TransformEnd"));
+            diag_.Warn(f.loc,
+                       std::string(FrameName(int(f.kind))) + " without matching " +
+                           (f.kind == FrameKind::Attribute ? "AttributeEnd" : "TransformEnd"));
 }
 
 void SceneBuilder::WarnMotion(const FileLoc &loc) {
@@ -162,8 +166,7 @@ void SceneBuilder::Translate(double dx, double dy, double dz, const FileLoc &) {
 }
 
 void SceneBuilder::Scale(double sx, double sy, double sz, const FileLoc &loc) {
-    ApplyTransform(TransformOrThrow("Scale", loc, [&] { return prism::Scale(sx, sy, sz); }),
-                   false);
+    ApplyTransform(TransformOrThrow("Scale", loc, [&] { return prism::Scale(sx, sy, sz); }), false);
 }
 
 void SceneBuilder::Rotate(double angle, double ax, double ay, double az, const FileLoc &loc) {
@@ -173,12 +176,12 @@ void SceneBuilder::Rotate(double angle, double ax, double ay, double az, const F
 
 void SceneBuilder::LookAt(double ex, double ey, double ez, double lx, double ly, double lz,
                           double ux, double uy, double uz, const FileLoc &loc) {
-    ApplyTransform(TransformOrThrow("LookAt", loc,
-                                    [&] {
-                                        return prism::LookAt({ex, ey, ez}, {lx, ly, lz},
-                                                             {ux, uy, uz});
-                                    }),
-                   false);
+    ApplyTransform(
+        TransformOrThrow("LookAt", loc,
+                         [&] {
+                             return prism::LookAt({ex, ey, ez}, {lx, ly, lz}, {ux, uy, uz});
+                         }),
+        false);
 }
 
 void SceneBuilder::Transform(const double m[16], const FileLoc &loc) {
@@ -228,8 +231,7 @@ void SceneBuilder::Camera(const std::string &type, ParsedParameterVector params,
     namedCoordSys_["camera"] = ctm_.Inverse();
 }
 
-void SceneBuilder::Film(const std::string &type, ParsedParameterVector params,
-                        const FileLoc &loc) {
+void SceneBuilder::Film(const std::string &type, ParsedParameterVector params, const FileLoc &loc) {
     SceneEntity e = Entity(type, std::move(params), loc);
     if (OptionAllowed("Film", loc)) scene_.film = std::move(e);
 }
@@ -305,8 +307,8 @@ void SceneBuilder::MakeNamedMaterial(const std::string &name, ParsedParameterVec
     m.loc = loc;
     const Param *type = m.params.Find("type");
     if (!type || type->type != ParamType::String || type->strings.size() != 1)
-        throw SceneError(loc, "MakeNamedMaterial " + Quote(m.name) +
-                                  " needs a \"string type\" parameter");
+        throw SceneError(
+            loc, "MakeNamedMaterial " + Quote(m.name) + " needs a \"string type\" parameter");
     m.type = type->strings[0];
     m.params.MarkUsed("type");
     if (namedMaterials_.count(m.name))
@@ -317,8 +319,7 @@ void SceneBuilder::MakeNamedMaterial(const std::string &name, ParsedParameterVec
 
 void SceneBuilder::NamedMaterial(const std::string &name, const FileLoc &loc) {
     auto nm = namedMaterials_.find(name);
-    if (nm == namedMaterials_.end())
-        throw SceneError(loc, "unknown named material " + Quote(name));
+    if (nm == namedMaterials_.end()) throw SceneError(loc, "unknown named material " + Quote(name));
     gs_.material = nm->second;
 }
 
@@ -328,10 +329,11 @@ void SceneBuilder::Texture(const std::string &name, const std::string &kind,
     CheckWorld("Texture", loc);
     TextureDesc t;
     t.name = name;
-    if (kind == "float") t.isFloat = true;
+    if (kind == "float")
+        t.isFloat = true;
     else if (kind != "spectrum" && kind != "color" && kind != "rgb")
-        throw SceneError(loc, "texture " + Quote(t.name) + ": unknown texture type " +
-                                  Quote(kind) + " (expected \"float\" or \"spectrum\")");
+        throw SceneError(loc, "texture " + Quote(t.name) + ": unknown texture type " + Quote(kind) +
+                                  " (expected \"float\" or \"spectrum\")");
     t.type = type;
     t.params = Params(std::move(params));
     t.loc = loc;

@@ -15,11 +15,10 @@
 namespace prism {
 
 class SceneBuilder final : public PbrtTarget {
-public:
+  public:
     // `filename` is the top-level file: it names the scene and its directory is the base of
     // relative paths (.spd files here; Include in the parser).
-    SceneBuilder(const std::string &filename, Diagnostics &diag,
-                 const PbrtParseOptions &opts = {});
+    SceneBuilder(const std::string &filename, Diagnostics &diag, const PbrtParseOptions &opts = {});
 
     // The scene, once the parser has called EndOfFiles().
     SceneDescription Result() { return std::move(scene_); }
@@ -42,8 +41,7 @@ public:
     void TransformTimes(double start, double end, const FileLoc &loc) override;
     void ReverseOrientation(const FileLoc &loc) override;
 
-    void Camera(const std::string &type, ParsedParameterVector params,
-                const FileLoc &loc) override;
+    void Camera(const std::string &type, ParsedParameterVector params, const FileLoc &loc) override;
     void Film(const std::string &type, ParsedParameterVector params, const FileLoc &loc) override;
     void Sampler(const std::string &type, ParsedParameterVector params,
                  const FileLoc &loc) override;
@@ -69,8 +67,7 @@ public:
                      const FileLoc &loc) override;
     void AreaLightSource(const std::string &type, ParsedParameterVector params,
                          const FileLoc &loc) override;
-    void Shape(const std::string &type, ParsedParameterVector params,
-               const FileLoc &loc) override;
+    void Shape(const std::string &type, ParsedParameterVector params, const FileLoc &loc) override;
     void ObjectBegin(const std::string &name, const FileLoc &loc) override;
     void ObjectEnd(const FileLoc &loc) override;
     void ObjectInstance(const std::string &name, const FileLoc &loc) override;
@@ -83,7 +80,7 @@ public:
 
     void EndOfFiles() override;
 
-private:
+  private:
     // What AttributeBegin/End saves besides the transform and the named definitions.
     struct GraphicsState {
         int material = -1;
@@ -110,8 +107,7 @@ private:
     };
 
     ParamSet Params(ParsedParameterVector params);
-    SceneEntity Entity(const std::string &type, ParsedParameterVector params,
-                       const FileLoc &loc);
+    SceneEntity Entity(const std::string &type, ParsedParameterVector params, const FileLoc &loc);
     RGB SpectrumFile(const std::string &name, const FileLoc &loc);
     // An options-block entity (Camera, Film, ...): false, with a warning, inside the world.
     bool OptionAllowed(const char *directive, const FileLoc &loc);

@@ -27,12 +27,12 @@ struct CameraDesc : SceneEntity {
 
 struct TextureDesc : SceneEntity {
     std::string name;
-    bool isFloat = false;       // "float" vs "spectrum"/"color"
+    bool isFloat = false;  // "float" vs "spectrum"/"color"
     Transform worldFromTexture;
 };
 
 struct MaterialDesc : SceneEntity {
-    std::string name;           // for named materials; "" for anonymous Material directives
+    std::string name;  // for named materials; "" for anonymous Material directives
 };
 
 struct LightDesc : SceneEntity {
@@ -46,8 +46,8 @@ struct AreaLightDesc : SceneEntity {
 struct ShapeDesc : SceneEntity {
     Transform worldFromObject;
     bool reverseOrientation = false;
-    int material = -1;   // index into SceneDescription::materials; -1 = the default matte
-    int areaLight = -1;  // index into SceneDescription::areaLights; -1 = not emissive
+    int material = -1;       // index into SceneDescription::materials; -1 = the default matte
+    int areaLight = -1;      // index into SceneDescription::areaLights; -1 = not emissive
     int directiveIndex = 0;  // 0-based Shape directive order in the top-level file
 };
 
@@ -98,9 +98,9 @@ struct SceneDescription {
     std::vector<AreaLightDesc> areaLights;
     std::vector<ObjectDesc> objects;
     std::vector<InstanceDesc> instances;
-    std::string baseDir;      // directory of the top-level file: relative paths resolve here
-    std::string sourceFile;   // the top-level file
-    std::string format;       // "pbrt", "obj", "gltf", "ply"
+    std::string baseDir;     // directory of the top-level file: relative paths resolve here
+    std::string sourceFile;  // the top-level file
+    std::string format;      // "pbrt", "obj", "gltf", "ply"
     std::vector<EmbeddedImage> embeddedImages;
     // Informational notes from the reader about what it supplied or interpreted, e.g. "no
     // camera in file: framed the bounding box" (not warnings: nothing is wrong with the file).

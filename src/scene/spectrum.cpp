@@ -137,8 +137,10 @@ std::optional<RGB> ReadSpdFile(const std::string &path, const std::string &displ
             if (*first == '+') ++first;
             double v;
             auto [ptr, ec] = std::from_chars(first, last, v);
-            if (ec != std::errc() || !std::isfinite(v)) ok = false;
-            else values.push_back(v);
+            if (ec != std::errc() || !std::isfinite(v))
+                ok = false;
+            else
+                values.push_back(v);
             i = size_t(ptr - text.data());
         }
     }

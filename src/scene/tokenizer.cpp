@@ -90,13 +90,21 @@ Token Tokenizer::Scan() {
                 t.hasEscapes = true;
                 ++pos_;
                 if (pos_ >= n) Fail(t.line, t.column, "unterminated string");
-                if (text_[pos_] == '\n') Fail(t.line, t.column, "unterminated string (a newline inside quotes)");
+                if (text_[pos_] == '\n')
+                    Fail(t.line, t.column, "unterminated string (a newline inside quotes)");
                 switch (text_[pos_]) {
-                case '"': case '\\': case 'n': case 't': case 'r': case 'b': case 'f': case '\'':
-                    break;
-                default:
-                    Fail(line_, int(pos_ - lineStart_),
-                         std::string("unknown escape sequence \"\\") + text_[pos_] + "\"");
+                    case '"':
+                    case '\\':
+                    case 'n':
+                    case 't':
+                    case 'r':
+                    case 'b':
+                    case 'f':
+                    case '\'':
+                        break;
+                    default:
+                        Fail(line_, int(pos_ - lineStart_),
+                             std::string("unknown escape sequence \"\\") + text_[pos_] + "\"");
                 }
             }
             ++pos_;
@@ -151,12 +159,24 @@ std::string Tokenizer::StringValue(const Token &t) {
             continue;
         }
         switch (t.text[++i]) {
-        case 'n': out += '\n'; break;
-        case 't': out += '\t'; break;
-        case 'r': out += '\r'; break;
-        case 'b': out += '\b'; break;
-        case 'f': out += '\f'; break;
-        default: out += t.text[i]; break;  // \" \\ \'
+            case 'n':
+                out += '\n';
+                break;
+            case 't':
+                out += '\t';
+                break;
+            case 'r':
+                out += '\r';
+                break;
+            case 'b':
+                out += '\b';
+                break;
+            case 'f':
+                out += '\f';
+                break;
+            default:
+                out += t.text[i];
+                break;  // \" \\ \'
         }
     }
     return out;
@@ -164,14 +184,16 @@ std::string Tokenizer::StringValue(const Token &t) {
 
 std::string Tokenizer::Describe(const Token &t) {
     switch (t.kind) {
-    case TokenKind::End: return "end of file";
-    case TokenKind::String: {
-        std::string s;
-        s.reserve(t.text.size() + 2);
-        s.append(1, '"').append(t.text).append(1, '"');
-        return s;
-    }
-    default: return std::string(t.text);
+        case TokenKind::End:
+            return "end of file";
+        case TokenKind::String: {
+            std::string s;
+            s.reserve(t.text.size() + 2);
+            s.append(1, '"').append(t.text).append(1, '"');
+            return s;
+        }
+        default:
+            return std::string(t.text);
     }
 }
 

@@ -27,7 +27,7 @@ struct Token {
 };
 
 class Tokenizer {
-public:
+  public:
     // `filename` only labels locations; the text is taken as given.
     Tokenizer(std::string text, std::string filename);
     Tokenizer(const Tokenizer &) = delete;
@@ -45,7 +45,7 @@ public:
     // Readable rendering of a token for messages: strings keep their quotes.
     static std::string Describe(const Token &t);
 
-private:
+  private:
     Token Scan();
     void SkipSpaceAndComments();
     [[noreturn]] void Fail(int line, int column, const std::string &msg) const;

@@ -201,7 +201,8 @@ ShapeReport ValidateShape(const std::string &name, std::unique_ptr<AnalyticShape
     Bounds3f wb = shape.RenderBounds();
     double maxCoord =
         std::max(MaxComponent(Abs(Vec3d(wb.pMin))), MaxComponent(Abs(Vec3d(wb.pMax))));
-    double hRound = 2 * std::sqrt(3.0) * 0x1p-24 * maxCoord * InverseScale(shape.RenderFromObject());
+    double hRound =
+        2 * std::sqrt(3.0) * 0x1p-24 * maxCoord * InverseScale(shape.RenderFromObject());
 
     // Distance of each ray to a silhouette or boundary: level-independent, computed lazily
     // (only disagreeing rays need it), in double from the analytic description.

@@ -60,7 +60,8 @@ const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
 
 TEST(Cli, RendersWhittedAtSmallSize) {
     fs::path dir = TempDir("whitted");
-    RunResult r = RunPrism("render '" + Source + "/scenes/whitted.pbrt' --res 64x48 -o out.exr --quiet", dir);
+    RunResult r =
+        RunPrism("render '" + Source + "/scenes/whitted.pbrt' --res 64x48 -o out.exr --quiet", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     Image img = ReadImage((dir / "out.exr").string());
     EXPECT_EQ(img.width, 64);
@@ -108,8 +109,8 @@ TEST(Cli, BadInputFailsCleanly) {
         auto bar3 = line.find(" | ", bar2 + 3);
         std::string file = line.substr(0, bar1);
         int status = std::stoi(line.substr(bar1 + 3, bar2 - bar1 - 3));
-        std::string fragment = line.substr(bar2 + 3, bar3 == std::string::npos ? std::string::npos
-                                                                                : bar3 - bar2 - 3);
+        std::string fragment =
+            line.substr(bar2 + 3, bar3 == std::string::npos ? std::string::npos : bar3 - bar2 - 3);
         // A 4th column replaces the default "--res 16x16" with other arguments.
         std::string extra = bar3 == std::string::npos ? "--res 16x16" : line.substr(bar3 + 3);
         files.insert(file);
@@ -123,7 +124,8 @@ TEST(Cli, BadInputFailsCleanly) {
         // Exactly one error line (a message may quote a library's "read error: ...").
         size_t errors = 0;
         std::istringstream errLines(r.err);
-        for (std::string l; std::getline(errLines, l);) errors += l.find("error:") != std::string::npos;
+        for (std::string l; std::getline(errLines, l);)
+            errors += l.find("error:") != std::string::npos;
         EXPECT_EQ(errors, 1u) << file << ": " << r.err;
         // The error is one line: it ends the output and names what is wrong.
         size_t at = r.err.find("error:");
@@ -147,7 +149,8 @@ TEST(Cli, BadOptionsExitWithStatus2) {
     EXPECT_EQ(RunPrism("frobnicate", dir).exitCode, 2);
     RunResult mem = RunPrism("render " + scene + " --max-memory 12Q -o a.png", dir);
     EXPECT_EQ(mem.exitCode, 2);
-    EXPECT_NE(mem.err.find("error: --max-memory expects a size such as 512M or 8G"), std::string::npos)
+    EXPECT_NE(mem.err.find("error: --max-memory expects a size such as 512M or 8G"),
+              std::string::npos)
         << mem.err;
     EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
@@ -156,16 +159,19 @@ TEST(Cli, BadOptionsExitWithStatus2) {
 TEST(Cli, MemoryBudgetErrorNamesTheFlagOnce) {
     fs::path dir = TempDir("budget");
     const std::string flag = "(--max-memory)";
-    for (const char *args :
-         {"budget_includes.pbrt' --max-memory 8K --res 16x16", "ply_budget.pbrt' --max-memory 100K --res 16x16",
-          "budget_film_texture.pbrt' --max-memory 60K --res 16x16", "tex_big_png.pbrt' --max-memory 40K --res 16x16",
-          "budget_film_ply.pbrt' --max-memory 160K --res 32x32", "budget_resolution.pbrt' --max-memory 1G"}) {
+    for (const char *args : {"budget_includes.pbrt' --max-memory 8K --res 16x16",
+                             "ply_budget.pbrt' --max-memory 100K --res 16x16",
+                             "budget_film_texture.pbrt' --max-memory 60K --res 16x16",
+                             "tex_big_png.pbrt' --max-memory 40K --res 16x16",
+                             "budget_film_ply.pbrt' --max-memory 160K --res 32x32",
+                             "budget_resolution.pbrt' --max-memory 1G"}) {
         RunResult r = RunPrism("render '" + Source + "/tests/bad/" + args + " -o a.png", dir);
         EXPECT_EQ(r.exitCode, 2) << r.err;
         size_t at = r.err.find(flag);
         ASSERT_NE(at, std::string::npos) << r.err;
         EXPECT_EQ(r.err.find(flag, at + 1), std::string::npos) << r.err;
-        EXPECT_EQ(at + flag.size() + 1, r.err.size()) << "the message ends with the flag: " << r.err;
+        EXPECT_EQ(at + flag.size() + 1, r.err.size())
+            << "the message ends with the flag: " << r.err;
         EXPECT_FALSE(fs::exists(dir / "a.png"));
     }
 }
@@ -188,17 +194,20 @@ TEST(Cli, InfoDescribesScene) {
     std::ofstream(dir / "warn.pbrt") << SphereScene(8, 8, 4);
     r = RunPrism("info warn.pbrt", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.out.find("warn.pbrt:4:1: warning: sampler \"halton\" is replaced"), std::string::npos)
+    EXPECT_NE(r.out.find("warn.pbrt:4:1: warning: sampler \"halton\" is replaced"),
+              std::string::npos)
         << r.out;
 }
 
 TEST(Cli, TraceReportsHitsMissesAndLimits) {
     fs::path dir = TempDir("trace");
-    std::ofstream(dir / "s.pbrt") << "Camera \"perspective\"\nWorldBegin\n"
-                                     "AttributeBegin\nTranslate 0 0 5\nShape \"sphere\" \"float radius\" 1\nAttributeEnd\n"
-                                     "AttributeBegin\nReverseOrientation\nTranslate 10 0 5\nShape \"sphere\"\nAttributeEnd\n"
-                                     "Shape \"trianglemesh\" \"integer indices\" [0 1 2] \"point3 P\" [-1 -1 20  1 -1 20  0 1 20]\n"
-                                     "WorldEnd\n";
+    std::ofstream(dir / "s.pbrt")
+        << "Camera \"perspective\"\nWorldBegin\n"
+           "AttributeBegin\nTranslate 0 0 5\nShape \"sphere\" \"float radius\" 1\nAttributeEnd\n"
+           "AttributeBegin\nReverseOrientation\nTranslate 10 0 5\nShape \"sphere\"\nAttributeEnd\n"
+           "Shape \"trianglemesh\" \"integer indices\" [0 1 2] \"point3 P\" [-1 -1 20  1 -1 20  0 "
+           "1 20]\n"
+           "WorldEnd\n";
     std::ofstream(dir / "rays.txt") << "# origin direction [tmin tmax]\n"
                                        "0 0 0  0 0 1\n"
                                        "0 0 0  0 0 2   # unnormalized: t halves\n"
@@ -216,10 +225,10 @@ TEST(Cli, TraceReportsHitsMissesAndLimits) {
     EXPECT_EQ(got[0], "hit 4 0 0 4 0 0 -1 0 0");
     EXPECT_EQ(got[1], "hit 2 0 0 4 0 0 -1 0 0");
     EXPECT_EQ(got[2], "miss");
-    EXPECT_EQ(got[3], "miss");                         // tmax stops before the sphere
-    EXPECT_EQ(got[4], "hit 6 0 0 6 0 0 1 0 0");        // tmin skips the near side
-    EXPECT_EQ(got[5], "hit 4 10 0 4 0 0 1 1 0");       // ReverseOrientation flips n
-    EXPECT_EQ(got[6], "hit 10 0 0 20 0 0 1 2 0");      // triangle: (p1-p0) x (p2-p0)
+    EXPECT_EQ(got[3], "miss");                     // tmax stops before the sphere
+    EXPECT_EQ(got[4], "hit 6 0 0 6 0 0 1 0 0");    // tmin skips the near side
+    EXPECT_EQ(got[5], "hit 4 10 0 4 0 0 1 1 0");   // ReverseOrientation flips n
+    EXPECT_EQ(got[6], "hit 10 0 0 20 0 0 1 2 0");  // triangle: (p1-p0) x (p2-p0)
     RunResult occ = RunPrism("trace s.pbrt --rays rays.txt --occluded --quiet", dir);
     ASSERT_EQ(occ.exitCode, 0);
     EXPECT_EQ(occ.out, "1\n1\n0\n0\n1\n1\n1\n");
@@ -235,9 +244,12 @@ TEST(Cli, TraceReportsHitsMissesAndLimits) {
 // A sphere under a point light at the given film size and sample count.
 std::string SphereScene(int w, int h, int spp) {
     return "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\n"
-           "Film \"image\" \"integer xresolution\" " + std::to_string(w) +
-           " \"integer yresolution\" " + std::to_string(h) + "\n"
-           "Sampler \"halton\" \"integer pixelsamples\" " + std::to_string(spp) + "\n"
+           "Film \"image\" \"integer xresolution\" " +
+           std::to_string(w) + " \"integer yresolution\" " + std::to_string(h) +
+           "\n"
+           "Sampler \"halton\" \"integer pixelsamples\" " +
+           std::to_string(spp) +
+           "\n"
            "WorldBegin\nLightSource \"point\" \"point from\" [0 3 -3] \"rgb I\" [20 20 20]\n"
            "Material \"glass\"\nShape \"sphere\"\nWorldEnd\n";
 }
@@ -270,10 +282,11 @@ TEST(Batch, ReportsFailuresKeepsImagesAndSkipsUpToDate) {
     std::ofstream(dir / "in/c.pbrt") << withInclude;
     std::ofstream(dir / "in/sub/part.pbrt") << "Shape \"sphere\" \"float radius\" 0.5\n";
     // A PLY file is a scene of its own, unless a scene names it (plymesh): then it is a mesh.
-    const char *ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                      "property float y\nproperty float z\nelement face 1\n"
-                      "property list uchar int vertex_indices\nend_header\n"
-                      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const char *ply =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 1\n"
+        "property list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
     fs::create_directories(dir / "in/mesh");
     std::ofstream(dir / "in/lone.ply") << ply;
     std::ofstream(dir / "in/mesh/tri.ply") << ply;
@@ -300,7 +313,8 @@ TEST(Batch, ReportsFailuresKeepsImagesAndSkipsUpToDate) {
     EXPECT_TRUE(HasStatus(out, "lone.ply", "ok"));
     EXPECT_EQ(ReportLine(out, "tri.ply"), "");
     EXPECT_NE(ReadFile(out / "report.json").find("\"ok\": 5, \"skipped\": 0, \"failed\": 2"),
-              std::string::npos) << ReadFile(out / "report.json");
+              std::string::npos)
+        << ReadFile(out / "report.json");
     EXPECT_NE(ReadFile(out / "summary.txt").find("broken.pbrt"), std::string::npos);
     // Each render's own phases, and the batch's wall time against their sum.
     EXPECT_NE(ReportLine(out, "a.pbrt").find("\"phases\": {\"parse\": "), std::string::npos)

@@ -73,8 +73,7 @@ TEST(Knot, PlyReadableAndSceneBuilds) {
     EXPECT_EQ(ply.N.size(), 180u);
     EXPECT_EQ(ply.indices.size(), 3u * 360);
     KnotMesh m = BuildKnot(30, 6);
-    for (size_t i = 0; i < ply.P.size(); ++i)
-        EXPECT_EQ(ply.P[i].y, float(m.p[i][1]));
+    for (size_t i = 0; i < ply.P.size(); ++i) EXPECT_EQ(ply.P[i].y, float(m.p[i][1]));
     SceneDescription desc = LoadScene(kf.pbrt, diag);
     BuildSettings ro;
     RenderScene scene = BuildRenderScene(desc, ro, diag);
@@ -86,8 +85,8 @@ TEST(Knot, PlyReadableAndSceneBuilds) {
 TEST(Knot, EmptySceneRenders) {
     fs::path dir = TempDir("empty");
     std::string empty = WriteEmptyScene(dir.string());
-    ChildRun r = RunChild({PRISM_BINARY, "render", empty, "--res", "8x6", "-o",
-                           (dir / "x.png").string(), "--quiet"});
+    ChildRun r = RunChild(
+        {PRISM_BINARY, "render", empty, "--res", "8x6", "-o", (dir / "x.png").string(), "--quiet"});
     EXPECT_EQ(r.exitStatus, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir / "x.png"));
     EXPECT_GT(r.maxRssKiB, 0);
@@ -136,15 +135,17 @@ TEST(Ceiling, InProcessBothTraversals) {
 TEST(Ceiling, CommandLastLine) {
     fs::path dir = TempDir("ceiling_cmd");
     KnotFiles kf = WriteKnotScene(dir.string(), 60, 10, false);
-    ChildRun r = RunChild({PRISM_BINARY, "bench", "ceiling", kf.pbrt, "--res", "48x36",
-                           "--repeats", "3", "--threads", "2"});
+    ChildRun r = RunChild({PRISM_BINARY, "bench", "ceiling", kf.pbrt, "--res", "48x36", "--repeats",
+                           "3", "--threads", "2"});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
     std::string out = r.out;
     while (!out.empty() && out.back() == '\n') out.pop_back();
     std::string last = out.substr(out.rfind('\n') + 1);
     std::smatch m;
     ASSERT_TRUE(std::regex_match(
-        last, m, std::regex(R"(ceiling ([0-9]+\.[0-9]{2}) Mrays/s, render ([0-9]+\.[0-9]{2}) Mrays/s, ratio ([0-9]+\.[0-9]{2}))")))
+        last, m,
+        std::regex(
+            R"(ceiling ([0-9]+\.[0-9]{2}) Mrays/s, render ([0-9]+\.[0-9]{2}) Mrays/s, ratio ([0-9]+\.[0-9]{2}))")))
         << last;
     EXPECT_GT(std::stod(m[3].str()), 0);
     EXPECT_NE(out.find("repeat 3:"), std::string::npos);
@@ -160,15 +161,17 @@ TEST(Suite, ParsesPrismAndPovStatistics) {
     PrismRenderStats s = ParsePrismStats(
         "x.png: 800x600, 1 spp, maxdepth 5, double precision\n"
         "time: parse 0.012s, setup 0.003s, BVH build 0.020s, render 0.260s\n"
-        "rays: camera 480000, shadow 10, reflection 0, refraction 0, pass-through 0; 3.75 Mrays/s\n");
+        "rays: camera 480000, shadow 10, reflection 0, refraction 0, pass-through 0; 3.75 "
+        "Mrays/s\n");
     EXPECT_DOUBLE_EQ(s.parse, 0.012);
     EXPECT_DOUBLE_EQ(s.setup, 0.003);
     EXPECT_DOUBLE_EQ(s.bvh, 0.020);
     EXPECT_DOUBLE_EQ(s.render, 0.260);
     EXPECT_DOUBLE_EQ(s.mrays, 3.75);
     EXPECT_LT(ParsePrismStats("nothing").render, 0);
-    std::string pov = "Parser Time\n  Parse Time:       0 hours  0 minutes  0 seconds (0.001 seconds)\n"
-                      "  Trace Time:       0 hours  0 minutes  1 seconds (1.170 seconds)\n";
+    std::string pov =
+        "Parser Time\n  Parse Time:       0 hours  0 minutes  0 seconds (0.001 seconds)\n"
+        "  Trace Time:       0 hours  0 minutes  1 seconds (1.170 seconds)\n";
     EXPECT_DOUBLE_EQ(ParsePovTime(pov, "Trace Time"), 1.170);
     EXPECT_DOUBLE_EQ(ParsePovTime(pov, "Parse Time"), 0.001);
     EXPECT_LT(ParsePovTime(pov, "Photon Time"), 0);
@@ -181,7 +184,8 @@ TEST(Suite, TargetsAndCsv) {
     EXPECT_EQ(TargetStatus(30, "< 30"), "missed");
     EXPECT_EQ(TargetStatus(100, "<= 100"), "met");
     std::string csv = MetricsCsv({{"startup", "prism --help", 12.5, "ms", "< 30", "met"}});
-    EXPECT_EQ(csv, "section,metric,value,unit,target,status\nstartup,prism --help,12.5,ms,< 30,met\n");
+    EXPECT_EQ(csv,
+              "section,metric,value,unit,target,status\nstartup,prism --help,12.5,ms,< 30,met\n");
 }
 
 TEST(Suite, ChildRusageAndOutput) {

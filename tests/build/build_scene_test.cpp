@@ -1,8 +1,9 @@
 // BuildRenderScene's settings: replacements of what the description says and the
 // analytic-shape replacement hook (`prism render --tessellate`), without the command line.
+#include "build/build_scene.h"
+
 #include <gtest/gtest.h>
 
-#include "build/build_scene.h"
 #include "scene/pbrt_parser.h"
 
 namespace prism {
@@ -44,9 +45,10 @@ TEST(BuildScene, ResolutionSettingBeyondTheLimitIsBadInput) {
 
 TEST(BuildScene, ReplacementHookSeesEveryAnalyticShape) {
     Diagnostics diag;
-    SceneDescription d = Parse("Shape \"sphere\"\nShape \"disk\"\n"
-                               "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n",
-                               diag);
+    SceneDescription d = Parse(
+        "Shape \"sphere\"\nShape \"disk\"\n"
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n",
+        diag);
     BuildSettings s;
     s.resolution = {4, 4};
     std::vector<std::string> seen;

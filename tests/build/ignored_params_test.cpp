@@ -55,8 +55,7 @@ std::string LocOf(const fs::path &file, const std::string &text, const std::stri
 
 // Exactly one warning mentions `what` (a quoted name), at the first place `needle` is written.
 void ExpectOneWarning(const std::vector<Warning> &warnings, const fs::path &file,
-                      const std::string &text, const std::string &what,
-                      const std::string &needle) {
+                      const std::string &text, const std::string &what, const std::string &needle) {
     SCOPED_TRACE(what);
     int n = 0;
     for (const Warning &w : warnings) {
@@ -72,8 +71,9 @@ LightSource "point" "point3 from" [0 5 0]
 )";
 
 TEST(IgnoredParams, SamplerTypeAndParameters) {
-    std::string text = std::string("Sampler \"halton\" \"integer pixelsamples\" 4\n"
-                                   "    \"integer dimensions\" 7 \"bool samplepixelcenter\" \"true\"\n") +
+    std::string text = std::string(
+                           "Sampler \"halton\" \"integer pixelsamples\" 4\n"
+                           "    \"integer dimensions\" 7 \"bool samplepixelcenter\" \"true\"\n") +
                        World + "Shape \"sphere\"\n";
     fs::path file;
     auto w = BuildWarnings("sampler", text, &file);
@@ -83,15 +83,17 @@ TEST(IgnoredParams, SamplerTypeAndParameters) {
     ExpectOneWarning(w, file, text, "\"samplepixelcenter\"", "\"bool samplepixelcenter\"");
     EXPECT_EQ(w.size(), 3u);
     // The stratified sampler's own parameters have an effect (jitter included, by design).
-    text = std::string("Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2 "
-                       "\"bool jitter\" \"false\"\n") +
+    text = std::string(
+               "Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2 "
+               "\"bool jitter\" \"false\"\n") +
            World + "Shape \"sphere\"\n";
     EXPECT_TRUE(BuildWarnings("sampler_stratified", text).empty());
 }
 
 TEST(IgnoredParams, Accelerator) {
-    std::string text = std::string("Accelerator \"bvh\" \"integer maxnodeprims\" 4\n"
-                                   "    \"string splitmethod\" \"sah\"\n") +
+    std::string text = std::string(
+                           "Accelerator \"bvh\" \"integer maxnodeprims\" 4\n"
+                           "    \"string splitmethod\" \"sah\"\n") +
                        World + "Shape \"sphere\"\n";
     fs::path file;
     auto w = BuildWarnings("accelerator", text, &file);
@@ -103,9 +105,10 @@ TEST(IgnoredParams, Accelerator) {
 }
 
 TEST(IgnoredParams, CameraShutterAndFilmDiagonal) {
-    std::string text = std::string("Camera \"perspective\" \"float shutteropen\" 0\n"
-                                   "    \"float shutterclose\" 1\n"
-                                   "Film \"image\" \"float diagonal\" 35\n") +
+    std::string text = std::string(
+                           "Camera \"perspective\" \"float shutteropen\" 0\n"
+                           "    \"float shutterclose\" 1\n"
+                           "Film \"image\" \"float diagonal\" 35\n") +
                        World + "Shape \"sphere\"\n";
     fs::path file;
     auto w = BuildWarnings("camera", text, &file);
@@ -116,16 +119,18 @@ TEST(IgnoredParams, CameraShutterAndFilmDiagonal) {
 }
 
 TEST(IgnoredParams, IntegratorParametersOtherThanMaxdepth) {
-    std::string text = std::string("Integrator \"whitted\" \"integer maxdepth\" 3\n"
-                                   "    \"integer pixelbounds\" [0 4 0 4]\n") +
+    std::string text = std::string(
+                           "Integrator \"whitted\" \"integer maxdepth\" 3\n"
+                           "    \"integer pixelbounds\" [0 4 0 4]\n") +
                        World + "Shape \"sphere\"\n";
     fs::path file;
     auto w = BuildWarnings("integrator_whitted", text, &file);
     ExpectOneWarning(w, file, text, "\"pixelbounds\"", "\"integer pixelbounds\"");
     EXPECT_EQ(w.size(), 1u);
 
-    text = std::string("Integrator \"path\" \"integer maxdepth\" 3 \"float rrthreshold\" 0.5\n"
-                       "    \"string lightsamplestrategy\" \"spatial\"\n") +
+    text = std::string(
+               "Integrator \"path\" \"integer maxdepth\" 3 \"float rrthreshold\" 0.5\n"
+               "    \"string lightsamplestrategy\" \"spatial\"\n") +
            World + "Shape \"sphere\"\n";
     w = BuildWarnings("integrator_path", text, &file);
     ExpectOneWarning(w, file, text, "is rendered with Whitted", "Integrator");
@@ -135,9 +140,10 @@ TEST(IgnoredParams, IntegratorParametersOtherThanMaxdepth) {
 }
 
 TEST(IgnoredParams, TriangleMeshTangentsAndFaceIndices) {
-    const std::string mesh = "Shape \"trianglemesh\" \"integer indices\" [0 1 2] "
-                             "\"point3 P\" [0 0 0 1 0 0 0 1 0]\n"
-                             "    \"vector3 S\" [1 0 0 1 0 0 1 0 0] \"integer faceIndices\" [0]\n";
+    const std::string mesh =
+        "Shape \"trianglemesh\" \"integer indices\" [0 1 2] "
+        "\"point3 P\" [0 0 0 1 0 0 0 1 0]\n"
+        "    \"vector3 S\" [1 0 0 1 0 0 1 0 0] \"integer faceIndices\" [0]\n";
     std::string text = World + mesh + mesh;  // twice: still one warning each
     fs::path file;
     auto w = BuildWarnings("trianglemesh", text, &file);
@@ -147,16 +153,18 @@ TEST(IgnoredParams, TriangleMeshTangentsAndFaceIndices) {
 }
 
 TEST(IgnoredParams, CheckerboardClosedForm) {
-    const std::string tex = "Texture \"c%\" \"spectrum\" \"checkerboard\" \"string aamode\" "
-                            "\"closedform\"\n";
+    const std::string tex =
+        "Texture \"c%\" \"spectrum\" \"checkerboard\" \"string aamode\" "
+        "\"closedform\"\n";
     std::string text = World;
     for (char c : {'1', '2'}) {
         std::string t = tex;
         t[t.find('%')] = c;
         text += t;
     }
-    text += "Texture \"n\" \"spectrum\" \"checkerboard\" \"string aamode\" \"none\"\n"
-            "Material \"matte\" \"texture Kd\" \"c1\"\nShape \"sphere\"\n";
+    text +=
+        "Texture \"n\" \"spectrum\" \"checkerboard\" \"string aamode\" \"none\"\n"
+        "Material \"matte\" \"texture Kd\" \"c1\"\nShape \"sphere\"\n";
     fs::path file;
     auto w = BuildWarnings("checkerboard", text, &file);
     ExpectOneWarning(w, file, text, "\"aamode\"", "\"string aamode\"");
@@ -177,9 +185,10 @@ TEST(IgnoredParams, ImageMapFilteringAndEncoding) {
         text += t;
     }
     // Honoured: pbrt-v4's bilinear filter and sRGB/linear encodings.
-    text += "Texture \"b\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\" "
-            "\"string filter\" \"bilinear\" \"string encoding\" \"linear\"\n"
-            "Material \"matte\" \"texture Kd\" \"t1\"\nShape \"sphere\"\n";
+    text +=
+        "Texture \"b\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\" "
+        "\"string filter\" \"bilinear\" \"string encoding\" \"linear\"\n"
+        "Material \"matte\" \"texture Kd\" \"t1\"\nShape \"sphere\"\n";
     fs::path file;
     auto w = BuildWarnings("imagemap", text, &file);
     ExpectOneWarning(w, file, text, "\"filter\"", "\"string filter\"");
@@ -201,14 +210,15 @@ TEST(IgnoredParams, WhittedSceneWarnsAboutNothing) {
 // pbrt-v3 glass may bind its roughness to a float texture; Whitted renders it smooth, as for a
 // constant roughness, with the same warning (it used to be rejected: "must be float").
 TEST(IgnoredParams, GlassWithTexturedRoughnessIsAccepted) {
-    std::string text = std::string(World) +
-                       "Texture \"r\" \"float\" \"constant\" \"float value\" 0.2\n"
-                       "Texture \"z\" \"float\" \"constant\" \"float value\" 0\n"
-                       "Texture \"f\" \"float\" \"fbm\"\n"
-                       "Material \"glass\" \"texture uroughness\" \"r\" \"texture vroughness\" \"f\"\n"
-                       "Shape \"sphere\"\n"
-                       "Material \"glass\" \"texture roughness\" \"z\"\n"
-                       "Shape \"sphere\"\n";
+    std::string text =
+        std::string(World) +
+        "Texture \"r\" \"float\" \"constant\" \"float value\" 0.2\n"
+        "Texture \"z\" \"float\" \"constant\" \"float value\" 0\n"
+        "Texture \"f\" \"float\" \"fbm\"\n"
+        "Material \"glass\" \"texture uroughness\" \"r\" \"texture vroughness\" \"f\"\n"
+        "Shape \"sphere\"\n"
+        "Material \"glass\" \"texture roughness\" \"z\"\n"
+        "Shape \"sphere\"\n";
     fs::path file;
     std::vector<Warning> w;
     ASSERT_NO_THROW(w = BuildWarnings("rough_glass", text, &file));

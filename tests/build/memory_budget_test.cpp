@@ -26,9 +26,11 @@ fs::path Dir() { return test::ScratchDir("prism_build_budget"); }
 
 // A 64x64 film with the box filter (radius 0.5), one light, and `world`.
 SceneDescription Parse(const std::string &world, Diagnostics &diag) {
-    return ParsePbrtString("Film \"image\" \"integer xresolution\" [64] \"integer yresolution\" [64]\n"
-                           "PixelFilter \"box\"\nWorldBegin\nLightSource \"point\"\n" + world,
-                           (Dir() / "budget.pbrt").string(), diag);
+    return ParsePbrtString(
+        "Film \"image\" \"integer xresolution\" [64] \"integer yresolution\" [64]\n"
+        "PixelFilter \"box\"\nWorldBegin\nLightSource \"point\"\n" +
+            world,
+        (Dir() / "budget.pbrt").string(), diag);
 }
 const uint64_t FilmBytes = EstimateFilmBytes(64, 64, 0.5, 0.5, RenderTileSize);
 
@@ -49,8 +51,10 @@ std::optional<MemoryBudgetError> BuildError(const SceneDescription &d, MemoryBud
 std::string Triangles(int n) {
     std::string P, idx;
     for (int i = 0; i < n; ++i) {
-        P += std::to_string(i) + " 0 0 " + std::to_string(i) + " 1 0 " + std::to_string(i) + " 0 1 ";
-        idx += std::to_string(3 * i) + " " + std::to_string(3 * i + 1) + " " + std::to_string(3 * i + 2) + " ";
+        P +=
+            std::to_string(i) + " 0 0 " + std::to_string(i) + " 1 0 " + std::to_string(i) + " 0 1 ";
+        idx += std::to_string(3 * i) + " " + std::to_string(3 * i + 1) + " " +
+               std::to_string(3 * i + 2) + " ";
     }
     return "Shape \"trianglemesh\" \"point3 P\" [" + P + "] \"integer indices\" [" + idx + "]\n";
 }
@@ -70,16 +74,19 @@ TEST(BuildBudget, FilmAndTextureEachUnderTheLimitAreRefusedTogether) {
     WriteImage(png, Image(128, 128, 3));
     const uint64_t textureBytes = 128 * 128 * 3 * sizeof(float);
     Diagnostics diag;
-    SceneDescription d = Parse("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"" + png +
-                                   "\"\nMaterial \"matte\" \"texture Kd\" \"t\"\nShape \"sphere\"\n",
-                               diag);
+    SceneDescription d =
+        Parse("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"" + png +
+                  "\"\nMaterial \"matte\" \"texture Kd\" \"t\"\nShape \"sphere\"\n",
+              diag);
     MemoryBudget budget(FilmBytes + textureBytes - 1);  // each fits, not both
     std::optional<MemoryBudgetError> e = BuildError(d, budget);
     ASSERT_TRUE(e);
     std::string msg = e->what();
-    EXPECT_NE(msg.find("error: texture \"" + png + "\" needs about 192 KiB; with "), std::string::npos)
+    EXPECT_NE(msg.find("error: texture \"" + png + "\" needs about 192 KiB; with "),
+              std::string::npos)
         << msg;
-    EXPECT_NE(msg.find("already committed that exceeds the memory budget of"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("already committed that exceeds the memory budget of"), std::string::npos)
+        << msg;
     EXPECT_EQ(msg.find("--max-memory"), std::string::npos) << "the library names no flag: " << msg;
     EXPECT_EQ(e->Requested(), textureBytes);
     EXPECT_EQ(e->Committed(), FilmBytes);
@@ -95,8 +102,9 @@ TEST(BuildBudget, FilmAndPlyMeshEachUnderTheLimitAreRefusedTogether) {
     std::string ply = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(3 * n) +
                       "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
                       std::to_string(n) + "\nproperty list uchar int vertex_indices\nend_header\n";
-    for (int i = 0; i < n; ++i) ply += std::to_string(i) + " 0 0\n" + std::to_string(i) + " 1 0\n" +
-                                       std::to_string(i) + " 0 1\n";
+    for (int i = 0; i < n; ++i)
+        ply += std::to_string(i) + " 0 0\n" + std::to_string(i) + " 1 0\n" + std::to_string(i) +
+               " 0 1\n";
     for (int i = 0; i < n; ++i)
         ply += "3 " + std::to_string(3 * i) + " " + std::to_string(3 * i + 1) + " " +
                std::to_string(3 * i + 2) + "\n";
@@ -110,7 +118,8 @@ TEST(BuildBudget, FilmAndPlyMeshEachUnderTheLimitAreRefusedTogether) {
     std::optional<MemoryBudgetError> e = BuildError(d, budget);
     ASSERT_TRUE(e);
     EXPECT_NE(std::string(e->what()).find("already committed that exceeds the memory budget of"),
-              std::string::npos) << e->what();
+              std::string::npos)
+        << e->what();
     EXPECT_EQ(e->Requested(), plyBytes);
     EXPECT_EQ(e->Committed(), FilmBytes);
 

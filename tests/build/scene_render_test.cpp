@@ -9,8 +9,8 @@
 #include <set>
 #include <sstream>
 
-#include "image/image_compare.h"
 #include "build/build_scene.h"
+#include "image/image_compare.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "test_util.h"
@@ -76,7 +76,8 @@ std::string ShiftedScene(double offset) {
       << "Sampler \"stratified\" \"integer xsamples\" 1 \"integer ysamples\" 1\n"
       << "WorldBegin\n"
       << "LightSource \"point\" \"point3 from\" [" << p(-3, 6, -4) << "] \"rgb I\" [60 60 60]\n"
-      << "Texture \"c\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [0.8 0.1 0.1] \"rgb tex2\" [0.9 0.8 0.1]\n"
+      << "Texture \"c\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [0.8 0.1 0.1] \"rgb tex2\" [0.9 "
+         "0.8 0.1]\n"
       << "AttributeBegin Material \"matte\" \"texture Kd\" \"c\"\n"
       << "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] \"point3 P\" [" << p(-20, 0, -20)
       << " " << p(20, 0, -20) << " " << p(20, 0, 20) << " " << p(-20, 0, 20) << "]\n"
@@ -86,7 +87,8 @@ std::string ShiftedScene(double offset) {
       << "AttributeBegin Translate " << p(0.9, 0.8, -0.5) << " Material \"glass\"\n"
       << "Shape \"sphere\" \"float radius\" 0.7\nAttributeEnd\n"
       << "AttributeBegin Translate " << p(2.2, 0, 1) << " Rotate -90 1 0 0 Material \"plastic\"\n"
-      << "Shape \"cylinder\" \"float radius\" 0.4 \"float zmin\" 0 \"float zmax\" 1.5\nAttributeEnd\n";
+      << "Shape \"cylinder\" \"float radius\" 0.4 \"float zmin\" 0 \"float zmax\" "
+         "1.5\nAttributeEnd\n";
     return s.str();
 }
 
@@ -132,8 +134,8 @@ TEST(SceneRender, SphereOccluderCastsPredictedUmbraAndPenumbra) {
     const int W = 200;
     const double half = 2.0;
     std::ostringstream s;
-    s << "LookAt 0 3 0  0 0 0  0 0 1\nCamera \"orthographic\" \"float screenwindow\" [" << -half << " "
-      << half << " -0.01 0.01]\n"
+    s << "LookAt 0 3 0  0 0 0  0 0 1\nCamera \"orthographic\" \"float screenwindow\" [" << -half
+      << " " << half << " -0.01 0.01]\n"
       << "Film \"image\" \"integer xresolution\" " << W << " \"integer yresolution\" 1\n"
       << "Sampler \"stratified\" \"integer xsamples\" 1 \"integer ysamples\" 1\nWorldBegin\n"
       << "AttributeBegin AreaLightSource \"diffuse\" \"rgb L\" [4 4 4] \"integer nsamples\" 256\n"

@@ -1,7 +1,6 @@
 // The shared file reader: regular files only (never blocking on a device or FIFO), the OS
 // reason on failure, and the size limit checked before reading.
 #include "core/file_io.h"
-#include "core/memory.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -9,6 +8,8 @@
 
 #include <filesystem>
 #include <fstream>
+
+#include "core/memory.h"
 
 namespace prism {
 namespace {
@@ -56,7 +57,8 @@ TEST(FileIo, RefusesWhatIsNotARegularFile) {
         ReadFileOrThrow("/dev/zero", FileLoc{"s.pbrt", 3, 1});
         FAIL() << "no error";
     } catch (const SceneError &e) {
-        EXPECT_STREQ(e.what(), "s.pbrt:3:1: error: cannot open file \"/dev/zero\": not a regular file");
+        EXPECT_STREQ(e.what(),
+                     "s.pbrt:3:1: error: cannot open file \"/dev/zero\": not a regular file");
     }
 }
 
@@ -90,8 +92,9 @@ TEST(FileIo, ReadingChargesTheBudgetAndRefusesWhatDoesNotFit) {
         ReadFileOrThrow(path, FileLoc{path, 2, 1}, budget, "included file \"c.pbrt\"");
         FAIL() << "no error";
     } catch (const MemoryBudgetError &e) {
-        EXPECT_EQ(e.Message(), "included file \"c.pbrt\" needs about 2.9 KiB; with 5.9 KiB already "
-                               "committed that exceeds the memory budget of 7.8 KiB");
+        EXPECT_EQ(e.Message(),
+                  "included file \"c.pbrt\" needs about 2.9 KiB; with 5.9 KiB already "
+                  "committed that exceeds the memory budget of 7.8 KiB");
         EXPECT_EQ(e.Loc().line, 2);
         EXPECT_EQ(e.Requested(), 3000u);
         EXPECT_EQ(e.Committed(), 6000u);

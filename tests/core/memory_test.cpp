@@ -1,13 +1,13 @@
 // The memory budget helpers: size parsing for --max-memory, formatting, the default, the
 // cumulative MemoryBudget and the BVH and film estimates.
+#include "core/memory.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <thread>
 #include <vector>
-
-#include "core/memory.h"
 
 namespace prism {
 namespace {

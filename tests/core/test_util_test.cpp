@@ -16,12 +16,16 @@ class ScopedCI {
   public:
     explicit ScopedCI(const char *value) {
         if (const char *old = std::getenv("CI")) old_ = old;
-        if (value) setenv("CI", value, 1);
-        else unsetenv("CI");
+        if (value)
+            setenv("CI", value, 1);
+        else
+            unsetenv("CI");
     }
     ~ScopedCI() {
-        if (old_) setenv("CI", old_->c_str(), 1);
-        else unsetenv("CI");
+        if (old_)
+            setenv("CI", old_->c_str(), 1);
+        else
+            unsetenv("CI");
     }
 
   private:

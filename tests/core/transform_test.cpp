@@ -36,8 +36,6 @@ TEST(Transform, LookAtMatchesPbrtConvention) {
     EXPECT_THROW(LookAt({0, 0, 0}, {0, 1, 0}, {0, 1, 0}), std::invalid_argument);
 }
 
-TEST(Transform, SingularMatrixThrows) {
-    EXPECT_THROW(Scale(1, 0, 1), std::invalid_argument);
-}
+TEST(Transform, SingularMatrixThrows) { EXPECT_THROW(Scale(1, 0, 1), std::invalid_argument); }
 
 }  // namespace prism

@@ -117,12 +117,18 @@ void FuzzImage(const uint8_t *data, size_t size, std::string *rejected) {
         return size >= n && std::equal(m, m + n, reinterpret_cast<const char *>(data));
     };
     const char *ext = ".tga";
-    if (starts("\x89PNG")) ext = ".png";
-    else if (starts("\xff\xd8")) ext = ".jpg";
-    else if (starts("v/1\x01")) ext = ".exr";
-    else if (starts("#?")) ext = ".hdr";
-    else if (starts("PF") || starts("Pf")) ext = ".pfm";
-    else if (starts("BM")) ext = ".bmp";
+    if (starts("\x89PNG"))
+        ext = ".png";
+    else if (starts("\xff\xd8"))
+        ext = ".jpg";
+    else if (starts("v/1\x01"))
+        ext = ".exr";
+    else if (starts("#?"))
+        ext = ".hdr";
+    else if (starts("PF") || starts("Pf"))
+        ext = ".pfm";
+    else if (starts("BM"))
+        ext = ".bmp";
     std::vector<unsigned char> bytes(data, data + size);
     ReadImageOptions opts;
     opts.maxPixels = int64_t(1) << 20;  // keeps each run fast; the check itself is under test
@@ -139,12 +145,18 @@ void FuzzImage(const uint8_t *data, size_t size, std::string *rejected) {
 
 bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
                 std::string *rejected) {
-    if (target == "pbrt") FuzzPbrt(data, size, rejected);
-    else if (target == "ply") FuzzPly(data, size, rejected);
-    else if (target == "obj") FuzzObj(data, size, rejected);
-    else if (target == "gltf") FuzzGltf(data, size, rejected);
-    else if (target == "image") FuzzImage(data, size, rejected);
-    else return false;
+    if (target == "pbrt")
+        FuzzPbrt(data, size, rejected);
+    else if (target == "ply")
+        FuzzPly(data, size, rejected);
+    else if (target == "obj")
+        FuzzObj(data, size, rejected);
+    else if (target == "gltf")
+        FuzzGltf(data, size, rejected);
+    else if (target == "image")
+        FuzzImage(data, size, rejected);
+    else
+        return false;
     return true;
 }
 

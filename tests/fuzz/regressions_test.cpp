@@ -27,7 +27,8 @@ std::vector<fs::path> InputsUnder(const fs::path &dir) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) return files;
     for (const auto &e : fs::directory_iterator(dir))
-        if (e.is_regular_file() && e.path().filename().string()[0] != '.') files.push_back(e.path());
+        if (e.is_regular_file() && e.path().filename().string()[0] != '.')
+            files.push_back(e.path());
     std::sort(files.begin(), files.end());
     return files;
 }
@@ -74,8 +75,8 @@ TEST(FuzzRegressions, SeedCorporaParse) {
 // The seed check itself: a seed that does not parse fails it.
 TEST(FuzzRegressions, SeedCheckSeesRejections) {
     std::string bad = "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n", rejected;
-    ASSERT_TRUE(FuzzByName("pbrt", reinterpret_cast<const uint8_t *>(bad.data()), bad.size(),
-                           &rejected));
+    ASSERT_TRUE(
+        FuzzByName("pbrt", reinterpret_cast<const uint8_t *>(bad.data()), bad.size(), &rejected));
     EXPECT_NE(rejected, "");
     std::string good = "WorldBegin\nShape \"sphere\"\nWorldEnd\n";
     rejected.clear();
@@ -97,8 +98,7 @@ TEST(FuzzRegressions, IncludeOfADeviceIsRefusedByTheReader) {
                         (fs::temp_directory_path() / "main.pbrt").string(), diag, opts);
         ADD_FAILURE() << "an Include of /dev/null was read";
     } catch (const SceneError &e) {
-        EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos)
-            << e.what();
+        EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
     }
 }
 

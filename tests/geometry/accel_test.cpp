@@ -12,8 +12,8 @@ TEST(Accel, MeshAndSphereClosestHit) {
     Accel accel;
     // A unit quad at z = 5 and a sphere of radius 1 at z = 2.
     std::vector<Vec3f> P = {{-1, -1, 5}, {1, -1, 5}, {1, 1, 5}, {-1, 1, 5}};
-    int mesh = accel.AddMesh(std::make_unique<TriangleMesh>(Transform(), false, P,
-                                                            std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+    int mesh = accel.AddMesh(std::make_unique<TriangleMesh>(
+        Transform(), false, P, std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
     int sphere = accel.AddAnalytic(
         std::make_unique<Sphere>(Translate(Vec3d(0, 0, 2)), false, 1, -1, 1, 360));
     accel.Commit();
@@ -47,7 +47,8 @@ TEST(Accel, IntersectAndOccludedAgree) {
         accel.Commit();
         for (int i = 0; i < 20000; ++i) {
             Vec3f o(float(20 * rng.UniformDouble() - 5), float(20 * rng.UniformDouble() - 5), -10);
-            Vec3f d = Normalize(Vec3f(float(rng.UniformDouble() - 0.5), float(rng.UniformDouble() - 0.5), 1));
+            Vec3f d = Normalize(
+                Vec3f(float(rng.UniformDouble() - 0.5), float(rng.UniformDouble() - 0.5), 1));
             float tMax = float(40 * rng.UniformDouble());
             SurfaceInteraction si;
             bool hit = accel.Intersect(Ray{o, d, tMax}, &si);
@@ -69,17 +70,21 @@ TEST(Accel, PacketQueriesMatchSingleRays) {
         PCG32 rng(33);
         for (int i = 0; i < 12; ++i) {
             Vec3d c(6 * rng.UniformDouble(), 6 * rng.UniformDouble(), 6 * rng.UniformDouble());
-            accel.AddAnalytic(std::make_unique<Sphere>(Translate(c), false, 0.3 + rng.UniformDouble(), -1, 0.8, 320));
+            accel.AddAnalytic(std::make_unique<Sphere>(Translate(c), false,
+                                                       0.3 + rng.UniformDouble(), -1, 0.8, 320));
         }
         std::vector<Vec3f> P = {{-10, -10, 7}, {10, -10, 7}, {10, 10, 7}, {-10, 10, 7}};
-        accel.AddMesh(std::make_unique<TriangleMesh>(Transform(), false, P, std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+        accel.AddMesh(std::make_unique<TriangleMesh>(Transform(), false, P,
+                                                     std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
         accel.Commit();
         for (int batch = 0; batch < 500; ++batch) {
             int n = 1 + batch % 16;
             Ray rays[16];
             for (int i = 0; i < n; ++i) {
-                rays[i].o = Vec3f(float(8 * rng.UniformDouble() - 1), float(8 * rng.UniformDouble() - 1), -5);
-                rays[i].d = Normalize(Vec3f(float(rng.UniformDouble() - 0.5), float(rng.UniformDouble() - 0.5), 1));
+                rays[i].o = Vec3f(float(8 * rng.UniformDouble() - 1),
+                                  float(8 * rng.UniformDouble() - 1), -5);
+                rays[i].d = Normalize(
+                    Vec3f(float(rng.UniformDouble() - 0.5), float(rng.UniformDouble() - 0.5), 1));
                 rays[i].tMax = float(5 + 15 * rng.UniformDouble());
             }
             RawHit hits[16];
@@ -102,7 +107,8 @@ TEST(Accel, PacketQueriesMatchSingleRays) {
 TEST(Accel, ReverseOrientationFlipsNormals) {
     Accel accel;
     accel.AddAnalytic(std::make_unique<Sphere>(Transform(), true, 1, -1, 1, 360));
-    accel.AddAnalytic(std::make_unique<Sphere>(Translate(Vec3d(5, 0, 0)) * Scale(-1, 1, 1), false, 1, -1, 1, 360));
+    accel.AddAnalytic(std::make_unique<Sphere>(Translate(Vec3d(5, 0, 0)) * Scale(-1, 1, 1), false,
+                                               1, -1, 1, 360));
     accel.Commit();
     SurfaceInteraction si;
     ASSERT_TRUE(accel.Intersect(Ray{{0, 0, -5}, {0, 0, 1}, Infinity}, &si));
@@ -114,10 +120,11 @@ TEST(Accel, ReverseOrientationFlipsNormals) {
 // The triangle normal: float where the edges' angle keeps it within a few tens of ulps of the
 // double result, double for slivers; Interaction without uv/dpdu keeps p, pError and n.
 TEST(TriangleMesh, NormalAndLeanInteraction) {
-    std::vector<Vec3f> P = {{0, 0, 0}, {1, 0, 0}, {0.3f, 1, 0.2f},          // well shaped
+    std::vector<Vec3f> P = {{0, 0, 0}, {1, 0, 0},    {0.3f, 1, 0.2f},          // well shaped
                             {0, 0, 0}, {1000, 0, 0}, {500, 0.001f, 0.0003f}};  // sliver
     std::vector<uint32_t> idx = {0, 1, 2, 3, 4, 5};
-    TriangleMesh mesh(Transform(), false, P, idx, {}, {{0, 0}, {1, 0}, {0, 1}, {0, 0}, {1, 0}, {0, 1}});
+    TriangleMesh mesh(Transform(), false, P, idx, {},
+                      {{0, 0}, {1, 0}, {0, 1}, {0, 0}, {1, 0}, {0, 1}});
     for (size_t prim : {size_t(0), size_t(1)}) {
         const uint32_t *v = mesh.Triangle(prim);
         Vec3d e1 = Vec3d(P[v[1]] - P[v[0]]), e2 = Vec3d(P[v[2]] - P[v[0]]);
@@ -146,8 +153,8 @@ namespace prism {
 // HighQualitySamplesPerTriangle camera samples per triangle; the hits do not change.
 TEST(Accel, BuildQualityFollowsTheExpectedWork) {
     std::vector<Vec3f> P = {{-1, -1, 5}, {1, -1, 5}, {1, 1, 5}, {-1, 1, 5}};
-    for (uint64_t samples : {uint64_t(0), 2 * HighQualitySamplesPerTriangle - 1,
-                             2 * HighQualitySamplesPerTriangle}) {
+    for (uint64_t samples :
+         {uint64_t(0), 2 * HighQualitySamplesPerTriangle - 1, 2 * HighQualitySamplesPerTriangle}) {
         AccelOptions ao;
         ao.expectedSamples = samples;
         Accel accel(ao);

@@ -161,8 +161,8 @@ TEST(LoopSubdiv, LimitPointsAndNormalsDoNotDependOnTheLevel) {
     ExpectLimitInvariant(TetraP, TetraIdx, 1e-5f);
     ExpectLimitInvariant(CubeP, CubeIdx, 1e-5f);  // valences 4 and 5 and 6
     // An open, non-planar fan (a boundary of valence 5) and a saddle.
-    std::vector<Vec3f> P = {{0, 0, 0}, {1, 0, 0.3f}, {0.7f, 0.7f, -0.2f}, {0, 1, 0.4f},
-                            {-0.7f, 0.7f, 0.1f}, {-1, 0, -0.3f}};
+    std::vector<Vec3f> P = {{0, 0, 0},    {1, 0, 0.3f},        {0.7f, 0.7f, -0.2f},
+                            {0, 1, 0.4f}, {-0.7f, 0.7f, 0.1f}, {-1, 0, -0.3f}};
     ExpectLimitInvariant(P, {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5}, 1e-5f);
 }
 

@@ -34,8 +34,8 @@ void CheckReintersect(const Sphere &sphere, Precision prec, uint64_t seed, int n
     for (int i = 0; i < nRays; ++i) {
         // A ray from outside aimed at a random point of the bounds.
         Vec3d target = Vec3d(Lerp(rng.UniformDouble(), wb.pMin.x, wb.pMax.x),
-                       Lerp(rng.UniformDouble(), wb.pMin.y, wb.pMax.y),
-                       Lerp(rng.UniformDouble(), wb.pMin.z, wb.pMax.z));
+                             Lerp(rng.UniformDouble(), wb.pMin.y, wb.pMax.y),
+                             Lerp(rng.UniformDouble(), wb.pMin.z, wb.pMax.z));
         Vec3d dir(RandomDir(rng));
         double extent = Length(wb.Diagonal());
         Vec3f o(target - dir * (2 * extent)), d(dir);
@@ -51,7 +51,8 @@ void CheckReintersect(const Sphere &sphere, Precision prec, uint64_t seed, int n
             bool outward = Dot(w, si.n) > 0;
             if (!sphere.IsPartial()) {
                 if (outward) {
-                    EXPECT_FALSE(again) << "self-hit at t=" << h2.t << " seed " << seed << " i " << i;
+                    EXPECT_FALSE(again)
+                        << "self-hit at t=" << h2.t << " seed " << seed << " i " << i;
                 } else {
                     // Inward: exactly one hit, on the far side, not at the origin.
                     ASSERT_TRUE(again) << "inward ray missed the far side, seed " << seed;
@@ -199,7 +200,8 @@ TEST(Sphere, S4_HugeFloorSphere) {
         double angle = dip + Radians(0.1 + 11.4 * rng.UniformDouble());
         double az = 2 * Pi * rng.UniformDouble();
         Vec3f o(0, 1, 0);
-        Vec3f d(Vec3d(std::cos(angle) * std::cos(az), -std::sin(angle), std::cos(angle) * std::sin(az)));
+        Vec3f d(Vec3d(std::cos(angle) * std::cos(az), -std::sin(angle),
+                      std::cos(angle) * std::sin(az)));
         ObjectHit hit;
         if (!s.Intersect(o, d, 0, Infinity, Precision::Double, &hit)) {
             ++falseResults;
@@ -207,12 +209,14 @@ TEST(Sphere, S4_HugeFloorSphere) {
         }
         SurfaceInteraction si = s.Interaction(hit, d);
         Vec3d pc = Vec3d(si.p) - Vec3d(0, -R, 0);
-        EXPECT_LE(std::abs(Length(pc) - R), std::max(1e-6, 4 * double(std::nextafter(1e5f, 2e5f) - 1e5f)));
+        EXPECT_LE(std::abs(Length(pc) - R),
+                  std::max(1e-6, 4 * double(std::nextafter(1e5f, 2e5f) - 1e5f)));
         // Shadow ray to a light at height 10 must not be blocked by the floor itself.
         Vec3f light(si.p.x, 10.f, si.p.z);
         Ray shadow = si.SpawnRayTo(light);
         ObjectHit h2;
-        EXPECT_FALSE(s.Intersect(shadow.o, shadow.d, 0, shadow.tMax, Precision::Double, &h2)) << "acne";
+        EXPECT_FALSE(s.Intersect(shadow.o, shadow.d, 0, shadow.tMax, Precision::Double, &h2))
+            << "acne";
     }
     EXPECT_EQ(falseResults, 0);
     // Rays 0.1 degrees *above* the true horizon miss.
@@ -261,9 +265,11 @@ TEST(Sphere, S2_RayOriginOnTheSurface) {
                 // The far root of the spawned ray, in long double. (At the origin this is
                 // 2 r cos(theta); far from it the float hit point sits up to ulp(|p|) off the
                 // surface, which moves grazing chords, so compare with the exact root.)
-                long double ox = (long double)r.o.x - c.centre.x, oy = (long double)r.o.y - c.centre.y,
+                long double ox = (long double)r.o.x - c.centre.x,
+                            oy = (long double)r.o.y - c.centre.y,
                             oz = (long double)r.o.z - c.centre.z;
-                long double a = (long double)r.d.x * r.d.x + (long double)r.d.y * r.d.y + (long double)r.d.z * r.d.z;
+                long double a = (long double)r.d.x * r.d.x + (long double)r.d.y * r.d.y +
+                                (long double)r.d.z * r.d.z;
                 long double b = 2 * (ox * r.d.x + oy * r.d.y + oz * r.d.z);
                 long double cc = ox * ox + oy * oy + oz * oz - (long double)c.r * c.r;
                 long double tFar = (-b + std::sqrt(std::max(0.0L, b * b - 4 * a * cc))) / (2 * a);
@@ -283,7 +289,8 @@ TEST(Sphere, S2_RayOriginOnTheSurface) {
     }
     // Two concentric spheres r and r (1 + 1e-5): a ray leaving the inner one outward must
     // still hit the outer one, so the offset skips no real geometry.
-    Sphere inner(Transform(), false, 1, -1, 1, 360), outer(Transform(), false, 1 + 1e-5, -2, 2, 360);
+    Sphere inner(Transform(), false, 1, -1, 1, 360),
+        outer(Transform(), false, 1 + 1e-5, -2, 2, 360);
     PCG32 rng(43);
     for (int i = 0; i < 2000; ++i) {
         Vec3d n(RandomDir(rng));
@@ -320,8 +327,9 @@ TEST(Sphere, InteractionWithoutSurfaceDataKeepsPointAndNormal) {
         int hits = 0;
         for (int i = 0; i < 200; ++i) {
             Vec3f o(0, 0, 0);
-            Vec3f d = Normalize(Vec3f(0.3f, -1.2f, 4.0f) +
-                                Vec3f(rng.Uniform() - 0.5f, rng.Uniform() - 0.5f, rng.Uniform() - 0.5f) * 6.f);
+            Vec3f d = Normalize(
+                Vec3f(0.3f, -1.2f, 4.0f) +
+                Vec3f(rng.Uniform() - 0.5f, rng.Uniform() - 0.5f, rng.Uniform() - 0.5f) * 6.f);
             ObjectHit hit;
             if (!s.Intersect(o, d, 0, Infinity, Precision::Double, &hit)) continue;
             ++hits;

@@ -140,8 +140,8 @@ TEST(Torus, S8c_TangentRaysGrazeTheTopCircle) {
                 continue;
             ++hits;
             LD w = std::sqrt(LD(R) * R - LD(y0) * y0);
-            double err = std::min(std::abs(double(hit.t - (5 - w))),
-                                  std::abs(double(hit.t - (5 + w))));
+            double err =
+                std::min(std::abs(double(hit.t - (5 - w))), std::abs(double(hit.t - (5 + w))));
             double kappa = (1 / r) * (1 - double(y0) * y0 / (R * R));
             EXPECT_LE(err, std::sqrt(2 * Eps * 5 / kappa)) << "y0 " << y0;
         }

@@ -1,4 +1,6 @@
 // Tests for pixel filters, sample splatting, tile merging and the NaN guard.
+#include "image/film.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,8 +8,6 @@
 #include <random>
 #include <thread>
 #include <vector>
-
-#include "image/film.h"
 
 namespace prism {
 namespace {

@@ -1,9 +1,9 @@
 // Tests for image comparison, downsampling and heat maps.
+#include "image/image_compare.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "image/image_compare.h"
 
 namespace prism {
 namespace {

@@ -1,4 +1,6 @@
 // Tests for image reading/writing, sRGB curves and atomic writes.
+#include "image/image_io.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,8 +11,6 @@
 #include <random>
 #include <set>
 #include <string>
-
-#include "image/image_io.h"
 
 namespace prism {
 namespace {
@@ -73,9 +73,9 @@ TEST(Srgb, KnownValuesAndRoundTrip) {
 TEST_F(ImageIOTest, ExrPreservesFloatsExactly) {
     for (int c : {1, 3, 4}) {
         Image img = RandomImage(7, 5, c, -10.f, 1000.f, 42 + c);
-        img.At(0, 0, 0) = 1e-30f;    // would underflow in half
-        img.At(1, 0, 0) = 3.0e38f;   // would overflow in half
-        img.At(2, 0, 0) = 0.1f;      // not representable in half
+        img.At(0, 0, 0) = 1e-30f;   // would underflow in half
+        img.At(1, 0, 0) = 3.0e38f;  // would overflow in half
+        img.At(2, 0, 0) = 0.1f;     // not representable in half
         std::string path = Path("f" + std::to_string(c) + ".exr");
         WriteImage(path, img);
         Image back = ReadImage(path);
@@ -288,9 +288,7 @@ TEST_F(ImageIOTest, ReadingBadFilesThrows) {
     } catch (const std::runtime_error &e) {
         EXPECT_NE(std::string(e.what()).find("cannot read image"), std::string::npos);
     }
-    {
-        std::ofstream f(Path("empty.exr"));
-    }
+    { std::ofstream f(Path("empty.exr")); }
     EXPECT_THROW(ReadImage(Path("empty.exr")), std::runtime_error);
 
     // Truncate a valid PNG at several points; every prefix must fail cleanly.

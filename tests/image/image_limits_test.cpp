@@ -36,7 +36,8 @@ TEST(ImageLimits, ExrAttributeLargerThanTheFileIsRejected) {
     ASSERT_FALSE(b.empty());
     std::string err = ErrorOf([&] { ReadImageFromMemory(b, "t.exr"); });
     EXPECT_NE(err.find("corrupt OpenEXR header (an attribute claims 2147418112 bytes)"),
-              std::string::npos) << err;
+              std::string::npos)
+        << err;
     // The same through a file, whatever its extension says.
     err = ErrorOf([&] { ReadImage(Bad + "huge_attribute.exr"); });
     EXPECT_NE(err.find("corrupt OpenEXR header"), std::string::npos) << err;
@@ -73,7 +74,8 @@ TEST(ImageLimits, ValidExrStillReadsAndMaxPixelsIsEnforced) {
     err = ErrorOf([&] { ReadImage(png, small); });
     EXPECT_NE(err.find("image is too large: 8x4x3 values need 384 bytes, more than the limit of "
                        "380 bytes"),
-              std::string::npos) << err;
+              std::string::npos)
+        << err;
     // A memory limit, not a bad file: MemoryBudgetError, and the library names no flag.
     EXPECT_EQ(err.find("--max-memory"), std::string::npos) << err;
     try {

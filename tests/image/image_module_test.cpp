@@ -81,7 +81,9 @@ std::string WriteTexturedScene(const fs::path &dir, const std::string &ext = "tg
     f << "Film \"image\" \"integer xresolution\" [8] \"integer yresolution\" [6]\n"
          "Camera \"perspective\"\n"
          "WorldBegin\n"
-         "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t." << ext << "\"\n"
+         "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t."
+      << ext
+      << "\"\n"
          "Material \"matte\" \"texture Kd\" \"t\"\n"
          "Shape \"sphere\"\n"
          "WorldEnd\n";
@@ -98,7 +100,7 @@ TEST(ImageModule, PrismDoesNotLinkOpenImageIO) {
 TEST_F(ImageModuleTest, RenderWithoutImagesNeverMapsOpenImageIO) {
     // LD_DEBUG=files makes the dynamic loader report every library it maps, dlopen() included.
     RunResult r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + Whitted +
-                      "' --res 8x6 --quiet -o '" + Path("w.png") + "'");
+                             "' --res 8x6 --quiet -o '" + Path("w.png") + "'");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("libpng16"), std::string::npos) << "LD_DEBUG output missing";
     EXPECT_EQ(r.output.find("libOpenImageIO"), std::string::npos);
@@ -121,8 +123,8 @@ TEST_F(ImageModuleTest, OnlyOtherFormatsLoadTheModule) {
     }
     // A TGA texture loads the module.
     std::string scene = WriteTexturedScene(dir_);
-    RunResult r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + scene +
-                             "' --quiet -o '" + Path("out.png") + "'");
+    RunResult r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + scene + "' --quiet -o '" +
+                             Path("out.png") + "'");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("libprism_oiio"), std::string::npos);
     EXPECT_NE(r.output.find("libOpenImageIO"), std::string::npos);
@@ -131,18 +133,17 @@ TEST_F(ImageModuleTest, OnlyOtherFormatsLoadTheModule) {
 TEST_F(ImageModuleTest, MissingModuleIsAClearError) {
     std::string scene = WriteTexturedScene(dir_);
     RunResult r = RunCommand("PRISM_OIIO_MODULE='" + Path("no-such-module.so") + "' '" + Prism +
-                      "' render '" + scene + "' --quiet -o '" + Path("t.png") + "'");
+                             "' render '" + scene + "' --quiet -o '" + Path("t.png") + "'");
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("cannot read image"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("libprism_oiio.so could not be loaded"), std::string::npos)
-        << r.output;
+    EXPECT_NE(r.output.find("libprism_oiio.so could not be loaded"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("no-such-module.so: not found"), std::string::npos) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one error line";
     EXPECT_FALSE(fs::exists(Path("t.png")));
     // A file that is not a shared library is reported with dlopen's reason.
     { std::ofstream(Path("fake.so")) << "not a library\n"; }
     r = RunCommand("PRISM_OIIO_MODULE='" + Path("fake.so") + "' '" + Prism + "' render '" + scene +
-            "' --quiet -o '" + Path("t.png") + "'");
+                   "' --quiet -o '" + Path("t.png") + "'");
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("fake.so: "), std::string::npos) << r.output;
     // PNG and EXR output need no module.
@@ -250,9 +251,9 @@ TEST_F(ImageModuleTest, WriteErrorMidFileRemovesTheTemporary) {
 // and fail on the same files.
 TEST(ImageModule, DirectReadersMatchOpenImageIO) {
     std::vector<fs::path> files;
-    for (const std::string &root : {std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/tests",
-                                   std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes",
-                                   std::string(PRISM_SHARED_DIR)}) {
+    for (const std::string &root :
+         {std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/tests",
+          std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes", std::string(PRISM_SHARED_DIR)}) {
         std::error_code ec;
         if (!fs::is_directory(root, ec)) continue;
         for (auto it = fs::recursive_directory_iterator(root, ec);

@@ -118,7 +118,8 @@ TEST(Material, TranslucentTransmitsLightFromTheBack) {
     float sinT = woT.x / 1.5f;
     Vec3f refracted(-sinT, 0, -std::sqrt(1 - sinT * sinT));
     RGB peak = g.f(woT, refracted) - b.f(woT, refracted);
-    RGB off = g.f(woT, Normalize(Vec3f(0.6f, 0.4f, -1))) - b.f(woT, Normalize(Vec3f(0.6f, 0.4f, -1)));
+    RGB off =
+        g.f(woT, Normalize(Vec3f(0.6f, 0.4f, -1))) - b.f(woT, Normalize(Vec3f(0.6f, 0.4f, -1)));
     EXPECT_GT(peak.r, 1.f);
     EXPECT_GT(peak.r, 20 * off.r);
     EXPECT_TRUE(peak.IsFinite());
@@ -193,7 +194,9 @@ RenderScene Build(const std::string &world, Diagnostics &diag) {
     return BuildRenderScene(d, o, diag);
 }
 
-const Material &ShapeMaterial(const RenderScene &s) { return s.materials[size_t(s.shapes[0].material)]; }
+const Material &ShapeMaterial(const RenderScene &s) {
+    return s.materials[size_t(s.shapes[0].material)];
+}
 
 TEST(MaterialScene, NamedMixResolvesAndBlends) {
     Diagnostics diag;
@@ -217,12 +220,13 @@ TEST(MaterialScene, NamedMixResolvesAndBlends) {
 TEST(MaterialScene, MixCycleIsAnErrorWithLocation) {
     Diagnostics diag;
     try {
-        Build("MakeNamedMaterial \"a\" \"string type\" \"mix\" \"string namedmaterial1\" \"b\"\n"
-              "  \"string namedmaterial2\" \"b\"\n"
-              "MakeNamedMaterial \"b\" \"string type\" \"mix\" \"string namedmaterial1\" \"a\"\n"
-              "  \"string namedmaterial2\" \"a\"\n"
-              "NamedMaterial \"a\"\nShape \"sphere\"\n",
-              diag);
+        Build(
+            "MakeNamedMaterial \"a\" \"string type\" \"mix\" \"string namedmaterial1\" \"b\"\n"
+            "  \"string namedmaterial2\" \"b\"\n"
+            "MakeNamedMaterial \"b\" \"string type\" \"mix\" \"string namedmaterial1\" \"a\"\n"
+            "  \"string namedmaterial2\" \"a\"\n"
+            "NamedMaterial \"a\"\nShape \"sphere\"\n",
+            diag);
         FAIL() << "expected a SceneError";
     } catch (const SceneError &e) {
         std::string msg = e.what();
@@ -230,17 +234,19 @@ TEST(MaterialScene, MixCycleIsAnErrorWithLocation) {
         EXPECT_NE(msg.find("test.pbrt:"), std::string::npos) << msg;
     }
     Diagnostics d2;
-    EXPECT_THROW(Build("MakeNamedMaterial \"s\" \"string type\" \"mix\" \"string namedmaterial1\" \"s\"\n"
-                       "  \"string namedmaterial2\" \"s\"\nNamedMaterial \"s\"\nShape \"sphere\"\n",
-                       d2),
-                 SceneError);
+    EXPECT_THROW(
+        Build("MakeNamedMaterial \"s\" \"string type\" \"mix\" \"string namedmaterial1\" \"s\"\n"
+              "  \"string namedmaterial2\" \"s\"\nNamedMaterial \"s\"\nShape \"sphere\"\n",
+              d2),
+        SceneError);
 }
 
 TEST(MaterialScene, UnsupportedMaterialFallsBackToMatteWithItsColour) {
     Diagnostics diag;
-    RenderScene s = Build("Material \"disney\" \"rgb color\" [0.2 0.4 0.6] \"float metallic\" 1\n"
-                          "Shape \"sphere\"\n",
-                          diag);
+    RenderScene s = Build(
+        "Material \"disney\" \"rgb color\" [0.2 0.4 0.6] \"float metallic\" 1\n"
+        "Shape \"sphere\"\n",
+        diag);
     const Material &m = ShapeMaterial(s);
     EXPECT_EQ(m.kind, Material::Kind::Matte);
     EXPECT_EQ(m.Kd->Evaluate({}), RGB(0.2f, 0.4f, 0.6f));
@@ -250,7 +256,8 @@ TEST(MaterialScene, UnsupportedMaterialFallsBackToMatteWithItsColour) {
 
 TEST(MaterialScene, V4Names) {
     Diagnostics diag;
-    RenderScene s = Build("Material \"conductor\" \"rgb reflectance\" [0.9 0.5 0.2]\nShape \"sphere\"\n", diag);
+    RenderScene s =
+        Build("Material \"conductor\" \"rgb reflectance\" [0.9 0.5 0.2]\nShape \"sphere\"\n", diag);
     const Material &m = ShapeMaterial(s);
     ASSERT_EQ(m.kind, Material::Kind::Metal);
     EXPECT_TRUE(m.MayReflectSpecularly());  // v4 conductors default to roughness 0
@@ -258,9 +265,10 @@ TEST(MaterialScene, V4Names) {
     EXPECT_NEAR(r0.r, 0.9f, 1e-4f);
     EXPECT_NEAR(r0.b, 0.2f, 1e-4f);
     Diagnostics d2;
-    RenderScene t = Build("Material \"diffusetransmission\" \"rgb transmittance\" [0.5 0.5 0.5]\n"
-                          "Shape \"sphere\"\n",
-                          d2);
+    RenderScene t = Build(
+        "Material \"diffusetransmission\" \"rgb transmittance\" [0.5 0.5 0.5]\n"
+        "Shape \"sphere\"\n",
+        d2);
     EXPECT_EQ(ShapeMaterial(t).kind, Material::Kind::Translucent);
     BSDF b = ShapeMaterial(t).GetBSDF(FlatHit(), {});
     EXPECT_NEAR(b.f({0, 0, 1}, {0, 0, -1}).r, 0.5f * float(InvPi), 1e-6f);
@@ -269,9 +277,10 @@ TEST(MaterialScene, V4Names) {
 
 TEST(MaterialScene, LoopSubdivShapeBecomesAMesh) {
     Diagnostics diag;
-    RenderScene s = Build("Shape \"loopsubdiv\" \"integer levels\" [2] \"integer indices\" "
-                          "[0 1 2 0 3 1 0 2 3 1 3 2] \"point3 P\" [1 1 1 1 -1 -1 -1 1 -1 -1 -1 1]\n",
-                          diag);
+    RenderScene s = Build(
+        "Shape \"loopsubdiv\" \"integer levels\" [2] \"integer indices\" "
+        "[0 1 2 0 3 1 0 2 3 1 3 2] \"point3 P\" [1 1 1 1 -1 -1 -1 1 -1 -1 -1 1]\n",
+        diag);
     EXPECT_EQ(s.features.triangles, size_t(4 * 16));
     EXPECT_EQ(diag.Count(), size_t(0));
     Diagnostics d2;

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "render/noise.h"
 #include "build/build_scene.h"
+#include "render/noise.h"
 #include "scene/pbrt_parser.h"
 
 namespace prism {
@@ -38,7 +38,8 @@ TEST(Noise, MatchesReferenceValuesAndVanishesOnTheLattice) {
 TEST(Noise, OctaveSums) {
     Vec3f p(0.3f, 1.7f, -2.2f);
     EXPECT_EQ(FBm(p, 0.5f, 1), PerlinNoise(p));
-    float want = PerlinNoise(p) + 0.5f * PerlinNoise(p * 1.99f) + 0.25f * PerlinNoise(p * (1.99f * 1.99f));
+    float want =
+        PerlinNoise(p) + 0.5f * PerlinNoise(p * 1.99f) + 0.25f * PerlinNoise(p * (1.99f * 1.99f));
     EXPECT_NEAR(FBm(p, 0.5f, 3), want, 1e-6f);
     float turb = std::abs(PerlinNoise(p)) + 0.5f * std::abs(PerlinNoise(p * 1.99f)) + 0.25f * 0.2f;
     EXPECT_NEAR(Turbulence(p, 0.5f, 2), turb, 1e-6f);
@@ -47,7 +48,8 @@ TEST(Noise, OctaveSums) {
 TEST(Texture, NoiseTexturesEvaluateTheirDefinitions) {
     Vec3f p(0.3f, 1.7f, -2.2f);
     TextureMapping3D id{Transform()};
-    EXPECT_EQ(NoiseTexture(NoiseTexture::Kind::FBm, id, 8, 0.5f).Evaluate(AtP(p)), RGB(FBm(p, 0.5f, 8)));
+    EXPECT_EQ(NoiseTexture(NoiseTexture::Kind::FBm, id, 8, 0.5f).Evaluate(AtP(p)),
+              RGB(FBm(p, 0.5f, 8)));
     EXPECT_EQ(NoiseTexture(NoiseTexture::Kind::Wrinkled, id, 8, 0.5f).Evaluate(AtP(p)),
               RGB(Turbulence(p, 0.5f, 8)));
     float windy = std::abs(FBm(p * 0.1f, 0.5f, 3)) * FBm(p, 0.5f, 6);
@@ -102,11 +104,12 @@ SceneDescription Parse(const std::string &world, Diagnostics &diag) {
 
 TEST(TextureScene, ThreeDTexturesUseTheInverseCTM) {
     Diagnostics diag;
-    SceneDescription d = Parse("AttributeBegin\nScale 2 2 2\n"
-                               "Texture \"n\" \"spectrum\" \"fbm\" \"integer octaves\" 4\n"
-                               "AttributeEnd\n"
-                               "Material \"matte\" \"texture Kd\" \"n\"\nShape \"sphere\"\n",
-                               diag);
+    SceneDescription d = Parse(
+        "AttributeBegin\nScale 2 2 2\n"
+        "Texture \"n\" \"spectrum\" \"fbm\" \"integer octaves\" 4\n"
+        "AttributeEnd\n"
+        "Material \"matte\" \"texture Kd\" \"n\"\nShape \"sphere\"\n",
+        diag);
     BuildSettings o;
     o.resolution = {4, 4};
     RenderScene s = BuildRenderScene(d, o, diag);
@@ -137,7 +140,8 @@ TEST(TextureScene, EveryClassBuildsAndPtexWarns) {
     EXPECT_NE(diag.Warnings()[0].message.find("ptex"), std::string::npos);
     EXPECT_TRUE(s.features.textures);
     Diagnostics d2;
-    SceneDescription bad = Parse("Texture \"n\" \"float\" \"fbm\" \"integer octaves\" 100000\n", d2);
+    SceneDescription bad =
+        Parse("Texture \"n\" \"float\" \"fbm\" \"integer octaves\" 100000\n", d2);
     EXPECT_THROW(BuildRenderScene(bad, o, d2), SceneError);
 }
 

@@ -46,7 +46,10 @@ struct TestScene {
         return int(scene.materials.size()) - 1;
     }
     RGB Li(const Ray &r) {
-        if (!committed) { scene.accel->Commit(); committed = true; }
+        if (!committed) {
+            scene.accel->Commit();
+            committed = true;
+        }
         RayCounters c;
         return WhittedIntegrator(scene).Li(r, 0, c);
     }

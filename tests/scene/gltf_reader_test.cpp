@@ -1,13 +1,14 @@
 // glTF reader: node transforms, primitives, camera conventions, KHR lights, materials,
 // embedded images, and clean errors for malformed accessors.
 #include "scene/gltf_reader.h"
-#include "test_util.h"
+
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <fstream>
 
-#include <gtest/gtest.h>
+#include "test_util.h"
 
 namespace prism {
 namespace {
@@ -208,9 +209,9 @@ TEST(GltfReader, PerspectiveCameraConvention) {
     const Transform &cw = c.cameraFromWorld;
     ExpectNear(Apply(cw, Vec3d(1, 2, 13)), Vec3d(0, 0, 0), 1e-9);
     Vec3d ahead = Apply(cw, Vec3d(1, 2, 3));
-    EXPECT_NEAR(ahead.z, 10, 1e-9);                       // in front → z > 0
-    EXPECT_GT(Apply(cw, Vec3d(2, 2, 8)).x, 0);            // camera's right (+x) → x > 0
-    EXPECT_GT(Apply(cw, Vec3d(1, 3, 8)).y, 0);            // up stays up
+    EXPECT_NEAR(ahead.z, 10, 1e-9);             // in front → z > 0
+    EXPECT_GT(Apply(cw, Vec3d(2, 2, 8)).x, 0);  // camera's right (+x) → x > 0
+    EXPECT_GT(Apply(cw, Vec3d(1, 3, 8)).y, 0);  // up stays up
 }
 
 TEST(GltfReader, OrthographicAndPortraitCameras) {
@@ -324,8 +325,8 @@ TEST(GltfReader, MalformedFilesAreSceneErrors) {
     std::string json = Replace(kGltf, "\"byteOffset\": 108, \"byteLength\": 32",
                                "\"byteOffset\": 108, \"byteLength\": 3200");
     json = Replace(Replace(Replace(json, "SCENE", "0"), "POSCOUNT", "4"), "IMAGE64", "AAAA");
-    json = Replace(json, "BUFFERURI",
-                   "data:application/octet-stream;base64," + Base64(QuadBuffer()));
+    json =
+        Replace(json, "BUFFERURI", "data:application/octet-stream;base64," + Base64(QuadBuffer()));
     EXPECT_THROW(ReadGltfFile(WriteFile("gltft_bad3.gltf", json), diag), SceneError);
     EXPECT_THROW(ReadGltfFile(WriteFile("gltft_bad4.gltf", "{ \"asset\": "), diag), SceneError);
     EXPECT_THROW(ReadGltfFile(WriteFile("gltft_bad5.glb", "glTF\x02\x00\x00\x00garbage"), diag),

@@ -81,7 +81,8 @@ std::string TriangleGltf(const std::string &bufferUri, int byteLength) {
  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
  "bufferViews": [{"buffer": 0, "byteLength": 36}],
- "buffers": [{"byteLength": )" + std::to_string(byteLength) + R"(, "uri": ")" + bufferUri + R"("}]})";
+ "buffers": [{"byteLength": )" +
+           std::to_string(byteLength) + R"(, "uri": ")" + bufferUri + R"("}]})";
 }
 
 TEST(Limits, GltfBuffersMustFitTheBudgetAndBeRegularFiles) {
@@ -95,7 +96,8 @@ TEST(Limits, GltfBuffersMustFitTheBudgetAndBeRegularFiles) {
     EXPECT_NE(err.find("exceeds the memory budget"), std::string::npos) << err;
     // A buffer that is a device (hostile URI) is refused before it is read.
     std::string rel;
-    for (fs::path p = Dir(); p.has_relative_path() && p != p.root_path(); p = p.parent_path()) rel += "../";
+    for (fs::path p = Dir(); p.has_relative_path() && p != p.root_path(); p = p.parent_path())
+        rel += "../";
     path = Write("zero.gltf", TriangleGltf(rel + "dev/zero", 36));
     err = ErrorOf([&] { ReadGltfFile(path, diag); });
     EXPECT_NE(err.find("not a regular file"), std::string::npos) << err;
@@ -112,8 +114,9 @@ TEST(Limits, GltfAccessorPastItsBuffer) {
 TEST(Limits, IncludeDepthAndCycles) {
     // a0 includes a1 includes ... a9: fine with depth 10, an error with depth 5.
     for (int i = 0; i < 10; ++i)
-        Write("chain" + std::to_string(i) + ".pbrt",
-              i < 9 ? "Include \"chain" + std::to_string(i + 1) + ".pbrt\"\n" : "Shape \"sphere\"\n");
+        Write(
+            "chain" + std::to_string(i) + ".pbrt",
+            i < 9 ? "Include \"chain" + std::to_string(i + 1) + ".pbrt\"\n" : "Shape \"sphere\"\n");
     Diagnostics diag;
     PbrtParseOptions opts;
     opts.maxIncludeDepth = 10;

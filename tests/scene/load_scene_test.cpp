@@ -2,11 +2,11 @@
 // OBJ/glTF scenes (triangle counts from /work/shared/scenes/MANIFEST.md).
 #include "scene/load_scene.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "test_util.h"
 
@@ -107,8 +107,9 @@ TEST(LoadScene, ObjGetsFramedCameraAndDefaultLights) {
 
 TEST(LoadScene, EmissiveObjGetsNoDefaultLight) {
     WriteFile("ls_lamp.mtl", "newmtl lamp\nKe 1 1 1\n");
-    std::string path = WriteFile("ls_lamp.obj", "mtllib ls_lamp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
-                                                "usemtl lamp\nf 1 2 3\n");
+    std::string path = WriteFile("ls_lamp.obj",
+                                 "mtllib ls_lamp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                 "usemtl lamp\nf 1 2 3\n");
     Diagnostics diag;
     SceneDescription d = LoadScene(path, diag);
     EXPECT_TRUE(d.lights.empty());
@@ -138,8 +139,9 @@ TEST(LoadScene, PlyBecomesPlymeshScene) {
     EXPECT_GT(c.z, 0);
     EXPECT_FALSE(d.lights.empty());
     // A broken PLY is reported by LoadScene, not later.
-    std::string bad = WriteFile("ls_bad.ply", "ply\nformat ascii 1.0\nelement vertex 5\n"
-                                              "property float x\nend_header\n1\n");
+    std::string bad = WriteFile("ls_bad.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 5\n"
+                                "property float x\nend_header\n1\n");
     EXPECT_NE(ErrorOf(bad).find("5 vertices"), std::string::npos) << ErrorOf(bad);
 }
 

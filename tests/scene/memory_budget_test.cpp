@@ -58,8 +58,9 @@ std::string AsciiPly(int nv) {
 TEST(MemoryBudgetScene, IncludedFilesEachUnderTheLimitAreRefusedTogether) {
     Write("part_a.pbrt", PaddedPbrt("", 3000));
     Write("part_b.pbrt", PaddedPbrt("", 3000));
-    std::string top = Write("two_parts.pbrt", "Camera \"perspective\"\nWorldBegin\n"
-                                              "Include \"part_a.pbrt\"\nInclude \"part_b.pbrt\"\n");
+    std::string top = Write("two_parts.pbrt",
+                            "Camera \"perspective\"\nWorldBegin\n"
+                            "Include \"part_a.pbrt\"\nInclude \"part_b.pbrt\"\n");
     std::string onlyA = Write("one_part.pbrt", "WorldBegin\nInclude \"part_a.pbrt\"\n");
     const uint64_t topSize = fs::file_size(top);
     Diagnostics diag;
@@ -104,10 +105,10 @@ TEST(MemoryBudgetScene, TheTopFileCountsWithWhatIsAlreadyCommitted) {
 TEST(MemoryBudgetScene, PlyUnderTheLimitWithTheSceneFileOverIt) {
     std::string ply = Write("mesh.ply", AsciiPly(200));
     const uint64_t meshBytes = PlyMeshBytes(fs::file_size(ply), 200, 1);
-    std::string scene = Write("with_mesh.pbrt",
-                              PaddedPbrt("WorldBegin\nShape \"plymesh\" \"string filename\" "
-                                         "\"mesh.ply\"\n",
-                                         3000));
+    std::string scene =
+        Write("with_mesh.pbrt", PaddedPbrt("WorldBegin\nShape \"plymesh\" \"string filename\" "
+                                           "\"mesh.ply\"\n",
+                                           3000));
     const uint64_t limit = meshBytes + 2000;  // the mesh alone fits, not with the scene file
     Diagnostics diag;
     {
@@ -147,8 +148,7 @@ TEST(MemoryBudgetScene, TriangleMeshParametersAreCharged) {
     for (int i = 0; i < 300; ++i) points += "0 0 " + std::to_string(i) + " ";
     for (int i = 0; i < 100; ++i) indices += "0 1 2 ";
     std::string path = Write("mesh.pbrt", "WorldBegin\nShape \"trianglemesh\" \"point P\" [" +
-                                              points + "] \"integer indices\" [" + indices +
-                                              "]\n");
+                                              points + "] \"integer indices\" [" + indices + "]\n");
     const uint64_t fileSize = fs::file_size(path);
     const uint64_t numbers = (900 + 300) * sizeof(double);  // P and indices, as doubles
     Diagnostics diag;
@@ -163,7 +163,8 @@ TEST(MemoryBudgetScene, TriangleMeshParametersAreCharged) {
     opts.budget = nullptr;
     opts.maxMemory = numbers + 1024;
     std::string err = BudgetErrorOf([&] { LoadScene(path, diag, opts); });
-    EXPECT_NE(err.find("mesh.pbrt:2:1: error: shape \"trianglemesh\" needs about 9."), std::string::npos)
+    EXPECT_NE(err.find("mesh.pbrt:2:1: error: shape \"trianglemesh\" needs about 9."),
+              std::string::npos)
         << err;
     EXPECT_NE(err.find("already committed"), std::string::npos) << err;
 }
@@ -182,9 +183,9 @@ TEST(MemoryBudgetScene, ObjFileAndGeometryAreCharged) {
 
 TEST(MemoryBudgetScene, GltfBufferRefusedWithWhatIsCommitted) {
     Write("tri2.bin", std::string(36, '\0'));
-    std::string path = Write(
-        "tri2.gltf",
-        R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    std::string path =
+        Write("tri2.gltf",
+              R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
  "bufferViews": [{"buffer": 0, "byteLength": 36}],

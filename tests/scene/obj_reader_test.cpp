@@ -1,12 +1,13 @@
 // OBJ reader: grouping by material, index forms, normals, and the MTL → pbrt material mapping.
 #include "scene/obj_reader.h"
-#include "test_util.h"
+
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 
-#include <gtest/gtest.h>
+#include "test_util.h"
 
 namespace prism {
 namespace {
@@ -91,8 +92,8 @@ TEST(ObjReader, MaterialMapping) {
               "newmtl lamp\nKd 0 0 0\nKe 17 12 4\n"
               "newmtl wood\nKd 0.8 0.8 0.8\nmap_Kd .\\tex\\wood.jpg\n");
     std::string obj = "mtllib objt_mats.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n";
-    for (const char *m : {"dull", "shiny", "mirror", "mirror3", "glass", "faded",
-                          "tinted_tf_only", "lamp", "wood"})
+    for (const char *m :
+         {"dull", "shiny", "mirror", "mirror3", "glass", "faded", "tinted_tf_only", "lamp", "wood"})
         obj += std::string("usemtl ") + m + "\nf 1 2 3\n";
     std::string path = WriteFile("objt_mats.obj", obj);
     Diagnostics diag;

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <random>
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include "test_util.h"
 
@@ -350,8 +350,7 @@ TEST(PbrtParser, PositionalArgumentErrors) {
               "s.pbrt:1:12: error: Shape expects a quoted shape type, got end of file");
     EXPECT_EQ(ErrorOf("LookAt 0 0 0 0 0 0 0 1 0"),
               "s.pbrt:1:1: error: LookAt: LookAt: eye and look point are the same");
-    EXPECT_EQ(ErrorOf("Scale 1 0 1"),
-              "s.pbrt:1:1: error: Scale: singular transformation matrix");
+    EXPECT_EQ(ErrorOf("Scale 1 0 1"), "s.pbrt:1:1: error: Scale: singular transformation matrix");
     EXPECT_EQ(ErrorOf("Rotate 30 0 0 0"), "s.pbrt:1:1: error: Rotate axis must not be zero");
     EXPECT_EQ(ErrorOf("WorldBegin \"float x\" 1"),
               "s.pbrt:1:12: error: unexpected string \"float x\"");
@@ -404,8 +403,7 @@ TEST(PbrtParser, UnbalancedScopes) {
     Parse("WorldBegin\nAttributeBegin\nShape \"sphere\"\nWorldEnd", &diag);
     auto w = diag.Warnings();
     ASSERT_EQ(w.size(), 1u);
-    EXPECT_EQ(w[0].ToString(),
-              "s.pbrt:2:1: warning: AttributeBegin without matching AttributeEnd");
+    EXPECT_EQ(w[0].ToString(), "s.pbrt:2:1: warning: AttributeBegin without matching AttributeEnd");
     Diagnostics diag2;
     Parse("WorldBegin\nAttributeBegin\n", &diag2);  // v4 style: no WorldEnd
     EXPECT_EQ(diag2.Count(), 1u);
@@ -423,7 +421,8 @@ TEST(PbrtParser, UnsupportedFeaturesWarn) {
         Option "bool disablepixeljitter" true
         ColorSpace "aces2065-1"
         Attribute "shape" "float radius" 2
-        Shape "sphere")", &diag);
+        Shape "sphere")",
+                               &diag);
     EXPECT_TRUE(s.camera.cameraFromWorld.IsIdentity());  // the EndTime translate is ignored
     ASSERT_EQ(s.shapes.size(), 1u);
     bool motion = false, media = false, option = false;
@@ -442,9 +441,9 @@ TEST(PbrtParser, IncludeResolvesAgainstTopLevelDirectory) {
     dir.Write("geom/a.pbrt", "Include \"geom/b.pbrt\"\nShape \"a\"\n");
     dir.Write("geom/b.pbrt", "Translate 1 0 0\n\n  Shape \"b\"\n");
     dir.Write("sub/abs.pbrt", "Shape \"abs\"\n");
-    std::string top = dir.Write(
-        "scene.pbrt", "WorldBegin\nInclude \"geom/a.pbrt\"\nImport \"" +
-                          (dir.path / "sub" / "abs.pbrt").string() + "\"\nShape \"top\"\n");
+    std::string top = dir.Write("scene.pbrt", "WorldBegin\nInclude \"geom/a.pbrt\"\nImport \"" +
+                                                  (dir.path / "sub" / "abs.pbrt").string() +
+                                                  "\"\nShape \"top\"\n");
     Diagnostics diag;
     SceneDescription s = ParsePbrtFile(top, diag);
     EXPECT_EQ(s.baseDir, dir.path.string());
@@ -521,8 +520,9 @@ TEST(PbrtParser, MissingFiles) {
         ParsePbrtFile("/nonexistent/x.pbrt", diag);
         FAIL() << "no error";
     } catch (const SceneError &e) {
-        EXPECT_EQ(std::string(e.what()), "/nonexistent/x.pbrt: error: cannot open file "
-                                         "\"/nonexistent/x.pbrt\": No such file or directory");
+        EXPECT_EQ(std::string(e.what()),
+                  "/nonexistent/x.pbrt: error: cannot open file "
+                  "\"/nonexistent/x.pbrt\": No such file or directory");
     }
     EXPECT_EQ(ErrorOf("Include \"/nonexistent/y.pbrt\""),
               "s.pbrt:1:1: error: cannot open file \"/nonexistent/y.pbrt\": "
@@ -541,8 +541,8 @@ TEST(PbrtParser, RefusesNonRegularFiles) {
     EXPECT_EQ(ErrorOf("Include \"/dev/zero\""),
               "s.pbrt:1:1: error: cannot open file \"/dev/zero\": not a regular file");
     Diagnostics diag;
-    SceneDescription s = ParsePbrtString(
-        "WorldBegin Shape \"t\" \"spectrum eta\" \"/dev/zero\"", "s.pbrt", diag);
+    SceneDescription s =
+        ParsePbrtString("WorldBegin Shape \"t\" \"spectrum eta\" \"/dev/zero\"", "s.pbrt", diag);
     EXPECT_EQ(s.shapes[0].params.GetRGB("eta", {}), RGB(1.f));
     EXPECT_EQ(diag.Count(), 1u);
 }
@@ -589,9 +589,15 @@ TEST(PbrtParser, MutatedInputNeverCrashes) {
         for (int k = 0; k < edits; ++k) {
             size_t pos = rng() % text.size();
             switch (rng() % 3) {
-            case 0: text[pos] = alphabet[rng() % (sizeof(alphabet) - 1)]; break;
-            case 1: text.erase(pos, 1 + rng() % 8); break;
-            default: text.insert(pos, 1, alphabet[rng() % (sizeof(alphabet) - 1)]); break;
+                case 0:
+                    text[pos] = alphabet[rng() % (sizeof(alphabet) - 1)];
+                    break;
+                case 1:
+                    text.erase(pos, 1 + rng() % 8);
+                    break;
+                default:
+                    text.insert(pos, 1, alphabet[rng() % (sizeof(alphabet) - 1)]);
+                    break;
             }
         }
         try {

@@ -1,12 +1,12 @@
 // PLY reader: the three encodings, property aliases, polygon handling and hostile headers.
 #include "scene/ply_reader.h"
 
+#include <gtest/gtest.h>
+
 #include <bit>
 #include <chrono>
 #include <cstring>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 namespace prism {
 namespace {
@@ -73,8 +73,12 @@ TEST(PlyReader, AsciiTriangleAndQuadWithNormalsAndUV) {
 TEST(PlyReader, BinaryLittleEndianSkipsOtherElements) {
     Bytes b;
     for (int i = 0; i < 3; ++i)
-        b.Put<float>(float(i)).Put<float>(2.f * i).Put<float>(-1.f).Put<uint8_t>(200)
-            .Put<float>(0.25f * i).Put<float>(0.5f);
+        b.Put<float>(float(i))
+            .Put<float>(2.f * i)
+            .Put<float>(-1.f)
+            .Put<uint8_t>(200)
+            .Put<float>(0.25f * i)
+            .Put<float>(0.5f);
     // element material 2: uchar id, list uchar float weights
     b.Put<uint8_t>(7).Put<uint8_t>(2).Put<float>(1).Put<float>(2);
     b.Put<uint8_t>(8).Put<uint8_t>(0);
@@ -104,8 +108,11 @@ TEST(PlyReader, BinaryBigEndianDoublesAndTextureUV) {
     b.bigEndian = true;
     const double pts[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 5}};
     for (int i = 0; i < 4; ++i)
-        b.Put<double>(pts[i][0]).Put<double>(pts[i][1]).Put<double>(pts[i][2])
-            .Put<float>(float(i)).Put<float>(1.f);
+        b.Put<double>(pts[i][0])
+            .Put<double>(pts[i][1])
+            .Put<double>(pts[i][2])
+            .Put<float>(float(i))
+            .Put<float>(1.f);
     b.Put<int32_t>(4).Put<uint16_t>(0).Put<uint16_t>(1).Put<uint16_t>(2).Put<uint16_t>(3);
     std::string header =
         "ply\nformat binary_big_endian 1.0\nelement vertex 4\n"
@@ -161,8 +168,9 @@ TEST(PlyReader, TruncatedBinaryData) {
     Bytes b;
     for (int i = 0; i < 10; ++i) b.Put<float>(1).Put<float>(2).Put<float>(3);
     b.Put<float>(1);  // a partial eleventh vertex
-    std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 24\n"
-                         "property float x\nproperty float y\nproperty float z\nend_header\n";
+    std::string header =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 24\n"
+        "property float x\nproperty float y\nproperty float z\nend_header\n";
     // Fixed-size binary elements are checked against the file size before reading.
     Diagnostics diag;
     std::string msg = ExpectError(WriteFile("trunc.ply", header + b.data), diag);
@@ -170,9 +178,10 @@ TEST(PlyReader, TruncatedBinaryData) {
 
     // ascii: 3 values per vertex need 6 bytes each by the size rule, so this header passes
     // the up-front check and the truncation is found while reading.
-    std::string ascii = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
-                        "property float y\nproperty float z\nend_header\n"
-                        "0 0 0\n1 0 0\n1 1 0\n1.5        ";
+    std::string ascii =
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+        "property float y\nproperty float z\nend_header\n"
+        "0 0 0\n1 0 0\n1 1 0\n1.5        ";
     msg = ExpectError(WriteFile("trunc_ascii.ply", ascii), diag);
     EXPECT_NE(msg.find("file ends after 3 of 4 vertices"), std::string::npos) << msg;
 }
@@ -182,17 +191,19 @@ TEST(PlyReader, TruncatedFacesReportsCounts) {
     for (int i = 0; i < 3; ++i) b.Put<float>(float(i)).Put<float>(0).Put<float>(0);
     b.Put<uint8_t>(3).Put<int32_t>(0).Put<int32_t>(1).Put<int32_t>(2);
     b.Put<uint8_t>(3).Put<int32_t>(0);  // second face cut short
-    std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
-                         "property float x\nproperty float y\nproperty float z\n"
-                         "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
+    std::string header =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+        "property float x\nproperty float y\nproperty float z\n"
+        "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
     Diagnostics diag;
     std::string msg = ExpectError(WriteFile("truncf.ply", header + b.data), diag);
     EXPECT_NE(msg.find("file ends after 1 of 2 faces"), std::string::npos) << msg;
 }
 
 TEST(PlyReader, HugeHeaderCountIsRejectedWithoutAllocating) {
-    std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\n"
-                         "property float x\nproperty float y\nproperty float z\nend_header\n";
+    std::string header =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\n"
+        "property float x\nproperty float y\nproperty float z\nend_header\n";
     Diagnostics diag;
     auto t0 = std::chrono::steady_clock::now();
     std::string msg = ExpectError(WriteFile("huge.ply", header + std::string(64, '\0')), diag);
@@ -202,12 +213,14 @@ TEST(PlyReader, HugeHeaderCountIsRejectedWithoutAllocating) {
     EXPECT_NE(msg.find("huge.ply:3:1"), std::string::npos) << msg;
 
     // Same for an element we would only skip, and for a property-less element.
-    header = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-             "property float z\nelement junk 999999999999\nproperty int a\nend_header\n0 0 0\n";
+    header =
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "property float z\nelement junk 999999999999\nproperty int a\nend_header\n0 0 0\n";
     msg = ExpectError(WriteFile("huge2.ply", header), diag);
     EXPECT_NE(msg.find("999999999999"), std::string::npos) << msg;
-    header = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-             "property float z\nelement empty 999999999999\nend_header\n0 0 0\n";
+    header =
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "property float z\nelement empty 999999999999\nend_header\n0 0 0\n";
     Diagnostics d2;
     PlyMesh m = ReadPlyFile(WriteFile("huge3.ply", header), d2);
     EXPECT_EQ(m.P.size(), 1u);
@@ -217,25 +230,27 @@ TEST(PlyReader, HugeListCountIsTruncationNotAllocation) {
     Bytes b;
     for (int i = 0; i < 3; ++i) b.Put<float>(float(i)).Put<float>(0).Put<float>(0);
     b.Put<uint32_t>(0xFFFFFFFFu).Put<int32_t>(0);
-    std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
-                         "property float x\nproperty float y\nproperty float z\n"
-                         "element face 1\nproperty list uint int vertex_indices\nend_header\n";
+    std::string header =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+        "property float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uint int vertex_indices\nend_header\n";
     Diagnostics diag;
     std::string msg = ExpectError(WriteFile("hugelist.ply", header + b.data), diag);
     EXPECT_NE(msg.find("file ends after 0 of 1 faces"), std::string::npos) << msg;
 }
 
 TEST(PlyReader, IndexOutOfRange) {
-    std::string data = "ply\nformat ascii 1.0\nelement vertex 24\nproperty float x\n"
-                       "property float y\nproperty float z\nelement face 8\n"
-                       "property list uchar int vertex_indices\nend_header\n";
+    std::string data =
+        "ply\nformat ascii 1.0\nelement vertex 24\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 8\n"
+        "property list uchar int vertex_indices\nend_header\n";
     for (int i = 0; i < 24; ++i) data += std::to_string(i) + " 0 0\n";
     for (int f = 0; f < 7; ++f) data += "3 0 1 2\n";
     data += "3 0 99 2\n";
     Diagnostics diag;
     std::string msg = ExpectError(WriteFile("range.ply", data), diag);
-    EXPECT_NE(msg.find("face 7 references vertex 99, but there are 24 vertices"),
-              std::string::npos) << msg;
+    EXPECT_NE(msg.find("face 7 references vertex 99, but there are 24 vertices"), std::string::npos)
+        << msg;
 }
 
 TEST(PlyReader, HeaderErrorsCarryLocations) {
@@ -245,19 +260,24 @@ TEST(PlyReader, HeaderErrorsCarryLocations) {
     EXPECT_NE(msg.find("notply.ply:1:1"), std::string::npos) << msg;
     EXPECT_NE(msg.find("not a PLY file"), std::string::npos) << msg;
 
-    msg = ExpectError(WriteFile("badfmt.ply", "ply\nformat binary_middle_endian 1.0\n"
-                                              "end_header\n"), diag);
+    msg = ExpectError(WriteFile("badfmt.ply",
+                                "ply\nformat binary_middle_endian 1.0\n"
+                                "end_header\n"),
+                      diag);
     EXPECT_NE(msg.find("badfmt.ply:2:8"), std::string::npos) << msg;
     EXPECT_NE(msg.find("bad format line"), std::string::npos) << msg;
 
-    msg = ExpectError(WriteFile("badtype.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"
-                                               "property quad x\nend_header\n0\n"), diag);
+    msg = ExpectError(WriteFile("badtype.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 1\n"
+                                "property quad x\nend_header\n0\n"),
+                      diag);
     EXPECT_NE(msg.find("badtype.ply:4:10"), std::string::npos) << msg;
     EXPECT_NE(msg.find("unknown property type \"quad\""), std::string::npos) << msg;
 
-    msg = ExpectError(WriteFile("badnum.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"
-                                              "property float x\nproperty float y\n"
-                                              "property float z\nend_header\n0 zero 0\n"),
+    msg = ExpectError(WriteFile("badnum.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 1\n"
+                                "property float x\nproperty float y\n"
+                                "property float z\nend_header\n0 zero 0\n"),
                       diag);
     EXPECT_NE(msg.find("badnum.ply:8"), std::string::npos) << msg;
     EXPECT_NE(msg.find("bad number \"zero\""), std::string::npos) << msg;

@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 // Records "Directive:argument@line" for the directives the test uses.
 class RecordingTarget : public PbrtTarget {
-public:
+  public:
     std::vector<std::string> calls;
     void Add(const std::string &s, const FileLoc &loc) {
         calls.push_back(s + "@" + fs::path(loc.file).filename().string() + ":" +
@@ -94,8 +94,7 @@ public:
     void LightSource(const std::string &t, ParsedParameterVector, const FileLoc &loc) override {
         Add("LightSource:" + t, loc);
     }
-    void AreaLightSource(const std::string &t, ParsedParameterVector,
-                         const FileLoc &loc) override {
+    void AreaLightSource(const std::string &t, ParsedParameterVector, const FileLoc &loc) override {
         Add("AreaLightSource:" + t, loc);
     }
     void Shape(const std::string &t, ParsedParameterVector params, const FileLoc &loc) override {
@@ -132,14 +131,15 @@ TEST(PbrtParser, SendsDirectivesToTheTargetWithoutInterpretingThem) {
     RecordingTarget t;
     // No WorldBegin, an unknown parameter type, an unknown named material, a ReverseOrientation
     // outside any scope: none of that is the parser's business.
-    ParsePbrt("Texture \"t\" \"float\" \"checkerboard\"\n"
-              "Include \"inc.pbrt\"\n"
-              "Shape \"sphere\" \"quaternion q\" [1 2 3 4] \"string s\" \"x\"\n"
-              "NamedMaterial \"nope\"\n"
-              "ActiveTransform EndTime\n"
-              "MediumInterface \"a\"\n"
-              "Transform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 5]\n",
-              (dir / "main.pbrt").string(), t);
+    ParsePbrt(
+        "Texture \"t\" \"float\" \"checkerboard\"\n"
+        "Include \"inc.pbrt\"\n"
+        "Shape \"sphere\" \"quaternion q\" [1 2 3 4] \"string s\" \"x\"\n"
+        "NamedMaterial \"nope\"\n"
+        "ActiveTransform EndTime\n"
+        "MediumInterface \"a\"\n"
+        "Transform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 5]\n",
+        (dir / "main.pbrt").string(), t);
     std::vector<std::string> want = {
         "Texture:t,float,checkerboard@main.pbrt:1",
         "Translate:7@inc.pbrt:1",

@@ -242,8 +242,8 @@ TEST(Tessellate, ShadingNormalsConvergeAsNSquared) {
             for (int n : {16, 64, 256}) {
                 double step = 2 * Pi / n;
                 double worst = MaxShadingNormalError(c, w, rev, n);
-                EXPECT_LE(worst, 3 * step * step) << c.name << " n=" << n << ": "
-                                                   << Degrees(worst) << " degrees";
+                EXPECT_LE(worst, 3 * step * step)
+                    << c.name << " n=" << n << ": " << Degrees(worst) << " degrees";
             }
 }
 
@@ -299,8 +299,8 @@ TEST(Tessellate, NoLeaksTowardVerticesAndEdges) {
                 }
             }
             EXPECT_EQ(edgeLeaks, 0) << total << " rays";
-            // Rays aimed exactly at a vertex may slip through Embree's ROBUST mode (docs/HARD_CASES.md
-            // T2 accepts <= 0.5% as a documented Embree limitation).
+            // Rays aimed exactly at a vertex may slip through Embree's ROBUST mode
+            // (docs/HARD_CASES.md T2 accepts <= 0.5% as a documented Embree limitation).
             EXPECT_LE(vertexLeaks, total / 200) << total << " rays";
         }
     }

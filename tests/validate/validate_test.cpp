@@ -12,12 +12,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "build/build_scene.h"
 #include "geometry/quadric_util.h"
 #include "geometry/revolution.h"
 #include "geometry/sphere.h"
-#include "validate/tessellate.h"
-#include "build/build_scene.h"
 #include "scene/load_scene.h"
+#include "validate/tessellate.h"
 
 namespace prism {
 namespace {
@@ -33,7 +33,10 @@ class InflatedSphere final : public AnalyticShapeT<InflatedSphere> {
     // hit) about the axis: a twin whose shading normals are off by a fixed angle at every n, as
     // the cone's apex normal was.
     InflatedSphere(const Transform &w, double r, double factor, double vertexTiltDeg = 0)
-        : AnalyticShapeT(w, false), truth_(w, false, r, -r, r, 360), r_(r), factor_(factor),
+        : AnalyticShapeT(w, false),
+          truth_(w, false, r, -r, r, 360),
+          r_(r),
+          factor_(factor),
           tilt_(Radians(vertexTiltDeg)) {}
     const char *Name() const override { return "inflated-sphere"; }
     Bounds3d ObjectBounds() const override {
@@ -236,7 +239,8 @@ TEST(Validate, TessellateOptionReplacesAnalyticShapes) {
             if (a.accel->IntersectRaw(r, &ha) != t.accel->IntersectRaw(r, &ht)) ++differ;
         }
     EXPECT_LT(differ, total / 100);
-    tess.replaceAnalyticShape = TessellateWith(100000);  // far beyond the triangle budget: bad input, not an allocation
+    tess.replaceAnalyticShape =
+        TessellateWith(100000);  // far beyond the triangle budget: bad input, not an allocation
     EXPECT_THROW(BuildRenderScene(desc, tess, diag), SceneError);
 }
 
