@@ -2,11 +2,13 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 namespace prism::test {
@@ -40,6 +42,31 @@ inline std::string WriteTestFile(const std::filesystem::path &path, const std::s
     std::ofstream(path, std::ios::binary) << contents;
     return path.string();
 }
+
+// A fixture with a fresh, empty directory per test (under the test scratch directory, named
+// after the suite, the test and the process), removed afterwards.
+class FreshDirTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = std::filesystem::path(::testing::TempDir()) /
+               (std::string(info->test_suite_name()) + "_" + std::to_string(::getpid()) + "_" +
+                info->name());
+        std::filesystem::remove_all(dir_);
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+
+    std::string Path(const std::string &name) const { return (dir_ / name).string(); }
+    std::set<std::string> ListDir() const {
+        std::set<std::string> names;
+        for (const auto &e : std::filesystem::directory_iterator(dir_))
+            names.insert(e.path().filename());
+        return names;
+    }
+
+    std::filesystem::path dir_;
+};
 
 }  // namespace prism::test
 

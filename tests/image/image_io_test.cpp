@@ -12,32 +12,14 @@
 #include <set>
 #include <string>
 
+#include "test_util.h"
+
 namespace prism {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh, empty directory per test, removed afterwards.
-class ImageIOTest : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("prism_image_io_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string Path(const std::string &name) const { return (dir_ / name).string(); }
-    std::set<std::string> ListDir() const {
-        std::set<std::string> names;
-        for (const auto &e : fs::directory_iterator(dir_)) names.insert(e.path().filename());
-        return names;
-    }
-
-    fs::path dir_;
-};
+class ImageIOTest : public test::FreshDirTest {};
 
 Image RandomImage(int w, int h, int c, float lo, float hi, uint32_t seed) {
     Image img(w, h, c);

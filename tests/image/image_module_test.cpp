@@ -18,32 +18,14 @@
 #include "image/image_decoder.h"
 #include "image/image_io.h"
 #include "image/oiio_loader.h"
+#include "test_util.h"
 
 namespace prism {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ImageModuleTest : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("prism_image_module_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string Path(const std::string &name) const { return (dir_ / name).string(); }
-    std::set<std::string> ListDir() const {
-        std::set<std::string> names;
-        for (const auto &e : fs::directory_iterator(dir_)) names.insert(e.path().filename());
-        return names;
-    }
-
-    fs::path dir_;
-};
+class ImageModuleTest : public test::FreshDirTest {};
 
 struct RunResult {
     int status = -1;
