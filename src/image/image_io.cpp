@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -39,10 +41,41 @@ float LinearToSrgb(float v) {
     return float(1.055 * std::pow(d, 1.0 / 2.4) - 0.055);
 }
 
-uint8_t LinearToSrgb8(float v) {
+namespace {
+
+// The 8-bit encoding by the definition: the sRGB curve in double, rounded.
+uint8_t LinearToSrgb8Exact(float v) {
     if (!(v > 0)) return 0;  // also NaN
     if (v >= 1) return 255;
     return uint8_t(std::lround(std::clamp(LinearToSrgb(v), 0.f, 1.f) * 255.f));
+}
+
+// thresholds[k - 1] is the smallest float that encodes to k (k = 1..255), found by bisection
+// over the ordered bit patterns of positive floats; the encoding is monotonic, so a binary
+// search over these gives LinearToSrgb8Exact's result exactly, without a pow per channel.
+const std::array<float, 255> &Srgb8Thresholds() {
+    static const std::array<float, 255> thresholds = [] {
+        std::array<float, 255> t{};
+        for (int k = 1; k <= 255; ++k) {
+            uint32_t lo = 0, hi = std::bit_cast<uint32_t>(1.0f);  // encodes to 0 / to 255
+            while (hi - lo > 1) {
+                uint32_t mid = lo + (hi - lo) / 2;
+                (LinearToSrgb8Exact(std::bit_cast<float>(mid)) >= k ? hi : lo) = mid;
+            }
+            t[size_t(k - 1)] = std::bit_cast<float>(hi);
+        }
+        return t;
+    }();
+    return thresholds;
+}
+
+}  // namespace
+
+uint8_t LinearToSrgb8(float v) {
+    if (!(v > 0)) return 0;  // also NaN
+    if (v >= 1) return 255;
+    const std::array<float, 255> &t = Srgb8Thresholds();
+    return uint8_t(std::upper_bound(t.begin(), t.end(), v) - t.begin());
 }
 
 namespace {

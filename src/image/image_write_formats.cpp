@@ -87,6 +87,9 @@ void WritePng(const std::string &path, int width, int height, int channels, bool
     png_image image;
     std::memset(&image, 0, sizeof(image));
     image.version = PNG_IMAGE_VERSION;
+    // Speed over file size (zlib's fast level): PNG encoding was 9% of a whole 800x600
+    // Whitted render at the default level.
+    image.flags = PNG_IMAGE_FLAG_FAST;
     image.width = png_uint_32(width);
     image.height = png_uint_32(height);
     bool gray = channels - (alpha ? 1 : 0) == 1;

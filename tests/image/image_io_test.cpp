@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <set>
 #include <string>
@@ -27,6 +30,35 @@ Image RandomImage(int w, int h, int c, float lo, float hi, uint32_t seed) {
     std::uniform_real_distribution<float> dist(lo, hi);
     for (float &v : img.pixels) v = dist(rng);
     return img;
+}
+
+// The 8-bit encoding (a table of thresholds) equals its definition — the sRGB curve in double,
+// rounded — on a dense sweep of floats in (0, 1), around every step, and at the edges.
+TEST(Srgb, EightBitEncodingMatchesTheCurveExactly) {
+    auto reference = [](float v) -> int {
+        if (!(v > 0)) return 0;
+        if (v >= 1) return 255;
+        double d = v;
+        float e = d <= 0.0031308 ? float(d * 12.92) : float(1.055 * std::pow(d, 1.0 / 2.4) - 0.055);
+        return int(std::lround(std::clamp(e, 0.f, 1.f) * 255.f));
+    };
+    const uint32_t one = std::bit_cast<uint32_t>(1.0f);
+    int previous = 0;
+    for (uint32_t bits = 0; bits <= one; bits += 1013) {
+        float v = std::bit_cast<float>(bits);
+        int want = reference(v);
+        ASSERT_EQ(int(LinearToSrgb8(v)), want) << v;
+        if (want != previous) {  // a step lies in the last stride: check every float of it
+            for (uint32_t b = bits - 1013; b <= bits; ++b)
+                ASSERT_EQ(int(LinearToSrgb8(std::bit_cast<float>(b))),
+                          reference(std::bit_cast<float>(b)))
+                    << std::bit_cast<float>(b);
+            previous = want;
+        }
+    }
+    for (float v : {-1.f, 0.f, 1.f, 2.f, std::numeric_limits<float>::quiet_NaN(),
+                    std::numeric_limits<float>::infinity()})
+        EXPECT_EQ(int(LinearToSrgb8(v)), reference(v)) << v;
 }
 
 TEST(Srgb, KnownValuesAndRoundTrip) {
