@@ -14,12 +14,6 @@ namespace {
 
 // What the BVH estimate (core/memory.h EstimateBvhBytes) counts in an Accel: the triangles of
 // its meshes, and one user primitive for each analytic shape or instance.
-uint64_t TrianglesOf(const Accel &accel) {
-    uint64_t n = 0;
-    for (int i = 0; i < accel.NumShapes(); ++i)
-        if (const TriangleMesh *m = accel.Mesh(i)) n += m->NumTriangles();
-    return n;
-}
 uint64_t UserPrimsOf(const Accel &accel) {
     uint64_t n = 0;
     for (int i = 0; i < accel.NumShapes(); ++i) n += accel.Mesh(i) ? 0 : 1;
@@ -130,8 +124,8 @@ struct ShapeBuilder : BuildStep {
             // The prototype's BVH, once however many instances use it (the fixed part of the
             // estimate is charged once, with the top level).
             budget.Charge(
-                EstimateBvhBytes(TrianglesOf(*proto), UserPrimsOf(*proto)) - kBvhFixedBytes, "BVH",
-                obj->loc);
+                EstimateBvhBytes(proto->NumTriangles(), UserPrimsOf(*proto)) - kBvhFixedBytes,
+                "BVH", obj->loc);
             proto->Commit();
             scene.prototypes.push_back(std::move(infos));
             it = prototypeOf
@@ -161,8 +155,8 @@ struct ShapeBuilder : BuildStep {
         for (const AreaLightDesc *a : usedAreaLights) a->params.ReportUnused(diag, "area light");
         if (!settings.buildBvh) return;
         // Meshes and analytic shapes, each instance as one user primitive.
-        budget.Charge(EstimateBvhBytes(TrianglesOf(*scene.accel), UserPrimsOf(*scene.accel)), "BVH",
-                      desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0});
+        budget.Charge(EstimateBvhBytes(scene.accel->NumTriangles(), UserPrimsOf(*scene.accel)),
+                      "BVH", desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0});
         auto start = std::chrono::steady_clock::now();
         scene.accel->Commit();
         scene.buildSeconds =

@@ -73,6 +73,7 @@ class Accel {
     SurfaceInteraction Interaction(const Ray &ray, const RawHit &hit) const;
 
     int NumShapes() const;
+    size_t NumTriangles() const;  // of this scene's meshes (instances' prototypes not included)
     const TriangleMesh *Mesh(int shape) const;       // nullptr if analytic
     const AnalyticShape *Analytic(int shape) const;  // nullptr if mesh
     double BuildSeconds() const;
