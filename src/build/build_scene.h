@@ -41,6 +41,15 @@ struct BuildSettings {
     int lightSamples = 0;                      // 0: each area/infinite light's own nsamples
     // How to build.
     Precision precision = Precision::Double;
+    // Accuracy knobs (`prism study`, docs/ACCURACY.md). Defaults are Prism's normal choices.
+    // Ray-weight cutoff: a secondary ray is traced only if its throughput can change the pixel
+    // by more than this (0: every ray; counted in RayCounters::cutoff when skipped).
+    float rayCutoff = 0;
+    // How secondary rays leave a surface: error bounds (default), a fixed epsilon in scene
+    // units along the geometric normal, or no offset at all.
+    RayOffset offset{};
+    bool robust = false;                       // Embree's RTC_SCENE_FLAG_ROBUST
+    BvhQuality bvhQuality = BvhQuality::Auto;  // Auto: by triangles and samples (accel.h)
     // The render's memory budget (core/memory.h), usually the one LoadOptions::budget charged
     // the scene files to. The build charges to it, and keeps charged, the film (EstimateFilmBytes),
     // decoded image textures, every triangle mesh (trianglemesh, plymesh, loopsubdiv,

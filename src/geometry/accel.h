@@ -18,6 +18,10 @@ namespace prism {
 inline constexpr size_t CompactBvhTriangles = 500000;
 inline constexpr uint64_t HighQualitySamplesPerTriangle = 40;
 
+// Embree's build quality; Auto picks MEDIUM, or HIGH when the render traces enough samples per
+// triangle (HighQualitySamplesPerTriangle) for the slower build to pay for itself.
+enum class BvhQuality { Auto, Low, Medium, High };
+
 struct AccelOptions {
     Precision precision = Precision::Double;
     bool robust = false;       // RTC_SCENE_FLAG_ROBUST (watertight triangles, robust traversal)

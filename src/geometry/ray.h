@@ -7,6 +7,14 @@
 
 namespace prism {
 
+// How a secondary ray's origin leaves the surface it starts on. ErrorBounds is Prism's method
+// (below); FixedEpsilon and None exist to show what they cost (`prism study --knob offset`).
+enum class OffsetMode { ErrorBounds, FixedEpsilon, None };
+struct RayOffset {
+    OffsetMode mode = OffsetMode::ErrorBounds;
+    float epsilon = 1e-4f;  // FixedEpsilon: distance along the geometric normal, scene units
+};
+
 struct Ray {
     Vec3f o, d;
     float tMax = Infinity;

@@ -17,6 +17,8 @@ struct RenderScene;
 // Rays traced, by kind. Per thread, summed at the end.
 struct RayCounters {
     uint64_t camera = 0, shadow = 0, reflection = 0, refraction = 0, passThrough = 0;
+    // Secondary rays not traced because of the ray-weight cutoff (not part of Total()).
+    uint64_t cutoff = 0;
     uint64_t Total() const { return camera + shadow + reflection + refraction + passThrough; }
     RayCounters &operator+=(const RayCounters &o) {
         camera += o.camera;
@@ -24,6 +26,7 @@ struct RayCounters {
         reflection += o.reflection;
         refraction += o.refraction;
         passThrough += o.passThrough;
+        cutoff += o.cutoff;
         return *this;
     }
 };
