@@ -33,7 +33,46 @@ struct RenderArgs {
     int tessellate = 0;  // [validate hook]
     float fov = 0;
     bool quiet = false, noProgress = false;
+    // Accuracy knobs (docs/NUMERICS.md, `prism study`).
+    float cutoff = 0, offsetEpsilon = 0;      // offsetEpsilon 0: not given
+    std::string offset, bvhQuality = "auto";  // offset empty: not given
+    bool robust = false;
 };
+
+// --offset and --offset-epsilon: the epsilon alone implies `--offset epsilon`.
+RayOffset ParseOffset(const std::string &mode, float epsilon) {
+    RayOffset off;
+    if (mode == "epsilon" || (mode.empty() && epsilon > 0))
+        off.mode = OffsetMode::FixedEpsilon;
+    else if (mode == "none")
+        off.mode = OffsetMode::None;
+    if (epsilon > 0) {
+        if (off.mode != OffsetMode::FixedEpsilon)
+            throw UsageError("--offset-epsilon needs --offset epsilon (not " + mode + ")");
+        off.epsilon = epsilon;
+    }
+    return off;
+}
+
+BvhQuality ParseBvhQuality(const std::string &q) {
+    if (q == "low") return BvhQuality::Low;
+    if (q == "medium") return BvhQuality::Medium;
+    if (q == "high") return BvhQuality::High;
+    return BvhQuality::Auto;
+}
+
+const char *BvhQualityName(BvhQuality q) {
+    switch (q) {
+        case BvhQuality::Low:
+            return "low";
+        case BvhQuality::Medium:
+            return "medium";
+        case BvhQuality::High:
+            return "high";
+        default:
+            return "auto";
+    }
+}
 
 void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool tty,
                    int *lastQuarter) {
@@ -68,6 +107,10 @@ int RunRender(const RenderArgs &a) {
     if (!a.lookAt.empty()) opts.worldFromCamera = ParseLookAt(a.lookAt);
     opts.fovDeg = a.fov;
     opts.lightSamples = a.lightSamples;
+    opts.rayCutoff = a.cutoff;
+    opts.offset = ParseOffset(a.offset, a.offsetEpsilon);
+    opts.robust = a.robust;
+    opts.bvhQuality = ParseBvhQuality(a.bvhQuality);
     // One budget for everything this render holds: scene files and meshes (LoadScene), the
     // film, textures, meshes and BVH (BuildRenderScene); it lives until the render ends.
     MemoryBudget budget(ParseMaxMemory(a.maxMemory));
@@ -130,6 +173,20 @@ int RunRender(const RenderArgs &a) {
                      (unsigned long long)r.shadow, (unsigned long long)r.reflection,
                      (unsigned long long)r.refraction, (unsigned long long)r.passThrough,
                      stats.renderSeconds > 0 ? r.Total() / stats.renderSeconds * 1e-6 : 0.0);
+        // The accuracy knobs, when any differs from Prism's defaults.
+        if (opts.rayCutoff > 0 || opts.offset.mode != OffsetMode::ErrorBounds || opts.robust ||
+            opts.bvhQuality != BvhQuality::Auto) {
+            std::string off = opts.offset.mode == OffsetMode::ErrorBounds ? "error bounds"
+                              : opts.offset.mode == OffsetMode::None
+                                  ? "none"
+                                  : fmt::format("epsilon {:g}", opts.offset.epsilon);
+            std::fprintf(stderr,
+                         "accuracy: ray cutoff %g (rays saved by cutoff %llu), offset %s, BVH %s "
+                         "quality%s\n",
+                         double(opts.rayCutoff), (unsigned long long)r.cutoff, off.c_str(),
+                         BvhQualityName(scene.accel->BuildQuality()),
+                         scene.accel->Robust() ? ", robust" : "");
+        }
         const SceneFeatures &f = scene.features;
         auto yn = [](bool b) { return b ? "on" : "off"; };
         std::fprintf(stderr,
@@ -170,6 +227,22 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--light-samples", args->lightSamples,
                     "Shadow rays per area/infinite light (overrides nsamples)")
         ->check(CLI::Range(1, 4096));
+    cmd->add_option("--cutoff", args->cutoff,
+                    "Ray-weight cutoff: trace a reflected or refracted ray only if its throughput "
+                    "exceeds this (default 0: every ray)")
+        ->check(CLI::Range(0.0, 1e30));
+    cmd->add_option("--offset", args->offset,
+                    "How secondary rays leave a surface: errorbounds (default), epsilon or none")
+        ->check(CLI::IsMember({"errorbounds", "epsilon", "none"}));
+    cmd->add_option("--offset-epsilon", args->offsetEpsilon,
+                    "Distance along the normal for --offset epsilon, in scene units (default 1e-4)")
+        ->check(CLI::Range(1e-30, 1e30));
+    cmd->add_flag("--robust", args->robust,
+                  "Build the BVH with Embree's ROBUST flag (watertight triangle traversal)");
+    cmd->add_option("--bvh-quality", args->bvhQuality,
+                    "Embree build quality: auto (default: by triangles and samples), low, "
+                    "medium or high")
+        ->check(CLI::IsMember({"auto", "low", "medium", "high"}));
     cmd->add_option("--lookat", args->lookAt,
                     "Camera ex,ey,ez,lx,ly,lz,ux,uy,uz (replaces the scene's camera)");
     cmd->add_option("--fov", args->fov, "Field of view in degrees on the shorter image axis")

@@ -199,6 +199,16 @@ void BuildIntegratorSettings(BuildContext &ctx) {
                                                   " out of range (0 to " +
                                                   std::to_string(MaxTraceDepth) + ")");
     scene.maxDepth = maxDepth;
+    // The accuracy knobs are settings, not scene data; the command line checks them too.
+    if (!(settings.rayCutoff >= 0) || !std::isfinite(settings.rayCutoff))
+        throw SceneError("ray cutoff " + std::to_string(settings.rayCutoff) +
+                         " must be a finite number >= 0");
+    if (settings.offset.mode == OffsetMode::FixedEpsilon &&
+        (!(settings.offset.epsilon > 0) || !std::isfinite(settings.offset.epsilon)))
+        throw SceneError("offset epsilon " + std::to_string(settings.offset.epsilon) +
+                         " must be a finite number > 0");
+    scene.rayCutoff = settings.rayCutoff;
+    scene.offset = settings.offset;
 }
 
 }  // namespace prism

@@ -112,6 +112,8 @@ struct ShapeBuilder : BuildStep {
             if (!obj) throw SceneError(inst.loc, "unknown object " + Quote(inst.object));
             AccelOptions ao;
             ao.precision = settings.precision;
+            ao.robust = settings.robust;
+            ao.quality = settings.bvhQuality;
             auto proto = std::make_shared<Accel>(ao);
             std::vector<ShapeInfo> infos;
             for (const ShapeDesc &s : obj->shapes) {
@@ -145,6 +147,8 @@ struct ShapeBuilder : BuildStep {
     void Build() {
         AccelOptions ao;
         ao.precision = settings.precision;
+        ao.robust = settings.robust;
+        ao.quality = settings.bvhQuality;
         const Bounds2i &pb = scene.pixelBounds;
         ao.expectedSamples = uint64_t(std::max(0, pb.pMax.x - pb.pMin.x)) *
                              uint64_t(std::max(0, pb.pMax.y - pb.pMin.y)) * uint64_t(scene.spp);

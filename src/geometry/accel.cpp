@@ -101,7 +101,8 @@ struct Accel::Impl {
     std::vector<Entry> shapes;
     std::vector<int> shapeOfGeom;  // geomID -> shape index
     double buildSeconds = 0;
-    bool committed = false, highQuality = false;
+    bool committed = false;
+    BvhQuality builtQuality = BvhQuality::Medium;
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
@@ -114,8 +115,6 @@ Accel::Accel(const AccelOptions &options) : impl_(std::make_unique<Impl>()) {
     impl_->scene = rtcNewScene(dev.device);
     dev.ThrowIfError("rtcNewScene");
     rtcSetSceneFlags(impl_->scene, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
-    rtcSetSceneBuildQuality(
-        impl_->scene, options.highQuality ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
 }
 
 Accel::~Accel() = default;
@@ -189,10 +188,16 @@ void Accel::Commit() {
     // 1600x1200, 1 spp (interleaved, bench ceiling's scene): HIGH doubles the build
     // (0.12 -> 0.25 s) and saves 2-4% of the render (0.46 -> 0.45 s), LOW saves nothing and
     // renders 4% slower. HIGH wins once the render traces some 40 camera samples per triangle.
-    impl_->highQuality = impl_->options.highQuality ||
-                         (triangles > 0 && impl_->options.expectedSamples >=
-                                               HighQualitySamplesPerTriangle * triangles);
-    if (impl_->highQuality) rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    BvhQuality q = impl_->options.quality;
+    if (q == BvhQuality::Auto)
+        q = triangles > 0 &&
+                    impl_->options.expectedSamples >= HighQualitySamplesPerTriangle * triangles
+                ? BvhQuality::High
+                : BvhQuality::Medium;
+    impl_->builtQuality = q;
+    rtcSetSceneBuildQuality(impl_->scene, q == BvhQuality::Low    ? RTC_BUILD_QUALITY_LOW
+                                          : q == BvhQuality::High ? RTC_BUILD_QUALITY_HIGH
+                                                                  : RTC_BUILD_QUALITY_MEDIUM);
     if (triangles >= CompactBvhTriangles)
         rtcSetSceneFlags(impl_->scene,
                          RTCSceneFlags(rtcGetSceneFlags(impl_->scene) | RTC_SCENE_FLAG_COMPACT));
@@ -347,7 +352,9 @@ int Accel::NumShapes() const { return int(impl_->shapes.size()); }
 const TriangleMesh *Accel::Mesh(int s) const { return impl_->shapes[s].mesh.get(); }
 const AnalyticShape *Accel::Analytic(int s) const { return impl_->shapes[s].analytic.get(); }
 double Accel::BuildSeconds() const { return impl_->buildSeconds; }
-bool Accel::BuiltWithHighQuality() const { return impl_->highQuality; }
+bool Accel::BuiltWithHighQuality() const { return impl_->builtQuality == BvhQuality::High; }
+BvhQuality Accel::BuildQuality() const { return impl_->builtQuality; }
+bool Accel::Robust() const { return rtcGetSceneFlags(impl_->scene) & RTC_SCENE_FLAG_ROBUST; }
 
 size_t Accel::NumTriangles() const {
     size_t n = 0;

@@ -24,11 +24,12 @@ enum class BvhQuality { Auto, Low, Medium, High };
 
 struct AccelOptions {
     Precision precision = Precision::Double;
-    bool robust = false;       // RTC_SCENE_FLAG_ROBUST (watertight triangles, robust traversal)
-    bool highQuality = false;  // RTC_BUILD_QUALITY_HIGH (spatial splits)
-    // Camera samples the render will trace (pixels x spp; 0: unknown). With at least
-    // HighQualitySamplesPerTriangle per triangle the BVH is built with HIGH quality even when
-    // highQuality is false: the slower build then pays for itself (accel.cpp).
+    bool robust = false;  // RTC_SCENE_FLAG_ROBUST (watertight triangles, robust traversal)
+    // RTC_BUILD_QUALITY_LOW, MEDIUM or HIGH (spatial splits); Auto chooses by expectedSamples.
+    BvhQuality quality = BvhQuality::Auto;
+    // Camera samples the render will trace (pixels x spp; 0: unknown). With Auto and at least
+    // HighQualitySamplesPerTriangle per triangle the BVH is built with HIGH quality, else
+    // MEDIUM: the slower build then pays for itself (accel.cpp).
     uint64_t expectedSamples = 0;
 };
 
@@ -82,6 +83,8 @@ class Accel {
     const AnalyticShape *Analytic(int shape) const;  // nullptr if mesh
     double BuildSeconds() const;
     bool BuiltWithHighQuality() const;  // after Commit(): whether the HIGH builder ran
+    BvhQuality BuildQuality() const;    // after Commit(): Low, Medium or High (never Auto)
+    bool Robust() const;                // whether Embree's scene has RTC_SCENE_FLAG_ROBUST
 
   private:
     struct Impl;

@@ -34,6 +34,15 @@ struct SurfaceInteraction {
         Vec3f o = OffsetRayOrigin(p, pError, n, pTo - p);
         return {o, pTo - o, 1 - ShadowEpsilon};
     }
+    // The same with the offset method of the render (RenderScene::offset; the default
+    // RayOffset gives exactly the rays above).
+    Ray SpawnRay(const Vec3f &d, const RayOffset &off) const {
+        return {SpawnOrigin(p, pError, n, d, off), d, Infinity};
+    }
+    Ray SpawnRayTo(const Vec3f &pTo, const RayOffset &off) const {
+        Vec3f o = SpawnOrigin(p, pError, n, pTo - p, off);
+        return {o, pTo - o, 1 - ShadowEpsilon};
+    }
 };
 
 }  // namespace prism

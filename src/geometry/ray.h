@@ -36,6 +36,18 @@ inline Vec3f OffsetRayOrigin(const Vec3f &p, const Vec3f &pError, const Vec3f &n
     return po;
 }
 
+// The origin of a ray leaving p in direction w by the chosen method (`--offset`):
+// ErrorBounds is OffsetRayOrigin; FixedEpsilon moves p by epsilon along n, to w's side; None
+// keeps p, so the ray may hit the surface it leaves (acne). The default is tested first, so
+// the default render pays one predictable branch.
+inline Vec3f SpawnOrigin(const Vec3f &p, const Vec3f &pError, const Vec3f &n, const Vec3f &w,
+                         const RayOffset &offset) {
+    if (offset.mode == OffsetMode::ErrorBounds) [[likely]]
+        return OffsetRayOrigin(p, pError, n, w);
+    if (offset.mode == OffsetMode::None) return p;
+    return p + (Dot(w, n) < 0 ? -n : n) * offset.epsilon;
+}
+
 // Shadow rays stop this fraction short of their target (pbrt's ShadowEpsilon), so a light or
 // surface exactly at the target never occludes itself.
 inline constexpr float ShadowEpsilon = 1e-4f;

@@ -56,6 +56,10 @@ struct RenderScene {
     float maxSampleLuminance = Infinity;
     int spp = 1;
     int maxDepth = 5;
+    // Accuracy knobs (BuildSettings): the ray-weight cutoff (0: every ray) and how spawned rays
+    // leave a surface.
+    float rayCutoff = 0;
+    RayOffset offset;
     std::string outputFilename;  // Film "filename"
     std::string integratorName;
     SceneFeatures features;

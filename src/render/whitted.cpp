@@ -42,7 +42,7 @@ RGB WhittedIntegrator::Shade(const Ray &rayIn, SurfaceInteraction si, int depth,
         if (!mat->IsPassThrough()) break;
         if (pass >= MaxPassThrough) return RGB(0);
         // pbrt: a surface without a BSDF continues the ray without counting a bounce.
-        ray = si.SpawnRay(ray.d);
+        ray = si.SpawnRay(ray.d, scene_.offset);
         counters.passThrough++;
         if (!scene_.accel->Intersect(ray, &si)) return Escaped(ray);
     }
@@ -71,7 +71,8 @@ RGB WhittedIntegrator::Shade(const Ray &rayIn, SurfaceInteraction si, int depth,
                 if (!light.SampleLi(si, u, &ls) || ls.Li.IsBlack() || !(ls.pdf > 0)) continue;
                 RGB f = bsdf.f(wo, ls.wi);
                 if (f.IsBlack()) continue;
-                Ray shadow = ls.infinite ? si.SpawnRay(ls.wi) : si.SpawnRayTo(ls.pLight);
+                Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene_.offset)
+                                         : si.SpawnRayTo(ls.pLight, scene_.offset);
                 counters.shadow++;
                 if (scene_.accel->Occluded(shadow)) continue;
                 Lj += f * ls.Li * (AbsDot(ls.wi, bsdf.ns) / ls.pdf);
@@ -91,15 +92,25 @@ void WhittedIntegrator::AddSpecular(const SurfaceInteraction &si, const BSDF &bs
     if (depth + 1 < scene_.maxDepth) {
         Vec3f wi;
         RGB weight;
+        // Traces the ray along wi unless the ray-weight cutoff drops it: the radiance it could
+        // bring back is unknown, so a ray "can change the pixel by more than the cutoff" when its
+        // throughput (max RGB component, times the Film's scale) exceeds the cutoff, as if it
+        // brought back radiance 1 (pbrt-style ray weights; the pixel filter's share of the
+        // sample is ignored). Cutoff 0 traces every ray, exactly as without the cutoff.
+        auto trace = [&](uint64_t &kind) {
+            SampleContext next = sc;
+            next.beta = sc.beta * weight;
+            if (scene_.rayCutoff > 0 &&
+                !(next.beta.MaxComponent() * scene_.filmScale > scene_.rayCutoff)) {
+                counters.cutoff++;
+                return;
+            }
+            kind++;
+            L += weight * Li(si.SpawnRay(wi, scene_.offset), depth + 1, counters, next);
+        };
         for (int part = 0; part < bsdf.NumParts(); ++part) {
-            if (bsdf.SampleSpecularReflection(part, wo, &wi, &weight)) {
-                counters.reflection++;
-                L += weight * Li(si.SpawnRay(wi), depth + 1, counters, sc);
-            }
-            if (bsdf.SampleSpecularTransmission(part, wo, &wi, &weight)) {
-                counters.refraction++;
-                L += weight * Li(si.SpawnRay(wi), depth + 1, counters, sc);
-            }
+            if (bsdf.SampleSpecularReflection(part, wo, &wi, &weight)) trace(counters.reflection);
+            if (bsdf.SampleSpecularTransmission(part, wo, &wi, &weight)) trace(counters.refraction);
         }
     }
 }

@@ -32,10 +32,12 @@ struct RayCounters {
 };
 
 // Identifies the camera sample being traced, so that light samples form stratified patterns
-// across the pixel's samples and are a pure function of (pixel, sample).
+// across the pixel's samples and are a pure function of (pixel, sample); and carries the
+// throughput of the path down to the ray being traced (for the ray-weight cutoff).
 struct SampleContext {
     int x = 0, y = 0;
     uint32_t sample = 0, spp = 1;
+    RGB beta = RGB(1);  // product of the specular weights from the camera to this ray
 };
 
 struct BSDF;

@@ -155,6 +155,37 @@ TEST(Cli, BadOptionsExitWithStatus2) {
     EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
 
+// The accuracy knobs of `prism render` (docs/NUMERICS.md): --cutoff 0 writes the image of a
+// render without it, byte for byte; a cutoff reports the rays it saved; the other knobs are
+// echoed; bad values exit with status 2 and write nothing.
+TEST(Cli, AccuracyKnobOptions) {
+    fs::path dir = TempDir("knobs");
+    std::string scene = "'" + Source + "/scenes/whitted.pbrt' --res 32x24";
+    ASSERT_EQ(RunPrism("render " + scene + " -q -o plain.exr", dir).exitCode, 0);
+    ASSERT_EQ(RunPrism("render " + scene + " -q --cutoff 0 -o zero.exr", dir).exitCode, 0);
+    EXPECT_EQ(ReadFile(dir / "plain.exr"), ReadFile(dir / "zero.exr"));
+    RunResult cut = RunPrism("render " + scene + " --no-progress --cutoff 0.01 -o c.png", dir);
+    ASSERT_EQ(cut.exitCode, 0) << cut.err;
+    EXPECT_NE(cut.err.find("rays saved by cutoff"), std::string::npos) << cut.err;
+    RunResult knobs = RunPrism("render " + scene +
+                                   " --no-progress --offset-epsilon 0.001 --robust "
+                                   "--bvh-quality low -o k.png",
+                               dir);
+    ASSERT_EQ(knobs.exitCode, 0) << knobs.err;
+    EXPECT_NE(knobs.err.find("offset epsilon 0.001, BVH low quality, robust"), std::string::npos)
+        << knobs.err;
+    RunResult none = RunPrism("render " + scene + " --no-progress --offset none -o n.png", dir);
+    EXPECT_NE(none.err.find("offset none"), std::string::npos) << none.err;
+    RunResult plain = RunPrism("render " + scene + " --no-progress -o p.png", dir);
+    EXPECT_EQ(plain.err.find("accuracy:"), std::string::npos) << plain.err;
+    for (const char *bad : {"--cutoff -1", "--cutoff x", "--offset fixed", "--offset-epsilon 0",
+                            "--offset none --offset-epsilon 1e-3", "--bvh-quality ultra"}) {
+        RunResult r = RunPrism("render " + scene + " " + bad + " -o bad.png", dir);
+        EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
+        EXPECT_FALSE(fs::exists(dir / "bad.png")) << bad;
+    }
+}
+
 // The libraries report a memory limit without naming a flag; the app adds it, exactly once.
 TEST(Cli, MemoryBudgetErrorNamesTheFlagOnce) {
     fs::path dir = TempDir("budget");

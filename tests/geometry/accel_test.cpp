@@ -163,10 +163,70 @@ TEST(Accel, BuildQualityFollowsTheExpectedWork) {
         accel.Commit();
         EXPECT_EQ(accel.BuiltWithHighQuality(), samples >= 2 * HighQualitySamplesPerTriangle)
             << samples;
+        EXPECT_EQ(accel.BuildQuality(),
+                  accel.BuiltWithHighQuality() ? BvhQuality::High : BvhQuality::Medium);
         SurfaceInteraction si;
         ASSERT_TRUE(accel.Intersect(Ray{{0.5f, 0.5f, 0}, {0, 0, 1}, Infinity}, &si));
         EXPECT_NEAR(si.t, 5.0f, 1e-6f);
     }
+}
+
+}  // namespace prism
+
+namespace prism {
+
+// An explicit BvhQuality is what Embree builds with, whatever the expected work; ROBUST is
+// set on the Embree scene when asked for. The hits do not change.
+TEST(Accel, ExplicitBuildQualityAndRobustFlag) {
+    std::vector<Vec3f> P = {{-1, -1, 5}, {1, -1, 5}, {1, 1, 5}, {-1, 1, 5}};
+    for (BvhQuality q : {BvhQuality::Low, BvhQuality::Medium, BvhQuality::High}) {
+        for (bool robust : {false, true}) {
+            AccelOptions ao;
+            ao.quality = q;
+            ao.robust = robust;
+            ao.expectedSamples = q == BvhQuality::Low ? 1000000 : 0;  // Auto would pick HIGH
+            Accel accel(ao);
+            accel.AddMesh(std::make_unique<TriangleMesh>(Transform(), false, P,
+                                                         std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+            accel.Commit();
+            EXPECT_EQ(accel.BuildQuality(), q);
+            EXPECT_EQ(accel.BuiltWithHighQuality(), q == BvhQuality::High);
+            EXPECT_EQ(accel.Robust(), robust);
+            SurfaceInteraction si;
+            ASSERT_TRUE(accel.Intersect(Ray{{0.5f, 0.5f, 0}, {0, 0, 1}, Infinity}, &si));
+            EXPECT_NEAR(si.t, 5.0f, 1e-6f);
+        }
+    }
+}
+
+}  // namespace prism
+
+namespace prism {
+
+// The three ways a spawned ray leaves a surface (RayOffset): error bounds are exactly
+// OffsetRayOrigin (the default), a fixed epsilon moves along n to the side of the direction,
+// and no offset keeps the point.
+TEST(Accel, SpawnOffsetModes) {
+    SurfaceInteraction si;
+    si.p = Vec3f(1, 2, 3);
+    si.pError = Vec3f(1e-3f, 1e-3f, 1e-3f);
+    si.n = Vec3f(0, 1, 0);
+    Vec3f up(0.6f, 0.8f, 0), down(0.6f, -0.8f, 0), light(1, 10, 3);
+    for (const Vec3f &w : {up, down}) {
+        EXPECT_EQ(si.SpawnRay(w, RayOffset{}).o, si.SpawnRay(w).o);
+        EXPECT_EQ(si.SpawnRay(w, RayOffset{}).d, w);
+        Ray e = si.SpawnRay(w, RayOffset{OffsetMode::FixedEpsilon, 0.25f});
+        EXPECT_EQ(e.o, Vec3f(1, w.y > 0 ? 2.25f : 1.75f, 3));
+        EXPECT_EQ(si.SpawnRay(w, RayOffset{OffsetMode::None, 0.25f}).o, si.p);
+    }
+    Ray s = si.SpawnRayTo(light), s0 = si.SpawnRayTo(light, RayOffset{});
+    EXPECT_EQ(s.o, s0.o);
+    EXPECT_EQ(s.d, s0.d);
+    EXPECT_EQ(s.tMax, s0.tMax);
+    Ray se = si.SpawnRayTo(light, RayOffset{OffsetMode::FixedEpsilon, 0.5f});
+    EXPECT_EQ(se.o, Vec3f(1, 2.5f, 3));
+    EXPECT_EQ(se.o + se.d, light);
+    EXPECT_EQ(si.SpawnRayTo(light, RayOffset{OffsetMode::None, 0.5f}).o, si.p);
 }
 
 }  // namespace prism

@@ -165,7 +165,7 @@ TEST(Tessellate, TwinNormalsMatchAnalyticThroughTransforms) {
     };
     for (const Case &c : kCases)
         for (const auto &[w, rev] : setups) {
-            Accel a, m(AccelOptions{Precision::Double, true, false});
+            Accel a, m(AccelOptions{Precision::Double, true, BvhQuality::Auto});
             a.AddAnalytic(c.make(w, rev));
             a.Commit();
             const AnalyticShape &s = *a.Analytic(0);
@@ -198,7 +198,7 @@ TEST(Tessellate, TwinNormalsMatchAnalyticThroughTransforms) {
 // normal, over rays along the geometric normal at barycentric points of every triangle (up to
 // about 3000 triangles, evenly strided), including points next to each vertex.
 double MaxShadingNormalError(const Case &c, const Transform &w, bool rev, int n) {
-    Accel a, m(AccelOptions{Precision::Double, true, false});
+    Accel a, m(AccelOptions{Precision::Double, true, BvhQuality::Auto});
     a.AddAnalytic(c.make(w, rev));
     a.Commit();
     m.AddMesh(MakeTessellatedMesh(*a.Analytic(0), n));
@@ -280,7 +280,7 @@ TEST(Tessellate, NoLeaksTowardVerticesAndEdges) {
         for (const Transform &w :
              {Transform(), Translate(Vec3d(1e4, 0, 0)) * Scale(1e-3, 1e-3, 1e-3)}) {
             auto s = c.make(w, false);
-            Accel m(AccelOptions{Precision::Double, true, false});
+            Accel m(AccelOptions{Precision::Double, true, BvhQuality::Auto});
             auto mesh = MakeTessellatedMesh(*s, 96);
             const TriangleMesh *tri = mesh.get();
             m.AddMesh(std::move(mesh));
