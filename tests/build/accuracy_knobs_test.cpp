@@ -146,8 +146,7 @@ struct AcneCase {
         const std::string floor = "Shape \"sphere\" \"float radius\" [ 100000 ]";
         size_t at = text.find(floor);
         EXPECT_NE(at, std::string::npos);
-        if (at != std::string::npos)
-            text.insert(at + floor.size(), " \"float shadowalpha\" [ 0 ]");
+        if (at != std::string::npos) text.insert(at + floor.size(), " \"float shadowalpha\" [ 0 ]");
         reference = WriteScene(name + "_reference", text);
     }
     int64_t BadPixels(BuildSettings opts, RayOffset offset) const {
