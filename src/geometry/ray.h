@@ -36,16 +36,23 @@ inline Vec3f OffsetRayOrigin(const Vec3f &p, const Vec3f &pError, const Vec3f &n
     return po;
 }
 
-// The origin of a ray leaving p in direction w by the chosen method (`--offset`):
-// ErrorBounds is OffsetRayOrigin; FixedEpsilon moves p by epsilon along n, to w's side; None
-// keeps p, so the ray may hit the surface it leaves (acne). The default is tested first, so
-// the default render pays one predictable branch.
+// FixedEpsilon moves p by epsilon along n, to w's side; None keeps p, so the ray may hit the
+// surface it leaves (acne). Out of line: only studies of the offset take this path.
+[[gnu::cold, gnu::noinline]] inline Vec3f SpawnOriginUnbounded(const Vec3f &p, const Vec3f &n,
+                                                               const Vec3f &w,
+                                                               const RayOffset &offset) {
+    if (offset.mode == OffsetMode::None) return p;
+    return p + (Dot(w, n) < 0 ? -n : n) * offset.epsilon;
+}
+
+// The origin of a ray leaving p in direction w by the chosen method (`--offset`). The default,
+// ErrorBounds (OffsetRayOrigin), is tested first and inline, so the default render pays one
+// predictable branch.
 inline Vec3f SpawnOrigin(const Vec3f &p, const Vec3f &pError, const Vec3f &n, const Vec3f &w,
                          const RayOffset &offset) {
     if (offset.mode == OffsetMode::ErrorBounds) [[likely]]
         return OffsetRayOrigin(p, pError, n, w);
-    if (offset.mode == OffsetMode::None) return p;
-    return p + (Dot(w, n) < 0 ? -n : n) * offset.epsilon;
+    return SpawnOriginUnbounded(p, n, w, offset);
 }
 
 // Shadow rays stop this fraction short of their target (pbrt's ShadowEpsilon), so a light or
