@@ -1,5 +1,6 @@
 #include "geometry/triangle_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -94,6 +95,21 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
     si.p = p0 * b0 + p1 * b1 + p2 * b2;
     // pbrt-v3 triangle.cpp: gamma7 * sum |b_i p_i|.
     si.pError = (Abs(p0 * b0) + Abs(p1 * b1) + Abs(p2 * b2)) * Gamma<float>(7);
+    // pbrt-v3 also rejects its own triangle test's hits below that test's error bound in t;
+    // Embree has no such test, so a spawned ray must start beyond the error of Embree's. Its
+    // test (Moeller-Trumbore in float; Pluecker when ROBUST) takes the origin's side of the
+    // plane from dot(Ng, v0 - o) with a float normal Ng = e1 x e2: off by about
+    // eps |v0 - o| (4 + 4 |e1| |e2| / |Ng|) as a distance. The bound above is per component and
+    // small across a tilted plane whose vertices are far from p, so large triangles got acne
+    // (docs/NUMERICS.md, "Offset modes"); this isotropic term, added to every component, makes
+    // the offset along n at least that error. It grows with the triangle's size, not with |p|.
+    {
+        Vec3f e1 = p1 - p0, e2 = p2 - p0;
+        float ng = Length(Cross(e1, e2));
+        float reach = std::max({Length(p0 - si.p), Length(p1 - si.p), Length(p2 - si.p)});
+        float aspect = ng > 0 ? Length(e1) * Length(e2) / ng : 1;
+        si.pError += Vec3f(1, 1, 1) * (Gamma<float>(8) * reach * (1 + aspect));
+    }
 
     Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
     if (needs != NeedNone && !uv_.empty()) {
