@@ -109,15 +109,24 @@ void WritePlots(const StudyArgs &a, const std::string &csv) {
                      a.python.empty() ? "tried python3 and /usr/bin/python3" : a.python.c_str());
         return;
     }
-    std::string cmd = ShellQuote(python) + " " + ShellQuote(FindPlotScript(a.plotScript)) +
-                      " " + ShellQuote(csv) + " " + ShellQuote(a.out);
+    std::string cmd = ShellQuote(python) + " " + ShellQuote(FindPlotScript(a.plotScript)) + " " +
+                      ShellQuote(csv) + " " + ShellQuote(a.out);
     if (std::system(cmd.c_str()) != 0)
-        std::fprintf(stderr, "warning: plotting failed (%s); results.csv and report.md are complete\n",
+        std::fprintf(stderr,
+                     "warning: plotting failed (%s); results.csv and report.md are complete\n",
                      cmd.c_str());
 }
 
 int RunStudyCommand(const StudyArgs &a) {
     namespace fs = std::filesystem;
+    if (a.scene.empty()) {
+        for (const std::string &k : a.knobs)
+            if (!ParseKnobName(k) && k != "all")
+                throw UsageError("no scene: \"" + k +
+                                 "\" was read as a --knob; give the scene first: prism study "
+                                 "SCENE --knob NAME ...");
+        throw UsageError("a scene file is required: prism study SCENE [--knob NAME ...]");
+    }
     StudyOptions opt;
     opt.knobs = ParseKnobs(a.knobs);
     if (!a.res.empty()) opt.resolution = ParseResolution(a.res);
@@ -174,8 +183,13 @@ void AddStudyCommand(CLI::App &app, int *exitCode) {
         "study",
         "Measure what each accuracy knob costs in time: error against a reference render, "
         "results.csv, report.md and plots");
-    cmd->add_option("scene", args->scene, "Scene file")->required();
-    cmd->add_option("--knob", args->knobs, "Knobs to study (default all): " + KnownKnobs())
+    // Not required by CLI11: `--knob` takes every word after it, so a scene given after the
+    // knobs is read as a knob, and RunStudyCommand says so.
+    cmd->add_option("scene", args->scene, "Scene file");
+    cmd->add_option("--knob", args->knobs,
+                    "Knobs to study (default all; names or comma-separated lists, after the "
+                    "scene): " +
+                        KnownKnobs())
         ->delimiter(',');
     cmd->add_option("--res", args->res, "Resolution WxH (overrides the Film)");
     cmd->add_option("--repeats", args->repeats, "Runs per setting; times are medians")
@@ -191,10 +205,10 @@ void AddStudyCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--levels", args->levels, "Segment counts of the tessellate knob");
     cmd->add_option("--max-memory", args->maxMemory,
                     "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM)");
-    cmd->add_option("--python", args->python,
-                    "Python with matplotlib for the plots (default: python3, else /usr/bin/python3)");
-    cmd->add_option("--plot-script", args->plotScript,
-                    "Plot script (default tools/plot_study.py)");
+    cmd->add_option(
+        "--python", args->python,
+        "Python with matplotlib for the plots (default: python3, else /usr/bin/python3)");
+    cmd->add_option("--plot-script", args->plotScript, "Plot script (default tools/plot_study.py)");
     cmd->add_flag("-q,--quiet", args->quiet, "No progress or warnings");
     cmd->callback(
         [args, exitCode] { *exitCode = RunGuarded([&] { return RunStudyCommand(*args); }); });

@@ -65,20 +65,20 @@ Run RenderOnce(const RenderScene &scene) {
 // BVH quality's base is Auto, so none of theirs is).
 bool IsBaseSetting(const StudySetting &s, int baseSpp, int baseMaxDepth) {
     switch (s.knob) {
-    case StudyKnob::Spp:
-        return s.value == std::to_string(baseSpp);
-    case StudyKnob::MaxDepth:
-        return s.value == std::to_string(baseMaxDepth);
-    case StudyKnob::Cutoff:
-        return s.value == "0";
-    case StudyKnob::Precision:
-        return s.value == "double";
-    case StudyKnob::Offset:
-        return s.value == "errorbounds";
-    case StudyKnob::Robust:
-        return s.value == "off";
-    default:
-        return false;
+        case StudyKnob::Spp:
+            return s.value == std::to_string(baseSpp);
+        case StudyKnob::MaxDepth:
+            return s.value == std::to_string(baseMaxDepth);
+        case StudyKnob::Cutoff:
+            return s.value == "0";
+        case StudyKnob::Precision:
+            return s.value == "double";
+        case StudyKnob::Offset:
+            return s.value == "errorbounds";
+        case StudyKnob::Robust:
+            return s.value == "off";
+        default:
+            return false;
     }
 }
 
@@ -101,7 +101,8 @@ void CheckOptions(const StudyOptions &o) {
     if (o.baseSpp < 0 || o.baseSpp > MaxSamplesPerPixel)
         throw std::invalid_argument("study: base spp out of range");
     for (int n : o.tessellateLevels)
-        if (n < 3 || n > 4096) throw std::invalid_argument("study: tessellation level out of range");
+        if (n < 3 || n > 4096)
+            throw std::invalid_argument("study: tessellation level out of range");
 }
 
 }  // namespace
@@ -127,63 +128,65 @@ std::vector<StudyKnob> AllStudyKnobs() {
 std::vector<StudySetting> KnobSettings(StudyKnob knob, const StudyOptions &options) {
     std::vector<StudySetting> v;
     switch (knob) {
-    case StudyKnob::Spp:
-        // Below the reference's spp: at the same count the samples are the reference's own.
-        for (int n = 1; n <= 256 && n < options.referenceSpp; n *= 2)
-            v.push_back(Setting(knob, std::to_string(n), [n](BuildSettings &s) { s.spp = n; }));
-        break;
-    case StudyKnob::MaxDepth:
-        for (int d = 1; d <= ReferenceMaxDepth; ++d)
+        case StudyKnob::Spp:
+            // Below the reference's spp: at the same count the samples are the reference's own.
+            for (int n = 1; n <= 256 && n < options.referenceSpp; n *= 2)
+                v.push_back(Setting(knob, std::to_string(n), [n](BuildSettings &s) { s.spp = n; }));
+            break;
+        case StudyKnob::MaxDepth:
+            for (int d = 1; d <= ReferenceMaxDepth; ++d)
+                v.push_back(
+                    Setting(knob, std::to_string(d), [d](BuildSettings &s) { s.maxDepth = d; }));
+            break;
+        case StudyKnob::Cutoff: {
+            const std::pair<const char *, float> cutoffs[] = {
+                {"0", 0.f}, {"1e-4", 1e-4f}, {"1e-3", 1e-3f}, {"1e-2", 1e-2f}};
+            for (const auto &[label, c] : cutoffs)
+                v.push_back(Setting(knob, label, [c = c](BuildSettings &s) { s.rayCutoff = c; }));
+            break;
+        }
+        case StudyKnob::Precision:
             v.push_back(
-                Setting(knob, std::to_string(d), [d](BuildSettings &s) { s.maxDepth = d; }));
-        break;
-    case StudyKnob::Cutoff: {
-        const std::pair<const char *, float> cutoffs[] = {
-            {"0", 0.f}, {"1e-4", 1e-4f}, {"1e-3", 1e-3f}, {"1e-2", 1e-2f}};
-        for (const auto &[label, c] : cutoffs)
-            v.push_back(Setting(knob, label, [c = c](BuildSettings &s) { s.rayCutoff = c; }));
-        break;
-    }
-    case StudyKnob::Precision:
-        v.push_back(Setting(knob, "float", [](BuildSettings &s) { s.precision = Precision::Float; }));
-        v.push_back(
-            Setting(knob, "double", [](BuildSettings &s) { s.precision = Precision::Double; }));
-        break;
-    case StudyKnob::Offset: {
-        const std::tuple<const char *, OffsetMode, float> offsets[] = {
-            {"errorbounds", OffsetMode::ErrorBounds, 0.f},
-            {"epsilon-1e-4", OffsetMode::FixedEpsilon, 1e-4f},
-            {"epsilon-1e-3", OffsetMode::FixedEpsilon, 1e-3f},
-            {"none", OffsetMode::None, 0.f}};
-        for (const auto &[label, mode, eps] : offsets)
-            v.push_back(Setting(knob, label, [mode = mode, eps = eps](BuildSettings &s) {
-                s.offset.mode = mode;
-                if (mode == OffsetMode::FixedEpsilon) s.offset.epsilon = eps;
-            }));
-        break;
-    }
-    case StudyKnob::Tessellate:
-        for (int n : options.tessellateLevels)
-            v.push_back(Setting(knob, std::to_string(n), [n](BuildSettings &s) {
-                s.replaceAnalyticShape = TessellateWith(n);
-            }));
-        break;
-    case StudyKnob::Robust:
-        v.push_back(Setting(knob, "off", [](BuildSettings &s) { s.robust = false; }));
-        v.push_back(Setting(knob, "on", [](BuildSettings &s) { s.robust = true; }));
-        break;
-    case StudyKnob::BvhQuality: {
-        const std::pair<const char *, BvhQuality> qualities[] = {
-            {"low", BvhQuality::Low}, {"medium", BvhQuality::Medium}, {"high", BvhQuality::High}};
-        for (const auto &[label, q] : qualities)
-            v.push_back(Setting(knob, label, [q = q](BuildSettings &s) { s.bvhQuality = q; }));
-        break;
-    }
-    case StudyKnob::LightSamples:
-        for (int n : {1, 2, 4, 8, 16})
+                Setting(knob, "float", [](BuildSettings &s) { s.precision = Precision::Float; }));
             v.push_back(
-                Setting(knob, std::to_string(n), [n](BuildSettings &s) { s.lightSamples = n; }));
-        break;
+                Setting(knob, "double", [](BuildSettings &s) { s.precision = Precision::Double; }));
+            break;
+        case StudyKnob::Offset: {
+            const std::tuple<const char *, OffsetMode, float> offsets[] = {
+                {"errorbounds", OffsetMode::ErrorBounds, 0.f},
+                {"epsilon-1e-4", OffsetMode::FixedEpsilon, 1e-4f},
+                {"epsilon-1e-3", OffsetMode::FixedEpsilon, 1e-3f},
+                {"none", OffsetMode::None, 0.f}};
+            for (const auto &[label, mode, eps] : offsets)
+                v.push_back(Setting(knob, label, [mode = mode, eps = eps](BuildSettings &s) {
+                    s.offset.mode = mode;
+                    if (mode == OffsetMode::FixedEpsilon) s.offset.epsilon = eps;
+                }));
+            break;
+        }
+        case StudyKnob::Tessellate:
+            for (int n : options.tessellateLevels)
+                v.push_back(Setting(knob, std::to_string(n), [n](BuildSettings &s) {
+                    s.replaceAnalyticShape = TessellateWith(n);
+                }));
+            break;
+        case StudyKnob::Robust:
+            v.push_back(Setting(knob, "off", [](BuildSettings &s) { s.robust = false; }));
+            v.push_back(Setting(knob, "on", [](BuildSettings &s) { s.robust = true; }));
+            break;
+        case StudyKnob::BvhQuality: {
+            const std::pair<const char *, BvhQuality> qualities[] = {{"low", BvhQuality::Low},
+                                                                     {"medium", BvhQuality::Medium},
+                                                                     {"high", BvhQuality::High}};
+            for (const auto &[label, q] : qualities)
+                v.push_back(Setting(knob, label, [q = q](BuildSettings &s) { s.bvhQuality = q; }));
+            break;
+        }
+        case StudyKnob::LightSamples:
+            for (int n : {1, 2, 4, 8, 16})
+                v.push_back(Setting(knob, std::to_string(n),
+                                    [n](BuildSettings &s) { s.lightSamples = n; }));
+            break;
     }
     return v;
 }
@@ -197,22 +200,22 @@ bool KnobReusesScene(StudyKnob knob) {
 
 std::optional<std::string> KnobSkipReason(StudyKnob knob, const SceneFeatures &f) {
     switch (knob) {
-    case StudyKnob::MaxDepth:
-        if (!f.specularReflection && !f.transmission)
-            return "the scene has no mirror, glass or other specular material, so the trace "
-                   "depth changes nothing";
-        break;
-    case StudyKnob::Precision:
-    case StudyKnob::Tessellate:
-        if (f.analyticShapes == 0) return "the scene has no analytic shapes";
-        break;
-    case StudyKnob::LightSamples:
-        if (!f.areaLights && !f.environment)
-            return "the scene has no area or infinite light (point, spot and distant lights "
-                   "take one shadow ray)";
-        break;
-    default:
-        break;
+        case StudyKnob::MaxDepth:
+            if (!f.specularReflection && !f.transmission)
+                return "the scene has no mirror, glass or other specular material, so the trace "
+                       "depth changes nothing";
+            break;
+        case StudyKnob::Precision:
+        case StudyKnob::Tessellate:
+            if (f.analyticShapes == 0) return "the scene has no analytic shapes";
+            break;
+        case StudyKnob::LightSamples:
+            if (!f.areaLights && !f.environment)
+                return "the scene has no area or infinite light (point, spot and distant lights "
+                       "take one shadow ray)";
+            break;
+        default:
+            break;
     }
     return std::nullopt;
 }

@@ -130,7 +130,8 @@ std::string StudyReport(const StudyResult &result) {
         "than 0.1 (acne, light leaks, missing reflections); `nan_count` NaN or infinite samples "
         "(written as 0). `rays` counts the rays one render traced.\n\n";
 
-    for (const std::string &knob : KnobsInOrder(result.rows)) AppendKnobTable(md, result.rows, knob);
+    for (const std::string &knob : KnobsInOrder(result.rows))
+        AppendKnobTable(md, result.rows, knob);
 
     if (!result.skipped.empty()) {
         md += "## Knobs not studied\n\n";

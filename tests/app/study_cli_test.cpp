@@ -59,7 +59,8 @@ TEST_F(StudyCli, WritesResultsReportAndProgress) {
     EXPECT_EQ(line,
               "knob,value,time_s,build_s,rays,rmse,rel_l1,max_abs_err,psnr,bad_pixels,nan_count");
     std::vector<std::string> keys;
-    while (std::getline(lines, line)) keys.push_back(line.substr(0, line.find(',', line.find(',') + 1)));
+    while (std::getline(lines, line))
+        keys.push_back(line.substr(0, line.find(',', line.find(',') + 1)));
     EXPECT_EQ(keys, (std::vector<std::string>{"spp,1", "spp,2", "spp,4", "robust,off", "robust,on",
                                               "bvh-quality,low", "bvh-quality,medium",
                                               "bvh-quality,high"}));
@@ -104,6 +105,9 @@ TEST_F(StudyCli, BadInputWritesNothing) {
         {Whitted + " --levels 8,2 --res 8x6 --out out" + rest,
          "error: --levels: \"2\" is not a segment count"},
         {Whitted + " --repeats 0 --res 8x6 --out out --ref-spp 2", "--repeats"},
+        {"--knob spp " + Whitted + " --res 8x6 --out out" + rest,
+         "was read as a --knob; give the scene first"},
+        {"--res 8x6 --out out" + rest, "error: a scene file is required"},
         {Whitted + " --res 8x6 --out file" + rest,
          "error: --out \"file\" exists and is not a directory"},
     };

@@ -38,11 +38,11 @@ TEST(StudyReport, CsvColumnsAndInfinity) {
 
 TEST(StudyReport, ParetoFrontByCostAndRmse) {
     std::vector<StudyRow> rows{
-        MakeRow("spp", "1", 1, 0, 0.10),        // front
-        MakeRow("spp", "4", 4, 0, 0.05),        // front
-        MakeRow("spp", "16", 16, 0, 0.01),      // front
-        MakeRow("robust", "on", 5, 0, 0.06),    // dominated by spp 4
-        MakeRow("tessellate", "8", 2, 3, 0.2),  // dominated: cost 5
+        MakeRow("spp", "1", 1, 0, 0.10),            // front
+        MakeRow("spp", "4", 4, 0, 0.05),            // front
+        MakeRow("spp", "16", 16, 0, 0.01),          // front
+        MakeRow("robust", "on", 5, 0, 0.06),        // dominated by spp 4
+        MakeRow("tessellate", "8", 2, 3, 0.2),      // dominated: cost 5
         MakeRow("offset", "none", 4.5, 0, 0.0499),  // within 0.5% of spp 4: not better
         MakeRow("cutoff", "1e-2", 0.5, 0, NAN),     // NaN: left out
     };
