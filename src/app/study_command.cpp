@@ -150,7 +150,7 @@ int RunStudyCommand(const StudyArgs &a) {
     loadOpts.budget = &budget;
     SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
     if (!a.quiet)
-        std::fprintf(stderr, "study: reference render (%d spp, maxdepth 16), then the settings\n",
+        std::fprintf(stderr, "study: reference render (%d spp), then the settings\n",
                      opt.referenceSpp);
     StudyProgress progress;
     if (!a.quiet)

@@ -29,7 +29,7 @@ constexpr KnobEntry Knobs[] = {
     {StudyKnob::LightSamples, "light-samples"},
 };
 
-// The reference's trace depth (the issue's "depth 16").
+// The reference's trace depth (the issue's "depth 16"; the scene's own when it is deeper).
 constexpr int ReferenceMaxDepth = 16;
 
 double Median(std::vector<double> v) {
@@ -43,7 +43,8 @@ StudySetting Setting(StudyKnob knob, std::string value, std::function<void(Build
     return StudySetting{knob, std::move(value), std::move(f)};
 }
 
-// The render-time fields of the settings, copied into a built scene (KnobReusesScene).
+// The render-time fields of the settings, copied into a built scene (KnobReusesScene). Every
+// knob KnobReusesScene names must be copied here.
 void ApplyRenderTimeSettings(const BuildSettings &s, int baseSpp, int baseMaxDepth,
                              RenderScene *scene) {
     scene->spp = s.spp > 0 ? s.spp : baseSpp;
@@ -192,9 +193,9 @@ std::vector<StudySetting> KnobSettings(StudyKnob knob, const StudyOptions &optio
 }
 
 bool KnobReusesScene(StudyKnob knob) {
-    // TODO(issue 11): the cutoff and the light samples only need a re-render once they are
-    // RenderScene fields (the cutoff is read at build time for now, light samples live in
-    // each light): then add them here and to ApplyRenderTimeSettings.
+    // TODO(issue 11): once the cutoff (and the offset, if only the renderer reads it) are
+    // RenderScene fields, they need only a re-render: add them here and copy them in
+    // ApplyRenderTimeSettings. Light samples live in each light (built), so they rebuild.
     return knob == StudyKnob::Spp || knob == StudyKnob::MaxDepth;
 }
 
@@ -225,7 +226,7 @@ ImageError MeasureError(const Image &image, const Image &reference, uint64_t non
         throw std::invalid_argument("MeasureError: images of different sizes");
     ImageError e;
     e.nanCount = nonFiniteSamples;
-    double sumSq = 0, sumAbs = 0, sumRef = 0;
+    double sumSq = 0, sumAbs = 0, sumRef = 0, sumRefSq = 0;
     uint64_t n = 0;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
@@ -240,6 +241,7 @@ ImageError MeasureError(const Image &image, const Image &reference, uint64_t non
                 sumSq += d * d;
                 sumAbs += d;
                 sumRef += std::abs(double(b[c]));
+                sumRefSq += double(b[c]) * double(b[c]);
                 e.maxAbs = std::max(e.maxAbs, d);
                 bad |= d > BadPixelThreshold;
                 ++n;
@@ -250,6 +252,7 @@ ImageError MeasureError(const Image &image, const Image &reference, uint64_t non
     e.rmse = std::sqrt(mse);
     e.relL1 = sumRef > 0 ? sumAbs / sumRef : (sumAbs > 0 ? Infinity : 0);
     e.psnr = mse > 0 ? 10 * std::log10(1 / mse) : Infinity;
+    e.relRmse = sumRefSq > 0 ? std::sqrt(sumSq / sumRefSq) : (sumSq > 0 ? Infinity : 0);
     return e;
 }
 
@@ -280,7 +283,7 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
                          scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y};
     result.repeats = options.repeats;
     result.referenceSpp = options.referenceSpp;
-    result.referenceMaxDepth = ReferenceMaxDepth;
+    result.referenceMaxDepth = std::max(ReferenceMaxDepth, baseMaxDepth);
     result.baseSpp = baseSpp;
     result.baseMaxDepth = baseMaxDepth;
 
@@ -299,7 +302,7 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
     // The reference: the base scene (double precision, analytic shapes, error-bound offsets,
     // no cutoff are the defaults) at many samples and depth 16.
     scene.spp = options.referenceSpp;
-    scene.maxDepth = ReferenceMaxDepth;
+    scene.maxDepth = std::max(ReferenceMaxDepth, baseMaxDepth);
     Run ref = RenderOnce(scene);
     result.referenceSeconds = ref.stats.renderSeconds;
     scene.spp = baseSpp;

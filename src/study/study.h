@@ -62,8 +62,8 @@ struct StudyOptions {
 std::vector<StudySetting> KnobSettings(StudyKnob knob, const StudyOptions &options);
 
 // Whether the knob is read only by the renderer, so that one built scene (and BVH) serves all
-// its settings. spp and maxdepth are RenderScene fields; the cutoff and the light samples are
-// taken at build time (BuildSettings, lights' nsamples) and rebuild for now.
+// its settings. spp and maxdepth are RenderScene fields; the others rebuild (the cutoff for
+// now; light samples are in the lights).
 bool KnobReusesScene(StudyKnob knob);
 
 // Why the knob does not apply to the scene (nothing to study), or nullopt when it does.
@@ -78,9 +78,11 @@ std::optional<std::string> KnobSkipReason(StudyKnob knob, const SceneFeatures &f
 //   bad_pixels  pixels with some component off by more than BadPixelThreshold (acne, leaks)
 //   nan_count   NaN/Inf samples (the renderer writes them as 0) plus non-finite components
 // A component non-finite in `a` counts in nan_count and is left out of the other measures.
+// relRmse (not in results.csv; for `--target-error`) is sqrt(sum (a - ref)^2 / sum ref^2),
+// the rmse relative to the reference's root mean square.
 inline constexpr float BadPixelThreshold = 0.1f;
 struct ImageError {
-    double rmse = 0, relL1 = 0, maxAbs = 0, psnr = 0;
+    double rmse = 0, relL1 = 0, maxAbs = 0, psnr = 0, relRmse = 0;
     int64_t badPixels = 0;
     uint64_t nanCount = 0;
 };
@@ -118,9 +120,9 @@ struct StudyResult {
 // Called before each setting: index from 1 to count.
 using StudyProgress = std::function<void(int index, int count, const StudySetting &setting)>;
 
-// Renders the reference (referenceSpp, maxdepth 16, double precision, analytic shapes,
-// error-bound offsets, no cutoff, the scene's light samples) and every setting of every
-// applicable knob. Throws SceneError for bad input (as BuildRenderScene does), before any
+// Renders the reference (referenceSpp, maxdepth 16 or the scene's if deeper, double precision,
+// analytic shapes, error-bound offsets, no cutoff, the scene's light samples) and every setting of
+// every applicable knob. Throws SceneError for bad input (as BuildRenderScene does), before any
 // setting is timed when the scene itself is bad.
 StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
                      const StudyOptions &options, Diagnostics &diag,

@@ -101,6 +101,7 @@ TEST(StudyError, Measures) {
     EXPECT_NEAR(e.psnr, 10 * std::log10(6 / 0.25), 1e-12);
     EXPECT_EQ(e.badPixels, 1);
     EXPECT_EQ(e.nanCount, 0u);
+    EXPECT_DOUBLE_EQ(e.relRmse, std::sqrt(0.25 / 6));  // the reference's rms is 1
 
     ImageError same = MeasureError(ref, ref, 3);
     EXPECT_EQ(same.rmse, 0);
