@@ -2,7 +2,8 @@
 // accuracy knob is rendered (the other knobs at the base settings), timed (median of repeats,
 // BVH build and render apart) and compared with a reference render (study_report.h writes the
 // results). The loaded SceneDescription serves every setting; knobs that only the renderer reads
-// (spp, maxdepth) reuse one built RenderScene and its BVH, the others rebuild it.
+// (spp, maxdepth; KnobReusesScene) reuse one built RenderScene and its BVH, the others rebuild
+// it.
 #pragma once
 
 #include <cstdint>
@@ -62,8 +63,8 @@ struct StudyOptions {
 std::vector<StudySetting> KnobSettings(StudyKnob knob, const StudyOptions &options);
 
 // Whether the knob is read only by the renderer, so that one built scene (and BVH) serves all
-// its settings. spp and maxdepth are RenderScene fields; the others rebuild (the cutoff for
-// now; light samples are in the lights).
+// its settings: spp and maxdepth, and the cutoff and offset once they are RenderScene fields.
+// The others rebuild (light samples are in the lights).
 bool KnobReusesScene(StudyKnob knob);
 
 // Why the knob does not apply to the scene (nothing to study), or nullopt when it does.

@@ -53,6 +53,17 @@ void AppendKnobTable(std::string &md, const std::vector<StudyRow> &rows, const s
     md += "\n";
 }
 
+// "spp, maxdepth and cutoff": the knobs that re-render one built scene.
+std::string ReusingKnobs() {
+    std::vector<std::string> names;
+    for (StudyKnob k : AllStudyKnobs())
+        if (KnobReusesScene(k)) names.push_back(KnobName(k));
+    std::string s;
+    for (size_t i = 0; i < names.size(); ++i)
+        s += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+    return s;
+}
+
 std::vector<std::string> KnobsInOrder(const std::vector<StudyRow> &rows) {
     std::vector<std::string> knobs;
     for (const StudyRow &r : rows)
@@ -119,9 +130,9 @@ std::string StudyReport(const StudyResult &result) {
         "**Base settings:** each knob is swept alone; the others keep the scene's own settings: "
         "{} samples per pixel, maxdepth {}, each light's own sample count, double precision, "
         "analytic shapes, error-bound offsets, no cutoff, ROBUST off, BVH quality chosen "
-        "automatically. The spp and maxdepth settings re-render one built scene; the other knobs "
-        "rebuild it.\n\n",
-        result.baseSpp, result.baseMaxDepth);
+        "automatically. The settings of {} re-render one built scene; the other knobs rebuild "
+        "it.\n\n",
+        result.baseSpp, result.baseMaxDepth, ReusingKnobs());
     md +=
         "**Metrics** (against the reference, over every pixel's RGB components, linear "
         "radiance): `rmse` root mean square error; `rel_l1` the sum of absolute errors over the "
