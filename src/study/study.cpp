@@ -43,25 +43,14 @@ StudySetting Setting(StudyKnob knob, std::string value, std::function<void(Build
     return StudySetting{knob, std::move(value), std::move(f)};
 }
 
-// Whether RenderScene carries the cutoff and the offset, which only the renderer reads: the
-// accuracy knobs' behaviour (issue 11) lands on another branch. TODO(issue 11): once it has
-// landed, drop the detection and copy the fields directly.
-template <typename Scene>
-constexpr bool RenderTimeCutoffAndOffset = requires(Scene &scene, const BuildSettings &s) {
-    scene.rayCutoff = s.rayCutoff;
-    scene.offset = s.offset;
-};
-
 // The render-time fields of the settings, copied into a built scene (KnobReusesScene). Every
 // knob KnobReusesScene names must be copied here.
-template <typename Scene>
-void ApplyRenderTimeSettings(const BuildSettings &s, int baseSpp, int baseMaxDepth, Scene *scene) {
+void ApplyRenderTimeSettings(const BuildSettings &s, int baseSpp, int baseMaxDepth,
+                             RenderScene *scene) {
     scene->spp = s.spp > 0 ? s.spp : baseSpp;
     scene->maxDepth = s.maxDepth >= 0 ? s.maxDepth : baseMaxDepth;
-    if constexpr (RenderTimeCutoffAndOffset<Scene>) {
-        scene->rayCutoff = s.rayCutoff;
-        scene->offset = s.offset;
-    }
+    scene->rayCutoff = s.rayCutoff;
+    scene->offset = s.offset;
 }
 
 struct Run {
@@ -207,10 +196,8 @@ std::vector<StudySetting> KnobSettings(StudyKnob knob, const StudyOptions &optio
 
 bool KnobReusesScene(StudyKnob knob) {
     // Light samples live in each light (built), so they rebuild.
-    if (knob == StudyKnob::Spp || knob == StudyKnob::MaxDepth) return true;
-    if constexpr (RenderTimeCutoffAndOffset<RenderScene>)
-        return knob == StudyKnob::Cutoff || knob == StudyKnob::Offset;
-    return false;
+    return knob == StudyKnob::Spp || knob == StudyKnob::MaxDepth || knob == StudyKnob::Cutoff ||
+           knob == StudyKnob::Offset;
 }
 
 std::optional<std::string> KnobSkipReason(StudyKnob knob, const SceneFeatures &f) {

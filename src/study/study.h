@@ -2,8 +2,8 @@
 // accuracy knob is rendered (the other knobs at the base settings), timed (median of repeats,
 // BVH build and render apart) and compared with a reference render (study_report.h writes the
 // results). The loaded SceneDescription serves every setting; knobs that only the renderer reads
-// (spp, maxdepth; KnobReusesScene) reuse one built RenderScene and its BVH, the others rebuild
-// it.
+// (spp, maxdepth, cutoff, offset; KnobReusesScene) reuse one built RenderScene and its BVH, the
+// others rebuild it.
 #pragma once
 
 #include <cstdint>
@@ -63,7 +63,7 @@ struct StudyOptions {
 std::vector<StudySetting> KnobSettings(StudyKnob knob, const StudyOptions &options);
 
 // Whether the knob is read only by the renderer, so that one built scene (and BVH) serves all
-// its settings: spp and maxdepth, and the cutoff and offset once they are RenderScene fields.
+// its settings: spp, maxdepth, the cutoff and the offset (RenderScene fields).
 // The others rebuild (light samples are in the lights).
 bool KnobReusesScene(StudyKnob knob);
 
