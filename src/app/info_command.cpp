@@ -89,13 +89,15 @@ int RunInfo(const InfoArgs &a) {
 
     std::printf("scene:      %s (%s), loaded in %.3f s\n", a.scene.c_str(), desc.format.c_str(),
                 loadSeconds);
-    std::printf("shapes:     %zu (%s)\n", desc.shapes.size(), Counts(shapes).c_str());
+    int operandShapes = 0;  // CSG operands
+    for (const auto &[k, v] : csgOperands) operandShapes += v;
+    std::printf("shapes:     %zu (%s)\n", desc.shapes.size() + size_t(operandShapes),
+                Counts(shapes).c_str());
     if (!desc.csg.empty()) {
-        int nodes = 0, operands = 0;
+        int nodes = 0;
         for (const auto &[k, v] : csgOps) nodes += v;
-        for (const auto &[k, v] : csgOperands) operands += v;
         std::printf("csg:        %zu objects, %d nodes (%s) over %d operand shapes (%s)\n",
-                    desc.csg.size(), nodes, Counts(csgOps).c_str(), operands,
+                    desc.csg.size(), nodes, Counts(csgOps).c_str(), operandShapes,
                     Counts(csgOperands).c_str());
     }
     std::printf("triangles:  %zu\n", triangles);

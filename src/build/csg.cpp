@@ -18,13 +18,15 @@ struct CsgBuilder : BuildStep {
 
     int AddLeaf(const ShapeDesc &s) {
         ShapeFactoryContext fctx{desc, diag, settings.precision, &budget};
-        ShapeGeometry geom = CreateShapeGeometry(s, scene.renderFromWorld * s.worldFromObject, fctx);
+        ShapeGeometry geom =
+            CreateShapeGeometry(s, scene.renderFromWorld * s.worldFromObject, fctx);
         if (!geom.mesh && !geom.analytic)
             throw SceneError(s.loc, "shape " + Quote(s.type) +
                                         " cannot be a CSG operand (analytic shapes and closed "
                                         "triangle meshes can)");
         if (s.areaLight >= 0)
-            diag.Warn(s.loc, "area lights on CSG operands are not supported; the shape does not emit");
+            diag.Warn(s.loc,
+                      "area lights on CSG operands are not supported; the shape does not emit");
         for (const char *n : {"alpha", "shadowalpha"})
             if (s.params.Has(n)) {
                 diag.Warn(s.loc, std::string("\"") + n + "\" is ignored on CSG operands");

@@ -308,8 +308,8 @@ void CsgShape::Gather(const CsgRef &ref, const Vec3f &o, const Vec3f &d, float t
     }
 }
 
-std::vector<std::pair<double, bool>> CsgShape::Crossings(const Vec3f &o, const Vec3f &d,
-                                                         float tMin, Precision precision) const {
+std::vector<std::pair<double, bool>> CsgShape::Crossings(const Vec3f &o, const Vec3f &d, float tMin,
+                                                         Precision precision) const {
     List list;
     Gather({false, NumNodes() - 1}, o, d, tMin, precision, &list);
     std::vector<std::pair<double, bool>> r;

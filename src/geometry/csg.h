@@ -83,8 +83,8 @@ class CsgShape final : public AnalyticShape {
         CsgOp op;
         std::vector<CsgRef> operands;
     };
-    void Gather(const CsgRef &ref, const Vec3f &o, const Vec3f &d, float tMin,
-                Precision precision, List *out) const;
+    void Gather(const CsgRef &ref, const Vec3f &o, const Vec3f &d, float tMin, Precision precision,
+                List *out) const;
     void GatherLeaf(int leaf, const Vec3f &o, const Vec3f &d, float tMin, Precision precision,
                     List *out) const;
     double ImplicitOf(const CsgRef &ref, const Vec3d &p) const;

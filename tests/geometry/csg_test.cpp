@@ -71,7 +71,7 @@ void Check(const Accel &accel, Ray ray, const Expect &e, const char *what) {
     EXPECT_FALSE(accel.Occluded(before));
 }
 
-const float yA = std::sqrt(0.75f);         // |y| of A at x = 0.5
+const float yA = std::sqrt(0.75f);          // |y| of A at x = 0.5
 const float yB = std::sqrt(0.81f - 0.25f);  // |y| of B at x = 0.5
 
 TEST(Csg, TwoSpheresUnion) {
@@ -80,14 +80,12 @@ TEST(Csg, TwoSpheresUnion) {
     Check(*accel, Ray{{5, 0, 0}, {-1, 0, 0}}, {true, {1.9f, 0, 0}, {1, 0, 0}, 1}, "axis back");
     Check(*accel, Ray{{-0.5f, -5, 0}, {0, 1, 0}}, {true, {-0.5f, -yA, 0}, {-0.5f, -yA, 0}, 0},
           "A only");
-    Check(*accel, Ray{{1.5f, -5, 0}, {0, 1, 0}},
-          {true, {1.5f, -yB, 0}, {0.5f, -yB, 0}, 1}, "B only");
-    Check(*accel, Ray{{0.5f, -5, 0}, {0, 1, 0}}, {true, {0.5f, -yA, 0}, {0.5f, -yA, 0}, 0},
-          "both");
+    Check(*accel, Ray{{1.5f, -5, 0}, {0, 1, 0}}, {true, {1.5f, -yB, 0}, {0.5f, -yB, 0}, 1},
+          "B only");
+    Check(*accel, Ray{{0.5f, -5, 0}, {0, 1, 0}}, {true, {0.5f, -yA, 0}, {0.5f, -yA, 0}, 0}, "both");
     Check(*accel, Ray{{3, -5, 0}, {0, 1, 0}}, {false, {}, {}, 0}, "neither");
     // From inside both: the exit of the union (A's surface).
-    Check(*accel, Ray{{0.5f, 0, 0}, {0, 1, 0}}, {true, {0.5f, yA, 0}, {0.5f, yA, 0}, 0},
-          "inside");
+    Check(*accel, Ray{{0.5f, 0, 0}, {0, 1, 0}}, {true, {0.5f, yA, 0}, {0.5f, yA, 0}, 0}, "inside");
     // tMax before the surface; tMin past the entry (then the exit at x = 1.9).
     Check(*accel, Ray{{-5, 0, 0}, {1, 0, 0}, 3.9f}, {false, {}, {}, 0}, "tMax");
     Check(*accel, Ray{{-5, 0, 0}, {1, 0, 0}, Infinity, 4.5f}, {true, {1.9f, 0, 0}, {1, 0, 0}, 1},
@@ -104,8 +102,7 @@ TEST(Csg, TwoSpheresIntersection) {
     Check(*accel, Ray{{0.5f, -5, 0}, {0, 1, 0}}, {true, {0.5f, -yB, 0}, {-0.5f, -yB, 0}, 1},
           "both");
     Check(*accel, Ray{{3, -5, 0}, {0, 1, 0}}, {false, {}, {}, 0}, "neither");
-    Check(*accel, Ray{{0.5f, 0, 0}, {0, 1, 0}}, {true, {0.5f, yB, 0}, {-0.5f, yB, 0}, 1},
-          "inside");
+    Check(*accel, Ray{{0.5f, 0, 0}, {0, 1, 0}}, {true, {0.5f, yB, 0}, {-0.5f, yB, 0}, 1}, "inside");
     Check(*accel, Ray{{-5, 0, 0}, {1, 0, 0}, 5.0f}, {false, {}, {}, 0}, "tMax");
     Check(*accel, Ray{{-5, 0, 0}, {1, 0, 0}, Infinity, 5.5f}, {true, {1, 0, 0}, {1, 0, 0}, 0},
           "tMin");
@@ -119,8 +116,7 @@ TEST(Csg, TwoSpheresDifference) {
     Check(*accel, Ray{{-0.5f, -5, 0}, {0, 1, 0}}, {true, {-0.5f, -yA, 0}, {-0.5f, -yA, 0}, 0},
           "A only");
     Check(*accel, Ray{{1.5f, -5, 0}, {0, 1, 0}}, {false, {}, {}, 0}, "B only");
-    Check(*accel, Ray{{0.5f, -5, 0}, {0, 1, 0}}, {true, {0.5f, -yA, 0}, {0.5f, -yA, 0}, 0},
-          "both");
+    Check(*accel, Ray{{0.5f, -5, 0}, {0, 1, 0}}, {true, {0.5f, -yA, 0}, {0.5f, -yA, 0}, 0}, "both");
     Check(*accel, Ray{{3, -5, 0}, {0, 1, 0}}, {false, {}, {}, 0}, "neither");
     // From inside B (outside the result): into A - B where the ray leaves B.
     Check(*accel, Ray{{0.5f, 0, 0}, {0, 1, 0}}, {true, {0.5f, yB, 0}, {0.5f, -yB, 0}, 1},
@@ -192,8 +188,7 @@ TEST(Csg, SphereCubeUnion) {
           {true, {-std::sqrt(1.69f - 1.44f), 1.2f, 0}, {-std::sqrt(1.69f - 1.44f), 1.2f, 0}, 0},
           "sphere only");
     Check(*accel, Ray{{-5, 1.5f, 0}, {1, 0, 0}}, {false, {}, {}, 0}, "neither");
-    Check(*accel, Ray{{0, 0.8f, 0.8f}, {1, 0, 0}}, {true, {1, 0.8f, 0.8f}, {1, 0, 0}, 1},
-          "inside");
+    Check(*accel, Ray{{0, 0.8f, 0.8f}, {1, 0, 0}}, {true, {1, 0.8f, 0.8f}, {1, 0, 0}, 1}, "inside");
 }
 
 TEST(Csg, SphereCubeIntersection) {
@@ -204,8 +199,8 @@ TEST(Csg, SphereCubeIntersection) {
               {true, {-xs, 0.8f, 0.8f}, {-xs, 0.8f, 0.8f}, 0}, "both, sphere first");
         Check(*accel, Ray{{-5, 1.2f, 0}, {1, 0, 0}}, {false, {}, {}, 0}, "sphere only");
         Check(*accel, Ray{{0, 0, 0}, {0, 0, -1}}, {true, {0, 0, -1}, {0, 0, -1}, 1}, "inside");
-        Check(*accel, Ray{{-5, 0, 0}, {1, 0, 0}, Infinity, 4.5f},
-              {true, {1, 0, 0}, {1, 0, 0}, 1}, "tMin");
+        Check(*accel, Ray{{-5, 0, 0}, {1, 0, 0}, Infinity, 4.5f}, {true, {1, 0, 0}, {1, 0, 0}, 1},
+              "tMin");
     }
 }
 
@@ -287,6 +282,41 @@ TEST(Csg, LensFocusesLikeAThickLens) {
         double z = double(so.p.z) + s * t2.z;
         EXPECT_NEAR(z, zFocus, 0.01 * zFocus) << "h = " << h;
     }
+}
+
+}  // namespace
+}  // namespace prism
+
+namespace prism {
+namespace {
+
+// Rays spawned off a convex CSG solid (a sphere intersected with a mesh cube) toward the
+// outside never hit it again, and rays spawned inward always do.
+TEST(Csg, SpawnedRaysLeaveTheSurface) {
+    auto accel = SphereCube(CsgOp::Intersection);
+    int selfHits = 0, missesInside = 0, hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+        // Rays from outside toward points spread over the solid.
+        double a = 0.37 * i, b = 0.113 * i;
+        Vec3f target(float(0.9 * std::sin(a)), float(0.9 * std::cos(a) * std::sin(b)),
+                     float(0.9 * std::cos(b)));
+        Vec3f o(float(5 * std::cos(0.7 * i)), float(5 * std::sin(0.7 * i)),
+                float(3 * std::sin(0.3 * i)));
+        Ray ray{o, target - o};
+        SurfaceInteraction si;
+        if (!accel->Intersect(ray, &si)) continue;
+        ++hits;
+        Vec3f n = si.n;
+        Vec3f w = Normalize(ray.d);
+        Vec3f r = w - n * (2 * Dot(w, n));  // mirror reflection: away from the convex solid
+        if (accel->Intersect(si.SpawnRay(r), &si)) ++selfHits;
+        SurfaceInteraction s2;
+        if (!accel->Intersect(ray, &s2)) continue;
+        if (!accel->Intersect(s2.SpawnRay(w), &s2)) ++missesInside;
+    }
+    EXPECT_GT(hits, 1000);
+    EXPECT_EQ(selfHits, 0);
+    EXPECT_EQ(missesInside, 0);
 }
 
 }  // namespace
