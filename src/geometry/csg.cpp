@@ -96,6 +96,7 @@ struct CsgShape::List {
 };
 
 struct CsgShape::Leaf {
+    Bounds3d bounds;  // render space, padded
     std::unique_ptr<AnalyticShape> analytic;
     std::unique_ptr<Accel> meshScene;  // holds the mesh (shape 0)
     const TriangleMesh *mesh = nullptr;
@@ -167,8 +168,13 @@ Bounds3d CsgShape::BoundsOf(const CsgRef &ref) const {
 
 void CsgShape::Finish() {
     if (nodes_.empty()) throw std::invalid_argument("a CSG shape needs a node");
-    for (auto &l : leaves_)
+    for (auto &l : leaves_) {
         if (l->meshScene) l->meshScene->Commit();
+        Bounds3f b = l->analytic ? l->analytic->RenderBounds() : l->mesh->RenderBounds();
+        // Padded again: the slab test below runs in double on float rays.
+        Vec3d pad = (Abs(Vec3d(b.pMin)) + Abs(Vec3d(b.pMax))) * 1e-6 + Vec3d(1e-30, 1e-30, 1e-30);
+        l->bounds = Bounds3d(Vec3d(b.pMin) - pad, Vec3d(b.pMax) + pad);
+    }
     bounds_ = BoundsOf({false, NumNodes() - 1});
 }
 
@@ -226,9 +232,26 @@ static void NormalizeList(CsgShape::List *list) {
     }
 }
 
+// Whether the ray (t > tMin) can meet the box: most operands of a big CSG tree (the pips of a
+// die) lie off most rays, and the slab test is far cheaper than their root routines.
+static bool RayMeetsBox(const Bounds3d &b, const Vec3f &o, const Vec3f &d, float tMin) {
+    double t0 = tMin, t1 = Infinity;
+    for (int i = 0; i < 3; ++i) {
+        double inv = 1 / double(d[i]);
+        double tNear = (b.pMin[i] - double(o[i])) * inv, tFar = (b.pMax[i] - double(o[i])) * inv;
+        if (tNear > tFar) std::swap(tNear, tFar);
+        if (std::isnan(tNear) || std::isnan(tFar)) continue;  // 0 * inf: o on a slab plane
+        t0 = std::max(t0, tNear);
+        t1 = std::min(t1, tFar);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
 void CsgShape::GatherLeaf(int index, const Vec3f &o, const Vec3f &d, float tMin,
                           Precision precision, List *out) const {
     const Leaf &l = *leaves_[size_t(index)];
+    if (!RayMeetsBox(l.bounds, o, d, tMin)) return;
     // Analytic shapes have at most 4 roots (the torus); meshes are bounded by a generous cap
     // so a degenerate mesh cannot stall a ray.
     const int maxCrossings = l.analytic ? 8 : 4096;
@@ -271,7 +294,13 @@ void CsgShape::Gather(const CsgRef &ref, const Vec3f &o, const Vec3f &d, float t
     const Node &node = nodes_[size_t(ref.index)];
     const size_t n = node.operands.size();
     std::vector<List> lists(n);
-    for (size_t i = 0; i < n; ++i) Gather(node.operands[i], o, d, tMin, precision, &lists[i]);
+    for (size_t i = 0; i < n; ++i) {
+        Gather(node.operands[i], o, d, tMin, precision, &lists[i]);
+        // An intersection with, or a difference from, a solid the ray never meets is empty.
+        bool empty = lists[i].c.empty() && !lists[i].insideAtStart;
+        if (empty && (node.op == CsgOp::Intersection || (node.op == CsgOp::Difference && i == 0)))
+            return;
+    }
     std::vector<char> state(n);
     auto evaluate = [&] {
         switch (node.op) {
