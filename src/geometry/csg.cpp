@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 
 #include "geometry/accel.h"
 
@@ -45,20 +47,17 @@ std::string MeshClosedError(const TriangleMesh &mesh) {
         Vec3f p = mesh.Position(i);
         weld[i] = ids.emplace(std::make_tuple(p.x, p.y, p.z), uint32_t(ids.size())).first->second;
     }
-    std::map<std::pair<uint32_t, uint32_t>, std::pair<int, uint32_t>> edges;  // count, a vertex
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;  // welded edge -> triangles using it
     for (size_t t = 0; t < mesh.NumTriangles(); ++t) {
         const uint32_t *v = mesh.Triangle(t);
         for (int e = 0; e < 3; ++e) {
             uint32_t a = weld[v[e]], b = weld[v[(e + 1) % 3]];
             if (a == b) continue;  // degenerate edge of a degenerate triangle
-            auto &entry = edges[{std::min(a, b), std::max(a, b)}];
-            entry.first++;
-            entry.second = v[e];
-            (void)entry;
+            edges[{std::min(a, b), std::max(a, b)}]++;
         }
     }
-    for (const auto &[key, value] : edges) {
-        if (value.first == 2) continue;
+    for (const auto &[key, count] : edges) {
+        if (count == 2) continue;
         // Report the edge by its endpoints' positions (render space).
         Vec3f pa, pb;
         for (uint32_t i = 0; i < mesh.NumVertices(); ++i) {
@@ -71,7 +70,7 @@ std::string MeshClosedError(const TriangleMesh &mesh) {
             return std::string(buf);
         };
         return "the mesh is not closed: edge " + str(pa) + "-" + str(pb) + " belongs to " +
-               std::to_string(value.first) + (value.first == 1 ? " triangle" : " triangles") +
+               std::to_string(count) + (count == 1 ? " triangle" : " triangles") +
                " (every edge must belong to exactly 2)";
     }
     return "";
