@@ -1,6 +1,7 @@
 // `prism info SCENE`: what a scene file contains, without building a BVH.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <memory>
 
@@ -57,6 +58,17 @@ int RunInfo(const InfoArgs &a) {
         }
     };
     for (const ShapeDesc &s : desc.shapes) account(s, s.worldFromObject);
+    // CSG nodes (Prism extension): their operands are counted as shapes too.
+    std::map<std::string, int> csgOps, csgOperands;
+    std::function<void(const CsgDesc &)> countCsg = [&](const CsgDesc &node) {
+        csgOps[node.op]++;
+        for (const ShapeDesc &s : node.shapes) {
+            csgOperands[s.type]++;
+            account(s, s.worldFromObject);
+        }
+        for (const CsgDesc &child : node.children) countCsg(child);
+    };
+    for (const CsgDesc &node : desc.csg) countCsg(node);
     for (const InstanceDesc &inst : desc.instances) {
         const ObjectDesc *obj = FindObject(desc, inst.object);
         if (!obj) continue;
@@ -77,7 +89,17 @@ int RunInfo(const InfoArgs &a) {
 
     std::printf("scene:      %s (%s), loaded in %.3f s\n", a.scene.c_str(), desc.format.c_str(),
                 loadSeconds);
-    std::printf("shapes:     %zu (%s)\n", desc.shapes.size(), Counts(shapes).c_str());
+    int operandShapes = 0;  // CSG operands
+    for (const auto &[k, v] : csgOperands) operandShapes += v;
+    std::printf("shapes:     %zu (%s)\n", desc.shapes.size() + size_t(operandShapes),
+                Counts(shapes).c_str());
+    if (!desc.csg.empty()) {
+        int nodes = 0;
+        for (const auto &[k, v] : csgOps) nodes += v;
+        std::printf("csg:        %zu objects, %d nodes (%s) over %d operand shapes (%s)\n",
+                    desc.csg.size(), nodes, Counts(csgOps).c_str(), operandShapes,
+                    Counts(csgOperands).c_str());
+    }
     std::printf("triangles:  %zu\n", triangles);
     std::printf("instances:  %zu of %zu objects\n", desc.instances.size(), desc.objects.size());
     std::printf("materials:  %zu (%s)\n", desc.materials.size(), Counts(materials).c_str());

@@ -93,11 +93,14 @@ int RunTrace(const TraceArgs &a) {
         Vec3f n = si.n;
         if (const TriangleMesh *mesh = scene.accel->Mesh(hit.shape))
             n = mesh->GeometricNormal(size_t(hit.prim));
+        // A CSG hit names the operand's Shape directive.
+        const ShapeInfo &top = scene.shapes[size_t(hit.shape)];
+        int directive = top.type == "csg" ? scene.Info(si).directiveIndex : top.directiveIndex;
         std::snprintf(buf, sizeof(buf), "hit %.9g %.9g %.9g %.9g %.9g %.9g %.9g %d %d\n",
                       // + 0.0 prints -0 as 0
                       double(hit.t) + 0.0, double(si.p.x) + 0.0, double(si.p.y) + 0.0,
                       double(si.p.z) + 0.0, double(n.x) + 0.0, double(n.y) + 0.0, double(n.z) + 0.0,
-                      scene.shapes[size_t(hit.shape)].directiveIndex, hit.prim);
+                      directive, hit.prim);
         out += buf;
     }
     if (a.output.empty())

@@ -4,6 +4,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "build/csg.h"
 #include "build/lights.h"
 #include "build/shape_factory.h"
 #include "core/memory.h"
@@ -101,6 +102,30 @@ struct ShapeBuilder : BuildStep {
             if (const AreaLightDesc *a = AddAreaLight(ctx, s, index)) usedAreaLights.push_back(a);
     }
 
+    // CSGBegin/CSGEnd: each top-level node is one analytic shape (one user geometry) whose
+    // operands are looked up like the shapes of a prototype (ShapeInfo::prototype).
+    void AddCsg(const CsgDesc &node) {
+        std::vector<ShapeInfo> operands;
+        std::unique_ptr<CsgShape> csg = BuildCsgShape(ctx, materials, node, &operands);
+        unsigned needs = NeedNone;
+        for (const ShapeInfo &o : operands) {
+            const Material &m = scene.materials[size_t(o.material)];
+            needs |= m.SurfaceNeeds();
+            if (m.MayReflectSpecularly()) scene.features.specularReflection = true;
+            if (m.MayTransmit()) scene.features.transmission = true;
+        }
+        int index = scene.accel->AddAnalytic(std::move(csg));
+        scene.accel->SetSurfaceNeeds(index, needs);
+        scene.prototypes.push_back(std::move(operands));
+        if (int(scene.shapes.size()) <= index) scene.shapes.resize(size_t(index) + 1);
+        ShapeInfo info;
+        info.type = "csg";
+        info.directiveIndex = -1;  // hits report their operand's (RenderScene::Info)
+        info.prototype = int(scene.prototypes.size()) - 1;
+        scene.shapes[size_t(index)] = info;
+        scene.features.csgNodes++;
+    }
+
     // ObjectInstance: each ObjectBegin group becomes one committed prototype, shared by all
     // its instances (Embree instances; one level, as in pbrt-v3).
     std::map<std::string, std::pair<std::shared_ptr<const Accel>, int>> prototypeOf;
@@ -156,6 +181,7 @@ struct ShapeBuilder : BuildStep {
         for (const ShapeDesc &s : desc.shapes)
             AddShape(s, scene.renderFromWorld * s.worldFromObject);
         for (const InstanceDesc &inst : desc.instances) AddInstance(inst);
+        for (const CsgDesc &node : desc.csg) AddCsg(node);
         for (const AreaLightDesc *a : usedAreaLights) a->params.ReportUnused(diag, "area light");
         if (!settings.buildBvh) return;
         // Meshes and analytic shapes, each instance as one user primitive.

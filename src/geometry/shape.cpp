@@ -82,6 +82,7 @@ SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f 
     if (needs & NeedUV) si.uv = Vec2f(float(g.uv.x), float(g.uv.y));
     si.wo = Normalize(-rayDir);
     si.t = float(hit.t);
+    si.instanceShape = hit.part;  // -1 except for CSG operands
     return si;
 }
 

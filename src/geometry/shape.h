@@ -29,6 +29,10 @@ struct ObjectHit {
     Vec3d pError;    // conservative absolute error of p
     double phi = 0;  // azimuth of the hit (full spheres, cylinders and disks leave it 0:
                      // their Geometry computes it from p when uv is needed)
+    // CSG (geometry/csg.h) only: the operand hit (SurfaceInteraction::instanceShape), its
+    // triangle for a mesh operand, and whether its normal turns around (a carved surface).
+    int part = -1, partPrim = 0;
+    bool partFlip = false;
 };
 
 // A point sampled on a shape's surface for direct lighting, with the density of choosing it

@@ -24,6 +24,7 @@ struct SceneFeatures {
     bool areaLights = false;          // soft shadows: stratified emitter sampling
     bool environment = false;         // an infinite light
     int analyticShapes = 0, meshes = 0;
+    int csgNodes = 0;  // top-level CSGBegin nodes (their operands count as shapes too)
     size_t triangles = 0;
 };
 

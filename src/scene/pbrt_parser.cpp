@@ -54,7 +54,9 @@ enum class Directive {
     MediumInterface,
     Option,
     ColorSpace,
-    Attribute
+    Attribute,
+    CSGBegin,
+    CSGEnd
 };
 
 const std::unordered_map<std::string_view, Directive> &DirectiveTable() {
@@ -100,6 +102,8 @@ const std::unordered_map<std::string_view, Directive> &DirectiveTable() {
         {"Option", Directive::Option},
         {"ColorSpace", Directive::ColorSpace},
         {"Attribute", Directive::Attribute},
+        {"CSGBegin", Directive::CSGBegin},  // Prism extension (docs/FORMAT.md)
+        {"CSGEnd", Directive::CSGEnd},
     };
     return table;
 }
@@ -457,6 +461,12 @@ void PbrtParser::ParseDirective(Tokenizer &tok, const Token &dir) {
             t.Attribute(target, params(), loc);
             break;
         }
+        case Directive::CSGBegin:
+            t.CSGBegin(str("CSG operation (\"union\", \"intersection\" or \"difference\")"), loc);
+            break;
+        case Directive::CSGEnd:
+            t.CSGEnd(loc);
+            break;
     }
 }
 

@@ -96,6 +96,14 @@ class PbrtTarget {
                                  const FileLoc &loc) = 0;
     virtual void Attribute(const std::string &target, ParsedParameterVector params,
                            const FileLoc &loc) = 0;
+    // Prism extension (docs/FORMAT.md): constructive solid geometry. Targets that do not
+    // implement it reject it.
+    virtual void CSGBegin(const std::string &op, const FileLoc &loc) {
+        throw SceneError(loc, "CSGBegin " + Quote(op) + " is not supported here");
+    }
+    virtual void CSGEnd(const FileLoc &loc) {
+        throw SceneError(loc, "CSGEnd is not supported here");
+    }
 
     // After the last directive of the top-level file.
     virtual void EndOfFiles() = 0;

@@ -374,7 +374,12 @@ void SceneBuilder::Shape(const std::string &type, ParsedParameterVector params,
     s.reverseOrientation = gs_.reverseOrientation;
     s.material = gs_.material;
     s.areaLight = gs_.areaLight;
-    if (currentObject_) {
+    if (!csgStack_.empty()) {
+        CsgDesc &node = csgStack_.back();
+        s.directiveIndex = shapeCount_++;
+        node.operands.push_back({true, int(node.shapes.size())});
+        node.shapes.push_back(std::move(s));
+    } else if (currentObject_) {
         s.directiveIndex = int(currentObject_->shapes.size());
         currentObject_->shapes.push_back(std::move(s));
     } else {
@@ -388,6 +393,9 @@ void SceneBuilder::ObjectBegin(const std::string &name, const FileLoc &loc) {
     if (currentObject_)
         throw SceneError(loc, "ObjectBegin inside ObjectBegin " + Quote(currentObject_->name) +
                                   " (started at " + currentObject_->loc.ToString() + ")");
+    if (!csgStack_.empty())
+        throw SceneError(loc, "ObjectBegin inside CSGBegin (at " + csgStack_.back().loc.ToString() +
+                                  ") is not supported");
     if (FindObject(scene_, name)) throw SceneError(loc, "object " + Quote(name) + " redefined");
     // pbrt-v3 pbrtObjectBegin also begins an attribute scope.
     PushFrame(FrameKind::Object, loc);
@@ -405,8 +413,43 @@ void SceneBuilder::ObjectInstance(const std::string &name, const FileLoc &loc) {
     CheckWorld("ObjectInstance", loc);
     if (currentObject_)
         throw SceneError(loc, "ObjectInstance inside ObjectBegin " + Quote(currentObject_->name));
+    if (!csgStack_.empty())
+        throw SceneError(loc, "ObjectInstance cannot be a CSG operand (CSGBegin at " +
+                                  csgStack_.back().loc.ToString() + ")");
     if (!FindObject(scene_, name)) throw SceneError(loc, "unknown object " + Quote(name));
     scene_.instances.push_back({name, ctm_, loc});
+}
+
+// CSG (Prism extension, docs/FORMAT.md). A node is not a graphics-state scope: operands take
+// the CTM, material and orientation current at their own Shape directive.
+void SceneBuilder::CSGBegin(const std::string &op, const FileLoc &loc) {
+    CheckWorld("CSGBegin", loc);
+    if (op != "union" && op != "intersection" && op != "difference")
+        throw SceneError(loc, "unknown CSG operation " + Quote(op) +
+                                  " (expected \"union\", \"intersection\" or \"difference\")");
+    if (currentObject_)
+        throw SceneError(loc, "CSGBegin inside ObjectBegin " + Quote(currentObject_->name) +
+                                  " is not supported");
+    CsgDesc node;
+    node.op = op;
+    node.loc = loc;
+    csgStack_.push_back(std::move(node));
+}
+
+void SceneBuilder::CSGEnd(const FileLoc &loc) {
+    if (csgStack_.empty()) throw SceneError(loc, "CSGEnd without matching CSGBegin");
+    CsgDesc node = std::move(csgStack_.back());
+    csgStack_.pop_back();
+    if (node.operands.empty())
+        throw SceneError(node.loc,
+                         "CSGBegin " + Quote(node.op) + " has no operands (empty CSG node)");
+    if (csgStack_.empty()) {
+        scene_.csg.push_back(std::move(node));
+    } else {
+        CsgDesc &parent = csgStack_.back();
+        parent.operands.push_back({false, int(parent.children.size())});
+        parent.children.push_back(std::move(node));
+    }
 }
 
 void SceneBuilder::MakeNamedMedium(const std::string &, ParsedParameterVector params,
@@ -426,6 +469,8 @@ void SceneBuilder::Attribute(const std::string &, ParsedParameterVector params,
 }
 
 void SceneBuilder::EndOfFiles() {
+    if (!csgStack_.empty())
+        throw SceneError(csgStack_.back().loc, "CSGBegin without matching CSGEnd");
     if (currentObject_) {
         diag_.Warn(currentObject_->loc, "ObjectBegin without matching ObjectEnd");
         scene_.objects.push_back(std::move(*currentObject_));

@@ -77,6 +77,8 @@ class SceneBuilder final : public PbrtTarget {
                          const FileLoc &loc) override;
     void Attribute(const std::string &target, ParsedParameterVector params,
                    const FileLoc &loc) override;
+    void CSGBegin(const std::string &op, const FileLoc &loc) override;
+    void CSGEnd(const FileLoc &loc) override;
 
     void EndOfFiles() override;
 
@@ -132,6 +134,7 @@ class SceneBuilder final : public PbrtTarget {
     std::unordered_map<std::string, int> namedMaterials_, floatTextures_, spectrumTextures_;
     std::unordered_map<std::string, prism::Transform> namedCoordSys_;
     std::optional<ObjectDesc> currentObject_;
+    std::vector<CsgDesc> csgStack_;  // open CSGBegin nodes, innermost last
     std::unordered_map<std::string, RGB> spdCache_;
     bool inWorld_ = false, worldEnded_ = false, warnedMotion_ = false;
     int shapeCount_ = 0;

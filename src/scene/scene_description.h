@@ -58,6 +58,21 @@ struct ObjectDesc {
     std::vector<ShapeDesc> shapes;
 };
 
+// CSGBegin "union"|"intersection"|"difference" ... CSGEnd (a Prism extension, docs/FORMAT.md):
+// a boolean operation over operand shapes (each with the CTM, material and orientation of its
+// Shape directive) and nested nodes, in directive order.
+struct CsgDesc {
+    std::string op;  // "union", "intersection" or "difference" (checked by the scene builder)
+    FileLoc loc;     // the CSGBegin directive
+    struct Operand {
+        bool shape = true;  // a Shape (index into shapes) or a nested node (into children)
+        int index = 0;
+    };
+    std::vector<ShapeDesc> shapes;
+    std::vector<CsgDesc> children;
+    std::vector<Operand> operands;
+};
+
 struct InstanceDesc {
     std::string object;
     Transform worldFromInstance;
@@ -98,9 +113,10 @@ struct SceneDescription {
     std::vector<AreaLightDesc> areaLights;
     std::vector<ObjectDesc> objects;
     std::vector<InstanceDesc> instances;
-    std::string baseDir;     // directory of the top-level file: relative paths resolve here
-    std::string sourceFile;  // the top-level file
-    std::string format;      // "pbrt", "obj", "gltf", "ply"
+    std::vector<CsgDesc> csg;  // top-level CSG nodes (nested ones are their children)
+    std::string baseDir;       // directory of the top-level file: relative paths resolve here
+    std::string sourceFile;    // the top-level file
+    std::string format;        // "pbrt", "obj", "gltf", "ply"
     std::vector<EmbeddedImage> embeddedImages;
     // Informational notes from the reader about what it supplied or interpreted, e.g. "no
     // camera in file: framed the bounding box" (not warnings: nothing is wrong with the file).
