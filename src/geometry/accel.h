@@ -42,6 +42,10 @@ struct RawHit {
     int instanceShape = -1;  // for instance hits: the shape index within the prototype
     int prim = 0;
     float t = 0, u = 0, v = 0;
+    // Analytic shapes outside instances: the root routine's object-space hit, recorded by the
+    // Embree callback (Interaction then does not solve again).
+    bool hasObject = false;
+    ObjectHit object;
 };
 
 class Accel {
