@@ -299,6 +299,14 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
     return si;
 }
 
+void Accel::PrefetchHits(const RawHit *hits, int n) const {
+    for (int i = 0; i < n; ++i) {
+        if (hits[i].shape < 0) continue;
+        const Impl::Entry &e = impl_->shapes[size_t(hits[i].shape)];
+        if (e.mesh) e.mesh->Prefetch(size_t(hits[i].prim));
+    }
+}
+
 bool Accel::Intersect(const Ray &r, SurfaceInteraction *si) const {
     RawHit hit;
     if (!IntersectRaw(r, &hit)) return false;

@@ -79,6 +79,9 @@ class Accel {
     void IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded = nullptr) const;
     // Full interaction for a raw hit (same ray).
     SurfaceInteraction Interaction(const Ray &ray, const RawHit &hit) const;
+    // Prefetches the mesh data Interaction will read for these hits (a packet's hits, before
+    // they are shaded one by one, so their cache misses overlap).
+    void PrefetchHits(const RawHit *hits, int n) const;
 
     int NumShapes() const;
     size_t NumTriangles() const;  // of this scene's meshes (instances' prototypes not included)
