@@ -209,14 +209,19 @@ void Accel::Commit() {
 }
 
 bool Accel::IntersectRaw(const Ray &r, RawHit *hit) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    HitContext hc;
+    rtcInitIntersectContext(&hc.ctx);
+    unsigned objectGeom = RTC_INVALID_GEOMETRY_ID;
+    hc.objectHits = &hit->object;
+    hc.objectGeom = &objectGeom;
+    hc.numRays = 1;
     alignas(16) RTCRayHit rh;
     InitRay(r, &rh.ray, CameraRays);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl_->scene, &ctx, &rh);
+    rtcIntersect1(impl_->scene, &hc.ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit->hasObject = rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && objectGeom == rh.hit.geomID;
     if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
         hit->shape = impl_->shapeOfGeom[rh.hit.instID[0]];
         const Accel &proto = *impl_->shapes[size_t(hit->shape)].prototype;
@@ -250,6 +255,7 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         RawHit sub = hit;
         sub.shape = hit.instanceShape;
         sub.instanceShape = -1;
+        sub.hasObject = false;
         SurfaceInteraction s = e.prototype->Interaction(ri, sub);
         Vec3d pI(s.p);
         Vec3d pW = w.Point(pI);
@@ -276,10 +282,14 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
     if (e.mesh) {
         si = e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d, e.needs);
     } else {
-        // Phase 2: re-run the same root routine on the winning shape to recover the hit in
-        // full precision (the callback could only report a float t).
+        // Phase 2: the callback's object-space hit (the root routine's full-precision result),
+        // or, where it was not recorded (instances), the same root routine run again on the
+        // winning shape: it finds the same root, as it did for the same ray in the callback.
         ObjectHit oh;
-        if (!e.analytic->Intersect(r.o, r.d, r.tMin, r.tMax, impl_->options.precision, &oh)) {
+        if (hit.hasObject) {
+            oh = hit.object;
+        } else if (!e.analytic->Intersect(r.o, r.d, r.tMin, r.tMax, impl_->options.precision,
+                                          &oh)) {
             // Cannot happen for a deterministic routine; fall back to the float t.
             oh.t = hit.t;
             Vec3d pW = Vec3d(r.o) + Vec3d(r.d) * double(hit.t);
@@ -292,6 +302,14 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
     si.shape = hit.shape;
     si.prim = hit.prim;
     return si;
+}
+
+void Accel::PrefetchHits(const RawHit *hits, int n) const {
+    for (int i = 0; i < n; ++i) {
+        if (hits[i].shape < 0) continue;
+        const Impl::Entry &e = impl_->shapes[size_t(hits[i].shape)];
+        if (e.mesh) e.mesh->Prefetch(size_t(hits[i].prim));
+    }
 }
 
 bool Accel::Intersect(const Ray &r, SurfaceInteraction *si) const {
@@ -314,20 +332,31 @@ void Accel::IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded
     PRISM_CHECK(n >= 0 && n <= 16);
     alignas(64) int valid[16];
     alignas(64) RTCRayHit16 rh;
+    unsigned objectGeom[16];
+    ObjectHit objectHits[16];
     for (int i = 0; i < 16; ++i) {
         valid[i] = i < n ? -1 : 0;
         InitRay16(rays[i < n ? i : 0], i, CameraRays, &rh.ray);
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+        objectGeom[i] = RTC_INVALID_GEOMETRY_ID;
     }
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcIntersect16(valid, impl_->scene, &ctx, &rh);
+    HitContext hc;
+    rtcInitIntersectContext(&hc.ctx);
+    hc.objectHits = objectHits;
+    hc.objectGeom = objectGeom;
+    hc.numRays = 16;
+    rtcIntersect16(valid, impl_->scene, &hc.ctx, &rh);
+    RTCIntersectContext &ctx = hc.ctx;
     for (int i = 0; i < n; ++i) {
         RawHit &h = hits[i];
         h = RawHit{};
         if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
         unsigned inst = rh.hit.instID[0][i];
+        if (inst == RTC_INVALID_GEOMETRY_ID && objectGeom[i] == rh.hit.geomID[i]) {
+            h.hasObject = true;
+            h.object = objectHits[i];
+        }
         if (inst != RTC_INVALID_GEOMETRY_ID) {
             h.shape = impl_->shapeOfGeom[inst];
             h.instanceShape =

@@ -43,6 +43,10 @@ struct RawHit {
     int instanceShape = -1;  // for instance hits: the shape index within the prototype
     int prim = 0;
     float t = 0, u = 0, v = 0;
+    // Analytic shapes outside instances: the root routine's object-space hit, recorded by the
+    // Embree callback (Interaction then does not solve again).
+    bool hasObject = false;
+    ObjectHit object;
 };
 
 class Accel {
@@ -76,6 +80,9 @@ class Accel {
     void IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded = nullptr) const;
     // Full interaction for a raw hit (same ray).
     SurfaceInteraction Interaction(const Ray &ray, const RawHit &hit) const;
+    // Prefetches the mesh data Interaction will read for these hits (a packet's hits, before
+    // they are shaded one by one, so their cache misses overlap).
+    void PrefetchHits(const RawHit *hits, int n) const;
 
     int NumShapes() const;
     size_t NumTriangles() const;  // of this scene's meshes (instances' prototypes not included)

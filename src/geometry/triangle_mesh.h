@@ -42,6 +42,15 @@ class TriangleMesh {
         return {positions_[3 * i], positions_[3 * i + 1], positions_[3 * i + 2]};
     }
     const uint32_t *Triangle(size_t prim) const { return &indices_[3 * prim]; }
+    // Asks the cache for the vertex data Interaction will read for triangle `prim` (its
+    // indices are loaded now). For batches of hits shaded one after another.
+    void Prefetch(size_t prim) const {
+        const uint32_t *v = Triangle(prim);
+        for (int i = 0; i < 3; ++i) {
+            __builtin_prefetch(&positions_[3 * size_t(v[i])]);
+            if (!normals_.empty()) __builtin_prefetch(&normals_[v[i]]);
+        }
+    }
     bool HasNormals() const { return !normals_.empty(); }
     bool HasUV() const { return !uv_.empty(); }
     bool FlipNormals() const { return flipNormals_; }

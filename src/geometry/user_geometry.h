@@ -32,6 +32,16 @@ unsigned AttachShape(RTCDevice device, RTCScene scene, const AnalyticShape &shap
 #include "geometry/shape_list.inc"
 #undef PRISM_SHAPE
 
+// The intersect context Accel passes to rtcIntersect*: Embree hands it to the callbacks, which
+// record there the object-space hit of the last analytic hit accepted for each ray (indexed by
+// RTCRay::id, top-level shapes only), so Accel::Interaction need not run the root routine again.
+struct HitContext {
+    RTCIntersectContext ctx;  // first: Embree sees only this part
+    ObjectHit *objectHits = nullptr;
+    unsigned *objectGeom = nullptr;  // geomID of each recorded hit
+    unsigned numRays = 0;            // entries of both arrays (0: nothing is recorded)
+};
+
 namespace user_geometry_detail {
 
 template <typename S>
@@ -64,13 +74,13 @@ inline bool RootRoutine(const S *shape, const Vec3f &o, const Vec3f &d, float tn
 // The shared root routine for lane i of an N-wide ray packet: true with the float t of the
 // nearest valid hit inside the lane's (tnear, tfar).
 template <typename S, typename Real>
-inline bool LaneHit(const S *shape, RTCRayN *rays, unsigned N, unsigned i, float *tHit) {
+inline bool LaneHit(const S *shape, RTCRayN *rays, unsigned N, unsigned i, float *tHit,
+                    ObjectHit *hit) {
     Vec3f o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
     Vec3f d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
     float tnear = RTCRayN_tnear(rays, N, i), tfar = RTCRayN_tfar(rays, N, i);
-    ObjectHit hit;
-    if (!RootRoutine<S, Real>(shape, o, d, tnear, tfar, &hit)) return false;
-    float t = float(hit.t);
+    if (!RootRoutine<S, Real>(shape, o, d, tnear, tfar, hit)) return false;
+    float t = float(hit->t);
     *tHit = t;
     return t > tnear && t < tfar;  // rounding to float may leave the interval
 }
@@ -81,11 +91,18 @@ inline void IntersectFunc(const RTCIntersectFunctionNArguments *args) {
     const unsigned N = args->N;
     RTCRayN *rays = RTCRayHitN_RayN(args->rayhit, N);
     RTCHitN *hits = RTCRayHitN_HitN(args->rayhit, N);
+    const auto *hc = reinterpret_cast<const HitContext *>(args->context);
+    const bool record = args->context->instID[0] == RTC_INVALID_GEOMETRY_ID;
     for (unsigned i = 0; i < N; ++i) {
         if (args->valid[i] != -1) continue;
         float t;
-        if (!LaneHit<S, Real>(shape, rays, N, i, &t)) continue;
+        ObjectHit hit;
+        if (!LaneHit<S, Real>(shape, rays, N, i, &t, &hit)) continue;
         RTCRayN_tfar(rays, N, i) = t;
+        if (unsigned id = RTCRayN_id(rays, N, i); record && id < hc->numRays) {
+            hc->objectHits[id] = hit;
+            hc->objectGeom[id] = args->geomID;
+        }
         // Ng is not computed here: shading geometry is built once, after traversal.
         RTCHitN_Ng_x(hits, N, i) = 0;
         RTCHitN_Ng_y(hits, N, i) = 0;
@@ -106,7 +123,8 @@ inline void OccludedFunc(const RTCOccludedFunctionNArguments *args) {
     for (unsigned i = 0; i < N; ++i) {
         if (args->valid[i] != -1) continue;
         float t;
-        if (LaneHit<S, Real>(shape, rays, N, i, &t))
+        ObjectHit hit;
+        if (LaneHit<S, Real>(shape, rays, N, i, &t, &hit))
             RTCRayN_tfar(rays, N, i) = -std::numeric_limits<float>::infinity();
     }
 }

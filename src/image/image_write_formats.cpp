@@ -120,6 +120,11 @@ void WriteExr(const std::string &path, int width, int height, int channels, bool
     try {
         Imf::Header header(width, height);
         header.compression() = Imf::ZIP_COMPRESSION;
+        // zlib level 1 instead of OpenEXR's default 4: the 1600x1200 RGB float knot image
+        // writes in 0.33-0.36 s instead of 0.42-0.49 s, 3% larger (6.2 MB instead of 6.0 MB);
+        // the file is the same ZIP EXR for every reader. (PIZ: 0.70 s, 9.7 MB; ZIPS: 0.36-0.40 s,
+        // 6.5 MB; none: 0.05 s, 22 MB.)
+        header.zipCompressionLevel() = 1;
         Imf::FrameBuffer fb;
         size_t xStride = sizeof(float) * size_t(channels);
         for (int c = 0; c < channels; ++c) {

@@ -28,12 +28,15 @@ class Light {
     virtual RGB Le(const Ray &) const { return RGB(0); }
     virtual int NumSamples() const { return 1; }
     virtual bool IsArea() const { return false; }
+    // False for delta lights, whose SampleLi ignores u: the integrator then skips computing it.
+    virtual bool UsesSample() const { return true; }
 };
 
 class PointLight final : public Light {
   public:
     PointLight(const Vec3f &pos, const RGB &I) : pos_(pos), I_(I) {}
     const char *Name() const override { return "point"; }
+    bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
 
   private:
@@ -46,6 +49,7 @@ class SpotLight final : public Light {
     // dir: unit axis from the light toward `to`; angles in degrees.
     SpotLight(const Vec3f &pos, const Vec3f &dir, const RGB &I, float coneAngle, float coneDelta);
     const char *Name() const override { return "spot"; }
+    bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
     float Falloff(const Vec3f &wFromLight) const;
 
@@ -60,6 +64,7 @@ class DistantLight final : public Light {
     // wLight: unit direction *toward* the light (from - to).
     DistantLight(const Vec3f &wLight, const RGB &L) : w_(wLight), L_(L) {}
     const char *Name() const override { return "distant"; }
+    bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
 
   private:

@@ -119,6 +119,7 @@ void RenderTile(const RenderScene &scene, const WhittedIntegrator &integrator, B
                     }
                 }
                 scene.accel->IntersectPacket(rays, m, hits);
+                scene.accel->PrefetchHits(hits, m);
                 rc.camera += uint64_t(m);
                 for (int i = 0; i < m; ++i) {
                     SampleContext sc{bx + i % (ex - bx), by + i / (ex - bx), s, spp};

@@ -62,11 +62,16 @@ RGB WhittedIntegrator::Shade(const Ray &rayIn, SurfaceInteraction si, int depth,
         for (size_t j = 0; j < scene_.lights.size(); ++j) {
             const Light &light = *scene_.lights[j];
             int n = light.NumSamples();
-            uint32_t seed = PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919));
+            // Delta lights ignore u: the stratified pattern (a hash chain) only where it is used.
+            const bool usesSample = light.UsesSample();
+            uint32_t seed =
+                usesSample ? PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919))
+                           : 0;
             RGB Lj;
             for (int k = 0; k < n; ++k) {
-                Vec2f u =
-                    CMJSample(sc.sample * uint32_t(n) + uint32_t(k), sc.spp * uint32_t(n), seed);
+                Vec2f u = usesSample ? CMJSample(sc.sample * uint32_t(n) + uint32_t(k),
+                                                 sc.spp * uint32_t(n), seed)
+                                     : Vec2f(0.5f, 0.5f);
                 LightSample ls;
                 if (!light.SampleLi(si, u, &ls) || ls.Li.IsBlack() || !(ls.pdf > 0)) continue;
                 RGB f = bsdf.f(wo, ls.wi);

@@ -106,6 +106,61 @@ TEST(Accel, PacketQueriesMatchSingleRays) {
     }
 }
 
+// The object-space hit the Embree callback records (RawHit::object) is exactly what the root
+// routine gives when Interaction runs it again, for single rays and for packets.
+TEST(Accel, RecordedObjectHitMatchesResolve) {
+    for (Precision prec : {Precision::Double, Precision::Float}) {
+        AccelOptions opts;
+        opts.precision = prec;
+        Accel accel(opts);
+        PCG32 rng(7);
+        for (int i = 0; i < 12; ++i) {
+            Vec3d c(6 * rng.UniformDouble(), 6 * rng.UniformDouble(), 6 * rng.UniformDouble());
+            accel.AddAnalytic(std::make_unique<Sphere>(Translate(c), false,
+                                                       0.3 + rng.UniformDouble(), -0.7, 1, 300));
+        }
+        accel.Commit();
+        int recorded = 0;
+        for (int batch = 0; batch < 300; ++batch) {
+            Ray rays[16];
+            for (int i = 0; i < 16; ++i) {
+                rays[i].o = Vec3f(float(8 * rng.UniformDouble() - 1),
+                                  float(8 * rng.UniformDouble() - 1), -5);
+                rays[i].d = Normalize(
+                    Vec3f(float(rng.UniformDouble() - 0.5), float(rng.UniformDouble() - 0.5), 1));
+                rays[i].tMax = float(5 + 15 * rng.UniformDouble());
+            }
+            RawHit hits[16];
+            accel.IntersectPacket(rays, 16, hits);
+            for (int i = 0; i < 16; ++i) {
+                RawHit single;
+                if (!accel.IntersectRaw(rays[i], &single)) continue;
+                ASSERT_TRUE(single.hasObject);
+                ASSERT_TRUE(hits[i].hasObject);
+                ++recorded;
+                ObjectHit again;
+                ASSERT_TRUE(accel.Analytic(single.shape)
+                                ->Intersect(rays[i].o, rays[i].d, rays[i].tMin, rays[i].tMax, prec,
+                                            &again));
+                for (const ObjectHit *oh : {&single.object, &hits[i].object}) {
+                    EXPECT_EQ(oh->t, again.t);
+                    EXPECT_EQ(oh->p, again.p);
+                    EXPECT_EQ(oh->pError, again.pError);
+                    EXPECT_EQ(oh->phi, again.phi);
+                }
+                RawHit forced = single;
+                forced.hasObject = false;
+                SurfaceInteraction a = accel.Interaction(rays[i], single),
+                                   b = accel.Interaction(rays[i], forced);
+                EXPECT_EQ(a.p, b.p);
+                EXPECT_EQ(a.pError, b.pError);
+                EXPECT_EQ(a.n, b.n);
+            }
+        }
+        EXPECT_GT(recorded, 100);
+    }
+}
+
 TEST(Accel, ReverseOrientationFlipsNormals) {
     Accel accel;
     accel.AddAnalytic(std::make_unique<Sphere>(Transform(), true, 1, -1, 1, 360));
