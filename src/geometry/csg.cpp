@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <map>
 #include <stdexcept>
 #include <tuple>
@@ -92,7 +93,46 @@ struct CsgShape::Crossing {
 struct CsgShape::List {
     bool insideAtStart = false;
     std::vector<Crossing> c;
+    // Merging state in Gather: the next crossing to take, and whether the ray is inside.
+    size_t next = 0;
+    bool inside = false;
 };
+
+namespace {
+
+// Per-thread scratch lists, so that a CSG ray allocates nothing once the lists have grown to
+// the scene's needs: Gather takes one list per operand and gives them back on return. A deque
+// keeps references valid while nested nodes take more.
+struct CsgScratch {
+    std::deque<CsgShape::List> lists;
+    size_t used = 0;
+};
+thread_local CsgScratch csgScratch;
+
+// Takes n consecutive lists (cleared) for the current call; returns them when it goes.
+class ScratchLists {
+  public:
+    explicit ScratchLists(size_t n) : base_(csgScratch.used) {
+        CsgScratch &s = csgScratch;
+        while (s.lists.size() < base_ + n) s.lists.emplace_back();
+        for (size_t i = base_; i < base_ + n; ++i) {
+            CsgShape::List &l = s.lists[i];
+            l.c.clear();
+            l.insideAtStart = l.inside = false;
+            l.next = 0;
+        }
+        s.used = base_ + n;
+    }
+    ~ScratchLists() { csgScratch.used = base_; }
+    ScratchLists(const ScratchLists &) = delete;
+    ScratchLists &operator=(const ScratchLists &) = delete;
+    CsgShape::List &operator[](size_t i) const { return csgScratch.lists[base_ + i]; }
+
+  private:
+    size_t base_;
+};
+
+}  // namespace
 
 struct CsgShape::Leaf {
     Bounds3d bounds;  // render space, padded
@@ -292,7 +332,7 @@ void CsgShape::Gather(const CsgRef &ref, const Vec3f &o, const Vec3f &d, float t
     if (ref.leaf) return GatherLeaf(ref.index, o, d, tMin, precision, out);
     const Node &node = nodes_[size_t(ref.index)];
     const size_t n = node.operands.size();
-    std::vector<List> lists(n);
+    ScratchLists lists(n);
     for (size_t i = 0; i < n; ++i) {
         Gather(node.operands[i], o, d, tMin, precision, &lists[i]);
         // An intersection with, or a difference from, a solid the ray never meets is empty.
@@ -300,33 +340,40 @@ void CsgShape::Gather(const CsgRef &ref, const Vec3f &o, const Vec3f &d, float t
         if (empty && (node.op == CsgOp::Intersection || (node.op == CsgOp::Difference && i == 0)))
             return;
     }
-    std::vector<char> state(n);
     auto evaluate = [&] {
         switch (node.op) {
             case CsgOp::Union:
-                return std::any_of(state.begin(), state.end(), [](char s) { return s != 0; });
+                for (size_t i = 0; i < n; ++i)
+                    if (lists[i].inside) return true;
+                return false;
             case CsgOp::Intersection:
-                return std::all_of(state.begin(), state.end(), [](char s) { return s != 0; });
+                for (size_t i = 0; i < n; ++i)
+                    if (!lists[i].inside) return false;
+                return true;
             case CsgOp::Difference:
                 break;
         }
-        if (!state[0]) return false;
-        return std::none_of(state.begin() + 1, state.end(), [](char s) { return s != 0; });
+        if (!lists[0].inside) return false;
+        for (size_t i = 1; i < n; ++i)
+            if (lists[i].inside) return false;
+        return true;
     };
-    for (size_t i = 0; i < n; ++i) state[i] = lists[i].insideAtStart;
+    for (size_t i = 0; i < n; ++i) lists[i].inside = lists[i].insideAtStart;
     bool inside = evaluate();
     out->insideAtStart = inside;
     // Merge in t order; ties keep operand order.
-    std::vector<size_t> next(n, 0);
     for (;;) {
         size_t best = n;
-        for (size_t i = 0; i < n; ++i)
-            if (next[i] < lists[i].c.size() &&
-                (best == n || lists[i].c[next[i]].t < lists[best].c[next[best]].t))
+        for (size_t i = 0; i < n; ++i) {
+            const List &l = lists[i];
+            if (l.next < l.c.size() &&
+                (best == n || l.c[l.next].t < lists[best].c[lists[best].next].t))
                 best = i;
+        }
         if (best == n) break;
-        const Crossing &c = lists[best].c[next[best]++];
-        state[best] = c.entering;
+        List &l = lists[best];
+        const Crossing &c = l.c[l.next++];
+        l.inside = c.entering;
         bool now = evaluate();
         if (now == inside) continue;
         inside = now;
@@ -338,7 +385,8 @@ void CsgShape::Gather(const CsgRef &ref, const Vec3f &o, const Vec3f &d, float t
 
 std::vector<std::pair<double, bool>> CsgShape::Crossings(const Vec3f &o, const Vec3f &d, float tMin,
                                                          Precision precision) const {
-    List list;
+    ScratchLists top(1);
+    List &list = top[0];
     Gather({false, NumNodes() - 1}, o, d, tMin, precision, &list);
     std::vector<std::pair<double, bool>> r;
     for (const Crossing &c : list.c) r.push_back({c.t, c.entering});
@@ -349,7 +397,8 @@ bool CsgShape::Intersect(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
                          Precision precision, ObjectHit *hit) const {
     // Crossings are gathered from tMin to infinity whatever tMax is, so the closest-hit
     // callback and phase 2 (which sees the ray's original tMax) find the same hit.
-    List list;
+    ScratchLists top(1);
+    List &list = top[0];
     Gather({false, NumNodes() - 1}, o, d, tMin, precision, &list);
     for (const Crossing &c : list.c) {
         if (!(c.t > double(tMin))) continue;
