@@ -23,6 +23,7 @@ void AddInfoCommand(CLI::App &app, int *exitCode);
 void AddBatchCommand(CLI::App &app, int *exitCode);
 void AddValidateCommand(CLI::App &app, int *exitCode);  // exit 3/4: see validate/validate.h
 void AddBenchCommand(CLI::App &app, int *exitCode);
+void AddStudyCommand(CLI::App &app, int *exitCode);
 // `prism` with no arguments: render the default scene to whitted.png.
 int RenderDefaultScene();
 

@@ -1,5 +1,5 @@
-// prism: a Whitted ray tracer on Embree. Subcommands: render, info, trace, validate and batch
-// (with no arguments: render scenes/whitted.pbrt).
+// prism: a Whitted ray tracer on Embree. Subcommands: render, info, trace, validate, batch,
+// bench and study (with no arguments: render scenes/whitted.pbrt).
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
@@ -16,6 +16,7 @@ int main(int argc, char **argv) {
     prism::AddBatchCommand(app, &exitCode);
     prism::AddValidateCommand(app, &exitCode);
     prism::AddBenchCommand(app, &exitCode);
+    prism::AddStudyCommand(app, &exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp &e) {
