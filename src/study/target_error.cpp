@@ -16,7 +16,7 @@ namespace {
 // The reference's trace depth, as the study's (the scene's own when it is deeper).
 constexpr int ReferenceMaxDepth = 16;
 // The spp at which the pilot measures what a cutoff costs in error and saves in rays.
-constexpr int CutoffProbeSpp = 8;
+constexpr int CutoffProbeSpp = 9;
 
 double Seconds(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -116,6 +116,21 @@ PowerLaw FitPowerLaw(const std::vector<double> &x, const std::vector<double> &y)
     return {std::exp(intercept), -slope};
 }
 
+bool IsCompleteSampleCount(int n) {
+    if (n < 1) return false;
+    int m = int(std::ceil(std::sqrt(double(n))));
+    while (m * m < n) ++m;
+    while (m > 1 && (m - 1) * (m - 1) >= n) --m;
+    int k = (n + m - 1) / m;
+    return m * k == n;
+}
+
+int NextCompleteSampleCount(int n) {
+    n = std::max(n, 1);
+    while (!IsCompleteSampleCount(n)) ++n;
+    return n;
+}
+
 double ErrorCurve::Error(double spp) const {
     double noise = this->noise(spp);
     return std::sqrt(floor2 + noise * noise);
@@ -125,13 +140,14 @@ std::optional<int> ErrorCurve::SppFor(double target) const {
     double t2 = target * target;
     if (!(t2 > floor2)) return std::nullopt;
     if (!(noise.a > 0)) return 1;
-    if (!(noise.b > 0)) return noise.a * noise.a <= t2 - floor2 ? std::optional<int>(1) : std::nullopt;
+    if (!(noise.b > 0))
+        return noise.a * noise.a <= t2 - floor2 ? std::optional<int>(1) : std::nullopt;
     // floor2 + a^2 n^-2b <= t2  <=>  n >= (a^2 / (t2 - floor2))^(1 / 2b)
     double n = std::pow(noise.a * noise.a / (t2 - floor2), 1 / (2 * noise.b));
     if (!(n <= double(MaxSamplesPerPixel))) return std::nullopt;
-    int spp = std::max(1, int(std::ceil(n - 1e-9)));
+    int spp = NextCompleteSampleCount(std::max(1, int(std::ceil(n - 1e-9))));
     // Rounding: make sure the count reaches the target.
-    while (spp < MaxSamplesPerPixel && Error(spp) > target) ++spp;
+    while (spp < MaxSamplesPerPixel && Error(spp) > target) spp = NextCompleteSampleCount(spp + 1);
     return spp;
 }
 
@@ -173,7 +189,8 @@ ErrorCurve FitErrorCurve(const std::vector<int> &spp, const std::vector<double> 
     const int steps = 200;
     for (int i = 0; i <= steps; ++i) tryFloor(double(i) / steps);
     const double t0 = bestT;
-    for (int i = -steps; i <= steps; ++i) tryFloor(std::clamp(t0 + double(i) / (steps * steps), 0.0, 1.0));
+    for (int i = -steps; i <= steps; ++i)
+        tryFloor(std::clamp(t0 + double(i) / (steps * steps), 0.0, 1.0));
     if (!(bestCost < Infinity)) {
         // No decreasing power law fits: the errors are a floor.
         best.floor2 = minErr2;
@@ -219,9 +236,9 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
     const Vec2i pilot = PilotResolution(choice.resolution);
     choice.pilotResolution = pilot;
     // The second, coarser pilot that separates edge error from the rest (docs/ACCURACY.md).
-    const Vec2i half{std::max(8, pilot.x / 2),
-                     std::max(1, int(std::lround(double(pilot.y) * std::max(8, pilot.x / 2) /
-                                                 pilot.x)))};
+    const Vec2i half{
+        std::max(8, pilot.x / 2),
+        std::max(1, int(std::lround(double(pilot.y) * std::max(8, pilot.x / 2) / pilot.x)))};
     const uint64_t limit = base.budget ? base.budget->Limit() : 0;
 
     // Light samples are a choice only with area or infinite lights.
@@ -250,11 +267,16 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
         double n = c.noise(o.pilotRefSpp);
         refNoise2[r] = n * n;
         if (r != 0) continue;
+        // A cutoff's error is measured against the same samples without it (cutoffs[0] is
+        // 0), so the noise they share cancels: what remains is the cutoff's own effect.
+        Image noCutoff;
         for (size_t c = 0; c < o.cutoffs.size(); ++c) {
             scene.spp = CutoffProbeSpp;
             scene.rayCutoff = o.cutoffs[c];
             RenderStats st;
-            double e = RelativeRmse(Render(scene, &st), ref);
+            Image img = Render(scene, &st);
+            if (c == 0) noCutoff = img;
+            double e = RelativeRmse(img, noCutoff);
             cutoffErr2[c] = e * e;
             cutoffRays[c] = double(st.rays.Total());
         }
@@ -265,8 +287,8 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
     // error is E * (pilot width / width) + S, E the part on edges (their share of the pixels
     // goes as 1 / width), S the rest (per-pixel shading and light noise, bias).
     const double kHalf = double(pilot.x) / half.x, kFull = double(pilot.x) / choice.resolution.x;
-    const double pixelRatio = double(choice.resolution.x) * choice.resolution.y /
-                              (double(pilot.x) * pilot.y);
+    const double pixelRatio =
+        double(choice.resolution.x) * choice.resolution.y / (double(pilot.x) * pilot.y);
     std::vector<double> ownFull2;
     for (size_t k = 0; k < o.pilotSpp.size(); ++k) {
         double tp = std::max(own[0].err2[k] - refNoise2[0], 0.0);
@@ -274,7 +296,7 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
         double E = kHalf > 1 ? std::max(0.0, (th - tp) / (kHalf - 1)) : 0;
         E = std::min(E, tp);
         ownFull2.push_back(std::max(E * kFull + (tp - E), 1e-30));
-        if (o.pilotSpp[k] == 8 && tp > 0) {
+        if (o.pilotSpp[k] == 9 && tp > 0) {
             choice.edgeShare = E / tp;
             choice.resolutionFactor = std::sqrt(ownFull2.back() / tp);
         }
@@ -321,7 +343,7 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
             cand.curve = curve;
             // A cutoff's bias adds to the floor (measured at the scene's light samples; the
             // cutoff never drops shadow rays); its time goes with the rays it leaves.
-            cand.curve.floor2 += std::max(0.0, cutoffErr2[c] - cutoffErr2[0]);
+            cand.curve.floor2 += cutoffErr2[c];
             double rayRatio = cutoffRays[0] > 0 ? cutoffRays[c] / cutoffRays[0] : 1;
             cand.secondsPerSpp = perSpp * std::min(1.0, rayRatio);
             cand.spp = cand.curve.SppFor(o.target);
@@ -365,13 +387,12 @@ BuildSettings ApplyTargetChoice(BuildSettings base, const TargetChoice &choice) 
 }
 
 TargetVerification VerifyTarget(const SceneDescription &desc, const BuildSettings &base,
-                                const TargetChoice &choice, const Image &image,
-                                Diagnostics &diag) {
+                                const TargetChoice &choice, const Image &image, Diagnostics &diag) {
     (void)diag;
     TargetVerification v;
     // Well above the render's spp, so that the two sample patterns are far apart and the
     // reference's own error small against the target.
-    v.refSpp = std::clamp(4 * choice.spp, 128, 1024);
+    v.refSpp = NextCompleteSampleCount(std::clamp(4 * choice.spp, 128, 1024));
     MemoryBudget b(base.budget ? base.budget->Limit() : 0);
     RenderScene scene = BuildAt(desc, base, choice.resolution, 0, b);
     Image ref = RenderReference(scene, v.refSpp, &v.refSeconds);
@@ -386,14 +407,16 @@ TargetVerification VerifyTarget(const SceneDescription &desc, const BuildSetting
 std::string DescribeChoice(const TargetChoice &c) {
     std::string lights = c.lightSamples > 0 ? std::to_string(c.lightSamples) : "the scene's";
     return fmt::format(
-               "target-error: chose spp {}, cutoff {:g}, light samples {}; predicted rel. RMSE {:.4g} "
-        "(pilot {:.1f} s at {}x{}; predicted render {:.2f} s)",
+               "target-error: chose spp {}, cutoff {:g}, light samples {}; predicted rel. RMSE "
+               "{:.4g} "
+               "(pilot {:.1f} s at {}x{}; predicted render {:.2f} s)",
                c.spp, double(c.cutoff), lights, c.predictedError, c.pilotSeconds,
                c.pilotResolution.x, c.pilotResolution.y, c.predictedSeconds) +
-           fmt::format("\ntarget-error: resolution correction: {:.0f}% of the pilot's squared "
-                       "error at 8 spp is edge-like (falls as 1/width), so {}x{} has {:.2f}x the "
-                       "pilot's error",
-                       100 * c.edgeShare, c.resolution.x, c.resolution.y, c.resolutionFactor);
+           fmt::format(
+               "\ntarget-error: resolution correction: {:.0f}% of the pilot's squared "
+               "error at 9 spp is edge-like (falls as 1/width), so {}x{} has {:.2f}x the "
+               "pilot's error",
+               100 * c.edgeShare, c.resolution.x, c.resolution.y, c.resolutionFactor);
 }
 
 std::string DescribeVerification(const TargetChoice &c, const TargetVerification &v) {

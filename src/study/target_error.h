@@ -30,10 +30,20 @@ struct ErrorCurve {
     double floor2 = 0;
     PowerLaw noise;
     double Error(double spp) const;
-    // The fewest samples whose predicted error is at most `target`; nullopt when the floor is
-    // at or above it (or more than MaxSamplesPerPixel would be needed).
+    // The fewest samples, among the complete sample counts (IsCompleteSampleCount), whose
+    // predicted error is at most `target`; nullopt when the floor is at or above it (or more
+    // than MaxSamplesPerPixel would be needed).
     std::optional<int> SppFor(double target) const;
 };
+// Whether n samples fill the sampler's correlated multi-jittered pattern: its m x k grid
+// (m = ceil(sqrt n), k = ceil(n / m)) has exactly n cells, so n = m^2 or m (m - 1): 1, 2, 4, 6,
+// 9, 12, 16, 20, 25, 30, ... Other counts leave part of the last row of strata empty, which
+// weights a band of each pixel too little: an error that does not fall like noise (measured on
+// scenes/whitted.pbrt at 320x240: 21 spp has 4x the error of 20, see docs/ACCURACY.md).
+bool IsCompleteSampleCount(int n);
+// The smallest complete count >= n.
+int NextCompleteSampleCount(int n);
+
 // Fits an ErrorCurve to squared errors at the given spp: the floor by a search over
 // [0, min err2), the power law by FitPowerLaw on err2 - floor; the fit with the least squared
 // error of log(err2) wins.
@@ -51,11 +61,11 @@ Vec2i PilotResolution(Vec2i full);
 struct TargetCandidate {
     int lightSamples = 0;  // 0: each light's own nsamples
     float cutoff = 0;
-    ErrorCurve curve;            // predicted error at the full resolution
-    double secondsPerSpp = 0;    // predicted render time per spp at the full resolution
-    std::optional<int> spp;      // fewest spp reaching the target (nullopt: unreachable)
-    double predictedError = 0;   // curve.Error(*spp)
-    double predictedSeconds = 0; // *spp * secondsPerSpp
+    ErrorCurve curve;             // predicted error at the full resolution
+    double secondsPerSpp = 0;     // predicted render time per spp at the full resolution
+    std::optional<int> spp;       // fewest spp reaching the target (nullopt: unreachable)
+    double predictedError = 0;    // curve.Error(*spp)
+    double predictedSeconds = 0;  // *spp * secondsPerSpp
 };
 
 struct TargetChoice {
@@ -66,19 +76,19 @@ struct TargetChoice {
     double pilotSeconds = 0;  // wall time of the whole pilot
     Vec2i pilotResolution{0, 0}, resolution{0, 0};
     std::vector<TargetCandidate> candidates;  // every setting the pilot weighed
-    // The resolution correction at 8 spp (the scene's light samples): the share of the
+    // The resolution correction at 9 spp (the scene's light samples): the share of the
     // pilot's squared error that behaves as edge error (falls as 1 / width), and the predicted
     // full-resolution error over the pilot's.
     double edgeShare = 0, resolutionFactor = 1;
 };
 
 struct TargetOptions {
-    double target = 0;       // relRmse to reach, > 0
-    int pilotRefSpp = 64;    // the pilot reference's spp
-    // The pilot's spp points (any integer counts: CMJ stratifies every n), at the scene's own
+    double target = 0;     // relRmse to reach, > 0
+    int pilotRefSpp = 64;  // the pilot reference's spp
+    // The pilot's spp points (complete sample counts, as the choice), at the scene's own
     // light samples; the other light-sample choices are rendered at lightSpp only.
-    std::vector<int> pilotSpp{1, 2, 3, 4, 6, 8, 12, 16};
-    std::vector<int> lightSpp{2, 4, 8};
+    std::vector<int> pilotSpp{1, 2, 4, 6, 9, 12, 16, 20};
+    std::vector<int> lightSpp{2, 4, 9};
     std::vector<float> cutoffs{0, 1e-4f, 1e-3f, 1e-2f};  // starts with 0
     // Light samples per area/infinite light to weigh (0: the lights' own); only for scenes
     // with such lights.
@@ -104,8 +114,7 @@ struct TargetVerification {
     double measured = 0, refError = 0, reached = 0, refSeconds = 0;
 };
 TargetVerification VerifyTarget(const SceneDescription &desc, const BuildSettings &base,
-                                const TargetChoice &choice, const Image &image,
-                                Diagnostics &diag);
+                                const TargetChoice &choice, const Image &image, Diagnostics &diag);
 
 // The report lines ("target-error: chose spp 23, ..."), without a trailing newline.
 // DescribeChoice has two lines: the choice, then the resolution correction.

@@ -66,11 +66,9 @@ TEST_F(TargetErrorCli, ConflictingOptionsAreUsageErrors) {
     EXPECT_EQ(v.exitCode, 2);
     EXPECT_NE(v.err.find("--verify needs --target-error"), std::string::npos) << v.err;
     for (const char *bad : {"--target-error 0", "--target-error -1", "--target-error x"})
-        EXPECT_EQ(RunPrism("render " + Whitted + " " + bad + " -o c.png", dir_).exitCode, 2)
-            << bad;
+        EXPECT_EQ(RunPrism("render " + Whitted + " " + bad + " -o c.png", dir_).exitCode, 2) << bad;
     // Unreachable: a clear error, no image.
-    RunResult u =
-        RunPrism("render " + Whitted + " --res 32x24 --target-error 1e-6 -o c.png", dir_);
+    RunResult u = RunPrism("render " + Whitted + " --res 32x24 --target-error 1e-6 -o c.png", dir_);
     EXPECT_EQ(u.exitCode, 2);
     EXPECT_NE(u.err.find("cannot be reached"), std::string::npos) << u.err;
     EXPECT_FALSE(fs::exists(dir_ / "c.png"));
