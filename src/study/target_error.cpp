@@ -15,8 +15,8 @@ namespace {
 
 // The reference's trace depth, as the study's (the scene's own when it is deeper).
 constexpr int ReferenceMaxDepth = 16;
-// The spp at which the pilot measures what a cutoff costs in error and saves in rays.
-constexpr int CutoffProbeSpp = 9;
+// The spp at which the pilot measures the depth bias at its resolutions.
+constexpr int ProbeSpp = 9;
 
 double Seconds(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -255,8 +255,8 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
     // against its reference; the reference's own noise (the fitted noise at its spp) is taken
     // out of every error. The cutoffs are probed on the pilot at one spp.
     Series own[2];
-    double refNoise2[2] = {0, 0};  // pilot, half
-    std::vector<double> cutoffErr2(o.cutoffs.size()), cutoffRays(o.cutoffs.size());
+    double refNoise2[2] = {0, 0};   // pilot, half
+    double depthBias2[2] = {0, 0};  // the scene's maxdepth against the reference's
     Image pilotRef;
     for (int r = 0; r < 2; ++r) {
         MemoryBudget b(limit);
@@ -266,12 +266,28 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
         ErrorCurve c = FitErrorCurve(o.pilotSpp, own[r].err2);
         double n = c.noise(o.pilotRefSpp);
         refNoise2[r] = n * n;
-        if (r != 0) continue;
-        // A cutoff's error is measured against the same samples without it (cutoffs[0] is
-        // 0), so the noise they share cancels: what remains is the cutoff's own effect.
+        // The depth bias at this resolution: the same samples at the reference's depth.
+        scene.spp = ProbeSpp;
+        Image shallow = Render(scene, nullptr);
+        double d = RelativeRmse(shallow, RenderReference(scene, ProbeSpp));
+        depthBias2[r] = d * d;
+        if (r == 0) pilotRef = std::move(ref);
+    }
+
+    // Biases, measured at the full resolution: they sit on small features (deep
+    // inter-reflections) and grow with the resolution until it resolves them (quadrics at
+    // 9 spp: depth bias 0.0021, 0.0046, 0.0068 at widths 50, 100, 400), so no pilot resolution
+    // shows them. Each is measured against the same samples without it, so the noise cancels:
+    // each cutoff against none (cutoffs[0] is 0) at one sample per pixel (the pixel centre: an
+    // upper bound), with the rays it leaves; the depth bias against the reference's depth.
+    double fullDepthBias2 = 0;
+    std::vector<double> cutoffErr2(o.cutoffs.size()), cutoffRays(o.cutoffs.size());
+    {
+        MemoryBudget b(limit);
+        RenderScene scene = BuildAt(desc, base, choice.resolution, 0, b);
+        scene.spp = 1;
         Image noCutoff;
         for (size_t c = 0; c < o.cutoffs.size(); ++c) {
-            scene.spp = CutoffProbeSpp;
             scene.rayCutoff = o.cutoffs[c];
             RenderStats st;
             Image img = Render(scene, &st);
@@ -280,8 +296,19 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
             cutoffErr2[c] = e * e;
             cutoffRays[c] = double(st.rays.Total());
         }
-        pilotRef = std::move(ref);
+        scene.rayCutoff = 0;
+        // The depth bias of a pixel's mean falls with the samples towards the bias of the
+        // pixel's integral, as b^2(n) = B^2 + v / n (v: the deep paths' own sampling noise):
+        // measured at 2 and 4 spp, B^2 = 2 b^2(4) - b^2(2) (at least b^2(4) / 2).
+        double b2[2];
+        for (int i = 0; i < 2; ++i) {
+            scene.spp = 2 << i;
+            double d = RelativeRmse(Render(scene, nullptr), RenderReference(scene, scene.spp));
+            b2[i] = d * d;
+        }
+        fullDepthBias2 = std::max(2 * b2[1] - b2[0], 0.5 * b2[1]);
     }
+    choice.depthBias = std::sqrt(fullDepthBias2);
 
     // From the pilot and the half pilot to the full resolution, per spp: the true squared
     // error is E * (pilot width / width) + S, E the part on edges (their share of the pixels
@@ -291,8 +318,8 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
         double(choice.resolution.x) * choice.resolution.y / (double(pilot.x) * pilot.y);
     std::vector<double> ownFull2;
     for (size_t k = 0; k < o.pilotSpp.size(); ++k) {
-        double tp = std::max(own[0].err2[k] - refNoise2[0], 0.0);
-        double th = std::max(own[1].err2[k] - refNoise2[1], 0.0);
+        double tp = std::max(own[0].err2[k] - refNoise2[0] - depthBias2[0], 0.0);
+        double th = std::max(own[1].err2[k] - refNoise2[1] - depthBias2[1], 0.0);
         double E = kHalf > 1 ? std::max(0.0, (th - tp) / (kHalf - 1)) : 0;
         E = std::min(E, tp);
         ownFull2.push_back(std::max(E * kFull + (tp - E), 1e-30));
@@ -341,9 +368,10 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
             cand.lightSamples = L;
             cand.cutoff = o.cutoffs[c];
             cand.curve = curve;
-            // A cutoff's bias adds to the floor (measured at the scene's light samples; the
-            // cutoff never drops shadow rays); its time goes with the rays it leaves.
-            cand.curve.floor2 += cutoffErr2[c];
+            // The depth bias and a cutoff's bias add to the floor (measured at the scene's
+            // light samples; the cutoff never drops shadow rays); the time goes with the rays
+            // the cutoff leaves.
+            cand.curve.floor2 += fullDepthBias2 + cutoffErr2[c];
             double rayRatio = cutoffRays[0] > 0 ? cutoffRays[c] / cutoffRays[0] : 1;
             cand.secondsPerSpp = perSpp * std::min(1.0, rayRatio);
             cand.spp = cand.curve.SppFor(o.target);
@@ -415,8 +443,8 @@ std::string DescribeChoice(const TargetChoice &c) {
            fmt::format(
                "\ntarget-error: resolution correction: {:.0f}% of the pilot's squared "
                "error at 9 spp is edge-like (falls as 1/width), so {}x{} has {:.2f}x the "
-               "pilot's error",
-               100 * c.edgeShare, c.resolution.x, c.resolution.y, c.resolutionFactor);
+               "pilot's noise; bias of the scene's maxdepth {:.2g}",
+               100 * c.edgeShare, c.resolution.x, c.resolution.y, c.resolutionFactor, c.depthBias);
 }
 
 std::string DescribeVerification(const TargetChoice &c, const TargetVerification &v) {

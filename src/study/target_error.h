@@ -80,6 +80,8 @@ struct TargetChoice {
     // pilot's squared error that behaves as edge error (falls as 1 / width), and the predicted
     // full-resolution error over the pilot's.
     double edgeShare = 0, resolutionFactor = 1;
+    // relRmse of the scene's maxdepth against the reference's, at the full resolution.
+    double depthBias = 0;
 };
 
 struct TargetOptions {
