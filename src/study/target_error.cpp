@@ -321,8 +321,18 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
         double tp = std::max(own[0].err2[k] - refNoise2[0] - depthBias2[0], 0.0);
         double th = std::max(own[1].err2[k] - refNoise2[1] - depthBias2[1], 0.0);
         double E = kHalf > 1 ? std::max(0.0, (th - tp) / (kHalf - 1)) : 0;
-        E = std::min(E, tp);
-        ownFull2.push_back(std::max(E * kFull + (tp - E), 1e-30));
+        double full2 = 0;
+        if (E <= tp) {
+            full2 = E * kFull + (tp - E);
+        } else {
+            // Falling faster than edges (th > kHalf tp): smooth shading varies inside a pixel
+            // by its size, so its share falls as 1 / width^2. Carried on as the measured power
+            // of the width (at most 2).
+            E = tp;
+            double g = std::min(2.0, std::log(th / tp) / std::log(kHalf));
+            full2 = tp * std::pow(kFull, g);
+        }
+        ownFull2.push_back(std::max(full2, 1e-30));
         if (o.pilotSpp[k] == 9 && tp > 0) {
             choice.edgeShare = E / tp;
             choice.resolutionFactor = std::sqrt(ownFull2.back() / tp);
