@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "app/commands.h"
 #include "app/common.h"
@@ -15,6 +16,7 @@
 #include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "study/target_error.h"
 #include "validate/tessellate.h"
 
 namespace prism {
@@ -37,7 +39,23 @@ struct RenderArgs {
     float cutoff = 0, offsetEpsilon = 0;      // offsetEpsilon 0: not given
     std::string offset, bvhQuality = "auto";  // offset empty: not given
     bool robust = false;
+    // --target-error (docs/ACCURACY.md): 0 when not given; the explicit options it conflicts
+    // with, as given on the command line.
+    double targetError = 0;
+    bool verify = false, sppGiven = false, cutoffGiven = false, lightSamplesGiven = false;
 };
+
+// --target-error chooses spp, cutoff and light samples itself: giving one of them too is a
+// usage error rather than a silent override either way.
+void CheckTargetErrorArgs(const RenderArgs &a) {
+    if (a.verify && a.targetError <= 0) throw UsageError("--verify needs --target-error");
+    if (a.targetError <= 0) return;
+    for (auto [given, name] : {std::pair{a.sppGiven, "--spp"}, std::pair{a.cutoffGiven, "--cutoff"},
+                               std::pair{a.lightSamplesGiven, "--light-samples"}})
+        if (given)
+            throw UsageError(std::string("--target-error chooses ") + (name + 2) +
+                             " itself; drop " + name);
+}
 
 // --offset and --offset-epsilon: the epsilon alone implies `--offset epsilon`.
 RayOffset ParseOffset(const std::string &mode, float epsilon) {
@@ -98,6 +116,7 @@ void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool t
 }
 
 int RunRender(const RenderArgs &a) {
+    CheckTargetErrorArgs(a);
     BuildSettings opts;
     opts.spp = a.spp;
     opts.maxDepth = a.maxDepth;
@@ -128,6 +147,14 @@ int RunRender(const RenderArgs &a) {
     auto t0 = std::chrono::steady_clock::now();
     SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
     double parseSeconds = SecondsSince(t0);
+    std::optional<TargetChoice> target;
+    if (a.targetError > 0) {
+        TargetOptions to;
+        to.target = a.targetError;
+        target = ChooseTargetSettings(desc, opts, to, diag);
+        opts = ApplyTargetChoice(opts, *target);
+        if (!a.quiet) std::fprintf(stderr, "%s\n", DescribeChoice(*target).c_str());
+    }
     auto t1 = std::chrono::steady_clock::now();
     RenderScene scene = BuildRenderScene(desc, opts, diag);
     // Scene setup: meshes read (PLY), textures decoded, materials and lights built.
@@ -158,6 +185,10 @@ int RunRender(const RenderArgs &a) {
     }
     WriteImage(out, img);
     sigaction(SIGINT, &old, nullptr);
+    if (target && a.verify) {
+        TargetVerification v = VerifyTarget(desc, opts, *target, img, diag);
+        std::fprintf(stderr, "%s\n", DescribeVerification(*target, v).c_str());
+    }
 
     if (!a.quiet) {
         const RayCounters &r = stats.rays;
@@ -212,8 +243,9 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("scene", args->scene, "Scene file")->required();
     cmd->add_option("-o,--output", args->output,
                     "Output image (.exr linear float, .png sRGB); default: the Film's filename");
-    cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the Sampler)")
-        ->check(CLI::Range(1, 1 << 16));
+    CLI::Option *spp =
+        cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the Sampler)")
+            ->check(CLI::Range(1, 1 << 16));
     cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
     cmd->add_option("--res", args->res, "Resolution WxH (overrides the Film)");
@@ -224,13 +256,16 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
                     "Crop window x0,x1,y0,y1 in [0,1] (like Film \"cropwindow\")");
     cmd->add_option("--precision", args->precision, "Arithmetic of the analytic intersectors")
         ->check(CLI::IsMember({"float", "double"}));
-    cmd->add_option("--light-samples", args->lightSamples,
-                    "Shadow rays per area/infinite light (overrides nsamples)")
-        ->check(CLI::Range(1, 4096));
-    cmd->add_option("--cutoff", args->cutoff,
-                    "Ray-weight cutoff: trace a reflected or refracted ray only if its throughput "
-                    "exceeds this (default 0: every ray)")
-        ->check(CLI::Range(0.0, 1e30));
+    CLI::Option *lightSamples =
+        cmd->add_option("--light-samples", args->lightSamples,
+                        "Shadow rays per area/infinite light (overrides nsamples)")
+            ->check(CLI::Range(1, 4096));
+    CLI::Option *cutoff =
+        cmd->add_option(
+               "--cutoff", args->cutoff,
+               "Ray-weight cutoff: trace a reflected or refracted ray only if its throughput "
+               "exceeds this (default 0: every ray)")
+            ->check(CLI::Range(0.0, 1e30));
     cmd->add_option("--offset", args->offset,
                     "How secondary rays leave a surface: errorbounds (default), epsilon or none")
         ->check(CLI::IsMember({"errorbounds", "epsilon", "none"}));
@@ -257,7 +292,18 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
     cmd->add_flag("-q,--quiet", args->quiet, "No progress, statistics or warnings");
     cmd->add_flag("--no-progress", args->noProgress,
                   "No progress display (statistics and warnings stay)");
-    cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunRender(*args); }); });
+    cmd->add_option("--target-error", args->targetError,
+                    "Choose spp, cutoff and light samples by a pilot study to reach this "
+                    "relative RMSE against a reference (docs/ACCURACY.md)")
+        ->check(CLI::Range(1e-6, 1e6));
+    cmd->add_flag("--verify", args->verify,
+                  "With --target-error: render a reference too and report the error reached");
+    cmd->callback([args, exitCode, spp, cutoff, lightSamples] {
+        args->sppGiven = spp->count() > 0;
+        args->cutoffGiven = cutoff->count() > 0;
+        args->lightSamplesGiven = lightSamples->count() > 0;
+        *exitCode = RunGuarded([&] { return RunRender(*args); });
+    });
 }
 
 int RenderDefaultScene() {
