@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "render/renderer.h"
+#include "study/study.h"
 
 namespace prism {
 
@@ -200,20 +201,7 @@ ErrorCurve FitErrorCurve(const std::vector<int> &spp, const std::vector<double> 
 }
 
 double RelativeRmse(const Image &image, const Image &reference) {
-    if (image.width != reference.width || image.height != reference.height)
-        throw std::invalid_argument("RelativeRmse: images of different sizes");
-    double sumSq = 0, sumRefSq = 0;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            RGB a = image.GetRGB(x, y), b = reference.GetRGB(x, y);
-            for (int c = 0; c < 3; ++c) {
-                if (!std::isfinite(a[c])) continue;
-                double d = double(a[c]) - double(b[c]);
-                sumSq += d * d;
-                sumRefSq += double(b[c]) * double(b[c]);
-            }
-        }
-    return sumRefSq > 0 ? std::sqrt(sumSq / sumRefSq) : (sumSq > 0 ? Infinity : 0);
+    return MeasureError(image, reference, 0).relRmse;
 }
 
 Vec2i PilotResolution(Vec2i full) {
