@@ -33,6 +33,7 @@ struct PassCounters {
 struct Scratch {
     std::vector<Ray> rays;
     std::vector<RawHit> hits;
+    std::vector<int> packets;  // rays per camera packet, in order
 };
 
 // One shadow ray from p toward each light (one sample for area and infinite lights). The
@@ -72,6 +73,7 @@ PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) 
     tbb::enumerable_thread_specific<PassCounters> counters;
     tbb::enumerable_thread_specific<Scratch> scratch;
     const Accel &accel = *scene.accel;
+    const CMJPattern cmj(uint32_t(scene.spp));
     tbb::parallel_for(tbb::blocked_range<int>(0, nTiles, 1), [&](const tbb::blocked_range<int> &r) {
         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
@@ -83,16 +85,28 @@ PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) 
             int x1 = std::min(x0 + TileSize, pb.pMax.x), y1 = std::min(y0 + TileSize, pb.pMax.y);
             const uint32_t spp = uint32_t(scene.spp);
             sc.rays.clear();
-            for (int y = y0; y < y1; ++y) {
-                for (int x = x0; x < x1; ++x) {
-                    uint32_t filmSeed = PatternSeed(x, y, FilmPurpose);
-                    uint32_t lensSeed = PatternSeed(x, y, LensPurpose);
+            sc.packets.clear();
+            // The render loop's order (render/renderer.cpp): blocks of RenderPacketW x
+            // RenderPacketH pixels, one packet per sample index, so Packet16 traces the
+            // render's own camera packets.
+            for (int by = y0; by < y1; by += RenderPacketH) {
+                for (int bx = x0; bx < x1; bx += RenderPacketW) {
+                    const int ex = std::min(bx + RenderPacketW, x1),
+                              ey = std::min(by + RenderPacketH, y1);
                     for (uint32_t s = 0; s < spp; ++s) {
-                        Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : CMJSample(s, spp, filmSeed);
-                        Vec2f pFilm(float(x) + u.x, float(y) + u.y);
-                        Vec2f uLens =
-                            scene.features.lens ? CMJSample(s, spp, lensSeed) : Vec2f(0.5f, 0.5f);
-                        sc.rays.push_back(scene.camera->GenerateRay(pFilm, uLens));
+                        size_t first = sc.rays.size();
+                        for (int y = by; y < ey; ++y) {
+                            for (int x = bx; x < ex; ++x) {
+                                Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f)
+                                                   : cmj.Sample(s, PatternSeed(x, y, FilmPurpose));
+                                Vec2f pFilm(float(x) + u.x, float(y) + u.y);
+                                Vec2f uLens = scene.features.lens
+                                                  ? cmj.Sample(s, PatternSeed(x, y, LensPurpose))
+                                                  : Vec2f(0.5f, 0.5f);
+                                sc.rays.push_back(scene.camera->GenerateRay(pFilm, uLens));
+                            }
+                        }
+                        sc.packets.push_back(int(sc.rays.size() - first));
                     }
                 }
             }
@@ -100,13 +114,16 @@ PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) 
             pc.camera += n;
             if (traversal == CeilingTraversal::Packet16) {
                 sc.hits.resize(n);
-                for (size_t i = 0; i < n; i += 16)
-                    accel.IntersectPacket(&sc.rays[i], int(std::min<size_t>(16, n - i)),
-                                          &sc.hits[i]);
-                for (size_t i = 0; i < n; ++i) {
-                    if (sc.hits[i].shape < 0) continue;
-                    pc.hits++;
-                    TraceShadowRays(scene, sc.rays[i], sc.hits[i].t, pc);
+                // Each packet's shadow rays right after it, as the render shades a packet.
+                size_t first = 0;
+                for (int m : sc.packets) {
+                    accel.IntersectPacket(&sc.rays[first], m, &sc.hits[first]);
+                    for (size_t i = first; i < first + size_t(m); ++i) {
+                        if (sc.hits[i].shape < 0) continue;
+                        pc.hits++;
+                        TraceShadowRays(scene, sc.rays[i], sc.hits[i].t, pc);
+                    }
+                    first += size_t(m);
                 }
             } else {
                 for (size_t i = 0; i < n; ++i) {
@@ -161,12 +178,12 @@ CeilingResult RunCeiling(const CeilingOptions &o, std::FILE *log) {
         int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
     res.triangles = scene.features.triangles;
     if (log)
-        std::fprintf(log, "%s: %dx%d, %d spp, %d threads, %zu triangles, %zu lights, %s\n",
-                     o.scene.c_str(), res.width, res.height, res.spp, res.threads, res.triangles,
-                     scene.lights.size(),
-                     o.traversal == CeilingTraversal::Packet16
-                         ? "ceiling: camera rays in 16-ray packets, shadow rays rtcOccluded1"
-                         : "ceiling: rtcIntersect1 + rtcOccluded1 per ray");
+        std::fprintf(
+            log, "%s: %dx%d, %d spp, %d threads, %zu triangles, %zu lights, %s\n", o.scene.c_str(),
+            res.width, res.height, res.spp, res.threads, res.triangles, scene.lights.size(),
+            o.traversal == CeilingTraversal::Packet16
+                ? "ceiling: camera rays in the render's 4x4-pixel packets, shadow rays rtcOccluded1"
+                : "ceiling: rtcIntersect1 + rtcOccluded1 per ray");
     std::vector<double> ceil, rend;
     for (int k = 0; k < std::max(1, o.repeats); ++k) {
         CeilingRepeat rep;

@@ -58,7 +58,8 @@ void MeasureCeilingSection(SuiteContext &ctx) {
         "## Render kernel against Embree's ceiling\n\n"
         "Knot (nu 2000, nv 100: {} triangles), {}x{}, 1 spp, matte, one point light, {} threads; "
         "median of {} interleaved repeats (`prism bench ceiling`). The ceiling traces the same "
-        "camera rays (16-ray packets) and one shadow ray per hit (rtcOccluded1) with no shading; "
+        "camera rays (the render's 16-ray packets of 4x4 pixels) and one shadow ray per hit "
+        "(rtcOccluded1, as the render) with no shading; "
         "{:.0f}% of the camera rays hit.\n\n"
         "| ceiling | render | ratio render/ceiling |\n|---|---|---|\n"
         "| {:.2f} Mrays/s | {:.2f} Mrays/s | {:.2f} |\n\n",

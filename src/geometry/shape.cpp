@@ -9,6 +9,8 @@ static Affine3<Real> ToAffine(const Matrix4 &m) {
     Affine3<Real> a;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 4; ++j) a.m[i][j] = Real(m.m[i][j]);
+    for (int j = 0; j < 4; ++j)
+        a.absCol[j] = std::abs(a.m[0][j]) + std::abs(a.m[1][j]) + std::abs(a.m[2][j]);
     return a;
 }
 

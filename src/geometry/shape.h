@@ -53,6 +53,9 @@ struct LocalGeometry {
 template <typename Real>
 struct Affine3 {
     Real m[3][4];
+    // Column sums of |m| (absCol[j] = sum_i |m[i][j]|, absCol[3] the translation's), so the
+    // bound sum_ij |m_ij o_j| + sum_i |m_i3| on a transformed point's magnitude costs 3 products.
+    Real absCol[4] = {0, 0, 0, 0};
     Vec3<Real> Point(const Vec3<Real> &p) const {
         return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
                 m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
@@ -151,10 +154,8 @@ class AnalyticShapeT : public AnalyticShape {
         Vec3<Real> ow(o), dw(d);
         Vec3<Real> oo = m.Point(ow), dd = m.Vector(dw);
         // pbrt-v3 transform.h: |error| <= gamma3 (|M| |o| + |t|) per component.
-        Real oErr = 0;
-        for (int i = 0; i < 3; ++i)
-            oErr += std::abs(m.m[i][0] * ow.x) + std::abs(m.m[i][1] * ow.y) +
-                    std::abs(m.m[i][2] * ow.z) + std::abs(m.m[i][3]);
+        Real oErr = m.absCol[0] * std::abs(ow.x) + m.absCol[1] * std::abs(ow.y) +
+                    m.absCol[2] * std::abs(ow.z) + m.absCol[3];
         Real dLen = Length(dd);
         Real tSlack = dLen > 0 ? Gamma<Real>(3) * oErr / dLen : Real(0);
         return static_cast<const Derived *>(this)->template IntersectT<Real>(

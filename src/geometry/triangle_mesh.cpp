@@ -106,7 +106,9 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
     {
         Vec3f e1 = p1 - p0, e2 = p2 - p0;
         float ng = Length(Cross(e1, e2));
-        float reach = std::max({Length(p0 - si.p), Length(p1 - si.p), Length(p2 - si.p)});
+        // One sqrt: sqrt is monotonic and correctly rounded, so this is the max of the lengths.
+        float reach = std::sqrt(std::max(
+            {LengthSquared(p0 - si.p), LengthSquared(p1 - si.p), LengthSquared(p2 - si.p)}));
         float aspect = ng > 0 ? Length(e1) * Length(e2) / ng : 1;
         si.pError += Vec3f(1, 1, 1) * (Gamma<float>(8) * reach * (1 + aspect));
     }

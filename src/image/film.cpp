@@ -120,6 +120,25 @@ void FilmTile::AddSample(Vec2f pFilm, const RGB &L) {
             {int(std::floor(ClampCoord(pFilm.x))), int(std::floor(ClampCoord(pFilm.y)))});
         v = RGB(0.f);
     }
+    if (kernel_.kind == Filter::Kind::Box && kernel_.radius[0] == 0.5f &&
+        kernel_.radius[1] == 0.5f) {
+        // pbrt's default box (radius 1/2): the one pixel x with x <= p < x + 1, x = floor(p),
+        // with weight 1 (below, x0 == x1 == floor(p) exactly in double and |x + 1/2 - p| <= 1/2):
+        // the same sums without the weight tables and their calls.
+        double cx = ClampCoord(pFilm.x), cy = ClampCoord(pFilm.y);
+        int x = int(cx), y = int(cy);  // |c| <= 1e9: truncation, then floor
+        x -= double(x) > cx;
+        y -= double(y) > cy;
+        if (x < bounds_.pMin.x || x >= bounds_.pMax.x || y < bounds_.pMin.y || y >= bounds_.pMax.y)
+            return;
+        FilmPixel &p = pixels_[size_t(y - bounds_.pMin.y) * size_t(bounds_.Width()) +
+                               size_t(x - bounds_.pMin.x)];
+        p.r += double(v.r);
+        p.g += double(v.g);
+        p.b += double(v.b);
+        p.weight += 1.0;
+        return;
+    }
     // Pixel x receives the sample if x + 0.5 - r <= p < x + 0.5 + r, i.e. x in
     // (p - 0.5 - r, p - 0.5 + r]. Computed in double so the boundary test is exact.
     double px = ClampCoord(pFilm.x) - 0.5, py = ClampCoord(pFilm.y) - 0.5;

@@ -81,7 +81,7 @@ struct TileScratch {
 // (coherent rays through Embree's 16-wide packet path), then shaded one by one from their
 // hits. Samples are added to the tile afterwards in pixel-then-sample order, so the film sums
 // exactly as when each sample was traced and added in turn.
-constexpr int PacketW = 4, PacketH = 4;
+constexpr int PacketW = RenderPacketW, PacketH = RenderPacketH;
 
 void RenderTile(const RenderScene &scene, const WhittedIntegrator &integrator, Bounds2i tb,
                 RayCounters &rc, TileScratch &buf, FilmTile *tile) {
@@ -98,21 +98,30 @@ void RenderTile(const RenderScene &scene, const WhittedIntegrator &integrator, B
     Ray rays[16];
     RawHit hits[16];
     size_t slot[16];
+    uint32_t filmSeed[16], lensSeed[16];
+    const CMJPattern cmj(spp);
     for (int by = tb.pMin.y; by < tb.pMax.y; by += PacketH) {
         for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += PacketW) {
             const int ex = std::min(bx + PacketW, tb.pMax.x),
                       ey = std::min(by + PacketH, tb.pMax.y);
+            // The packet's pattern seeds, once for all its samples.
+            if (spp > 1 || scene.features.lens) {
+                int m = 0;
+                for (int y = by; y < ey; ++y)
+                    for (int x = bx; x < ex; ++x, ++m) {
+                        filmSeed[m] = PatternSeed(x, y, FilmPurpose);
+                        lensSeed[m] = scene.features.lens ? PatternSeed(x, y, LensPurpose) : 0;
+                    }
+            }
             for (uint32_t s = 0; s < spp; ++s) {
                 int m = 0;
                 for (int y = by; y < ey; ++y) {
                     for (int x = bx; x < ex; ++x, ++m) {
                         // One sample: the pixel centre; more: correlated multi-jittered.
-                        Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f)
-                                           : CMJSample(s, spp, PatternSeed(x, y, FilmPurpose));
+                        Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : cmj.Sample(s, filmSeed[m]);
                         Vec2f pFilm(float(x) + u.x, float(y) + u.y);
-                        Vec2f uLens = scene.features.lens
-                                          ? CMJSample(s, spp, PatternSeed(x, y, LensPurpose))
-                                          : Vec2f(0.5f, 0.5f);
+                        Vec2f uLens =
+                            scene.features.lens ? cmj.Sample(s, lensSeed[m]) : Vec2f(0.5f, 0.5f);
                         rays[m] = scene.camera->GenerateRay(pFilm, uLens);
                         slot[m] = index(x, y, s);
                         buf.pFilm[slot[m]] = pFilm;

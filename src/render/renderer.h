@@ -13,6 +13,9 @@ namespace prism {
 // Tiles are squares of this many pixels (the last row and column may be smaller); the memory
 // estimate of the film (core/memory.h EstimateFilmBytes) and bench's ceiling pass use it.
 inline constexpr int RenderTileSize = 16;
+// Camera rays are traced in packets of RenderPacketW x RenderPacketH pixels at one sample
+// index (bench's ceiling pass traces the same packets).
+inline constexpr int RenderPacketW = 4, RenderPacketH = 4;
 
 struct RenderStats {
     double renderSeconds = 0;

@@ -69,6 +69,91 @@ inline Vec2f CMJSample(uint32_t s, uint32_t N, uint32_t p) {
     return {std::min(x, 0x1.fffffep-1f), std::min(y, 0x1.fffffep-1f)};
 }
 
+// CMJSample for one sample count N, with what depends only on N computed once (m, n, the
+// permutation masks): a loop over a pixel's samples pays for no sqrt, and power-of-two counts
+// and strata (1, 4, 16, 64 spp) use masks and shifts where CMJSample divides. Sample(s, p) ==
+// CMJSample(s, N, p) bit for bit (tests/render/sampler_test.cpp).
+class CMJPattern {
+  public:
+    explicit CMJPattern(uint32_t N) : N_(N) {
+        m_ = uint32_t(std::ceil(std::sqrt(double(N))));
+        n_ = (N + m_ - 1) / m_;
+        pN_ = Perm(N_);
+        pm_ = Perm(m_);
+        pn_ = Perm(n_);
+        mPow2_ = (m_ & (m_ - 1)) == 0;
+        mShift_ = 0;
+        while ((1u << mShift_) < m_) ++mShift_;
+        invN_ = 1.0f / float(n_);
+        invM_ = 1.0f / float(m_);
+        nPow2_ = (n_ & (n_ - 1)) == 0;
+    }
+
+    Vec2f Sample(uint32_t s, uint32_t p) const {
+        s = Permute(s, pN_, p * 0x51633e2d);
+        uint32_t sm = mPow2_ ? s & (m_ - 1) : s % m_;
+        uint32_t sd = mPow2_ ? s >> mShift_ : s / m_;
+        uint32_t sx = Permute(sm, pm_, p * 0x68bc21eb);
+        uint32_t sy = Permute(sd, pn_, p * 0x02e5be93);
+        float jx = HashFloat(s, p * 0x967a889b);
+        float jy = HashFloat(s, p * 0x368cc8b7);
+        // x / 2^k == x * 2^-k exactly; other counts divide as CMJSample does.
+        float x = (float(sm) + (nPow2_ ? (float(sy) + jx) * invN_ : (float(sy) + jx) / float(n_)));
+        x = mPow2_ ? x * invM_ : x / float(m_);
+        float y = (float(sd) + (mPow2_ ? (float(sx) + jy) * invM_ : (float(sx) + jy) / float(m_)));
+        y = nPow2_ ? y * invN_ : y / float(n_);
+        return {std::min(x, 0x1.fffffep-1f), std::min(y, 0x1.fffffep-1f)};
+    }
+
+  private:
+    // PermuteIndex's length-dependent parts: the length, its bit mask w, and whether it is a
+    // power of two (then the final modulo is a mask and the loop runs once).
+    struct Perm {
+        uint32_t l = 0, w = 0;
+        bool pow2 = false;
+        Perm() = default;
+        explicit Perm(uint32_t len) : l(len) {
+            w = len > 0 ? len - 1 : 0;
+            w |= w >> 1;
+            w |= w >> 2;
+            w |= w >> 4;
+            w |= w >> 8;
+            w |= w >> 16;
+            pow2 = len > 0 && (len & (len - 1)) == 0;
+        }
+    };
+    static uint32_t Permute(uint32_t i, const Perm &pm, uint32_t p) {
+        if (pm.l <= 1) return 0;
+        const uint32_t w = pm.w, l = pm.l;
+        do {
+            i ^= p;
+            i *= 0xe170893d;
+            i ^= p >> 16;
+            i ^= (i & w) >> 4;
+            i ^= p >> 8;
+            i *= 0x0929eb3f;
+            i ^= p >> 23;
+            i ^= (i & w) >> 1;
+            i *= 1 | p >> 27;
+            i *= 0x6935fa69;
+            i ^= (i & w) >> 11;
+            i *= 0x74dcb303;
+            i ^= (i & w) >> 2;
+            i *= 0x9e501cc3;
+            i ^= (i & w) >> 2;
+            i *= 0xc860a3df;
+            i &= w;
+            i ^= i >> 5;
+        } while (i >= l);
+        return pm.pow2 ? (i + p) & (l - 1) : (i + p) % l;
+    }
+
+    uint32_t N_, m_, n_, mShift_;
+    Perm pN_, pm_, pn_;
+    bool mPow2_, nPow2_;
+    float invN_, invM_;
+};
+
 // Pattern seed for a pixel and a purpose (film position, light k, ...).
 inline uint32_t PatternSeed(int x, int y, uint32_t purpose, uint32_t seed = 0) {
     uint64_t h = (uint64_t(uint32_t(x)) * 0x9E3779B1u) ^ (uint64_t(uint32_t(y)) << 32);

@@ -190,6 +190,42 @@ TEST(Film, SampleOnPixelBoundaryLandsInOnePixel) {
     EXPECT_EQ(w.GetRGB(3, 0), RGB(0.f));
 }
 
+// pbrt's default box (radius 1/2) takes a shortcut in AddSample: the sample goes to pixel
+// floor(p) of the tile with weight 1. Checked against those sums computed here, for samples on
+// pixel edges, just below them, outside the crop window and far away, through a cropped
+// film's tiles.
+TEST(Film, HalfPixelBoxAddsEachSampleToFloorPixel) {
+    const Bounds2i crop{{1, 2}, {7, 6}};
+    Film film({8, 8}, crop, MakeBoxFilter(0.5f));
+    std::vector<Sample> samples = RandomSamples(Full(8, 8), 3, 7);
+    for (float x : {0.f, 1.f, 3.f, std::nextafter(3.f, 0.f), 6.999999f, 7.f, -0.25f, 1e6f})
+        for (float y : {2.f, std::nextafter(2.f, 0.f), 4.5f, 5.999999f, 6.f, -3e5f})
+            samples.push_back({{x, y}, RGB(x + 2 * y, 1.f, 0.25f)});
+    std::vector<double> sum(64 * 3, 0.0), weight(64, 0.0);
+    for (const Sample &s : samples) {
+        double fx = std::floor(double(s.p.x)), fy = std::floor(double(s.p.y));
+        if (fx < crop.pMin.x || fx >= crop.pMax.x || fy < crop.pMin.y || fy >= crop.pMax.y)
+            continue;
+        int i = int(fy) * 8 + int(fx);
+        sum[3 * i] += double(s.L.r);
+        sum[3 * i + 1] += double(s.L.g);
+        sum[3 * i + 2] += double(s.L.b);
+        weight[i] += 1;
+    }
+    for (int tileSize : {2, 3, 16}) {
+        Image img = RenderTiled(film, samples, tileSize);
+        for (int y = crop.pMin.y; y < crop.pMax.y; ++y)
+            for (int x = crop.pMin.x; x < crop.pMax.x; ++x) {
+                int i = y * 8 + x;
+                RGB c = img.GetRGB(x - crop.pMin.x, y - crop.pMin.y);
+                ASSERT_GT(weight[i], 0);
+                EXPECT_EQ(c.r, float(sum[3 * i] / weight[i])) << x << "," << y;
+                EXPECT_EQ(c.g, float(sum[3 * i + 1] / weight[i])) << x << "," << y;
+                EXPECT_EQ(c.b, float(sum[3 * i + 2] / weight[i])) << x << "," << y;
+            }
+    }
+}
+
 TEST(Film, SamplesOutsideTheFilmAreIgnored) {
     Film film({3, 3}, Full(3, 3), MakeGaussianFilter());
     FilmTile tile = film.MakeTile(film.PixelBounds());
