@@ -117,7 +117,7 @@ PowerLaw FitPowerLaw(const std::vector<double> &x, const std::vector<double> &y)
     return {std::exp(intercept), -slope};
 }
 
-bool IsCompleteSampleCount(int n) {
+bool IsNearSquareSampleCount(int n) {
     if (n < 1) return false;
     int m = int(std::ceil(std::sqrt(double(n))));
     while (m * m < n) ++m;
@@ -126,9 +126,9 @@ bool IsCompleteSampleCount(int n) {
     return m * k == n;
 }
 
-int NextCompleteSampleCount(int n) {
+int NextNearSquareSampleCount(int n) {
     n = std::max(n, 1);
-    while (!IsCompleteSampleCount(n)) ++n;
+    while (!IsNearSquareSampleCount(n)) ++n;
     return n;
 }
 
@@ -146,9 +146,10 @@ std::optional<int> ErrorCurve::SppFor(double target) const {
     // floor2 + a^2 n^-2b <= t2  <=>  n >= (a^2 / (t2 - floor2))^(1 / 2b)
     double n = std::pow(noise.a * noise.a / (t2 - floor2), 1 / (2 * noise.b));
     if (!(n <= double(MaxSamplesPerPixel))) return std::nullopt;
-    int spp = NextCompleteSampleCount(std::max(1, int(std::ceil(n - 1e-9))));
+    int spp = NextNearSquareSampleCount(std::max(1, int(std::ceil(n - 1e-9))));
     // Rounding: make sure the count reaches the target.
-    while (spp < MaxSamplesPerPixel && Error(spp) > target) spp = NextCompleteSampleCount(spp + 1);
+    while (spp < MaxSamplesPerPixel && Error(spp) > target)
+        spp = NextNearSquareSampleCount(spp + 1);
     return spp;
 }
 
@@ -418,7 +419,7 @@ TargetVerification VerifyTarget(const SceneDescription &desc, const BuildSetting
     TargetVerification v;
     // Well above the render's spp, so that the two sample patterns are far apart and the
     // reference's own error small against the target.
-    v.refSpp = NextCompleteSampleCount(std::clamp(4 * choice.spp, 128, 1024));
+    v.refSpp = NextNearSquareSampleCount(std::clamp(4 * choice.spp, 128, 1024));
     MemoryBudget b(base.budget ? base.budget->Limit() : 0);
     RenderScene scene = BuildAt(desc, base, choice.resolution, 0, b);
     Image ref = RenderReference(scene, v.refSpp, &v.refSeconds);

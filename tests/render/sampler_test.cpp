@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <vector>
 
 namespace prism {
 
@@ -26,6 +28,44 @@ TEST(CMJPattern, MatchesCMJSampleBitForBit) {
             ASSERT_EQ(std::memcmp(&a, &b, sizeof(Vec2f)), 0) << N << " " << s;
         }
     }
+}
+
+}  // namespace prism
+
+namespace prism {
+
+// Every count fills its grid of strata: each of the m x n cells (m n = N) holds exactly one
+// sample, and each of the N columns and N rows of width 1/N holds exactly one (the
+// multi-jittered property). Kensler's grid m = ceil(sqrt N), n = ceil(N / m) fails the first for
+// N = 3, 5, 7, 8, 21, ...: part of its last row stays empty.
+TEST(CMJPattern, EveryCountFillsItsStrata) {
+    for (uint32_t N = 1; N <= 300; ++N) {
+        CMJGrid grid(N);
+        ASSERT_EQ(grid.m * grid.n, N);
+        ASSERT_GE(grid.m, grid.n);
+        for (uint32_t p : {0u, 5u, 0x9e3779b9u}) {
+            std::vector<int> cells(N, 0), cols(N, 0), rows(N, 0);
+            CMJPattern pat(N);
+            for (uint32_t s = 0; s < N; ++s) {
+                Vec2f u = pat.Sample(s, p);
+                ASSERT_TRUE(u.x >= 0 && u.x < 1 && u.y >= 0 && u.y < 1);
+                uint32_t cx = std::min(uint32_t(u.x * float(grid.m)), grid.m - 1);
+                uint32_t cy = std::min(uint32_t(u.y * float(grid.n)), grid.n - 1);
+                ++cells[cy * grid.m + cx];
+                ++cols[std::min(uint32_t(double(u.x) * N), N - 1)];
+                ++rows[std::min(uint32_t(double(u.y) * N), N - 1)];
+            }
+            for (uint32_t i = 0; i < N; ++i) {
+                ASSERT_EQ(cells[i], 1) << "N " << N << " cell " << i;
+                ASSERT_EQ(cols[i], 1) << "N " << N << " column " << i;
+                ASSERT_EQ(rows[i], 1) << "N " << N << " row " << i;
+            }
+        }
+    }
+    EXPECT_EQ(CMJGrid(21).m, 7u);
+    EXPECT_EQ(CMJGrid(16).m, 4u);
+    EXPECT_EQ(CMJGrid(12).m, 4u);  // m (m - 1) counts keep Kensler's grid
+    EXPECT_EQ(CMJGrid(23).m, 23u);
 }
 
 }  // namespace prism

@@ -47,9 +47,9 @@ TEST(TargetError, ChosenSppIsTheFewestReachingTheTargetAndMonotone) {
         ASSERT_TRUE(n) << target;
         EXPECT_GE(*n, last) << target;  // a smaller target never takes fewer samples
         EXPECT_LE(c.Error(*n), target);
-        EXPECT_TRUE(IsCompleteSampleCount(*n)) << *n;
+        EXPECT_TRUE(IsNearSquareSampleCount(*n)) << *n;
         int previous = *n - 1;
-        while (previous > 0 && !IsCompleteSampleCount(previous)) --previous;
+        while (previous > 0 && !IsNearSquareSampleCount(previous)) --previous;
         if (previous > 0) EXPECT_GT(c.Error(previous), target);
         last = *n;
     }
@@ -60,13 +60,13 @@ TEST(TargetError, ChosenSppIsTheFewestReachingTheTargetAndMonotone) {
 TEST(TargetError, CompleteSampleCounts) {
     std::vector<int> complete;
     for (int n = 0; n <= 42; ++n)
-        if (IsCompleteSampleCount(n)) complete.push_back(n);
+        if (IsNearSquareSampleCount(n)) complete.push_back(n);
     EXPECT_EQ(complete, (std::vector<int>{1, 2, 4, 6, 9, 12, 16, 20, 25, 30, 36, 42}));
-    EXPECT_EQ(NextCompleteSampleCount(21), 25);
-    EXPECT_EQ(NextCompleteSampleCount(25), 25);
-    EXPECT_EQ(NextCompleteSampleCount(0), 1);
-    EXPECT_TRUE(IsCompleteSampleCount(256));
-    EXPECT_TRUE(IsCompleteSampleCount(1 << 16));
+    EXPECT_EQ(NextNearSquareSampleCount(21), 25);
+    EXPECT_EQ(NextNearSquareSampleCount(25), 25);
+    EXPECT_EQ(NextNearSquareSampleCount(0), 1);
+    EXPECT_TRUE(IsNearSquareSampleCount(256));
+    EXPECT_TRUE(IsNearSquareSampleCount(1 << 16));
 }
 
 TEST(TargetError, RelativeRmseAndPilotResolution) {
