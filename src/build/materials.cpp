@@ -150,18 +150,22 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
         mat.Kr = mp.RGBTex("Kr", RGB(1));
         mat.Kt = mp.RGBTex("Kt", RGB(1));
         mat.index = mp.Has("eta") ? mp.FloatTex("eta", 1.5f) : mp.FloatTex("index", 1.5f);
-        // Whitted renders glass smooth whatever its roughness (a value or a float texture);
-        // a roughness that may be non-zero is named once per material.
-        bool rough = false;
-        for (const char *n : {"uroughness", "vroughness", "roughness"}) {
-            if (!mp.Has(n)) continue;
-            TexturePtr r = mp.FloatTex(n, 0.f);
+        // Rough glass (pbrt-v3: uroughness/vroughness, v4: roughness) is glossy for the
+        // distribution integrator; Whitted renders it smooth whatever its roughness (a value
+        // or a float texture), and a roughness that may be non-zero is named once per material.
+        TexturePtr rough = mp.FloatTex("roughness", 0.f);
+        mat.uRoughness = mp.Has("uroughness") ? mp.FloatTex("uroughness", 0.f) : rough;
+        mat.vRoughness = mp.Has("vroughness") ? mp.FloatTex("vroughness", 0.f) : rough;
+        mat.remapRoughness = mp.Bool("remaproughness", true);
+        bool isRough = false;
+        for (const TexturePtr &r : {mat.uRoughness, mat.vRoughness}) {
             auto *c = dynamic_cast<const ConstantTexture *>(r.get());
-            if (!c || c->Value().r > 0) rough = true;
+            if (!c || c->Value().r > 0) isRough = true;
         }
-        if (rough)
-            diag.Warn(m.loc, "rough glass is rendered as smooth glass by the Whitted integrator");
-        mp.Src("remaproughness").MarkUsed("remaproughness");
+        if (isRough && ctx.scene.integrator == IntegratorKind::Whitted)
+            diag.Warn(m.loc,
+                      "rough glass is rendered as smooth glass by the Whitted integrator "
+                      "(Integrator \"distribution\" renders it rough)");
     } else if (type == "metal") {
         mat.kind = Material::Kind::Metal;
         if (mp.Has("reflectance") && !mp.Has("eta") && !mp.Has("k")) {
