@@ -1,8 +1,6 @@
 // The distribution integrator (Integrator "distribution"): glossy sampling against numerically
 // integrated albedos, a glossy sphere under a uniform environment, roughness -> 0 converging
 // to the mirror and smooth glass, the glossy-ray counter, and Whitted left as it was.
-#include "render/distribution_integrator.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +11,7 @@
 #include "image/image_compare.h"
 #include "image/image_io.h"
 #include "render/bsdf.h"
+#include "render/distribution_integrator.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
 #include "scene/load_scene.h"
@@ -273,7 +272,8 @@ Translate 1.2 0.5 1.5
 Shape "sphere" "float radius" [ 0.5 ]
 AttributeEnd
 AttributeBegin
-)" + material + R"(
+)" + material +
+           R"(
 Translate 0 0.8 0
 Shape "sphere" "float radius" [ 0.8 ]
 AttributeEnd
