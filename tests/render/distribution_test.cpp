@@ -356,6 +356,40 @@ TEST(DistributionIntegrator, WhittedRenderOfGlossySceneIsUnchanged) {
     EXPECT_EQ(d.badPixels, 0);
 }
 
+// Rough glass keeps its roughness for the distribution integrator: pbrt-v3's "glass" remaps
+// uroughness/vroughness with RoughnessToAlpha (smooth only when both are 0), pbrt-v4's
+// "dielectric" remaps roughness to sqrt(roughness).
+TEST(DistributionIntegrator, RoughGlassAlphas) {
+    fs::path dir = fs::path(::testing::TempDir()) / "prism_distribution";
+    fs::create_directories(dir);
+    std::ofstream(dir / "glass.pbrt")
+        << "Integrator \"distribution\"\nCamera \"perspective\"\nWorldBegin\n"
+           "Material \"glass\" \"float uroughness\" [ 0.1 ] \"float vroughness\" [ 0 ]\n"
+           "Shape \"sphere\"\n"
+           "Material \"dielectric\" \"float roughness\" [ 0.04 ]\nShape \"sphere\"\n"
+           "Material \"glass\"\nShape \"sphere\"\nWorldEnd\n";
+    Diagnostics diag(false);
+    SceneDescription desc = LoadScene((dir / "glass.pbrt").string(), diag);
+    RenderScene scene = BuildRenderScene(desc, BuildSettings{}, diag);
+    EXPECT_EQ(scene.integrator, IntegratorKind::Distribution);
+    SurfaceInteraction si;
+    si.n = si.ns = Vec3f(0, 0, 1);
+    si.dpdu = Vec3f(1, 0, 0);
+    std::vector<std::pair<float, float>> alphas;
+    for (const ShapeInfo &info : scene.shapes) {
+        const Material &m = scene.materials[size_t(info.material)];
+        BSDF b = m.GetBSDF(si, TextureContext{});
+        alphas.push_back({b.Part(0).roughAlphaX, b.Part(0).roughAlphaY});
+    }
+    ASSERT_EQ(alphas.size(), 3u);
+    EXPECT_FLOAT_EQ(alphas[0].first, RoughnessToAlpha(0.1f));
+    EXPECT_FLOAT_EQ(alphas[0].second, RoughnessToAlpha(0.f));  // v3: 0 remaps to 0.047
+    EXPECT_FLOAT_EQ(alphas[1].first, 0.2f);
+    EXPECT_FLOAT_EQ(alphas[1].second, 0.2f);
+    EXPECT_EQ(alphas[2].first, 0.f);  // smooth
+    EXPECT_EQ(alphas[2].second, 0.f);
+}
+
 TEST(DistributionIntegrator, ObjAndGltfDefaultToIt) {
     fs::path dir = fs::path(::testing::TempDir()) / "prism_distribution";
     fs::create_directories(dir);
