@@ -312,6 +312,22 @@ TEST(DistributionIntegrator, RoughnessToZeroConvergesToTheMirrorImage) {
     }
 }
 
+// Glossy rays are stratified over the pixel's samples like the light samples: the error
+// falls at least as fast as with independent samples (1/sqrt(spp)).
+TEST(DistributionIntegrator, GlossyNoiseFallsWithSamplesPerPixel) {
+    std::string scene = ReflectingScene(
+        "Material \"metal\" \"float roughness\" [ 0.15 ] \"bool remaproughness\" \"false\"");
+    auto render = [&](int spp) {
+        BuildSettings opts;
+        opts.spp = spp;
+        opts.resolution = {24, 16};
+        return RenderText("noise", scene, opts).image;
+    };
+    Image ref = render(1024);
+    double e4 = CompareImages(render(4), ref, 1).rmse, e64 = CompareImages(render(64), ref, 1).rmse;
+    EXPECT_LT(e64, e4 / 4) << "spp 4: " << e4 << ", spp 64: " << e64;
+}
+
 TEST(DistributionIntegrator, NoGlossyMaterialTracesNoGlossyRaysAndMatchesWhitted) {
     std::string scene = ReflectingScene("Material \"glass\"");
     BuildSettings whitted;
