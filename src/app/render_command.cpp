@@ -31,8 +31,9 @@ void OnInterrupt(int) { g_cancel = 1; }
 
 struct RenderArgs {
     std::string scene, output, res, crop, precision = "double", lookAt, maxMemory;
-    int spp = 0, threads = 0, maxDepth = -1, lightSamples = 0;
-    int tessellate = 0;  // [validate hook]
+    int spp = 0, threads = 0, maxDepth = -1, lightSamples = 0, glossySamples = 0;
+    std::string integrator;  // empty: the scene's
+    int tessellate = 0;      // [validate hook]
     float fov = 0;
     bool quiet = false, noProgress = false;
     // Accuracy knobs (docs/NUMERICS.md, `prism study`).
@@ -126,6 +127,8 @@ int RunRender(const RenderArgs &a) {
     if (!a.lookAt.empty()) opts.worldFromCamera = ParseLookAt(a.lookAt);
     opts.fovDeg = a.fov;
     opts.lightSamples = a.lightSamples;
+    opts.integrator = a.integrator;
+    opts.glossySamples = a.glossySamples;
     opts.rayCutoff = a.cutoff;
     opts.offset = ParseOffset(a.offset, a.offsetEpsilon);
     opts.robust = a.robust;
@@ -193,16 +196,18 @@ int RunRender(const RenderArgs &a) {
     if (!a.quiet) {
         const RayCounters &r = stats.rays;
         std::fprintf(stderr,
-                     "%s: %dx%d, %d spp, maxdepth %d, %s precision\n"
+                     "%s: %dx%d, %d spp, maxdepth %d, %s precision, %s integrator\n"
                      "time: parse %.3fs, setup %.3fs, BVH build %.3fs, render %.3fs\n"
                      "rays: camera %llu, shadow %llu, reflection %llu, refraction %llu, "
-                     "pass-through %llu; %.2f Mrays/s\n",
+                     "pass-through %llu, glossy %llu; %.2f Mrays/s\n",
                      out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
                      scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
-                     a.precision.c_str(), parseSeconds, setupSeconds, scene.buildSeconds,
-                     stats.renderSeconds, (unsigned long long)r.camera,
-                     (unsigned long long)r.shadow, (unsigned long long)r.reflection,
-                     (unsigned long long)r.refraction, (unsigned long long)r.passThrough,
+                     a.precision.c_str(),
+                     scene.integrator == IntegratorKind::Distribution ? "distribution" : "whitted",
+                     parseSeconds, setupSeconds, scene.buildSeconds, stats.renderSeconds,
+                     (unsigned long long)r.camera, (unsigned long long)r.shadow,
+                     (unsigned long long)r.reflection, (unsigned long long)r.refraction,
+                     (unsigned long long)r.passThrough, (unsigned long long)r.glossy,
                      stats.renderSeconds > 0 ? r.Total() / stats.renderSeconds * 1e-6 : 0.0);
         // The accuracy knobs, when any differs from Prism's defaults.
         if (opts.rayCutoff > 0 || opts.offset.mode != OffsetMode::ErrorBounds || opts.robust ||
@@ -252,6 +257,15 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--maxdepth", args->maxDepth,
                     "Maximum specular depth (overrides the Integrator)")
         ->check(CLI::Range(0, 1000));
+    cmd->add_option("--integrator", args->integrator,
+                    "whitted (pbrt-v3's: no glossy rays) or distribution (Whitted plus glossy "
+                    "reflection and transmission); default: the scene's Integrator (OBJ and glTF: "
+                    "distribution)")
+        ->check(CLI::IsMember({"whitted", "distribution"}));
+    cmd->add_option("--glossy-samples", args->glossySamples,
+                    "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "
+                    "(distribution integrator; overrides \"glossysamples\", default 8)")
+        ->check(CLI::Range(1, 1024));
     cmd->add_option("--crop", args->crop,
                     "Crop window x0,x1,y0,y1 in [0,1] (like Film \"cropwindow\")");
     cmd->add_option("--precision", args->precision, "Arithmetic of the analytic intersectors")

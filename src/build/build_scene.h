@@ -22,6 +22,7 @@ namespace prism {
 inline constexpr int MaxImageResolution = 1 << 16;  // per axis
 inline constexpr int MaxSamplesPerPixel = 1 << 16;
 inline constexpr int MaxTraceDepth = 1000;
+inline constexpr int MaxGlossySamples = 1024;  // per glossy lobe and hit
 
 // Replaces the geometry of an analytic shape (e.g. by its tessellated twin, validate/); returns
 // nullptr to keep the analytic shape. Calls `charge` with the mesh's size before allocating it
@@ -39,6 +40,8 @@ struct BuildSettings {
     std::optional<Transform> worldFromCamera;  // replaces the camera's placement
     float fovDeg = 0;                          // 0: the Camera's; degrees on the shorter axis
     int lightSamples = 0;                      // 0: each area/infinite light's own nsamples
+    std::string integrator;                    // "whitted" or "distribution"; "": the scene's
+    int glossySamples = 0;                     // 0: the Integrator's "glossysamples"
     // How to build.
     Precision precision = Precision::Double;
     // Accuracy knobs (`prism study`, docs/ACCURACY.md). Defaults are Prism's normal choices.

@@ -183,16 +183,34 @@ void BuildIntegratorSettings(BuildContext &ctx) {
     RenderScene &scene = ctx.scene;
     Diagnostics &diag = ctx.diag;
     const ParamSet &ip = desc.integrator.params;
-    scene.integratorName = desc.integrator.type;
+    // --integrator replaces the scene's choice (its parameters still apply).
+    const std::string type =
+        settings.integrator.empty() ? desc.integrator.type : settings.integrator;
+    scene.integratorName = type;
     int maxDepth = ip.GetInt("maxdepth", 5);
-    // Only an Integrator the file names is worth a warning (pbrt's default is "path").
-    if (desc.integrator.type != "whitted" && desc.integrator.loc.Valid())
-        diag.Warn(desc.integrator.loc,
-                  "integrator " + Quote(desc.integrator.type) +
-                      " is rendered with Whitted (maxdepth " +
-                      std::to_string(settings.maxDepth >= 0 ? settings.maxDepth : maxDepth) + ")");
-    WarnIgnoredRest(ip, diag, "integrator " + Quote(desc.integrator.type),
-                    "Prism's Whitted integrator reads only maxdepth");
+    if (type == "distribution") {
+        // Prism's extension: Whitted plus glossy rays (docs/FORMAT.md).
+        scene.integrator = IntegratorKind::Distribution;
+        int n = settings.glossySamples > 0 ? settings.glossySamples
+                                           : ip.GetInt("glossysamples", DefaultGlossySamples);
+        if (n < 1 || n > MaxGlossySamples)
+            throw SceneError(desc.integrator.loc, "glossysamples " + std::to_string(n) +
+                                                      " out of range (1 to " +
+                                                      std::to_string(MaxGlossySamples) + ")");
+        scene.glossySamples = n;
+        WarnIgnoredRest(ip, diag, "integrator \"distribution\"",
+                        "Prism's distribution integrator reads only maxdepth and glossysamples");
+    } else {
+        scene.integrator = IntegratorKind::Whitted;
+        // Only an Integrator the file names is worth a warning (pbrt's default is "path").
+        if (type != "whitted" && desc.integrator.loc.Valid())
+            diag.Warn(desc.integrator.loc,
+                      "integrator " + Quote(type) + " is rendered with Whitted (maxdepth " +
+                          std::to_string(settings.maxDepth >= 0 ? settings.maxDepth : maxDepth) +
+                          ")");
+        WarnIgnoredRest(ip, diag, "integrator " + Quote(type),
+                        "Prism's Whitted integrator reads only maxdepth");
+    }
     if (settings.maxDepth >= 0) maxDepth = settings.maxDepth;
     if (maxDepth < 0 || maxDepth > MaxTraceDepth)
         throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) +

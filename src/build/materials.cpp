@@ -96,6 +96,24 @@ TexturePtr MaterialBuilder::AnyTex(MaterialParams &mp, const std::string &n, RGB
     return TextureParam(ctx, ps, n, false, def);
 }
 
+namespace {
+
+// pbrt-v4 remaps roughness r to alpha = sqrt(r) (v3 used a polynomial that never reaches 0):
+// constant u/v roughness of a v4 material ("conductor", "dielectric") is converted here.
+void RemapRoughnessAsV4(Material &mat) {
+    if (!mat.remapRoughness || !mat.uRoughness->IsConstant() || !mat.vRoughness->IsConstant())
+        return;
+    auto v4Alpha = [](TexturePtr &t) {
+        if (auto *c = dynamic_cast<const ConstantTexture *>(t.get()))
+            t = Constant(RGB(std::sqrt(std::max(0.f, c->Value().r))));
+    };
+    v4Alpha(mat.uRoughness);
+    v4Alpha(mat.vRoughness);
+    mat.remapRoughness = false;
+}
+
+}  // namespace
+
 // pbrt-v3 `roughness` / `uroughness` / `vroughness` for the materials that have all three.
 void MaterialBuilder::Roughness(Material &mat, MaterialParams &mp, float def) {
     mat.roughness = mp.FloatTex("roughness", def);
@@ -150,18 +168,23 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
         mat.Kr = mp.RGBTex("Kr", RGB(1));
         mat.Kt = mp.RGBTex("Kt", RGB(1));
         mat.index = mp.Has("eta") ? mp.FloatTex("eta", 1.5f) : mp.FloatTex("index", 1.5f);
-        // Whitted renders glass smooth whatever its roughness (a value or a float texture);
-        // a roughness that may be non-zero is named once per material.
-        bool rough = false;
-        for (const char *n : {"uroughness", "vroughness", "roughness"}) {
-            if (!mp.Has(n)) continue;
-            TexturePtr r = mp.FloatTex(n, 0.f);
+        // Rough glass (pbrt-v3: uroughness/vroughness, v4: roughness) is glossy for the
+        // distribution integrator; Whitted renders it smooth whatever its roughness (a value
+        // or a float texture), and a roughness that may be non-zero is named once per material.
+        TexturePtr rough = mp.FloatTex("roughness", 0.f);
+        mat.uRoughness = mp.Has("uroughness") ? mp.FloatTex("uroughness", 0.f) : rough;
+        mat.vRoughness = mp.Has("vroughness") ? mp.FloatTex("vroughness", 0.f) : rough;
+        mat.remapRoughness = mp.Bool("remaproughness", true);
+        bool isRough = false;
+        for (const TexturePtr &r : {mat.uRoughness, mat.vRoughness}) {
             auto *c = dynamic_cast<const ConstantTexture *>(r.get());
-            if (!c || c->Value().r > 0) rough = true;
+            if (!c || c->Value().r > 0) isRough = true;
         }
-        if (rough)
-            diag.Warn(m.loc, "rough glass is rendered as smooth glass by the Whitted integrator");
-        mp.Src("remaproughness").MarkUsed("remaproughness");
+        if (m.type == "dielectric") RemapRoughnessAsV4(mat);
+        if (isRough && ctx.scene.integrator == IntegratorKind::Whitted)
+            diag.Warn(m.loc,
+                      "rough glass is rendered as smooth glass by the Whitted integrator "
+                      "(Integrator \"distribution\" renders it rough)");
     } else if (type == "metal") {
         mat.kind = Material::Kind::Metal;
         if (mp.Has("reflectance") && !mp.Has("eta") && !mp.Has("k")) {
@@ -182,19 +205,7 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
         mat.uRoughness = mp.Has("uroughness") ? mp.FloatTex("uroughness", 0.f) : rough;
         mat.vRoughness = mp.Has("vroughness") ? mp.FloatTex("vroughness", 0.f) : rough;
         mat.remapRoughness = mp.Bool("remaproughness", true);
-        if (m.type == "conductor" && mat.remapRoughness) {
-            // pbrt-v4 remaps roughness r to alpha = sqrt(r) (v3 used a polynomial that
-            // never reaches 0); constant values are converted here.
-            auto v4Alpha = [&](TexturePtr &t) {
-                if (auto *c = dynamic_cast<const ConstantTexture *>(t.get()))
-                    t = Constant(RGB(std::sqrt(std::max(0.f, c->Value().r))));
-            };
-            if (mat.uRoughness->IsConstant() && mat.vRoughness->IsConstant()) {
-                v4Alpha(mat.uRoughness);
-                v4Alpha(mat.vRoughness);
-                mat.remapRoughness = false;
-            }
-        }
+        if (m.type == "conductor") RemapRoughnessAsV4(mat);
     } else if (type == "uber") {
         mat.kind = Material::Kind::Uber;
         mat.Kd = mp.RGBTex("Kd", RGB(0.25f));

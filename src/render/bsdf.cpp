@@ -165,34 +165,96 @@ RGB FresnelBlendF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
     return diffuse + schlick * (TrowbridgeReitzD(wh, l.alphaX, l.alphaY) / denom);
 }
 
+// Lambertian or Oren–Nayar reflection (pbrt-v3 LambertianReflection, OrenNayar).
+RGB DiffuseReflectionF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    if (!l.orenNayar) return l.kd * float(InvPi);
+    float sinThetaI = std::sqrt(Sin2Theta(wi)), sinThetaO = std::sqrt(Sin2Theta(wo));
+    float maxCos = 0;
+    if (sinThetaI > 1e-4f && sinThetaO > 1e-4f) {
+        float sinPhiI = wi.y / sinThetaI, cosPhiI = wi.x / sinThetaI;
+        float sinPhiO = wo.y / sinThetaO, cosPhiO = wo.x / sinThetaO;
+        maxCos = std::max(0.f, cosPhiI * cosPhiO + sinPhiI * sinPhiO);
+    }
+    float sinAlpha, tanBeta;
+    if (std::abs(wi.z) > std::abs(wo.z)) {
+        sinAlpha = sinThetaO;
+        tanBeta = sinThetaI / std::abs(wi.z);
+    } else {
+        sinAlpha = sinThetaI;
+        tanBeta = sinThetaO / std::abs(wo.z);
+    }
+    return l.kd * float(InvPi) * (l.orenNayarA + l.orenNayarB * maxCos * sinAlpha * tanBeta);
+}
+
+// FresnelBlendF's two terms: the diffuse base and the glossy coat.
+RGB FresnelBlendDiffuseF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    auto pow5 = [](float v) { return (v * v) * (v * v) * v; };
+    float cosI = std::abs(wi.z), cosO = std::abs(wo.z);
+    return l.blendRd * (RGB(1) - l.blendRs) *
+           (28.f / (23.f * float(Pi)) * (1 - pow5(1 - .5f * cosI)) * (1 - pow5(1 - .5f * cosO)));
+}
+
+RGB FresnelBlendCoatF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    auto pow5 = [](float v) { return (v * v) * (v * v) * v; };
+    float cosI = std::abs(wi.z), cosO = std::abs(wo.z);
+    Vec3f wh = wi + wo;
+    if (wh.x == 0 && wh.y == 0 && wh.z == 0) return RGB(0);
+    wh = Normalize(wh);
+    float cosH = Dot(wi, wh);
+    RGB schlick = l.blendRs + (RGB(1) - l.blendRs) * pow5(1 - cosH);
+    float denom = 4 * std::abs(cosH) * std::max(cosI, cosO);
+    if (denom == 0) return RGB(0);
+    return schlick * (TrowbridgeReitzD(wh, l.alphaX, l.alphaY) / denom);
+}
+
+// Trowbridge–Reitz: a normal sampled from the distribution of normals visible from w
+// (w.z > 0; Heitz 2018, "Sampling the GGX Distribution of Visible Normals"), and its density.
+Vec3f SampleVisibleNormal(const Vec3f &w, float ax, float ay, Vec2f u) {
+    Vec3f vh = Normalize(Vec3f(ax * w.x, ay * w.y, w.z));
+    float lensq = vh.x * vh.x + vh.y * vh.y;
+    Vec3f t1 = lensq > 0 ? Vec3f(-vh.y, vh.x, 0) / std::sqrt(lensq) : Vec3f(1, 0, 0);
+    Vec3f t2 = Cross(vh, t1);
+    float r = std::sqrt(u.x), phi = 2 * float(Pi) * u.y;
+    float p1 = r * std::cos(phi), p2 = r * std::sin(phi);
+    float s = 0.5f * (1 + vh.z);
+    p2 = (1 - s) * std::sqrt(std::max(0.f, 1 - p1 * p1)) + s * p2;
+    Vec3f nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.f, 1 - p1 * p1 - p2 * p2));
+    return Normalize(Vec3f(ax * nh.x, ay * nh.y, std::max(1e-6f, nh.z)));
+}
+
+float VisibleNormalPdf(const Vec3f &w, const Vec3f &wh, float ax, float ay) {
+    float g1 = 1 / (1 + TrowbridgeReitzLambda(w, ax, ay));
+    return g1 * std::max(0.f, Dot(w, wh)) * TrowbridgeReitzD(wh, ax, ay) / w.z;
+}
+
 }  // namespace
+
+RGB BxDFLobes::fDiffuse(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
+    RGB result;
+    if (reflect) {
+        if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
+        if (fresnelBlend) result += FresnelBlendDiffuseF(*this, wo, wi);
+    } else if (!kdTransmit.IsBlack()) {
+        result += kdTransmit * float(InvPi);
+    }
+    return result;
+}
+
+RGB BxDFLobes::fGlossy(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
+    RGB result;
+    if (reflect) {
+        if (!ks.IsBlack()) result += MicrofacetReflectionF(*this, wo, wi);
+        if (fresnelBlend) result += FresnelBlendCoatF(*this, wo, wi);
+    } else if (!ksTransmit.IsBlack()) {
+        result += MicrofacetTransmissionF(*this, wo, wi);
+    }
+    return result;
+}
 
 RGB BxDFLobes::f(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     RGB result;
     if (reflect) {
-        if (!kd.IsBlack()) {
-            if (!orenNayar) {
-                result += kd * float(InvPi);
-            } else {
-                float sinThetaI = std::sqrt(Sin2Theta(wi)), sinThetaO = std::sqrt(Sin2Theta(wo));
-                float maxCos = 0;
-                if (sinThetaI > 1e-4f && sinThetaO > 1e-4f) {
-                    float sinPhiI = wi.y / sinThetaI, cosPhiI = wi.x / sinThetaI;
-                    float sinPhiO = wo.y / sinThetaO, cosPhiO = wo.x / sinThetaO;
-                    maxCos = std::max(0.f, cosPhiI * cosPhiO + sinPhiI * sinPhiO);
-                }
-                float sinAlpha, tanBeta;
-                if (std::abs(wi.z) > std::abs(wo.z)) {
-                    sinAlpha = sinThetaO;
-                    tanBeta = sinThetaI / std::abs(wi.z);
-                } else {
-                    sinAlpha = sinThetaI;
-                    tanBeta = sinThetaO / std::abs(wo.z);
-                }
-                result +=
-                    kd * float(InvPi) * (orenNayarA + orenNayarB * maxCos * sinAlpha * tanBeta);
-            }
-        }
+        if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
         if (!ks.IsBlack()) result += MicrofacetReflectionF(*this, wo, wi);
         if (fresnelBlend) result += FresnelBlendF(*this, wo, wi);
     } else {
@@ -220,6 +282,83 @@ RGB BSDF::f(const Vec3f &woW, const Vec3f &wiW) const {
         if (!weight_[i].IsBlack() && parts_[i].HasNonSpecular())
             result += weight_[i] * parts_[i].f(wo, wi, reflect);
     return result;
+}
+
+RGB BSDF::fDiffuse(const Vec3f &woW, const Vec3f &wiW) const {
+    Vec3f wo = ToLocal(woW), wi = ToLocal(wiW);
+    if (wo.z == 0) return RGB(0);
+    bool reflect = Dot(wiW, ng) * Dot(woW, ng) > 0;
+    RGB result;
+    for (int i = 0; i < n_; ++i)
+        if (!weight_[i].IsBlack() && parts_[i].HasDiffuse())
+            result += weight_[i] * parts_[i].fDiffuse(wo, wi, reflect);
+    return result;
+}
+
+bool BSDF::MakeRoughSpecularGlossy() {
+    for (int i = 0; i < n_; ++i) {
+        BxDFLobes &l = parts_[i];
+        if (!(l.roughAlphaX > 0 || l.roughAlphaY > 0)) continue;
+        // pbrt-v3 GlassMaterial: MicrofacetReflection(R, FresnelDielectric(1, eta)) and
+        // MicrofacetTransmission(T, 1, eta).
+        l.ks = l.kr;
+        l.glossyFresnel = l.specularFresnel;
+        l.ksTransmit = l.kt;
+        l.glossyEta = l.eta;
+        l.alphaX = std::max(l.roughAlphaX, 1e-4f);
+        l.alphaY = std::max(l.roughAlphaY, 1e-4f);
+        l.kr = l.kt = RGB(0);
+        l.roughAlphaX = l.roughAlphaY = 0;
+    }
+    return HasGlossy();
+}
+
+bool BSDF::SampleGlossy(int part, const Vec3f &woW, Vec2f u, float uc, Vec3f *wiW,
+                        RGB *weight) const {
+    const BxDFLobes &l = parts_[part];
+    if (weight_[part].IsBlack() || !l.HasGlossy()) return false;
+    Vec3f wo = ToLocal(woW);
+    if (wo.z == 0) return false;
+    // Sample on the upper side of the shading frame (the distribution is symmetric in z).
+    const float side = wo.z > 0 ? 1.f : -1.f;
+    const Vec3f woUp(wo.x, wo.y, wo.z * side);
+    const Vec3f wh = SampleVisibleNormal(woUp, l.alphaX, l.alphaY, u);
+    const float cosOH = Dot(woUp, wh);
+    if (!(cosOH > 0)) return false;
+    const float pdfWh = VisibleNormalPdf(woUp, wh, l.alphaX, l.alphaY);
+    const bool hasT = !l.ksTransmit.IsBlack();
+    // eta: index on wi's side over wo's side for a refraction (pbrt-v3 MicrofacetTransmission).
+    const float eta = side > 0 ? l.glossyEta : 1 / l.glossyEta;
+    float pR = 1;
+    if (hasT) {
+        float F = FrDielectric(cosOH * side, 1.f, l.glossyEta);
+        float wR = (l.ks.IsBlack() ? 0.f : l.ks.Luminance() * F);
+        float wT = l.ksTransmit.Luminance() * (1 - F);
+        if (!(wR + wT > 0)) return false;
+        pR = wR / (wR + wT);
+    }
+    Vec3f wiUp;
+    float pdf;
+    if (uc < pR) {
+        wiUp = -woUp + wh * (2 * cosOH);
+        if (!(wiUp.z > 0)) return false;
+        pdf = pR * pdfWh / (4 * cosOH);
+    } else {
+        float e = 1 / eta;  // etaI / etaT
+        float sin2T = e * e * std::max(0.f, 1 - cosOH * cosOH);
+        if (sin2T >= 1) return false;  // total internal reflection
+        float cosT = std::sqrt(1 - sin2T);
+        wiUp = -woUp * e + wh * (e * cosOH - cosT);
+        if (!(wiUp.z < 0)) return false;
+        float denom = cosOH + eta * Dot(wiUp, wh);
+        pdf = (1 - pR) * pdfWh * std::abs(eta * eta * Dot(wiUp, wh)) / (denom * denom);
+    }
+    if (!(pdf > 0) || !std::isfinite(pdf)) return false;
+    Vec3f wi(wiUp.x, wiUp.y, wiUp.z * side);
+    *wiW = FromLocal(wi);
+    bool reflect = Dot(*wiW, ng) * Dot(woW, ng) > 0;
+    *weight = weight_[part] * l.fGlossy(wo, wi, reflect) * (std::abs(wi.z) / pdf);
+    return !weight->IsBlack() && weight->IsFinite();
 }
 
 bool BSDF::SampleSpecularReflection(int part, const Vec3f &woW, Vec3f *wiW, RGB *weight) const {

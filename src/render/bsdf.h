@@ -46,11 +46,23 @@ struct BxDFLobes {
     Fresnel specularFresnel;  // None: mirror; Dielectric: glass; Conductor: polished metal
     RGB kt;                   // specular transmission scale
     float eta = 1.5f;         // relative index for transmission (1: straight through)
+    // Rough glass: the Trowbridge–Reitz alphas of kr/kt (0: smooth). WhittedIntegrator follows
+    // kr/kt as delta lobes whatever these say (pbrt-v3's "whitted" traces no glossy rays);
+    // BSDF::MakeRoughSpecularGlossy turns them into glossy lobes for DistributionIntegrator.
+    float roughAlphaX = 0, roughAlphaY = 0;
 
     bool HasNonSpecular() const {
         return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() || !ksTransmit.IsBlack() ||
                fresnelBlend;
     }
+    // Lobes that are sampled by light samples only (Lambertian, Oren–Nayar, diffuse
+    // transmission, FresnelBlend's diffuse base) and lobes that glossy rays sample
+    // (microfacet reflection and transmission, FresnelBlend's glossy coat).
+    bool HasDiffuse() const { return !kd.IsBlack() || !kdTransmit.IsBlack() || fresnelBlend; }
+    bool HasGlossy() const { return !ks.IsBlack() || !ksTransmit.IsBlack() || fresnelBlend; }
+    // f split into those two sets (f = fDiffuse + fGlossy up to rounding).
+    RGB fDiffuse(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
+    RGB fGlossy(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
     // f for local directions; `reflect` says whether the geometric normal puts wo and wi on
     // the same side (pbrt BSDF::f picks reflection or transmission lobes with it).
     RGB f(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
@@ -88,12 +100,40 @@ struct BSDF {
         return false;
     }
 
+    bool HasDiffuse() const {
+        for (int i = 0; i < n_; ++i)
+            if (!weight_[i].IsBlack() && parts_[i].HasDiffuse()) return true;
+        return false;
+    }
+    bool HasGlossy() const {
+        for (int i = 0; i < n_; ++i)
+            if (!weight_[i].IsBlack() && parts_[i].HasGlossy()) return true;
+        return false;
+    }
+
     Vec3f ToLocal(const Vec3f &v) const { return {Dot(v, ss), Dot(v, ts), Dot(v, ns)}; }
     Vec3f FromLocal(const Vec3f &v) const { return ss * v.x + ts * v.y + ns * v.z; }
     void SetFrame(const Vec3f &shadingNormal, const Vec3f &dpdu, const Vec3f &geometricNormal);
 
     // f(wo, wi) for the non-delta lobes (world directions, both pointing away from the surface).
     RGB f(const Vec3f &woWorld, const Vec3f &wiWorld) const;
+
+    // f of the diffuse lobes only (BxDFLobes::HasDiffuse): what light samples estimate when
+    // glossy rays sample the glossy lobes (DistributionIntegrator).
+    RGB fDiffuse(const Vec3f &woWorld, const Vec3f &wiWorld) const;
+
+    // DistributionIntegrator: rough glass (roughAlpha > 0) becomes microfacet reflection and
+    // transmission lobes in place of its delta lobes (pbrt-v3 GlassMaterial). Returns
+    // HasGlossy() afterwards.
+    bool MakeRoughSpecularGlossy();
+
+    // Samples the glossy lobes of one part (Cook's distribution ray tracing): a microfacet
+    // normal from the Trowbridge–Reitz distribution of normals visible from wo (Heitz 2018),
+    // driven by the stratified u; uc chooses reflection or transmission (in proportion to the
+    // dielectric Fresnel term) when the part has both. Gives wi and weight = part weight ×
+    // f_glossy·|cos θi| / pdf; false when the sample carries nothing.
+    bool SampleGlossy(int part, const Vec3f &woWorld, Vec2f u, float uc, Vec3f *wi,
+                      RGB *weight) const;
 
     // Delta lobes of one part: the direction and weight (part weight × f·|cos|/pdf) of the
     // specular reflection and transmission. Return false when the lobe is absent or carries

@@ -104,6 +104,7 @@ unsigned Material::SurfaceNeeds() const {
     switch (kind) {
         case Kind::Metal:
         case Kind::Substrate:
+        case Kind::Glass:
             if (MaybeAnisotropic(uRoughness, vRoughness)) needs |= NeedDpdu;
             break;
         case Kind::Uber:
@@ -201,6 +202,13 @@ void Material::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) co
             l.kt = Kt->Evaluate(tc).Clamped(0.f);
             l.eta = EvalFloat(index, tc);
             l.specularFresnel = Dielectric(1.f, l.eta);
+            // pbrt-v3 GlassMaterial: smooth when both roughnesses are 0 (before remapping).
+            float ru = uRoughness ? EvalFloat(uRoughness, tc) : 0.f;
+            float rv = vRoughness ? EvalFloat(vRoughness, tc) : 0.f;
+            if (ru != 0 || rv != 0) {
+                l.roughAlphaX = std::max(remapRoughness ? RoughnessToAlpha(ru) : ru, 1e-4f);
+                l.roughAlphaY = std::max(remapRoughness ? RoughnessToAlpha(rv) : rv, 1e-4f);
+            }
             break;
         }
         case Kind::Metal: {

@@ -28,6 +28,16 @@ struct SceneFeatures {
     size_t triangles = 0;
 };
 
+// The integrator a render runs (the renderer dispatches on it once per render).
+enum class IntegratorKind {
+    Whitted,       // pbrt-v3's "whitted" (also what every other pbrt integrator renders as)
+    Distribution,  // Prism's "distribution": Whitted plus glossy rays
+};
+
+// Glossy rays per glossy lobe at the first glossy bounce of a path (1 deeper down), unless the
+// Integrator's "glossysamples" or --glossy-samples says otherwise.
+inline constexpr int DefaultGlossySamples = 8;
+
 struct ShapeInfo {
     int material = 0;        // index into RenderScene::materials
     int areaLight = -1;      // index into RenderScene::lights when the shape emits
@@ -63,6 +73,8 @@ struct RenderScene {
     RayOffset offset;
     std::string outputFilename;  // Film "filename"
     std::string integratorName;
+    IntegratorKind integrator = IntegratorKind::Whitted;
+    int glossySamples = DefaultGlossySamples;  // DistributionIntegrator only
     SceneFeatures features;
     double buildSeconds = 0;  // BVH build only
 };

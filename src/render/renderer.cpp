@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "render/distribution_integrator.h"
 #include "render/sampler.h"
 
 namespace prism {
@@ -83,8 +84,10 @@ struct TileScratch {
 // exactly as when each sample was traced and added in turn.
 constexpr int PacketW = RenderPacketW, PacketH = RenderPacketH;
 
-void RenderTile(const RenderScene &scene, const WhittedIntegrator &integrator, Bounds2i tb,
-                RayCounters &rc, TileScratch &buf, FilmTile *tile) {
+template <class Integrator>
+void RenderTile(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &buf,
+                FilmTile *tile) {
+    const Integrator integrator(scene);
     const uint32_t spp = uint32_t(scene.spp);
     const int w = tb.pMax.x - tb.pMin.x, h = tb.pMax.y - tb.pMin.y;
     const size_t n = size_t(w) * size_t(h) * spp;
@@ -162,7 +165,10 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
     tbb::enumerable_thread_specific<RayCounters> counters;
     tbb::enumerable_thread_specific<TileScratch> scratch;
     std::atomic<int> done{0};
-    WhittedIntegrator integrator(scene);
+    // The integrator is chosen here, once per render: each tile runs its own instantiation.
+    auto *const renderTile = scene.integrator == IntegratorKind::Distribution
+                                 ? &RenderTile<DistributionIntegrator>
+                                 : &RenderTile<WhittedIntegrator>;
 
     // Progress is reported from a helper thread so worker threads never block on output.
     std::mutex mutex;
@@ -190,7 +196,7 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
             Bounds2i tb = film.TilePixels(t);
             FilmTile *tile = merger.Acquire();
             film.ResetTile(t, tile);
-            RenderTile(scene, integrator, tb, rc, scratch.local(), tile);
+            renderTile(scene, tb, rc, scratch.local(), tile);
             merger.Submit(t, tile);
             done.fetch_add(1);
         }

@@ -17,15 +17,20 @@ struct RenderScene;
 // Rays traced, by kind. Per thread, summed at the end.
 struct RayCounters {
     uint64_t camera = 0, shadow = 0, reflection = 0, refraction = 0, passThrough = 0;
+    // Rays sampled from glossy lobes (DistributionIntegrator; 0 with WhittedIntegrator).
+    uint64_t glossy = 0;
     // Secondary rays not traced because of the ray-weight cutoff (not part of Total()).
     uint64_t cutoff = 0;
-    uint64_t Total() const { return camera + shadow + reflection + refraction + passThrough; }
+    uint64_t Total() const {
+        return camera + shadow + reflection + refraction + passThrough + glossy;
+    }
     RayCounters &operator+=(const RayCounters &o) {
         camera += o.camera;
         shadow += o.shadow;
         reflection += o.reflection;
         refraction += o.refraction;
         passThrough += o.passThrough;
+        glossy += o.glossy;
         cutoff += o.cutoff;
         return *this;
     }
@@ -37,13 +42,15 @@ struct RayCounters {
 struct SampleContext {
     int x = 0, y = 0;
     uint32_t sample = 0, spp = 1;
-    RGB beta = RGB(1);  // product of the specular weights from the camera to this ray
+    RGB beta = RGB(1);         // product of the specular weights from the camera to this ray
+    bool afterGlossy = false;  // a glossy bounce lies between the camera and this ray
 };
 
 struct BSDF;
 
 class WhittedIntegrator {
   public:
+    static constexpr bool Glossy = false;  // traces no glossy rays (pbrt-v3's "whitted")
     explicit WhittedIntegrator(const RenderScene &scene) : scene_(scene) {}
     // Radiance along a ray; depth counts specular bounces (camera rays are depth 0).
     RGB Li(const Ray &ray, int depth, RayCounters &counters, const SampleContext &sc = {}) const;
@@ -52,15 +59,25 @@ class WhittedIntegrator {
     RGB LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
                  const SampleContext &sc = {}) const;
 
-  private:
+  protected:
+    // Shade and AddSpecular are shared with DistributionIntegrator (distribution_integrator.h):
+    // templates over the integrator whose Li secondary rays recurse into, instantiated for
+    // both in whitted.cpp. Integrator::Glossy (a constant) adds the glossy rays.
+
     // Adds the specular reflection and transmission of every BSDF part to L.
-    void AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
-                     RayCounters &counters, const SampleContext &sc, RGB &L) const;
+    template <class Integrator>
+    void AddSpecular(const Integrator &integrator, const SurfaceInteraction &si, const BSDF &bsdf,
+                     int depth, RayCounters &counters, const SampleContext &sc, RGB &L) const;
     // Radiance of a ray that leaves the scene (infinite lights).
     RGB Escaped(const Ray &ray) const;
     // Radiance along ray given its closest hit si (continues through pass-through surfaces).
-    RGB Shade(const Ray &ray, SurfaceInteraction si, int depth, RayCounters &counters,
-              const SampleContext &sc) const;
+    // emitted false (DistributionIntegrator's glossy rays only): the area light of the hit
+    // is not added, because light samples at the previous hit estimated it.
+    template <class Integrator>
+    RGB Shade(const Integrator &integrator, const Ray &ray, SurfaceInteraction si, int depth,
+              RayCounters &counters, const SampleContext &sc, bool emitted = true) const;
+    // The ray-weight cutoff: true when a secondary ray of throughput beta is traced.
+    bool AboveCutoff(const RGB &beta) const;
     const RenderScene &scene_;
 };
 

@@ -80,7 +80,8 @@ std::string GltfConverter::TextureFor(int textureIndex) {
 
 // Metallic-roughness → pbrt-v3 materials (Whitted approximations):
 //  - KHR_materials_transmission > 0 → "glass" (index = KHR_materials_ior, default 1.5;
-//    Kt = base colour factor).
+//    Kt = base colour factor; roughness = glTF roughness² (alpha), remaproughness false: rough
+//    glass for the distribution integrator, smooth for Whitted).
 //  - metallic >= 0.5 → "metal" with eta = 1 and k = 2 sqrt(F0) / sqrt(1 - F0) per channel,
 //    F0 = base colour factor clamped below 0.999: for eta = 1 the conductor Fresnel at normal
 //    incidence is k² / (4 + k²), which this choice makes equal to F0. roughness = glTF
@@ -115,6 +116,10 @@ void GltfConverter::ConvertMaterials() {
             AddFloat(ps, "index", ExtNumber(m.extensions, "KHR_materials_ior", "ior", 1.5), loc_);
             AddRGB(ps, "Kr", 1, 1, 1, loc_);
             AddRGB(ps, "Kt", base[0], base[1], base[2], loc_);
+            if (alpha > 0) {
+                AddFloat(ps, "roughness", alpha, loc_);
+                AddBool(ps, "remaproughness", false, loc_);
+            }
         } else if (metallic >= 0.5 &&
                    !(pbr.metallicRoughnessTexture.index >= 0 && pbr.baseColorTexture.index >= 0)) {
             md.type = "metal";

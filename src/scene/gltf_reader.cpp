@@ -568,6 +568,8 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
 
     SceneDescription desc;
     desc.format = "gltf";
+    // glTF names no integrator: Prism's distribution integrator (rough metals reflect).
+    desc.integrator.type = "distribution";
     desc.sourceFile = path;
     desc.baseDir = DirectoryOf(path);
     GltfConverter(model, path, diag, desc).Read();

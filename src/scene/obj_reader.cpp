@@ -262,6 +262,8 @@ SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag, MemoryB
 
     SceneDescription desc;
     desc.format = "obj";
+    // OBJ names no integrator: Prism's distribution integrator (glossy materials reflect).
+    desc.integrator.type = "distribution";
     desc.sourceFile = path;
     desc.baseDir = DirectoryOf(path);
 

@@ -252,6 +252,8 @@ TEST(GltfReader, Materials) {
     Diagnostics diag;
     SceneDescription d = ReadGltfFile(WriteGltf("gltft_mat", 0, /*dataUriBuffer=*/true), diag);
     ASSERT_EQ(d.materials.size(), 5u);
+    // glTF names no integrator: rough metals reflect through Prism's distribution integrator.
+    EXPECT_EQ(d.integrator.type, "distribution");
 
     const MaterialDesc &tex = d.materials[0];
     EXPECT_EQ(tex.type, "plastic");
