@@ -10,14 +10,28 @@
 
 namespace prism {
 
-inline uint32_t PermuteIndex(uint32_t i, uint32_t l, uint32_t p) {
-    if (l <= 1) return 0;
-    uint32_t w = l - 1;
-    w |= w >> 1;
-    w |= w >> 2;
-    w |= w >> 4;
-    w |= w >> 8;
-    w |= w >> 16;
+// A permutation length's parts that depend on it alone: the length, its bit mask w, and
+// whether it is a power of two (then the final modulo is a mask).
+struct PermutationLength {
+    uint32_t l = 0, w = 0;
+    bool pow2 = false;
+    PermutationLength() = default;
+    explicit PermutationLength(uint32_t len) : l(len) {
+        w = len > 0 ? len - 1 : 0;
+        w |= w >> 1;
+        w |= w >> 2;
+        w |= w >> 4;
+        w |= w >> 8;
+        w |= w >> 16;
+        pow2 = len > 0 && (len & (len - 1)) == 0;
+    }
+};
+
+// Element i of the permutation of [0, pm.l) chosen by p (Kensler, "Correlated Multi-Jittered
+// Sampling", 2013: cycle-walking a hash over the next power of two).
+inline uint32_t PermuteIndex(uint32_t i, const PermutationLength &pm, uint32_t p) {
+    if (pm.l <= 1) return 0;
+    const uint32_t w = pm.w, l = pm.l;
     do {
         i ^= p;
         i *= 0xe170893d;
@@ -38,7 +52,11 @@ inline uint32_t PermuteIndex(uint32_t i, uint32_t l, uint32_t p) {
         i &= w;
         i ^= i >> 5;
     } while (i >= l);
-    return (i + p) % l;
+    return pm.pow2 ? (i + p) & (l - 1) : (i + p) % l;
+}
+
+inline uint32_t PermuteIndex(uint32_t i, uint32_t l, uint32_t p) {
+    return PermuteIndex(i, PermutationLength(l), p);
 }
 
 inline float HashFloat(uint32_t i, uint32_t p) {
@@ -109,9 +127,9 @@ class CMJPattern {
         CMJGrid grid(N);
         m_ = grid.m;
         n_ = grid.n;
-        pN_ = Perm(N_);
-        pm_ = Perm(m_);
-        pn_ = Perm(n_);
+        pN_ = PermutationLength(N_);
+        pm_ = PermutationLength(m_);
+        pn_ = PermutationLength(n_);
         mPow2_ = (m_ & (m_ - 1)) == 0;
         mShift_ = 0;
         while ((1u << mShift_) < m_) ++mShift_;
@@ -121,11 +139,11 @@ class CMJPattern {
     }
 
     Vec2f Sample(uint32_t s, uint32_t p) const {
-        s = Permute(s, pN_, p * 0x51633e2d);
+        s = PermuteIndex(s, pN_, p * 0x51633e2d);
         uint32_t sm = mPow2_ ? s & (m_ - 1) : s % m_;
         uint32_t sd = mPow2_ ? s >> mShift_ : s / m_;
-        uint32_t sx = Permute(sm, pm_, p * 0x68bc21eb);
-        uint32_t sy = Permute(sd, pn_, p * 0x02e5be93);
+        uint32_t sx = PermuteIndex(sm, pm_, p * 0x68bc21eb);
+        uint32_t sy = PermuteIndex(sd, pn_, p * 0x02e5be93);
         float jx = HashFloat(s, p * 0x967a889b);
         float jy = HashFloat(s, p * 0x368cc8b7);
         // x / 2^k == x * 2^-k exactly; other counts divide as CMJSample does.
@@ -137,50 +155,8 @@ class CMJPattern {
     }
 
   private:
-    // PermuteIndex's length-dependent parts: the length, its bit mask w, and whether it is a
-    // power of two (then the final modulo is a mask and the loop runs once).
-    struct Perm {
-        uint32_t l = 0, w = 0;
-        bool pow2 = false;
-        Perm() = default;
-        explicit Perm(uint32_t len) : l(len) {
-            w = len > 0 ? len - 1 : 0;
-            w |= w >> 1;
-            w |= w >> 2;
-            w |= w >> 4;
-            w |= w >> 8;
-            w |= w >> 16;
-            pow2 = len > 0 && (len & (len - 1)) == 0;
-        }
-    };
-    static uint32_t Permute(uint32_t i, const Perm &pm, uint32_t p) {
-        if (pm.l <= 1) return 0;
-        const uint32_t w = pm.w, l = pm.l;
-        do {
-            i ^= p;
-            i *= 0xe170893d;
-            i ^= p >> 16;
-            i ^= (i & w) >> 4;
-            i ^= p >> 8;
-            i *= 0x0929eb3f;
-            i ^= p >> 23;
-            i ^= (i & w) >> 1;
-            i *= 1 | p >> 27;
-            i *= 0x6935fa69;
-            i ^= (i & w) >> 11;
-            i *= 0x74dcb303;
-            i ^= (i & w) >> 2;
-            i *= 0x9e501cc3;
-            i ^= (i & w) >> 2;
-            i *= 0xc860a3df;
-            i &= w;
-            i ^= i >> 5;
-        } while (i >= l);
-        return pm.pow2 ? (i + p) & (l - 1) : (i + p) % l;
-    }
-
     uint32_t N_, m_, n_, mShift_;
-    Perm pN_, pm_, pn_;
+    PermutationLength pN_, pm_, pn_;
     bool mPow2_, nPow2_;
     float invN_, invM_;
 };

@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "app/run_prism.h"
 #include "image/image.h"
 #include "image/image_compare.h"
 #include "image/image_io.h"
@@ -22,38 +23,15 @@ namespace fs = std::filesystem;
 namespace prism {
 namespace {
 
-struct RunResult {
-    int exitCode = -1;
-    std::string out, err;
-};
-
-std::string ReadFile(const fs::path &p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using test::ReadFile;
+using test::RunPrism;
+using test::RunResult;
 
 fs::path TempDir(const std::string &name) {
     fs::path d = fs::path(::testing::TempDir()) / ("prism_cli_" + name);
     fs::remove_all(d);
     fs::create_directories(d);
     return d;
-}
-
-// Runs prism with the given arguments (shell-quoted by the caller) in directory `cwd`.
-RunResult RunPrism(const std::string &args, const fs::path &cwd) {
-    fs::path outFile = cwd / "stdout.txt", errFile = cwd / "stderr.txt";
-    std::string cmd = "cd '" + cwd.string() + "' && '" + std::string(PRISM_BINARY) + "' " + args +
-                      " >'" + outFile.string() + "' 2>'" + errFile.string() + "' </dev/null";
-    int status = std::system(cmd.c_str());
-    RunResult r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = ReadFile(outFile);
-    r.err = ReadFile(errFile);
-    fs::remove(outFile);
-    fs::remove(errFile);
-    return r;
 }
 
 const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;

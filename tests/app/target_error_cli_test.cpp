@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "app/run_prism.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -15,26 +16,9 @@ namespace fs = std::filesystem;
 namespace prism {
 namespace {
 
-struct RunResult {
-    int exitCode = -1;
-    std::string err;
-};
-
-// Runs prism with the given arguments (shell-quoted by the caller) in directory `cwd`.
-RunResult RunPrism(const std::string &args, const fs::path &cwd) {
-    fs::path errFile = cwd / "stderr.txt";
-    std::string cmd = "cd '" + cwd.string() + "' && '" + std::string(PRISM_BINARY) + "' " + args +
-                      " >/dev/null 2>'" + errFile.string() + "' </dev/null";
-    int status = std::system(cmd.c_str());
-    RunResult r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(errFile);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    r.err = ss.str();
-    fs::remove(errFile);
-    return r;
-}
+using test::ReadFile;
+using test::RunPrism;
+using test::RunResult;
 
 // (One literal: g++ 12 warns -Wrestrict, falsely, on "'" + std::string(...).)
 const std::string Whitted = "'" PRISM_SOURCE_DIR_FOR_TESTS "/scenes/whitted.pbrt'";
