@@ -126,4 +126,34 @@ std::string FindDefaultScene() {
     return rel;  // LoadScene reports it missing
 }
 
+std::string FindToolScript(const std::string &given, const std::string &rel) {
+    if (!given.empty()) return given;
+    if (std::filesystem::exists(rel)) return rel;
+    return std::string(PRISM_SOURCE_DIR) + "/" + rel;
+}
+
+std::vector<int> ParseLevels(const std::string &s) {
+    std::vector<int> v;
+    std::stringstream in(s);
+    std::string tok;
+    while (std::getline(in, tok, ',')) {
+        try {
+            size_t used = 0;
+            int n = std::stoi(tok, &used);
+            if (used != tok.size() || n < 3 || n > 4096) throw std::invalid_argument(tok);
+            v.push_back(n);
+        } catch (const std::exception &) {
+            throw UsageError("--levels: \"" + tok + "\" is not a segment count from 3 to 4096");
+        }
+    }
+    if (v.empty()) throw UsageError("--levels is empty");
+    return v;
+}
+
+std::string ShellQuote(const std::string &s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
 }  // namespace prism

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/transform.h"
 #include "core/vecmath.h"
@@ -31,6 +32,13 @@ Transform ParseLookAt(const std::string &s);
 void CheckOutputPath(const std::string &path);
 // scenes/whitted.pbrt relative to the working directory, else to the source tree.
 std::string FindDefaultScene();
+// `given` if not empty, else `rel` (e.g. "tools/plot_study.py") relative to the working
+// directory if it exists there, else to the source tree.
+std::string FindToolScript(const std::string &given, const std::string &rel);
+// --levels "8,16,32": tessellation segment counts, each from 3 to 4096.
+std::vector<int> ParseLevels(const std::string &s);
+// s in single quotes for /bin/sh (a quote inside becomes '\'').
+std::string ShellQuote(const std::string &s);
 inline double SecondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }

@@ -58,37 +58,6 @@ std::vector<StudyKnob> ParseKnobs(const std::vector<std::string> &args) {
     return knobs;
 }
 
-std::vector<int> ParseLevels(const std::string &s) {
-    std::vector<int> v;
-    std::stringstream in(s);
-    std::string tok;
-    while (std::getline(in, tok, ',')) {
-        try {
-            size_t used = 0;
-            int n = std::stoi(tok, &used);
-            if (used != tok.size() || n < 3 || n > 4096) throw std::invalid_argument(tok);
-            v.push_back(n);
-        } catch (const std::exception &) {
-            throw UsageError("--levels: \"" + tok + "\" is not a segment count from 3 to 4096");
-        }
-    }
-    if (v.empty()) throw UsageError("--levels is empty");
-    return v;
-}
-
-std::string ShellQuote(const std::string &s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string FindPlotScript(const std::string &given) {
-    if (!given.empty()) return given;
-    const char *rel = "tools/plot_study.py";
-    if (std::filesystem::exists(rel)) return rel;
-    return std::string(PRISM_SOURCE_DIR) + "/" + rel;
-}
-
 // The plots are a convenience: without python3 and matplotlib the command warns and the CSV
 // and report stand.
 void WritePlots(const StudyArgs &a, const std::string &csv) {
@@ -109,7 +78,8 @@ void WritePlots(const StudyArgs &a, const std::string &csv) {
                      a.python.empty() ? "tried python3 and /usr/bin/python3" : a.python.c_str());
         return;
     }
-    std::string cmd = ShellQuote(python) + " " + ShellQuote(FindPlotScript(a.plotScript)) + " " +
+    std::string cmd = ShellQuote(python) + " " +
+                      ShellQuote(FindToolScript(a.plotScript, "tools/plot_study.py")) + " " +
                       ShellQuote(csv) + " " + ShellQuote(a.out);
     if (std::system(cmd.c_str()) != 0)
         std::fprintf(stderr,

@@ -35,24 +35,6 @@ struct ValidateArgs {
     bool quiet = false;
 };
 
-std::vector<int> ParseLevels(const std::string &s) {
-    std::vector<int> v;
-    std::stringstream in(s);
-    std::string tok;
-    while (std::getline(in, tok, ',')) {
-        try {
-            size_t used = 0;
-            int n = std::stoi(tok, &used);
-            if (used != tok.size() || n < 3 || n > 4096) throw std::invalid_argument(tok);
-            v.push_back(n);
-        } catch (const std::exception &) {
-            throw UsageError("--levels: \"" + tok + "\" is not a segment count from 3 to 4096");
-        }
-    }
-    if (v.empty()) throw UsageError("--levels is empty");
-    return v;
-}
-
 // Pixel-centre rays of the scene camera on a grid of at most `budget` rays.
 std::vector<Ray> CameraRays(const RenderScene &scene, int budget, Vec2i *grid) {
     Vec2i res = scene.resolution;
@@ -112,19 +94,6 @@ void WriteSceneImages(const SceneDescription &desc, const BuildSettings &base, i
             "%s/scene_depth_diff.png (log10 relative depth difference, -7 blue to -1 "
             "red; magenta: hit/miss)\n",
             dir.c_str(), level, dir.c_str());
-}
-
-std::string FindPlotScript(const std::string &given) {
-    if (!given.empty()) return given;
-    const char *rel = "tools/plot_validation.py";
-    if (std::filesystem::exists(rel)) return rel;
-    return std::string(PRISM_SOURCE_DIR) + "/" + rel;
-}
-
-std::string ShellQuote(const std::string &s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
 }
 
 int RunValidate(const ValidateArgs &a) {
@@ -196,7 +165,7 @@ int RunValidate(const ValidateArgs &a) {
     WriteFileAtomically(csv, ResultsCsv(reports));
     std::printf("wrote %s\n", csv.c_str());
     // The plot is a convenience: a missing matplotlib warns, the CSV stands.
-    std::string script = FindPlotScript(a.plotScript);
+    std::string script = FindToolScript(a.plotScript, "tools/plot_validation.py");
     std::string cmd = ShellQuote(a.python) + " " + ShellQuote(script) + " " + ShellQuote(csv) +
                       " " + ShellQuote(a.out);
     int rc = std::system(cmd.c_str());
