@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "render/renderer.h"
+#include "render/sampler.h"
 #include "study/study.h"
 
 namespace prism {
@@ -117,18 +118,16 @@ PowerLaw FitPowerLaw(const std::vector<double> &x, const std::vector<double> &y)
     return {std::exp(intercept), -slope};
 }
 
-bool IsNearSquareSampleCount(int n) {
+bool IsWellStratifiedSampleCount(int n) {
     if (n < 1) return false;
-    int m = int(std::ceil(std::sqrt(double(n))));
-    while (m * m < n) ++m;
-    while (m > 1 && (m - 1) * (m - 1) >= n) --m;
-    int k = (n + m - 1) / m;
-    return m * k == n;
+    if (n <= 8) return true;
+    CMJGrid grid{uint32_t(n)};
+    return grid.m <= 2 * grid.n;
 }
 
-int NextNearSquareSampleCount(int n) {
+int NextWellStratifiedSampleCount(int n) {
     n = std::max(n, 1);
-    while (!IsNearSquareSampleCount(n)) ++n;
+    while (!IsWellStratifiedSampleCount(n)) ++n;
     return n;
 }
 
@@ -146,10 +145,10 @@ std::optional<int> ErrorCurve::SppFor(double target) const {
     // floor2 + a^2 n^-2b <= t2  <=>  n >= (a^2 / (t2 - floor2))^(1 / 2b)
     double n = std::pow(noise.a * noise.a / (t2 - floor2), 1 / (2 * noise.b));
     if (!(n <= double(MaxSamplesPerPixel))) return std::nullopt;
-    int spp = NextNearSquareSampleCount(std::max(1, int(std::ceil(n - 1e-9))));
+    int spp = NextWellStratifiedSampleCount(std::max(1, int(std::ceil(n - 1e-9))));
     // Rounding: make sure the count reaches the target.
     while (spp < MaxSamplesPerPixel && Error(spp) > target)
-        spp = NextNearSquareSampleCount(spp + 1);
+        spp = NextWellStratifiedSampleCount(spp + 1);
     return spp;
 }
 
@@ -206,7 +205,7 @@ double RelativeRmse(const Image &image, const Image &reference) {
 }
 
 Vec2i PilotResolution(Vec2i full) {
-    int w = std::min(full.x, std::max(64, (full.x + 2) / 4));
+    int w = std::min(full.x, std::max(64, (full.x + 1) / 2));
     int h = std::max(1, int(std::lround(double(full.y) * w / std::max(1, full.x))));
     return {w, h};
 }
@@ -419,7 +418,7 @@ TargetVerification VerifyTarget(const SceneDescription &desc, const BuildSetting
     TargetVerification v;
     // Well above the render's spp, so that the two sample patterns are far apart and the
     // reference's own error small against the target.
-    v.refSpp = NextNearSquareSampleCount(std::clamp(4 * choice.spp, 128, 1024));
+    v.refSpp = NextWellStratifiedSampleCount(std::clamp(4 * choice.spp, 128, 1024));
     MemoryBudget b(base.budget ? base.budget->Limit() : 0);
     RenderScene scene = BuildAt(desc, base, choice.resolution, 0, b);
     Image ref = RenderReference(scene, v.refSpp, &v.refSeconds);

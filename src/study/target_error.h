@@ -30,20 +30,21 @@ struct ErrorCurve {
     double floor2 = 0;
     PowerLaw noise;
     double Error(double spp) const;
-    // The fewest samples, among the near-square sample counts (IsNearSquareSampleCount), whose
-    // predicted error is at most `target`; nullopt when the floor is at or above it (or more
+    // The fewest samples, among the well-stratified sample counts (IsWellStratifiedSampleCount),
+    // whose predicted error is at most `target`; nullopt when the floor is at or above it (or more
     // than MaxSamplesPerPixel would be needed).
     std::optional<int> SppFor(double target) const;
 };
-// Whether n = m^2 or m (m - 1) (1, 2, 4, 6, 9, 12, 16, 20, 25, 30, ...): the counts whose grid
-// of strata (render/sampler.h, CMJGrid) is square or nearly. The sampler fills every count's
-// grid exactly, but other counts have elongated grids (a prime n is n x 1), which stratify 2-D
-// features less well, so the error is not monotone in n across them (scenes/whitted.pbrt at
-// 320x240 against 256 spp: RMSE 0.00258 at 20 spp, 0.00255 at 21, 0.00300 at 23). The choice
-// uses these counts, on which it is.
-bool IsNearSquareSampleCount(int n);
-// The smallest near-square count >= n.
-int NextNearSquareSampleCount(int n);
+// Whether n samples stratify well: any count up to 8, above that the counts whose grid of
+// strata (render/sampler.h, CMJGrid: m x n/m, m >= n/m) is at most twice as wide as tall: 9,
+// 12, 15, 16, 18, 20, 24, 25, 28, 30, 32, ... The sampler fills every count's grid exactly, but
+// long thin grids (a prime n is n x 1) stratify 2-D features less well, so above a few samples
+// the error is not monotone across them (scenes/whitted.pbrt at 320x240 against 256 spp:
+// RMSE 0.00258 at 20 spp, 0.00255 at 21, 0.00300 at 23; but 2, 3, 4, 5, 6 spp: 0.0168, 0.0116,
+// 0.0091, 0.0080, 0.0067, smooth). The choice uses these counts.
+bool IsWellStratifiedSampleCount(int n);
+// The smallest well-stratified count >= n.
+int NextWellStratifiedSampleCount(int n);
 
 // Fits an ErrorCurve to squared errors at the given spp: the floor by a search over
 // [0, min err2), the power law by FitPowerLaw on err2 - floor; the fit with the least squared
@@ -54,8 +55,8 @@ ErrorCurve FitErrorCurve(const std::vector<int> &spp, const std::vector<double> 
 // are left out. Throws std::invalid_argument when the sizes differ.
 double RelativeRmse(const Image &image, const Image &reference);
 
-// The pilot's resolution for a full resolution: a quarter of each axis, at least 64 pixels
-// wide (the full width when that is smaller), the aspect ratio kept.
+// The pilot's resolution for a full resolution: half of each axis, at least 64 pixels wide
+// (the full width when that is smaller), the aspect ratio kept.
 Vec2i PilotResolution(Vec2i full);
 
 // One candidate setting and what the pilot predicts for it at the full resolution.
@@ -88,7 +89,7 @@ struct TargetChoice {
 struct TargetOptions {
     double target = 0;     // relRmse to reach, > 0
     int pilotRefSpp = 64;  // the pilot reference's spp
-    // The pilot's spp points (near-square sample counts, as the choice), at the scene's own
+    // The pilot's spp points (well-stratified sample counts, as the choice), at the scene's own
     // light samples; the other light-sample choices are rendered at lightSpp only.
     std::vector<int> pilotSpp{1, 2, 4, 6, 9, 12, 16, 20};
     std::vector<int> lightSpp{2, 4, 9};

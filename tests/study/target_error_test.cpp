@@ -47,9 +47,9 @@ TEST(TargetError, ChosenSppIsTheFewestReachingTheTargetAndMonotone) {
         ASSERT_TRUE(n) << target;
         EXPECT_GE(*n, last) << target;  // a smaller target never takes fewer samples
         EXPECT_LE(c.Error(*n), target);
-        EXPECT_TRUE(IsNearSquareSampleCount(*n)) << *n;
+        EXPECT_TRUE(IsWellStratifiedSampleCount(*n)) << *n;
         int previous = *n - 1;
-        while (previous > 0 && !IsNearSquareSampleCount(previous)) --previous;
+        while (previous > 0 && !IsWellStratifiedSampleCount(previous)) --previous;
         if (previous > 0) EXPECT_GT(c.Error(previous), target);
         last = *n;
     }
@@ -57,16 +57,17 @@ TEST(TargetError, ChosenSppIsTheFewestReachingTheTargetAndMonotone) {
     EXPECT_FALSE(c.SppFor(0.001));
 }
 
-TEST(TargetError, CompleteSampleCounts) {
-    std::vector<int> complete;
+TEST(TargetError, WellStratifiedSampleCounts) {
+    std::vector<int> counts;
     for (int n = 0; n <= 42; ++n)
-        if (IsNearSquareSampleCount(n)) complete.push_back(n);
-    EXPECT_EQ(complete, (std::vector<int>{1, 2, 4, 6, 9, 12, 16, 20, 25, 30, 36, 42}));
-    EXPECT_EQ(NextNearSquareSampleCount(21), 25);
-    EXPECT_EQ(NextNearSquareSampleCount(25), 25);
-    EXPECT_EQ(NextNearSquareSampleCount(0), 1);
-    EXPECT_TRUE(IsNearSquareSampleCount(256));
-    EXPECT_TRUE(IsNearSquareSampleCount(1 << 16));
+        if (IsWellStratifiedSampleCount(n)) counts.push_back(n);
+    EXPECT_EQ(counts, (std::vector<int>{1,  2,  3,  4,  5,  6,  7,  8,  9,  12, 15, 16,
+                                        18, 20, 24, 25, 28, 30, 32, 35, 36, 40, 42}));
+    EXPECT_EQ(NextWellStratifiedSampleCount(21), 24);
+    EXPECT_EQ(NextWellStratifiedSampleCount(25), 25);
+    EXPECT_EQ(NextWellStratifiedSampleCount(0), 1);
+    EXPECT_TRUE(IsWellStratifiedSampleCount(256));
+    EXPECT_TRUE(IsWellStratifiedSampleCount(1 << 16));
 }
 
 TEST(TargetError, RelativeRmseAndPilotResolution) {
@@ -76,8 +77,9 @@ TEST(TargetError, RelativeRmseAndPilotResolution) {
     a.SetRGB(0, 0, RGB(1, 1, 1));
     a.SetRGB(1, 0, RGB(0.5f, 1, 1));
     EXPECT_DOUBLE_EQ(RelativeRmse(a, b), std::sqrt(0.25 / 6));
-    EXPECT_EQ(PilotResolution({640, 480}), Vec2i(160, 120));
-    EXPECT_EQ(PilotResolution({200, 100}), Vec2i(64, 32));
+    EXPECT_EQ(PilotResolution({640, 480}), Vec2i(320, 240));
+    EXPECT_EQ(PilotResolution({200, 100}), Vec2i(100, 50));
+    EXPECT_EQ(PilotResolution({100, 50}), Vec2i(64, 32));
     EXPECT_EQ(PilotResolution({48, 36}), Vec2i(48, 36));
 }
 
