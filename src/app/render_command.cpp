@@ -152,6 +152,9 @@ int RunRender(const RenderArgs &a) {
     double parseSeconds = SecondsSince(t0);
     std::optional<TargetChoice> target;
     if (a.targetError > 0) {
+        // The pilot takes seconds: a bad -o must fail before it (the Film's filename is
+        // checked after the build, as without --target-error).
+        if (!a.output.empty()) CheckOutputPath(a.output);
         TargetOptions to;
         to.target = a.targetError;
         target = ChooseTargetSettings(desc, opts, to, diag);

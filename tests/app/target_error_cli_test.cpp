@@ -57,6 +57,12 @@ TEST_F(TargetErrorCli, ConflictingOptionsAreUsageErrors) {
     EXPECT_EQ(u.exitCode, 2);
     EXPECT_NE(u.err.find("cannot be reached"), std::string::npos) << u.err;
     EXPECT_FALSE(fs::exists(dir_ / "c.png"));
+    // A bad output path fails before the pilot (it would take seconds): no pilot line.
+    RunResult o = RunPrism(
+        "render " + Whitted + " --res 32x24 --target-error 0.05 -o missing/dir/c.png", dir_);
+    EXPECT_EQ(o.exitCode, 2);
+    EXPECT_NE(o.err.find("does not exist"), std::string::npos) << o.err;
+    EXPECT_EQ(o.err.find("target-error: chose"), std::string::npos) << o.err;
 }
 
 }  // namespace
