@@ -147,22 +147,34 @@ RGB MicrofacetTransmissionF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi
     return l.ksTransmit * ((1 - F) * std::abs(v));
 }
 
-// pbrt-v3 FresnelBlend::f (Ashikhmin–Shirley): a Fresnel-weighted diffuse base under a
-// glossy coat with Schlick's Fresnel approximation.
-RGB FresnelBlendF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+// FresnelBlend's two terms (pbrt-v3 FresnelBlend::f): the diffuse base and the glossy coat.
+RGB FresnelBlendDiffuseF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
     auto pow5 = [](float v) { return (v * v) * (v * v) * v; };
     float cosI = std::abs(wi.z), cosO = std::abs(wo.z);
-    RGB diffuse =
-        l.blendRd * (RGB(1) - l.blendRs) *
-        (28.f / (23.f * float(Pi)) * (1 - pow5(1 - .5f * cosI)) * (1 - pow5(1 - .5f * cosO)));
+    return l.blendRd * (RGB(1) - l.blendRs) *
+           (28.f / (23.f * float(Pi)) * (1 - pow5(1 - .5f * cosI)) * (1 - pow5(1 - .5f * cosO)));
+}
+
+RGB FresnelBlendCoatF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    auto pow5 = [](float v) { return (v * v) * (v * v) * v; };
+    float cosI = std::abs(wi.z), cosO = std::abs(wo.z);
     Vec3f wh = wi + wo;
     if (wh.x == 0 && wh.y == 0 && wh.z == 0) return RGB(0);
     wh = Normalize(wh);
     float cosH = Dot(wi, wh);
     RGB schlick = l.blendRs + (RGB(1) - l.blendRs) * pow5(1 - cosH);
     float denom = 4 * std::abs(cosH) * std::max(cosI, cosO);
-    if (denom == 0) return diffuse;
-    return diffuse + schlick * (TrowbridgeReitzD(wh, l.alphaX, l.alphaY) / denom);
+    if (denom == 0) return RGB(0);
+    return schlick * (TrowbridgeReitzD(wh, l.alphaX, l.alphaY) / denom);
+}
+
+// pbrt-v3 FresnelBlend::f (Ashikhmin–Shirley): a Fresnel-weighted diffuse base under a
+// glossy coat with Schlick's Fresnel approximation.
+RGB FresnelBlendF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    // pbrt-v3 returns 0, not the diffuse base, when wi = -wo.
+    Vec3f wh = wi + wo;
+    if (wh.x == 0 && wh.y == 0 && wh.z == 0) return RGB(0);
+    return FresnelBlendDiffuseF(l, wo, wi) + FresnelBlendCoatF(l, wo, wi);
 }
 
 // Lambertian or Oren–Nayar reflection (pbrt-v3 LambertianReflection, OrenNayar).
@@ -184,27 +196,6 @@ RGB DiffuseReflectionF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
         tanBeta = sinThetaO / std::abs(wo.z);
     }
     return l.kd * float(InvPi) * (l.orenNayarA + l.orenNayarB * maxCos * sinAlpha * tanBeta);
-}
-
-// FresnelBlendF's two terms: the diffuse base and the glossy coat.
-RGB FresnelBlendDiffuseF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
-    auto pow5 = [](float v) { return (v * v) * (v * v) * v; };
-    float cosI = std::abs(wi.z), cosO = std::abs(wo.z);
-    return l.blendRd * (RGB(1) - l.blendRs) *
-           (28.f / (23.f * float(Pi)) * (1 - pow5(1 - .5f * cosI)) * (1 - pow5(1 - .5f * cosO)));
-}
-
-RGB FresnelBlendCoatF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
-    auto pow5 = [](float v) { return (v * v) * (v * v) * v; };
-    float cosI = std::abs(wi.z), cosO = std::abs(wo.z);
-    Vec3f wh = wi + wo;
-    if (wh.x == 0 && wh.y == 0 && wh.z == 0) return RGB(0);
-    wh = Normalize(wh);
-    float cosH = Dot(wi, wh);
-    RGB schlick = l.blendRs + (RGB(1) - l.blendRs) * pow5(1 - cosH);
-    float denom = 4 * std::abs(cosH) * std::max(cosI, cosO);
-    if (denom == 0) return RGB(0);
-    return schlick * (TrowbridgeReitzD(wh, l.alphaX, l.alphaY) / denom);
 }
 
 // Trowbridge–Reitz: a normal sampled from the distribution of normals visible from w

@@ -353,15 +353,4 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
     return result;
 }
 
-std::vector<StudyRow> RunPilotStudy(const SceneDescription &desc,
-                                    const std::vector<StudyKnob> &knobs, Vec2i resolution,
-                                    int referenceSpp, Diagnostics &diag) {
-    StudyOptions o;
-    o.knobs = knobs;
-    o.resolution = resolution;
-    o.repeats = 1;
-    o.referenceSpp = referenceSpp;
-    return RunStudy(desc, "", o, diag).rows;
-}
-
 }  // namespace prism

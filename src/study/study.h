@@ -129,10 +129,4 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
                      const StudyOptions &options, Diagnostics &diag,
                      const StudyProgress &progress = {});
 
-// A pilot study for choosing settings (`prism render --target-error`): the given knobs at the
-// given resolution, one run each, against a reference of referenceSpp samples. Returns its rows.
-std::vector<StudyRow> RunPilotStudy(const SceneDescription &desc,
-                                    const std::vector<StudyKnob> &knobs, Vec2i resolution,
-                                    int referenceSpp, Diagnostics &diag);
-
 }  // namespace prism

@@ -288,16 +288,5 @@ TEST(Study, CutoffSavesRays) {
     EXPECT_LT(cut.error.rmse, 0.05);
 }
 
-// The pilot study (for `prism render --target-error`) returns the rows of the knobs it is given.
-TEST(Study, PilotStudyReturnsRows) {
-    SceneDescription desc = Load(Source + "/scenes/whitted.pbrt");
-    Diagnostics diag;
-    std::vector<StudyRow> rows =
-        RunPilotStudy(desc, {StudyKnob::Spp, StudyKnob::LightSamples}, {16, 12}, 8, diag);
-    ASSERT_EQ(rows.size(), 3u + 5);  // spp 1, 2, 4; light samples 1 .. 16
-    EXPECT_EQ(rows.front().knob, "spp");
-    EXPECT_EQ(rows.back().knob, "light-samples");
-}
-
 }  // namespace
 }  // namespace prism
