@@ -177,25 +177,7 @@ TEST(AccuracyKnobs, FixedEpsilonGivesAcneOnTheHugeFloorSceneErrorBoundsNone) {
 // own error bound of t = 0 (docs/NUMERICS.md), so even a fixed 1e-4 gives no acne; without
 // an offset there is acne, and the error-bound offset gives none.
 TEST(AccuracyKnobs, AtUnitScaleOnlyNoOffsetGivesAcne) {
-    AcneCase c("bigsphere_unit", R"(
-LookAt 0 1.6 -6   0 0.6 0   0 1 0
-Camera "perspective" "float fov" [ 40 ]
-Film "image" "integer xresolution" [ 160 ] "integer yresolution" [ 120 ]
-Sampler "stratified" "integer xsamples" [ 1 ] "integer ysamples" [ 1 ]
-WorldBegin
-LightSource "point" "point3 from" [ -4 6 -3 ] "rgb I" [ 60 60 60 ]
-AttributeBegin
-  Material "matte" "rgb Kd" [ 0.6 0.6 0.6 ]
-  Translate 0 -100000 0
-  Shape "sphere" "float radius" [ 100000 ]
-AttributeEnd
-AttributeBegin
-  Material "matte" "rgb Kd" [ 0.7 0.3 0.2 ]
-  Translate 0 1 0
-  Shape "sphere" "float radius" [ 1 ]
-AttributeEnd
-WorldEnd
-)");
+    AcneCase c("bigsphere_unit", ReadText(Source + "/scenes/bigsphere_unit.pbrt"));
     BuildSettings opts;
     EXPECT_EQ(c.BadPixels(opts, Offset(OffsetMode::ErrorBounds)), 0);
     EXPECT_EQ(c.BadPixels(opts, Offset(OffsetMode::FixedEpsilon, 1e-4f)), 0);

@@ -253,31 +253,18 @@ TEST(Validate, TessellateOptionReplacesAnalyticShapes) {
 // TriangleMesh::Interaction covered Embree's own triangle-test error, 3139 of 19200 pixels
 // were acne here.
 TEST(Validate, TessellatedHugeFloorHasNoAcne) {
-    const std::string scene = R"(
-LookAt 0 1.6 -6   0 0.6 0   0 1 0
-Camera "perspective" "float fov" [ 40 ]
-Film "image" "integer xresolution" [ 160 ] "integer yresolution" [ 120 ]
-Sampler "stratified" "integer xsamples" [ 1 ] "integer ysamples" [ 1 ]
-WorldBegin
-LightSource "point" "point3 from" [ -4 6 -3 ] "rgb I" [ 60 60 60 ]
-AttributeBegin
-  Material "matte" "rgb Kd" [ 0.6 0.6 0.6 ]
-  Translate 0 -100000 0
-  Shape "sphere" "float radius" [ 100000 ] FLOOR
-AttributeEnd
-AttributeBegin
-  Material "matte" "rgb Kd" [ 0.7 0.3 0.2 ]
-  Translate 0 1 0
-  Shape "sphere" "float radius" [ 1 ]
-AttributeEnd
-WorldEnd
-)";
+    std::ifstream in(std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/bigsphere_unit.pbrt");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string scene = ss.str();
+    const std::string floor = "Shape \"sphere\" \"float radius\" [ 100000 ]";
+    ASSERT_NE(scene.find(floor), std::string::npos);
     fs::path dir = fs::path(::testing::TempDir()) / "prism_tessellated_floor";
     fs::create_directories(dir);
     Image images[2];
     for (int i = 0; i < 2; ++i) {
         std::string text = scene;
-        text.replace(text.find("FLOOR"), 5, i == 0 ? "" : "\"float shadowalpha\" [ 0 ]");
+        if (i == 1) text.insert(text.find(floor) + floor.size(), " \"float shadowalpha\" [ 0 ]");
         fs::path file = dir / ("floor" + std::to_string(i) + ".pbrt");
         std::ofstream(file) << text;
         Diagnostics diag(false);
