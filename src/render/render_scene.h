@@ -10,6 +10,7 @@
 #include "geometry/accel.h"
 #include "image/film.h"
 #include "render/camera.h"
+#include "render/effects.h"
 #include "render/light.h"
 #include "render/material.h"
 
@@ -26,6 +27,7 @@ struct SceneFeatures {
     int analyticShapes = 0, meshes = 0;
     int csgNodes = 0;  // top-level CSGBegin nodes (their operands count as shapes too)
     size_t triangles = 0;
+    EffectSet effects;  // what the scene calls for, with reasons (render/effects.h)
 };
 
 // The integrator a render runs (the renderer dispatches on it once per render).

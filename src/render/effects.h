@@ -1,0 +1,49 @@
+// The effect set: which effects a scene calls for, each with the reason (and the location of
+// the directive) that turned it on. Built while the scene is built (build/), printed by
+// `prism info`, and used by the renderer to run a kernel specialized for exactly these effects.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "core/error.h"
+
+namespace prism {
+
+enum class Effect : uint32_t {
+    Shadows,             // shadow rays toward lights (per-light detail in EffectSet::lightShadows)
+    SpecularReflection,  // perfect mirror lobes
+    Refraction,          // perfect specular transmission
+    GlossyReflection,    // rough reflection sampled with rays (distribution integrator)
+    GlossyTransmission,  // rough transmission sampled with rays (distribution integrator)
+    Textures,            // non-constant textures
+    SoftShadows,         // area lights: stratified emitter sampling
+    Environment,         // an infinite light
+    DepthOfField,        // thin lens
+    MotionBlur,          // ActiveTransform/TransformTimes with a moving transform, and a shutter
+    Csg,                 // CSGBegin/CSGEnd nodes
+    Instancing,          // ObjectInstance
+    Count
+};
+
+inline constexpr uint32_t EffectBit(Effect e) { return 1u << uint32_t(e); }
+
+struct EffectSet {
+    uint32_t mask = 0;
+    // Why each effect is on ("ActiveTransform at scene.pbrt:12"); empty when off.
+    std::array<std::string, size_t(Effect::Count)> reasons;
+
+    bool Has(Effect e) const { return (mask & EffectBit(e)) != 0; }
+    // Turns e on; the first reason given is kept.
+    void Enable(Effect e, const std::string &why, const FileLoc &loc = {}) {
+        if (Has(e)) return;
+        mask |= EffectBit(e);
+        reasons[size_t(e)] = loc.Valid() ? why + " at " + loc.ToString() : why;
+    }
+};
+
+// "motion blur", "depth of field", ... (for `prism info`).
+const char *EffectName(Effect e);
+
+}  // namespace prism
