@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/file_io.h"
 #include "core/memory.h"
 #include "geometry/loop_subdiv.h"
 #include "geometry/shape_list.h"
@@ -89,8 +90,11 @@ ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject
     if (file.empty()) throw SceneError(s.loc, "plymesh needs a \"filename\"");
     // ReadPlyFile charges the file and the mesh it reads (ply_reader.h); both are freed when
     // this returns, so that charge is given back once the render-space mesh is made and charged.
+    const std::string path = ResolveScenePath(ctx.desc, file);
+    const Param *fp = s.params.Find("filename");
+    CheckReadConfinement(path, fp ? fp->loc : s.loc, "plymesh file", file);
     uint64_t usedBefore = budget.Used();
-    PlyMesh ply = ReadPlyFile(ResolveScenePath(ctx.desc, file), ctx.diag, budget);
+    PlyMesh ply = ReadPlyFile(path, ctx.diag, budget);
     uint64_t plyBytes = budget.Used() - usedBefore;
     WarnIgnored(s.params, {"displacement", "edgelength"}, ctx.diag, "plymesh",
                 "displacement mapping is not supported");

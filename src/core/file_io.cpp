@@ -6,14 +6,43 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 
 #include "core/memory.h"
 
 namespace prism {
 
 namespace {
+
+std::mutex g_confinementMutex;
+std::string g_confinementFolder;  // canonical; empty: reads are not confined
+
+// Whether `canonicalPath` lies inside the canonical folder `folder` (or is the folder).
+bool InsideFolder(const std::string &canonicalPath, const std::string &folder) {
+    if (folder == "/") return !canonicalPath.empty() && canonicalPath[0] == '/';
+    return canonicalPath == folder || (canonicalPath.size() > folder.size() &&
+                                       canonicalPath.compare(0, folder.size(), folder) == 0 &&
+                                       canonicalPath[folder.size()] == '/');
+}
+
+std::string OutsideReason(const std::string &resolved, const std::string &folder) {
+    return "it resolves to " + Quote(resolved) + ", outside the confined folder " + Quote(folder);
+}
+
+// The confinement check on an opened descriptor: the file it really is (the kernel's name for
+// it), so a path whose symlinks changed after ReadConfinementRefusal is caught. "" if allowed.
+std::string RefusalOfOpenFile(int fd, const std::string &folder) {
+    char link[64];
+    std::snprintf(link, sizeof(link), "/proc/self/fd/%d", fd);
+    std::error_code ec;
+    std::filesystem::path real = std::filesystem::read_symlink(link, ec);
+    if (ec) return {};  // no /proc: the path check before opening stands
+    if (!InsideFolder(real.string(), folder)) return OutsideReason(real.string(), folder);
+    return {};
+}
 
 template <typename Buffer>
 bool ReadInto(const std::string &path, Buffer *out, FileReadError *error, uint64_t maxBytes) {
@@ -22,6 +51,16 @@ bool ReadInto(const std::string &path, Buffer *out, FileReadError *error, uint64
         error->reason = std::strerror(err);
         return false;
     };
+    auto refuse = [&](std::string why) {
+        error->refused = true;
+        error->reason = std::move(why);
+        return false;
+    };
+    const std::string folder = ReadConfinementFolder();
+    if (!folder.empty()) {
+        std::string why = ReadConfinementRefusal(path);
+        if (!why.empty()) return refuse(std::move(why));
+    }
     // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused just below.
     int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) return fail(errno);
@@ -29,6 +68,10 @@ bool ReadInto(const std::string &path, Buffer *out, FileReadError *error, uint64
         int fd;
         ~Closer() { ::close(fd); }
     } closer{fd};
+    if (!folder.empty()) {
+        std::string why = RefusalOfOpenFile(fd, folder);
+        if (!why.empty()) return refuse(std::move(why));
+    }
     struct stat st;
     if (::fstat(fd, &st) != 0) return fail(errno);
     if (S_ISDIR(st.st_mode)) return fail(EISDIR);
@@ -78,6 +121,18 @@ bool ReadInto(const std::string &path, Buffer *out, FileReadError *error, uint64
         have += size_t(n);
     }
     out->resize(have);
+    // A file that is being written (a copy still in progress, an editor saving) gives a mix of
+    // old and new bytes or a truncated text that may still parse: refuse it when its size or
+    // modification time moved while it was read. (Files such as /proc's report size 0.)
+    struct stat after;
+    if (size > 0 && (have != size || ::fstat(fd, &after) != 0 || after.st_size != st.st_size ||
+                     after.st_mtim.tv_sec != st.st_mtim.tv_sec ||
+                     after.st_mtim.tv_nsec != st.st_mtim.tv_nsec)) {
+        error->reason = "the file changed while it was read (" + std::to_string(size) +
+                        " bytes when opened, " + std::to_string(have) +
+                        " read); is it still being written?";
+        return false;
+    }
     return true;
 }
 
@@ -102,6 +157,7 @@ std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc, uint64_
                                 "file is " + FormatBytes(err.size) +
                                     ", more than the memory budget of " + FormatBytes(maxBytes),
                                 err.size, 0, maxBytes);
+    if (err.refused) throw SceneError(loc, "cannot read file " + Quote(path) + ": " + err.reason);
     throw SceneError(loc, "cannot open file " + Quote(path) + ": " + err.reason);
 }
 
@@ -120,7 +176,42 @@ std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc, MemoryB
         throw MemoryBudgetError(loc, budget.ExceededMessage(err.size, used, what), err.size, used,
                                 budget.Limit());
     }
+    if (err.refused) throw SceneError(loc, "cannot read file " + Quote(path) + ": " + err.reason);
     throw SceneError(loc, "cannot open file " + Quote(path) + ": " + err.reason);
+}
+
+ScopedReadConfinement::ScopedReadConfinement(const std::string &folder) {
+    std::string canonical = folder.empty() ? std::string() : CanonicalPath(folder);
+    std::lock_guard<std::mutex> lock(g_confinementMutex);
+    previous_ = g_confinementFolder;
+    g_confinementFolder = canonical;
+}
+
+ScopedReadConfinement::~ScopedReadConfinement() {
+    std::lock_guard<std::mutex> lock(g_confinementMutex);
+    g_confinementFolder = previous_;
+}
+
+std::string ReadConfinementFolder() {
+    std::lock_guard<std::mutex> lock(g_confinementMutex);
+    return g_confinementFolder;
+}
+
+std::string ReadConfinementRefusal(const std::string &path) {
+    const std::string folder = ReadConfinementFolder();
+    if (folder.empty()) return {};
+    std::string resolved = CanonicalPath(path);
+    if (!InsideFolder(resolved, folder)) return OutsideReason(resolved, folder);
+    struct stat st;
+    if (::stat(resolved.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
+        return "it is not a regular file (" + Quote(resolved) + ")";
+    return {};
+}
+
+void CheckReadConfinement(const std::string &path, const FileLoc &loc, std::string_view what,
+                          const std::string &name) {
+    std::string why = ReadConfinementRefusal(path);
+    if (!why.empty()) throw SceneError(loc, std::string(what) + " " + Quote(name) + ": " + why);
 }
 
 std::string ToLowerAscii(std::string_view s) {

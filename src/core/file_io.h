@@ -21,7 +21,40 @@ struct FileReadError {
     std::string reason;
     bool tooLarge = false;  // the file is larger than the limit; `size` holds its size
     uint64_t size = 0;
+    bool refused = false;  // the read confinement refused it (ReadConfinementRefusal)
 };
+
+// Read confinement (`--confine`): while a folder is set, every file read through this module
+// (ReadFileContents, ReadFileOrThrow) and every image the image reader opens must resolve,
+// after symbolic links, to a regular file inside that folder; anything else is refused before
+// it is opened, and checked again on the opened descriptor (/proc/self/fd), so a symlink
+// swapped in between is refused too. One setting for the process, made by the app before a
+// scene is read (ScopedReadConfinement); readers that know a better location than the file
+// they read (a directive, a parameter) call CheckReadConfinement first.
+class ScopedReadConfinement {
+  public:
+    // Confines reads to `folder` (made canonical here) until destroyed; the previous setting
+    // is restored then. An empty `folder` leaves reads unconfined.
+    explicit ScopedReadConfinement(const std::string &folder);
+    ~ScopedReadConfinement();
+    ScopedReadConfinement(const ScopedReadConfinement &) = delete;
+    ScopedReadConfinement &operator=(const ScopedReadConfinement &) = delete;
+
+  private:
+    std::string previous_;
+};
+
+// The confinement folder (canonical), or "" when reads are not confined.
+std::string ReadConfinementFolder();
+// "" when `path` may be read under the current confinement; otherwise why not, e.g.
+// `it resolves to "/etc/passwd", outside the confined folder "/scenes/a"` or
+// `it is not a regular file (confined reads)`. A path that does not exist is allowed (opening
+// it then fails as usual).
+std::string ReadConfinementRefusal(const std::string &path);
+// Throws SceneError at `loc`, `WHAT "NAME": REFUSAL`, when ReadConfinementRefusal(path) is
+// not empty. `what` is e.g. "texture file", `name` the file as the scene writes it.
+void CheckReadConfinement(const std::string &path, const FileLoc &loc, std::string_view what,
+                          const std::string &name);
 
 // Reads the whole file at `path` into *out. The file is opened without blocking and checked
 // with fstat before any byte is read: anything but a regular file is refused, and so is a file

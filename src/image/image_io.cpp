@@ -314,6 +314,8 @@ Image ReadImageFile(const std::string &path, const ReadImageOptions &opts, bool 
     auto fail = [&](const std::string &why) {
         return std::runtime_error("cannot read image " + Quote(path) + ": " + why);
     };
+    // --confine (core/file_io.h): the image must resolve to a regular file inside the folder.
+    if (std::string why = ReadConfinementRefusal(path); !why.empty()) throw fail(why);
     std::optional<QuietStderr> quiet;
     if (opts.quietDecoders) quiet.emplace();
     std::error_code ec;

@@ -61,4 +61,8 @@ class GltfConverter {
     bool haveCamera_ = false;
 };
 
+// The location of the "uri" in the glTF file `gltfPath` that names the file `path` (as
+// tinygltf resolved it), or the whole file when none does: for --confine errors.
+FileLoc LocateUri(const std::string &gltfPath, const std::string &path);
+
 }  // namespace prism::gltf_internal

@@ -1,6 +1,8 @@
 // glTF materials, textures and images → pbrt-v3 materials and "imagemap" textures.
+#include <algorithm>
 #include <cmath>
 
+#include "core/file_io.h"
 #include "scene/gltf_converter.h"
 #include "scene/param_builders.h"
 
@@ -26,6 +28,31 @@ std::string DecodeUri(const std::string &uri) {
 }
 
 }  // namespace
+
+// The location of the "uri" in the glTF file `gltfPath` whose file is `path` (as tinygltf
+// resolved it against the glTF's folder), or the whole file: for confinement errors.
+FileLoc LocateUri(const std::string &gltfPath, const std::string &path) {
+    std::string text;
+    FileReadError error;
+    if (!ReadFileContents(gltfPath, &text, &error, 64u << 20)) return FileLoc{gltfPath};
+    const std::string dir = DirectoryOf(gltfPath);
+    for (size_t at = text.find("\"uri\""); at != std::string::npos;
+         at = text.find("\"uri\"", at + 5)) {
+        size_t open = text.find('"', text.find(':', at + 5));
+        if (open == std::string::npos) break;
+        size_t close = text.find('"', open + 1);
+        if (close == std::string::npos) break;
+        std::string uri = DecodeUri(text.substr(open + 1, close - open - 1));
+        if (uri == path || (dir.empty() ? uri : dir + "/" + uri) == path ||
+            CanonicalPath(ResolveScenePath(dir, uri)) == CanonicalPath(path)) {
+            int line = 1 + int(std::count(text.begin(), text.begin() + long(open), '\n'));
+            size_t lineStart = text.rfind('\n', open);
+            int col = int(open - (lineStart == std::string::npos ? 0 : lineStart + 1)) + 1;
+            return FileLoc{gltfPath, line, col};
+        }
+    }
+    return FileLoc{gltfPath};
+}
 
 std::string GltfConverter::ImageFilename(int imageIndex) {
     auto it = imageFilenames_.find(imageIndex);

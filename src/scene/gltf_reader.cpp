@@ -38,6 +38,8 @@ struct ReadBudget {
     MemoryBudget &budget;
     std::string topFile;
     std::optional<MemoryBudgetError> refused;
+    // A buffer or image the read confinement (--confine) refused, and why.
+    std::string confinedPath, confinedReason;
 };
 
 // Replaces tinygltf's stb_image decoding: images without an external URI (data URIs and .glb
@@ -66,6 +68,8 @@ bool ReadWholeFileWithinBudget(std::vector<unsigned char> *out, std::string *err
     try {
         if (!ReadFileContents(path, out, &error, b->budget.Remaining())) {
             if (error.tooLarge) b->budget.Check(error.size, what, FileLoc{b->topFile});
+            if (error.refused && b->confinedPath.empty())
+                b->confinedPath = path, b->confinedReason = error.reason;
             if (err) *err += (error.tooLarge ? "file grew while read" : error.reason) + "\n";
             return false;
         }
@@ -559,6 +563,10 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
         throw SceneError(loc, std::string("cannot parse glTF file: ") + e.what());
     }
     if (budget.refused) throw *budget.refused;
+    if (!budget.confinedPath.empty())
+        throw SceneError(
+            gltf_internal::LocateUri(path, budget.confinedPath),
+            "cannot read file " + Quote(budget.confinedPath) + ": " + budget.confinedReason);
     for (const std::string &w : MessageLines(warn)) diag.Warn(loc, w);
     if (!ok) {
         std::vector<std::string> errs = MessageLines(err);

@@ -204,21 +204,59 @@ void CheckNumbers(const std::string &path, const std::string &text) {
     }
 }
 
+// The lines of `text` whose first word is `keyword`, with their line numbers (mtllib and
+// map_Kd lines, to locate confinement errors).
+std::vector<std::pair<int, std::string>> KeywordLines(const std::string &text,
+                                                      std::string_view keyword) {
+    std::vector<std::pair<int, std::string>> lines;
+    int lineNo = 1;
+    for (size_t start = 0; start < text.size(); ++lineNo) {
+        size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        std::string_view line(text.data() + start, end - start);
+        size_t k = line.find_first_not_of(" \t");
+        if (k != std::string_view::npos && line.substr(k, keyword.size()) == keyword &&
+            k + keyword.size() < line.size() &&
+            std::isspace(static_cast<unsigned char>(line[k + keyword.size()])))
+            lines.emplace_back(lineNo, std::string(line));
+        start = end + 1;
+    }
+    return lines;
+}
+
+// The location in `file` of the first of `lines` that names `name` (at the name's column), or
+// the whole file.
+FileLoc LocateName(const std::string &file, const std::vector<std::pair<int, std::string>> &lines,
+                   const std::string &name) {
+    for (const auto &[lineNo, line] : lines) {
+        size_t at = line.find(name);
+        if (at != std::string::npos) return FileLoc{file, lineNo, int(at) + 1};
+    }
+    return FileLoc{file};
+}
+
 // tinyobjloader's MaterialFileReader, reading through the shared file reader: MTL files are
-// looked up in the OBJ's directory; one that cannot be read is a warning, as in tinyobjloader.
+// looked up in the OBJ's directory; one that cannot be read is a warning, as in tinyobjloader,
+// except one that the read confinement (--confine) refuses: an error at its mtllib line.
 class MtlReader : public tinyobj::MaterialReader {
   public:
-    MtlReader(std::string dir, MemoryBudget *budget, FileLoc loc)
-        : dir_(std::move(dir)), budget_(budget), loc_(std::move(loc)) {}
+    MtlReader(std::string dir, MemoryBudget *budget, FileLoc loc, const std::string &objText)
+        : dir_(std::move(dir)),
+          budget_(budget),
+          loc_(std::move(loc)),
+          mtllibLines_(KeywordLines(objText, "mtllib")) {}
     bool operator()(const std::string &name, std::vector<tinyobj::material_t> *materials,
                     std::map<std::string, int> *matMap, std::string *warn,
                     std::string *err) override {
         std::string text;
         FileReadError error;
         const std::string what = "material library " + Quote(name);
-        if (!ReadFileContents(dir_.empty() ? name : dir_ + "/" + name, &text, &error,
-                              budget_ ? budget_->Remaining() : UINT64_MAX)) {
+        const std::string path = dir_.empty() ? name : dir_ + "/" + name;
+        if (!ReadFileContents(path, &text, &error, budget_ ? budget_->Remaining() : UINT64_MAX)) {
             if (error.tooLarge && budget_) budget_->Check(error.size, what, loc_);  // throws
+            if (error.refused)
+                throw SceneError(LocateName(loc_.file, mtllibLines_, name),
+                                 what + ": " + error.reason);
             if (warn)
                 *warn += "Material file [ " + name + " ] not found in a path : " + dir_ + "\n";
             return false;
@@ -226,13 +264,36 @@ class MtlReader : public tinyobj::MaterialReader {
         if (budget_) budget_->Charge(text.size(), what, loc_);
         std::istringstream in(text);
         tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+        if (!ReadConfinementFolder().empty())
+            mapKdLines_.emplace_back(path, KeywordLines(text, "map_Kd"));
         return true;
+    }
+    // Under --confine: every map_Kd texture must be readable, checked here so that a refusal
+    // points at its map_Kd line.
+    void CheckTextures(const std::vector<tinyobj::material_t> &materials) const {
+        for (const tinyobj::material_t &m : materials) {
+            if (m.diffuse_texname.empty()) continue;
+            std::string file = NormalizeTexturePath(m.diffuse_texname);
+            FileLoc loc = loc_;
+            for (const auto &[mtlPath, lines] : mapKdLines_) {
+                FileLoc l = LocateName(mtlPath, lines, m.diffuse_texname);
+                if (l.line > 0) {
+                    loc = l;
+                    break;
+                }
+            }
+            CheckReadConfinement(ResolveScenePath(dir_, file), loc, "texture file",
+                                 m.diffuse_texname);
+        }
     }
 
   private:
     std::string dir_;
     MemoryBudget *budget_;
     FileLoc loc_;
+    std::vector<std::pair<int, std::string>> mtllibLines_;
+    // Under --confine: each MTL file read and its map_Kd lines.
+    std::vector<std::pair<std::string, std::vector<std::pair<int, std::string>>>> mapKdLines_;
 };
 
 }  // namespace
@@ -247,10 +308,11 @@ SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag, MemoryB
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warn, err;
-    MtlReader mtlReader(DirectoryOf(path), budget, fileLoc);
+    MtlReader mtlReader(DirectoryOf(path), budget, fileLoc, text);
     std::istringstream in(std::move(text));
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtlReader,
                                /*triangulate=*/true, /*default_vcols_fallback=*/false);
+    if (!ReadConfinementFolder().empty()) mtlReader.CheckTextures(materials);
     for (const std::string &w : MessageLines(warn)) diag.Warn(fileLoc, w);
     std::vector<std::string> errors = MessageLines(err);
     if (!ok || !errors.empty())

@@ -55,6 +55,7 @@ RGB SceneBuilder::SpectrumFile(const std::string &name, const FileLoc &loc) {
     if (cached != spdCache_.end()) return cached->second;
     RGB result(1.f);
     std::string error;
+    CheckReadConfinement(path, loc, "spectrum file", name);  // --confine: an error
     if (opts_.confineIncludes && !IsInsideDirectory(CanonicalPath(path), scene_.baseDir)) {
         diag_.Warn(loc, "spectrum file " + Quote(name) +
                             " is outside the scene directory; using a constant 1");
