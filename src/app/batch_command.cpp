@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -37,6 +38,7 @@ struct BatchArgs {
     int jobs = 1, spp = 0, threads = 0;
     std::string res, maxMemory;
     bool force = false, quiet = false;
+    ConfineOption confine;  // --confine [DIR]: each scene confined to DIR or its own folder
 };
 
 struct Job {
@@ -215,6 +217,7 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     }
     args.push_back("--threads");
     args.push_back(std::to_string(threadsPerJob));
+    if (a.confine.Given()) args.push_back("--confine=" + ConfinementFolderFor(a.confine, j.scene));
     j.start = std::chrono::steady_clock::now();
     pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("cannot start a render process");
@@ -260,8 +263,13 @@ void Finish(Job &j, int status) {
         int sig = WTERMSIG(status);
         j.exitCode = 128 + sig;
         j.status = (sig == SIGINT && g_interrupted) ? "interrupted" : "failed";
-        if (j.status == "failed")
-            j.error = std::string("render process killed by signal ") + strsignal(sig);
+        if (j.status == "failed") {
+            const char *abbrev = sigabbrev_np(sig);
+            j.error = "render process killed by signal " +
+                      (abbrev ? "SIG" + std::string(abbrev) : std::to_string(sig)) + " (" +
+                      strsignal(sig) + ")";
+            if (sig == SIGKILL) j.error += "; out of memory? The kernel's OOM killer sends SIGKILL";
+        }
     }
     j.pid = -1;
 }
@@ -275,6 +283,8 @@ int RunBatch(const BatchArgs &a) {
     fs::create_directories(a.outDir, ec);
     if (!fs::is_directory(a.outDir))
         throw UsageError("cannot create output directory \"" + a.outDir + "\"");
+    CheckWritableDirectory(a.outDir);  // read-only or full: say so before any render
+    if (a.confine.Given() && !a.confine.dir.empty()) ConfinementFolderFor(a.confine, "");
     std::vector<std::string> names = OutputNames(scenes, a.format);
     std::vector<Job> jobs(scenes.size());
     for (size_t i = 0; i < scenes.size(); ++i) {
@@ -370,6 +380,7 @@ void AddBatchCommand(CLI::App &app, int *exitCode) {
         ->check(CLI::Range(1, 4096));
     cmd->add_option("--max-memory", args->maxMemory,
                     "Memory budget of each render, e.g. 4G (default: 75% of RAM)");
+    AddConfineOption(cmd, &args->confine);
     cmd->add_flag("-q,--quiet", args->quiet, "No progress lines");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunBatch(*args); }); });
 }

@@ -1,6 +1,12 @@
 #include "app/common.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -116,6 +122,63 @@ void CheckOutputPath(const std::string &path) {
     fs::path dir = fs::path(path).parent_path();
     if (!dir.empty() && !fs::is_directory(dir))
         throw UsageError("output directory \"" + dir.string() + "\" does not exist");
+    CheckWritableDirectory(dir.string());
+}
+
+void CheckWritableDirectory(const std::string &dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!dir.empty() && !fs::is_directory(dir, ec))
+        throw UsageError("output directory " + Quote(dir) + " does not exist");
+    // access(W_OK) says yes to root on a read-only folder; creating a file tells the truth.
+    fs::path probe =
+        fs::path(dir.empty() ? "." : dir) / (".prism-write-test-" + std::to_string(::getpid()));
+    int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0) {
+        int err = errno;
+        if (err == EEXIST) return;  // another probe of this process; the folder is writable
+        throw UsageError("cannot write to output directory " + Quote(dir.empty() ? "." : dir) +
+                         ": " + std::strerror(err));
+    }
+    ::close(fd);
+    ::unlink(probe.c_str());
+}
+
+bool ConfineOption::Given() const { return option && option->count() > 0; }
+
+void AddConfineOption(CLI::App *cmd, ConfineOption *confine) {
+    confine->option =
+        cmd->add_option("--confine", confine->dir,
+                        "Refuse to read any file outside DIR (default: the scene's folder), "
+                        "after symlinks, and any device or FIFO; for untrusted scenes")
+            ->expected(0, 1)
+            ->type_name("[DIR]");
+}
+
+std::string ConfinementFolderFor(const ConfineOption &confine, const std::string &scene) {
+    if (!confine.Given()) return {};
+    std::string dir = confine.dir;
+    if (dir.empty()) dir = DirectoryOf(scene);
+    if (dir.empty()) dir = ".";
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec))
+        throw UsageError("--confine: " + Quote(dir) + " is not a folder");
+    return dir;
+}
+
+std::vector<std::string> NormalizeConfineArgs(int argc, char **argv) {
+    std::vector<std::string> args(argv + 1, argv + argc), moved;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] != "--confine" || i + 1 >= args.size()) continue;
+        const std::string &next = args[i + 1];
+        std::error_code ec;
+        if (next.empty() || next[0] == '-' || std::filesystem::is_directory(next, ec)) continue;
+        moved.push_back(args[i]);
+        args.erase(args.begin() + long(i));
+        --i;
+    }
+    args.insert(args.end(), moved.begin(), moved.end());
+    return args;
 }
 
 std::string FindDefaultScene() {

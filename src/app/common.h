@@ -11,6 +11,11 @@
 #include "core/vecmath.h"
 #include "geometry/shape.h"
 
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
 namespace prism {
 
 // Runs a command, turning exceptions into messages and exit statuses: SceneError and
@@ -30,6 +35,25 @@ uint64_t ParseMaxMemory(const std::string &s);
 Transform ParseLookAt(const std::string &s);
 // Fails early (UsageError) if the image format is unsupported or the directory is missing.
 void CheckOutputPath(const std::string &path);
+// Fails early (UsageError) when no file can be created in `dir` ("" is the working
+// directory): missing, read-only (also for root: a file is really created and removed) or full.
+void CheckWritableDirectory(const std::string &dir);
+
+// --confine [DIR] for render, info, batch and validate (README, docs/RELIABILITY.md): every file
+// a scene reads must resolve inside DIR, by default the scene file's folder.
+struct ConfineOption {
+    std::string dir;                // as given; empty: the scene's folder
+    CLI::Option *option = nullptr;  // set by AddConfineOption
+    bool Given() const;
+};
+void AddConfineOption(CLI::App *cmd, ConfineOption *confine);
+// The folder reads of `scene` are confined to ("" when --confine is not given); a DIR that is
+// not a folder is a UsageError.
+std::string ConfinementFolderFor(const ConfineOption &confine, const std::string &scene);
+// The arguments after argv[0] for CLI11, with each "--confine" that is not followed by a
+// folder moved to the end, so that `--confine scene.pbrt` does not take the scene as its DIR.
+std::vector<std::string> NormalizeConfineArgs(int argc, char **argv);
+
 // scenes/whitted.pbrt relative to the working directory, else to the source tree.
 std::string FindDefaultScene();
 // `given` if not empty, else `rel` (e.g. "tools/plot_study.py") relative to the working

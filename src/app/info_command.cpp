@@ -9,6 +9,7 @@
 #include "app/common.h"
 #include "build/build_scene.h"
 #include "build/shape_factory.h"
+#include "core/file_io.h"
 #include "core/pbrt_defaults.h"
 #include "scene/load_scene.h"
 
@@ -17,7 +18,8 @@ namespace prism {
 namespace {
 
 struct InfoArgs {
-    std::string scene;
+    std::string scene, maxMemory;
+    ConfineOption confine;
 };
 
 std::string Counts(const std::map<std::string, int> &m) {
@@ -27,10 +29,11 @@ std::string Counts(const std::map<std::string, int> &m) {
 }
 
 int RunInfo(const InfoArgs &a) {
+    ScopedReadConfinement confined(ConfinementFolderFor(a.confine, a.scene));
     Diagnostics diag(false);
     auto t0 = std::chrono::steady_clock::now();
-    // One budget (the default limit) for the scene and, one at a time, each mesh it counts.
-    MemoryBudget budget;
+    // One budget (--max-memory) for the scene and, one at a time, each mesh it counts.
+    MemoryBudget budget(ParseMaxMemory(a.maxMemory));
     LoadOptions loadOpts;
     loadOpts.budget = &budget;
     SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
@@ -135,6 +138,10 @@ void AddInfoCommand(CLI::App &app, int *exitCode) {
     auto args = std::make_shared<InfoArgs>();
     CLI::App *cmd = app.add_subcommand("info", "Describe what a scene contains (no BVH build)");
     cmd->add_option("scene", args->scene, "Scene file")->required();
+    AddConfineOption(cmd, &args->confine);
+    cmd->add_option("--max-memory", args->maxMemory,
+                    "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM); a scene that "
+                    "needs more is refused");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunInfo(*args); }); });
 }
 

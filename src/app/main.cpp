@@ -1,8 +1,10 @@
 // prism: a Whitted ray tracer on Embree. Subcommands: render, info, trace, validate, batch,
 // bench and study (with no arguments: render scenes/whitted.pbrt).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 
 #include "app/commands.h"
+#include "app/common.h"
 
 int main(int argc, char **argv) {
     if (argc == 1) return prism::RenderDefaultScene();
@@ -18,7 +20,9 @@ int main(int argc, char **argv) {
     prism::AddBenchCommand(app, &exitCode);
     prism::AddStudyCommand(app, &exitCode);
     try {
-        app.parse(argc, argv);
+        std::vector<std::string> args = prism::NormalizeConfineArgs(argc, argv);
+        std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+        app.parse(args);
     } catch (const CLI::CallForHelp &e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp &e) {

@@ -13,6 +13,7 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "build/build_scene.h"
+#include "core/file_io.h"
 #include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
@@ -36,6 +37,7 @@ struct RenderArgs {
     int tessellate = 0;      // [validate hook]
     float fov = 0;
     bool quiet = false, noProgress = false;
+    ConfineOption confine;  // --confine [DIR]
     // Accuracy knobs (docs/NUMERICS.md, `prism study`).
     float cutoff = 0, offsetEpsilon = 0;      // offsetEpsilon 0: not given
     std::string offset, bvhQuality = "auto";  // offset empty: not given
@@ -118,6 +120,7 @@ void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool t
 
 int RunRender(const RenderArgs &a) {
     CheckTargetErrorArgs(a);
+    ScopedReadConfinement confined(ConfinementFolderFor(a.confine, a.scene));
     BuildSettings opts;
     opts.spp = a.spp;
     opts.maxDepth = a.maxDepth;
@@ -306,6 +309,7 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--max-memory", args->maxMemory,
                     "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM), for scene "
                     "files, meshes, BVH, textures and film together; more is an error");
+    AddConfineOption(cmd, &args->confine);
     cmd->add_flag("-q,--quiet", args->quiet, "No progress, statistics or warnings");
     cmd->add_flag("--no-progress", args->noProgress,
                   "No progress display (statistics and warnings stay)");

@@ -16,6 +16,7 @@
 #include "app/output_file.h"
 #include "build/build_scene.h"
 #include "build/shape_factory.h"
+#include "core/file_io.h"
 #include "image/image.h"
 #include "image/image_io.h"
 #include "render/renderer.h"
@@ -33,6 +34,8 @@ struct ValidateArgs {
     int rays = 100000, imageLevel = 32, cameraRays = 65536;
     uint64_t seed = 1;
     bool quiet = false;
+    std::string maxMemory;
+    ConfineOption confine;
 };
 
 // Pixel-centre rays of the scene camera on a grid of at most `budget` rays.
@@ -127,10 +130,11 @@ int RunValidate(const ValidateArgs &a) {
             report(ValidateShape(n, std::move(s), {}, opt));
         }
     } else {
+        ScopedReadConfinement confined(ConfinementFolderFor(a.confine, a.scene));
         Diagnostics diag(!a.quiet);
-        // One budget (the default limit) for the scene and the three renders of it, which are
-        // alive together.
-        MemoryBudget budget;
+        // One budget (--max-memory) for the scene and the three renders of it, which are alive
+        // together.
+        MemoryBudget budget(ParseMaxMemory(a.maxMemory));
         LoadOptions loadOpts;
         loadOpts.budget = &budget;
         SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
@@ -212,6 +216,10 @@ void AddValidateCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--camera-rays", args->cameraRays, "Camera rays per shape (scene mode)")
         ->check(CLI::Range(1, 1 << 24));
     cmd->add_flag("-q,--quiet", args->quiet, "No warnings");
+    AddConfineOption(cmd, &args->confine);
+    cmd->add_option("--max-memory", args->maxMemory,
+                    "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM); a scene that "
+                    "needs more is refused");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunValidate(*args); }); });
 }
 

@@ -25,10 +25,13 @@ inline std::string ReadFile(const std::filesystem::path &p) {
 
 // Runs prism with the given arguments (shell-quoted by the caller) in directory `cwd`, with no
 // standard input; returns its exit status, standard output and standard error.
-inline RunResult RunPrism(const std::string &args, const std::filesystem::path &cwd) {
+// `env` (e.g. "LD_PRELOAD=... NAME=value", shell-quoted by the caller) is set for prism only.
+inline RunResult RunPrism(const std::string &args, const std::filesystem::path &cwd,
+                          const std::string &env = "") {
     std::filesystem::path outFile = cwd / "stdout.txt", errFile = cwd / "stderr.txt";
-    std::string cmd = "cd '" + cwd.string() + "' && '" + std::string(PRISM_BINARY) + "' " + args +
-                      " >'" + outFile.string() + "' 2>'" + errFile.string() + "' </dev/null";
+    std::string cmd = "cd '" + cwd.string() + "' && " + env + " '" + std::string(PRISM_BINARY) +
+                      "' " + args + " >'" + outFile.string() + "' 2>'" + errFile.string() +
+                      "' </dev/null";
     int status = std::system(cmd.c_str());
     RunResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

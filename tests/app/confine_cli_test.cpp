@@ -1,0 +1,253 @@
+// `--confine [DIR]` (issue 17): a corpus of scenes that try to read outside their folder, in
+// every format and through every kind of file reference, is refused with exit status 2 and the
+// location of the directive that names the file; without --confine the same scenes are read as
+// before. The corpus is written at run time, because its absolute paths and symbolic links
+// depend on where the test runs.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "app/run_prism.h"
+
+namespace fs = std::filesystem;
+
+namespace prism {
+namespace {
+
+using test::ReadFile;
+using test::RunPrism;
+using test::RunResult;
+
+fs::path TempDir(const std::string &name) {
+    fs::path d = fs::path(::testing::TempDir()) / ("prism_confine_" + name);
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+
+// Six lines; the directive under test goes on line 7.
+const char *const kPbrtHead =
+    "LookAt 0 0 5  0 0 0  0 1 0\n"
+    "Camera \"perspective\" \"float fov\" 40\n"
+    "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\n"
+    "Sampler \"random\" \"integer pixelsamples\" 1\n"
+    "WorldBegin\n"
+    "LightSource \"point\" \"rgb I\" [10 10 10] \"point from\" [0 0 5]\n";
+
+const char *const kTriangleObj =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n";
+
+// A glTF triangle whose position buffer is `bufferUri`, with a base-colour texture `imageUri`
+// when given. Returns the text; the buffer's uri is on line 4, the image's on line 5.
+std::string Gltf(const std::string &bufferUri, const std::string &imageUri = "") {
+    std::string s = "{\"asset\": {\"version\": \"2.0\"},\n";
+    s += "\"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}],\n";
+    s += "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0, \"TEXCOORD_0\": 1}" +
+         std::string(imageUri.empty() ? "" : ", \"material\": 0") + "}]}],\n";
+    s += "\"buffers\": [{\"byteLength\": 60, \"uri\": \"" + bufferUri + "\"}],\n";
+    if (!imageUri.empty())
+        s += "\"images\": [{\"uri\": \"" + imageUri +
+             "\"}], \"textures\": [{\"source\": 0}],\n"
+             "\"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": "
+             "0}}}],\n";
+    s += "\"bufferViews\": [{\"buffer\": 0, \"byteLength\": 36}, {\"buffer\": 0, "
+         "\"byteOffset\": 36, \"byteLength\": 24}],\n";
+    s += "\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 3, \"type\": "
+         "\"VEC3\", \"min\": [0, 0, 0], \"max\": [1, 1, 0]}, {\"bufferView\": 1, "
+         "\"componentType\": 5126, \"count\": 3, \"type\": \"VEC2\"}]}\n";
+    return s;
+}
+
+std::string TriangleBuffer() {
+    const float v[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
+    return std::string(reinterpret_cast<const char *>(v), sizeof(v));
+}
+
+struct EscapeCase {
+    std::string scene;     // under scene/
+    std::string location;  // "scene/FILE:LINE:" of the directive naming the file
+    std::string names;     // a fragment of the refused file's name in the message
+    bool readable;         // whether an unconfined render succeeds
+};
+
+// root/outside holds the files the scenes reach for; root/scene the scenes (and symbolic links
+// out of it, a FIFO and a link to /dev/zero).
+std::vector<EscapeCase> WriteCorpus(const fs::path &root) {
+    fs::create_directories(root / "outside");
+    fs::create_directories(root / "scene");
+    const fs::path out = root / "outside";
+    std::ofstream(out / "secret.pbrt") << "Shape \"sphere\" \"float radius\" 0.5\n";
+    std::ofstream(out / "m.ply")
+        << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+           "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+           "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    std::ofstream(out / "x.spd") << "400 1\n500 1\n600 1\n700 1\n";
+    std::ofstream(out / "out.mtl") << "newmtl m\nKd 1 0 0\n";
+    std::ofstream(out / "b.bin", std::ios::binary) << TriangleBuffer();
+    fs::copy_file(Source + "/tests/golden/whitted_64x48.exr", out / "tex.exr");
+
+    const fs::path sc = root / "scene";
+    const std::string abs = fs::canonical(out).string();
+    std::vector<EscapeCase> cases;
+    auto pbrt = [&](const std::string &name, const std::string &line, const std::string &names,
+                    bool readable) {
+        std::ofstream(sc / name) << kPbrtHead << line << "\n";
+        cases.push_back({name, "scene/" + name + ":7:", names, readable});
+    };
+    // pbrt: Include, plymesh, imagemap and spectrum files.
+    pbrt("include_dotdot.pbrt", "Include \"../outside/secret.pbrt\"", "secret.pbrt", true);
+    pbrt("include_absolute.pbrt", "Include \"" + abs + "/secret.pbrt\"", "secret.pbrt", true);
+    fs::create_symlink("../outside/secret.pbrt", sc / "link.pbrt");
+    pbrt("include_symlink.pbrt", "Include \"link.pbrt\"", "secret.pbrt", true);
+    pbrt("include_dev_zero.pbrt", "Include \"/dev/zero\"", "/dev/zero", false);
+    fs::create_symlink("/dev/zero", sc / "zero.pbrt");
+    pbrt("include_symlink_dev_zero.pbrt", "Include \"zero.pbrt\"", "/dev/zero", false);
+    pbrt("include_environ.pbrt", "Include \"/proc/self/environ\"", "environ", false);
+    pbrt("import_dotdot.pbrt", "Import \"../outside/secret.pbrt\"", "secret.pbrt", true);
+    pbrt("plymesh_dotdot.pbrt", "Shape \"plymesh\" \"string filename\" \"../outside/m.ply\"",
+         "m.ply", true);
+    pbrt("imagemap_absolute.pbrt",
+         "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"" + abs +
+             "/tex.exr\" Material \"matte\" \"texture Kd\" \"t\" Shape \"sphere\"",
+         "tex.exr", true);
+    pbrt("spectrum_dotdot.pbrt",
+         "Material \"matte\" \"spectrum Kd\" \"../outside/x.spd\" Shape \"sphere\"", "x.spd",
+         true);
+    // A FIFO inside the folder: not a regular file (and opening it must not wait).
+    if (::mkfifo((sc / "fifo.pbrt").c_str(), 0600) == 0)
+        pbrt("include_fifo.pbrt", "Include \"fifo.pbrt\"", "fifo.pbrt", false);
+
+    // OBJ: mtllib and map_Kd.
+    auto obj = [&](const std::string &name, const std::string &mtllib) {
+        std::ofstream(sc / name) << "mtllib " << mtllib << "\n" << kTriangleObj;
+    };
+    obj("mtllib_dotdot.obj", "../outside/out.mtl");
+    cases.push_back({"mtllib_dotdot.obj", "scene/mtllib_dotdot.obj:1:", "out.mtl", true});
+    fs::create_symlink("../outside/out.mtl", sc / "link.mtl");
+    obj("mtllib_symlink.obj", "link.mtl");
+    cases.push_back({"mtllib_symlink.obj", "scene/mtllib_symlink.obj:1:", "out.mtl", true});
+    obj("mtllib_dev_zero.obj", "../../../../../../../../../../dev/zero");
+    cases.push_back({"mtllib_dev_zero.obj", "scene/mtllib_dev_zero.obj:1:", "/dev/zero", false});
+    obj("mtllib_environ.obj", "../../../../../../../../../../proc/self/environ");
+    cases.push_back({"mtllib_environ.obj", "scene/mtllib_environ.obj:1:", "environ", true});
+    std::ofstream(sc / "in.mtl") << "newmtl m\nKd 1 1 1\nmap_Kd ../outside/tex.exr\n";
+    obj("map_kd_dotdot.obj", "in.mtl");
+    cases.push_back({"map_kd_dotdot.obj", "scene/in.mtl:3:", "tex.exr", true});
+    std::ofstream(sc / "abs.mtl") << "newmtl m\nKd 1 1 1\nmap_Kd " << abs << "/tex.exr\n";
+    obj("map_kd_absolute.obj", "abs.mtl");
+    cases.push_back({"map_kd_absolute.obj", "scene/abs.mtl:3:", "tex.exr", true});
+
+    // glTF: buffer and image URIs (tinygltf reads an absolute URI relative to the file's
+    // folder, so only relative paths and links escape).
+    std::ofstream(sc / "b.bin", std::ios::binary) << TriangleBuffer();
+    std::ofstream(sc / "buffer_dotdot.gltf") << Gltf("../outside/b.bin");
+    cases.push_back({"buffer_dotdot.gltf", "scene/buffer_dotdot.gltf:4:", "b.bin", true});
+    fs::create_symlink("../outside/b.bin", sc / "link.bin");
+    std::ofstream(sc / "buffer_symlink.gltf") << Gltf("link.bin");
+    cases.push_back({"buffer_symlink.gltf", "scene/buffer_symlink.gltf:4:", "b.bin", true});
+    std::ofstream(sc / "buffer_dev_zero.gltf") << Gltf("../../../../../../../../../../dev/zero");
+    cases.push_back({"buffer_dev_zero.gltf", "scene/buffer_dev_zero.gltf:4:", "zero", false});
+    std::ofstream(sc / "buffer_environ.gltf")
+        << Gltf("../../../../../../../../../../proc/self/environ");
+    cases.push_back({"buffer_environ.gltf", "scene/buffer_environ.gltf:4:", "environ", false});
+    std::ofstream(sc / "image_dotdot.gltf") << Gltf("b.bin", "../outside/tex.exr");
+    cases.push_back({"image_dotdot.gltf", "scene/image_dotdot.gltf:5:", "tex.exr", true});
+    return cases;
+}
+
+TEST(Confine, EscapingScenesAreRefusedWithTheDirectiveLocation) {
+    fs::path root = TempDir("corpus");
+    std::vector<EscapeCase> cases = WriteCorpus(root);
+    ASSERT_GE(cases.size(), 20u);
+    for (const EscapeCase &c : cases) {
+        SCOPED_TRACE(c.scene);
+        RunResult r = RunPrism("render scene/" + c.scene + " --confine -o confined.png -q", root);
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_NE(r.err.find(c.location), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(c.names), std::string::npos) << r.err;
+        EXPECT_TRUE(r.err.find("outside the confined folder") != std::string::npos ||
+                    r.err.find("not a regular file") != std::string::npos)
+            << r.err;
+        EXPECT_FALSE(fs::exists(root / "confined.png"));
+
+        // The same scene without --confine: read as before.
+        RunResult u = RunPrism("render scene/" + c.scene + " -o free.png -q", root);
+        if (c.readable) {
+            EXPECT_EQ(u.exitCode, 0) << u.err;
+            EXPECT_TRUE(fs::exists(root / "free.png"));
+        } else {
+            EXPECT_NE(u.exitCode, 0);
+        }
+        EXPECT_EQ(u.err.find("confined"), std::string::npos) << u.err;
+        fs::remove(root / "free.png");
+    }
+}
+
+TEST(Confine, InfoAndValidateAreConfinedToo) {
+    fs::path root = TempDir("info");
+    WriteCorpus(root);
+    RunResult info = RunPrism("info --confine scene/include_dotdot.pbrt", root);
+    EXPECT_EQ(info.exitCode, 2) << info.err;
+    EXPECT_NE(info.err.find("scene/include_dotdot.pbrt:7:1: error:"), std::string::npos)
+        << info.err;
+    EXPECT_EQ(RunPrism("info scene/include_dotdot.pbrt", root).exitCode, 0);
+    RunResult val = RunPrism("validate scene/plymesh_dotdot.pbrt --confine --out v -q", root);
+    EXPECT_EQ(val.exitCode, 2) << val.err;
+    EXPECT_NE(val.err.find("scene/plymesh_dotdot.pbrt:7:"), std::string::npos) << val.err;
+}
+
+TEST(Confine, AnExplicitFolderAllowsWhatLiesInsideIt) {
+    fs::path root = TempDir("dir");
+    WriteCorpus(root);
+    // DIR = root: ../outside is inside it now; /dev/zero still is not.
+    RunResult r = RunPrism("render scene/include_dotdot.pbrt --confine . -o a.png -q", root);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    r = RunPrism("render scene/include_dev_zero.pbrt --confine=. -o b.png -q", root);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("scene/include_dev_zero.pbrt:7:1:"), std::string::npos) << r.err;
+    // The scene itself outside DIR.
+    r = RunPrism("render scene/include_dotdot.pbrt --confine outside -o c.png -q", root);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("outside the confined folder"), std::string::npos) << r.err;
+    r = RunPrism("render scene/include_dotdot.pbrt --confine=missing -o d.png -q", root);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("is not a folder"), std::string::npos) << r.err;
+}
+
+TEST(Confine, BatchConfinesEachSceneToItsOwnFolder) {
+    fs::path root = TempDir("batch");
+    WriteCorpus(root);
+    fs::create_directories(root / "in/a");
+    fs::create_directories(root / "in/b");
+    std::ofstream(root / "in/a/good.pbrt") << kPbrtHead << "Include \"part.pbrt\"\n";
+    std::ofstream(root / "in/a/part.pbrt") << "Shape \"sphere\"\n";
+    // b/evil.pbrt reaches into its sibling folder a/: inside the batch folder, outside its own.
+    std::ofstream(root / "in/b/evil.pbrt") << kPbrtHead << "Include \"../a/part.pbrt\"\n";
+    RunResult r = RunPrism("batch in -o out --confine -q", root);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    std::string report = ReadFile(root / "out/report.json");
+    size_t good = report.find("a/good.pbrt"), evil = report.find("b/evil.pbrt");
+    ASSERT_NE(good, std::string::npos) << report;
+    ASSERT_NE(evil, std::string::npos) << report;
+    std::string goodLine = report.substr(good, report.find('\n', good) - good);
+    std::string evilLine = report.substr(evil, report.find('\n', evil) - evil);
+    EXPECT_NE(goodLine.find("\"status\": \"ok\""), std::string::npos) << goodLine;
+    EXPECT_NE(evilLine.find("\"status\": \"failed\""), std::string::npos) << evilLine;
+    EXPECT_NE(evilLine.find("evil.pbrt:7:1: error:"), std::string::npos) << evilLine;
+    EXPECT_NE(evilLine.find("outside the confined folder"), std::string::npos) << evilLine;
+    // --confine=in: every scene may read anything under in/.
+    r = RunPrism("batch in -o out2 --confine=in -q", root);
+    EXPECT_EQ(r.exitCode, 0) << r.err << ReadFile(root / "out2/report.json");
+    // Without --confine both render.
+    r = RunPrism("batch in -o out3 -q", root);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
+}  // namespace
+}  // namespace prism
