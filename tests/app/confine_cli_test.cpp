@@ -117,8 +117,7 @@ std::vector<EscapeCase> WriteCorpus(const fs::path &root) {
              "/tex.exr\" Material \"matte\" \"texture Kd\" \"t\" Shape \"sphere\"",
          "tex.exr", true);
     pbrt("spectrum_dotdot.pbrt",
-         "Material \"matte\" \"spectrum Kd\" \"../outside/x.spd\" Shape \"sphere\"", "x.spd",
-         true);
+         "Material \"matte\" \"spectrum Kd\" \"../outside/x.spd\" Shape \"sphere\"", "x.spd", true);
     // A FIFO inside the folder: not a regular file (and opening it must not wait).
     if (::mkfifo((sc / "fifo.pbrt").c_str(), 0600) == 0)
         pbrt("include_fifo.pbrt", "Include \"fifo.pbrt\"", "fifo.pbrt", false);
@@ -167,7 +166,8 @@ TEST(Confine, EscapingScenesAreRefusedWithTheDirectiveLocation) {
     ASSERT_GE(cases.size(), 20u);
     for (const EscapeCase &c : cases) {
         SCOPED_TRACE(c.scene);
-        RunResult r = RunPrism("render scene/" + c.scene + " --confine -o confined.png -q", root);
+        RunResult r = RunPrism(
+            "render scene/" + c.scene + " --confine --res 8x8 --spp 1 -o confined.png -q", root);
         EXPECT_EQ(r.exitCode, 2) << r.err;
         EXPECT_NE(r.err.find(c.location), std::string::npos) << r.err;
         EXPECT_NE(r.err.find(c.names), std::string::npos) << r.err;
@@ -177,7 +177,8 @@ TEST(Confine, EscapingScenesAreRefusedWithTheDirectiveLocation) {
         EXPECT_FALSE(fs::exists(root / "confined.png"));
 
         // The same scene without --confine: read as before.
-        RunResult u = RunPrism("render scene/" + c.scene + " -o free.png -q", root);
+        RunResult u =
+            RunPrism("render scene/" + c.scene + " --res 8x8 --spp 1 -o free.png -q", root);
         if (c.readable) {
             EXPECT_EQ(u.exitCode, 0) << u.err;
             EXPECT_TRUE(fs::exists(root / "free.png"));

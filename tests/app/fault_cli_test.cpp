@@ -54,8 +54,8 @@ std::string Faults(const std::string &faults) {
 class Tmpfs {
   public:
     Tmpfs(const fs::path &dir, const std::string &options) : dir_(dir) {
-        std::string cmd = "mount -t tmpfs -o " + options + " prism-test '" + dir.string() +
-                          "' >/dev/null 2>&1";
+        std::string cmd =
+            "mount -t tmpfs -o " + options + " prism-test '" + dir.string() + "' >/dev/null 2>&1";
         mounted_ = ::geteuid() == 0 && std::system(cmd.c_str()) == 0;
     }
     ~Tmpfs() {
@@ -118,8 +118,8 @@ void ExpectDiskFullKeepsOldImage(const fs::path &dir, const fs::path &outDir,
     const std::string name = "out." + format;
     const std::string old = "the previous image";
     std::ofstream(outDir / name) << old;
-    RunResult r = RunPrism("render s.pbrt --res 64x64 -o '" + (outDir / name).string() + "' -q",
-                           dir, env);
+    RunResult r =
+        RunPrism("render s.pbrt --res 64x64 -o '" + (outDir / name).string() + "' -q", dir, env);
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("cannot write image"), std::string::npos) << r.err;
@@ -131,7 +131,8 @@ TEST(Faults, DiskFullWhileWritingKeepsTheOldImage) {
     fs::path dir = TempDir("full");
     std::ofstream(dir / "s.pbrt") << kScene;
     // The LD_PRELOAD library: writes fail with ENOSPC after 100 bytes.
-    for (const std::string format : {"png", "exr"}) {
+    for (const char *fmt : {"png", "exr"}) {
+        const std::string format = fmt;
         SCOPED_TRACE(format);
         fs::create_directories(dir / format);
         ExpectDiskFullKeepsOldImage(dir, dir / format, Faults("PRISM_FAULT_ENOSPC_AFTER=100"),
@@ -154,7 +155,8 @@ TEST(Faults, DiskFullWhileWritingKeepsTheOldImage) {
 TEST(Faults, SceneFileCutShortWhileReadIsAnError) {
     fs::path dir = TempDir("truncated");
     std::ofstream(dir / "s.pbrt") << kScene;
-    RunResult r = RunPrism("render s.pbrt -o out.png -q", dir, Faults("PRISM_FAULT_TRUNCATE=s.pbrt"));
+    RunResult r =
+        RunPrism("render s.pbrt -o out.png -q", dir, Faults("PRISM_FAULT_TRUNCATE=s.pbrt"));
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find("s.pbrt: error: cannot open file \"s.pbrt\": the file changed while it "
                          "was read"),
@@ -174,7 +176,8 @@ TEST(Faults, SceneFileCutShortWhileReadIsAnError) {
 TEST(Faults, BatchReportsARenderKilledBySigkillAndGoesOn) {
     fs::path dir = TempDir("killed");
     fs::create_directories(dir / "in");
-    for (const char *name : {"a.pbrt", "killme.pbrt", "c.pbrt"}) std::ofstream(dir / "in" / name) << kScene;
+    for (const char *name : {"a.pbrt", "killme.pbrt", "c.pbrt"})
+        std::ofstream(dir / "in" / name) << kScene;
     RunResult r = RunPrism("batch in -o out -q", dir, Faults("PRISM_FAULT_KILL=killme"));
     EXPECT_EQ(r.exitCode, 2) << r.err;
     std::string report = ReadFile(dir / "out/report.json");
@@ -195,10 +198,10 @@ TEST(Faults, BatchReportsARenderKilledBySigkillAndGoesOn) {
 TEST(Faults, MaxMemorySmallerThanTheSceneIsRefusedBeforeWork) {
     fs::path dir = TempDir("memory");
     std::ofstream(dir / "s.pbrt") << kScene;
-    for (const std::string cmd :
+    for (const char *cmd :
          {"render s.pbrt -o out.png -q", "info s.pbrt", "validate s.pbrt --out v -q"}) {
         SCOPED_TRACE(cmd);
-        RunResult r = RunPrism(cmd + " --max-memory 1K", dir);
+        RunResult r = RunPrism(std::string(cmd) + " --max-memory 1K", dir);
         EXPECT_EQ(r.exitCode, 2) << r.err;
         EXPECT_NE(r.err.find("memory budget of 1.0 KiB (--max-memory)"), std::string::npos)
             << r.err;

@@ -111,5 +111,62 @@ TEST(FileIo, PathHelpers) {
     EXPECT_TRUE(fs::path(CanonicalPath("relative")).is_absolute());
 }
 
+// --confine's policy: inside the folder after symlinks, regular files only; restored when the
+// scope ends; ReadFileOrThrow's message names the file, where it resolves and the folder.
+TEST(FileIo, ReadConfinement) {
+    fs::path root = TempPath("confine");
+    fs::remove_all(root);
+    fs::create_directories(root / "in/sub");
+    std::ofstream(root / "in/sub/ok.txt") << "ok";
+    std::ofstream(root / "out.txt") << "secret";
+    fs::create_symlink("../out.txt", root / "in/link.txt");
+    fs::create_symlink("sub/ok.txt", root / "in/inner_link.txt");
+    ASSERT_EQ(::mkfifo((root / "in/fifo").c_str(), 0600), 0);
+    std::string text;
+    FileReadError err;
+    {
+        ScopedReadConfinement confine((root / "in").string());
+        EXPECT_EQ(ReadConfinementFolder(), CanonicalPath((root / "in").string()));
+        EXPECT_TRUE(ReadFileContents((root / "in/sub/ok.txt").string(), &text, &err));
+        EXPECT_TRUE(ReadFileContents((root / "in/inner_link.txt").string(), &text, &err));
+        EXPECT_TRUE(ReadFileContents((root / "in/sub/../sub/ok.txt").string(), &text, &err));
+        for (const std::string &bad :
+             {(root / "out.txt").string(), (root / "in/../out.txt").string(),
+              (root / "in/link.txt").string(), std::string("/dev/zero"),
+              std::string("/proc/self/environ")}) {
+            SCOPED_TRACE(bad);
+            EXPECT_FALSE(ReadFileContents(bad, &text, &err));
+            EXPECT_TRUE(err.refused);
+            EXPECT_NE(err.reason.find("outside the confined folder"), std::string::npos)
+                << err.reason;
+        }
+        EXPECT_FALSE(ReadFileContents((root / "in/fifo").string(), &text, &err));
+        EXPECT_TRUE(err.refused);
+        EXPECT_NE(err.reason.find("not a regular file"), std::string::npos) << err.reason;
+        // A missing file inside is not refused: opening it fails as usual.
+        EXPECT_FALSE(ReadFileContents((root / "in/missing").string(), &text, &err));
+        EXPECT_FALSE(err.refused);
+        try {
+            ReadFileOrThrow((root / "in/link.txt").string(), FileLoc{"a.pbrt", 3, 1});
+            FAIL() << "not refused";
+        } catch (const SceneError &e) {
+            EXPECT_EQ(e.Loc().line, 3);
+            EXPECT_NE(e.Message().find("link.txt"), std::string::npos) << e.Message();
+            EXPECT_NE(
+                e.Message().find("resolves to \"" + CanonicalPath((root / "out.txt").string())),
+                std::string::npos)
+                << e.Message();
+        }
+        EXPECT_THROW(CheckReadConfinement((root / "out.txt").string(), FileLoc{"a.pbrt", 1, 1},
+                                          "texture file", "../out.txt"),
+                     SceneError);
+        EXPECT_NO_THROW(CheckReadConfinement((root / "in/sub/ok.txt").string(), FileLoc{},
+                                             "texture file", "ok.txt"));
+    }
+    EXPECT_EQ(ReadConfinementFolder(), "");
+    EXPECT_TRUE(ReadFileContents((root / "in/link.txt").string(), &text, &err)) << err.reason;
+    EXPECT_EQ(text, "secret");
+}
+
 }  // namespace
 }  // namespace prism

@@ -39,7 +39,9 @@ static long long Allowance(int fd, size_t n) {
 
 size_t fwrite(const void *ptr, size_t size, size_t count, FILE *stream) {
     static size_t (*real)(const void *, size_t, size_t, FILE *) = nullptr;
-    if (!real) real = reinterpret_cast<size_t (*)(const void *, size_t, size_t, FILE *)>(dlsym(RTLD_NEXT, "fwrite"));
+    if (!real)
+        real = reinterpret_cast<size_t (*)(const void *, size_t, size_t, FILE *)>(
+            dlsym(RTLD_NEXT, "fwrite"));
     size_t bytes = size * count;
     long long allowed = size ? Allowance(fileno(stream), bytes) : -1;
     if (allowed < 0) return real(ptr, size, count, stream);
@@ -55,7 +57,8 @@ size_t fwrite(const void *ptr, size_t size, size_t count, FILE *stream) {
 
 ssize_t write(int fd, const void *buf, size_t n) {
     static ssize_t (*real)(int, const void *, size_t) = nullptr;
-    if (!real) real = reinterpret_cast<ssize_t (*)(int, const void *, size_t)>(dlsym(RTLD_NEXT, "write"));
+    if (!real)
+        real = reinterpret_cast<ssize_t (*)(int, const void *, size_t)>(dlsym(RTLD_NEXT, "write"));
     long long allowed = Allowance(fd, n);
     if (allowed < 0) return real(fd, buf, n);
     if (allowed == 0) {
@@ -80,8 +83,7 @@ ssize_t read(int fd, void *buf, size_t n) {
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
     struct stat st;
-    if (strcmp(base, name) != 0 || fstat(fd, &st) != 0 || st.st_size < 2)
-        return real(fd, buf, n);
+    if (strcmp(base, name) != 0 || fstat(fd, &st) != 0 || st.st_size < 2) return real(fd, buf, n);
     g_truncated = 1;
     size_t half = (size_t)st.st_size / 2;
     ssize_t r = real(fd, buf, n < half ? n : half);
