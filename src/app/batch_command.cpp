@@ -4,6 +4,7 @@
 // report.json and summary.txt are rewritten (atomically) after every scene.
 #include <fmt/core.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -48,6 +49,9 @@ struct Job {
     // The child's own phases, from its statistics line; negative when it printed none.
     double parseSeconds = -1, setupSeconds = -1, bvhSeconds = -1, renderSeconds = -1;
     int exitCode = 0;
+    long peakRssKiB = -1;
+    double endSeconds = -1;  // when it finished, from the batch's start (the soak's clock)  // the
+                             // render process's peak resident memory (wait4), -1: unknown
     std::vector<std::string> warnings;
     std::string error;
     pid_t pid = -1;
@@ -153,6 +157,9 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
             "\"seconds\": {:.3f}, \"exit_code\": {}, \"error\": \"{}\", ",
             JsonEscape(j.scene), JsonEscape(j.output), j.status, j.seconds, j.exitCode,
             JsonEscape(j.error));
+        if (j.peakRssKiB >= 0)
+            json += fmt::format("\"peak_rss_kib\": {}, \"end_seconds\": {:.3f}, ", j.peakRssKiB,
+                                j.endSeconds);
         if (j.renderSeconds >= 0)
             json += fmt::format(
                 "\"phases\": {{\"parse\": {:.3f}, \"setup\": {:.3f}, \"bvh\": {:.3f}, "
@@ -235,8 +242,9 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     j.status = "running";
 }
 
-void Finish(Job &j, int status) {
+void Finish(Job &j, int status, const struct rusage &usage) {
     j.seconds = SecondsSince(j.start);
+    j.peakRssKiB = usage.ru_maxrss;
     std::ifstream log(j.logPath);
     std::string line;
     while (std::getline(log, line)) {
@@ -321,7 +329,8 @@ int RunBatch(const BatchArgs &a) {
         }
         if (running == 0) break;
         int status = 0;
-        pid_t pid = waitpid(-1, &status, 0);
+        struct rusage usage {};
+        pid_t pid = wait4(-1, &status, 0, &usage);
         if (pid < 0) {
             if (errno == EINTR) {
                 // Forward the interrupt to running renders; they stop without writing.
@@ -333,13 +342,20 @@ int RunBatch(const BatchArgs &a) {
         }
         for (Job &j : jobs) {
             if (j.pid != pid) continue;
-            Finish(j, status);
+            Finish(j, status, usage);
+            j.endSeconds = SecondsSince(batchStart);
             --running;
             if (!a.quiet)
                 std::fprintf(stderr, "batch: %s %s (%.1fs)%s%s\n", j.status.c_str(),
                              j.scene.c_str(), j.seconds, j.error.empty() ? "" : ": ",
                              j.error.c_str());
-            WriteReports(a.outDir, jobs, SecondsSince(batchStart));
+            // A full disk must not stop the batch: the previous report stays (atomic
+            // writes) and the next scene tries again; the final write below must succeed.
+            try {
+                WriteReports(a.outDir, jobs, SecondsSince(batchStart));
+            } catch (const std::runtime_error &e) {
+                std::fprintf(stderr, "warning: %s; the batch goes on\n", e.what());
+            }
         }
     }
     sigaction(SIGINT, &old, nullptr);
