@@ -16,6 +16,7 @@
 #include "core/file_io.h"
 #include "core/memory.h"
 #include "image/image_io.h"
+#include "scene/scene_description.h"
 
 namespace prism {
 
@@ -164,6 +165,18 @@ std::string ConfinementFolderFor(const ConfineOption &confine, const std::string
     if (!std::filesystem::is_directory(dir, ec))
         throw UsageError("--confine: " + Quote(dir) + " is not a folder");
     return dir;
+}
+
+void CheckOutputConfinement(const std::string &out, const SceneEntity &film) {
+    const std::string folder = ReadConfinementFolder();
+    if (folder.empty()) return;
+    std::filesystem::path rel =
+        std::filesystem::path(CanonicalPath(out)).lexically_relative(folder);
+    if (!rel.empty() && *rel.begin() != "..") return;
+    const Param *p = film.params.Find("filename");
+    throw SceneError(p ? p->loc : film.loc, "Film \"filename\" " + Quote(out) +
+                                                " is outside the confined folder " + Quote(folder) +
+                                                "; give the output with -o");
 }
 
 std::vector<std::string> NormalizeConfineArgs(int argc, char **argv) {

@@ -18,6 +18,8 @@ class Option;
 
 namespace prism {
 
+struct SceneEntity;
+
 // Runs a command, turning exceptions into messages and exit statuses: SceneError and
 // UsageError → 2, anything else → 1.
 int RunGuarded(const std::function<int()> &fn);
@@ -50,6 +52,9 @@ void AddConfineOption(CLI::App *cmd, ConfineOption *confine);
 // The folder reads of `scene` are confined to ("" when --confine is not given); a DIR that is
 // not a folder is a UsageError.
 std::string ConfinementFolderFor(const ConfineOption &confine, const std::string &scene);
+// Under --confine (a ScopedReadConfinement in force): the Film's "filename" `out` must resolve
+// inside the confined folder too, else a SceneError at the parameter (give -o instead).
+void CheckOutputConfinement(const std::string &out, const SceneEntity &film);
 // The arguments after argv[0] for CLI11, with each "--confine" that is not followed by a
 // folder moved to the end, so that `--confine scene.pbrt` does not take the scene as its DIR.
 std::vector<std::string> NormalizeConfineArgs(int argc, char **argv);

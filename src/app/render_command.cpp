@@ -170,7 +170,11 @@ int RunRender(const RenderArgs &a) {
     double setupSeconds = SecondsSince(t1) - scene.buildSeconds;
 
     std::string out = a.output;
-    if (out.empty()) out = scene.outputFilename;
+    if (out.empty()) {
+        out = scene.outputFilename;
+        // An untrusted scene names no output outside the confined folder either.
+        if (!out.empty()) CheckOutputConfinement(out, desc.film);
+    }
     if (out.empty()) out = std::filesystem::path(a.scene).stem().string() + ".png";
     CheckOutputPath(out);  // before rendering: a long render must not fail at the end
 

@@ -314,8 +314,22 @@ Image ReadImageFile(const std::string &path, const ReadImageOptions &opts, bool 
     auto fail = [&](const std::string &why) {
         return std::runtime_error("cannot read image " + Quote(path) + ": " + why);
     };
-    // --confine (core/file_io.h): the image must resolve to a regular file inside the folder.
+    // --confine (core/file_io.h): the image must resolve to a regular file inside the folder,
+    // and is read through ReadFileContents (checked again on the opened file) and decoded from
+    // memory, so that no decoder opens the path again after the check.
     if (std::string why = ReadConfinementRefusal(path); !why.empty()) throw fail(why);
+    if (!ReadConfinementFolder().empty()) {
+        std::vector<unsigned char> bytes;
+        FileReadError err;
+        // An encoded file larger than its decoded float pixels may be would be odd.
+        uint64_t limit = std::max<uint64_t>(uint64_t(std::max<int64_t>(opts.maxPixels, 0)) * 4,
+                                            uint64_t(16) << 20);
+        if (!ReadFileContents(path, &bytes, &err, limit))
+            throw fail(err.tooLarge ? "the file is larger than " + std::to_string(limit) +
+                                          " bytes, more than its pixels may take"
+                                    : err.reason);
+        return ReadImageFromMemory(bytes, path, opts);
+    }
     std::optional<QuietStderr> quiet;
     if (opts.quietDecoders) quiet.emplace();
     std::error_code ec;

@@ -221,6 +221,31 @@ TEST(Confine, AnExplicitFolderAllowsWhatLiesInsideIt) {
     EXPECT_NE(r.err.find("is not a folder"), std::string::npos) << r.err;
 }
 
+// The Film's "filename" names the output when -o is not given (relative to the working
+// directory, as in pbrt-v3): under --confine it must lie inside the folder too.
+TEST(Confine, FilmFilenameOutsideTheFolderIsRefused) {
+    fs::path root = TempDir("film");
+    fs::create_directories(root / "scene");
+    std::string head = kPbrtHead;
+    std::string evil = head;
+    evil.replace(evil.find("Film \"image\""), 12,
+                 "Film \"image\" \"string filename\" \"stolen.png\"");
+    std::ofstream(root / "scene/evil.pbrt") << evil << "Shape \"sphere\"\n";
+    RunResult r = RunPrism("render scene/evil.pbrt --confine -q", root);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("scene/evil.pbrt:3:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("outside the confined folder"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(root / "stolen.png"));
+    // -o decides: the Film's name is not used.
+    r = RunPrism("render scene/evil.pbrt --confine -o mine.png -q", root);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(root / "mine.png"));
+    // Without --confine the scene's name is used as before.
+    r = RunPrism("render scene/evil.pbrt -q", root);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(root / "stolen.png"));
+}
+
 TEST(Confine, BatchConfinesEachSceneToItsOwnFolder) {
     fs::path root = TempDir("batch");
     WriteCorpus(root);
