@@ -152,6 +152,39 @@ TEST(Faults, DiskFullWhileWritingKeepsTheOldImage) {
     ExpectDiskFullKeepsOldImage(dir, dir / "tmpfs", "", "png");
 }
 
+// A batch whose output disk fills up: renders that cannot write fail with the reason, reports
+// that cannot be rewritten are warnings, and every image that was written stays complete.
+TEST(Faults, BatchOnAFillingDiskKeepsWhatItWrote) {
+    fs::path dir = TempDir("batchfull");
+    fs::create_directories(dir / "in");
+    for (int i = 0; i < 24; ++i) {
+        std::string name = "s";  // built step by step: GCC 12 warns on "s" + std::string + ...
+        name += std::to_string(100 + i);
+        name += ".pbrt";
+        std::ofstream(dir / "in" / name) << kScene;
+    }
+    fs::create_directories(dir / "out");
+    Tmpfs full(dir / "out", "size=48k");
+    if (!full.Mounted()) GTEST_SKIP() << "a tmpfs cannot be mounted here";
+    RunResult r = RunPrism("batch in -o out --res 64x64 -q", dir);
+    EXPECT_NE(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+    int images = 0;
+    for (const auto &e : fs::directory_iterator(dir / "out")) {
+        std::string name = e.path().filename().string();
+        EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+        if (e.path().extension() != ".png") continue;
+        ++images;
+        // A complete PNG ends with its IEND chunk.
+        std::string png = ReadFile(e.path());
+        ASSERT_GE(png.size(), 12u) << name;
+        EXPECT_EQ(png.substr(png.size() - 8, 4), "IEND") << name;
+    }
+    EXPECT_GT(images, 0);
+    EXPECT_LT(images, 24);
+    EXPECT_TRUE(fs::exists(dir / "out/report.json"));
+}
+
 TEST(Faults, SceneFileCutShortWhileReadIsAnError) {
     fs::path dir = TempDir("truncated");
     std::ofstream(dir / "s.pbrt") << kScene;
