@@ -105,7 +105,7 @@ struct ShapeBuilder : BuildStep {
         }
         unsigned mask = VisibilityMask(s);
         if (mask == 0) return -1;  // alpha 0: cut out entirely
-        if (motion) AddMotion(geom, *motion, renderFromObject);
+        if (motion) AddMotion(s, geom, *motion, renderFromObject);
         int material = materials.MaterialForShape(s);
         s.params.ReportUnused(diag, "shape " + Quote(s.type));
         int index;
@@ -128,13 +128,18 @@ struct ShapeBuilder : BuildStep {
 
     // Motion blur: an analytic shape interpolates its transform per ray; a mesh gets Embree
     // time steps (vertices moved by the motion relative to the shutter's opening).
-    void AddMotion(ShapeGeometry &geom, const AnimatedTransform &motion,
+    void AddMotion(const ShapeDesc &s, ShapeGeometry &geom, const AnimatedTransform &motion,
                    const Transform &renderFromObject) {
         if (geom.analytic) {
             geom.analytic->SetMotion(motion);
             return;
         }
         const int n = MotionTimeSteps(motion);
+        // Each step after the first holds the positions (and normals) again.
+        const TriangleMesh &m = *geom.mesh;
+        budget.Charge(uint64_t(n - 1) * ((3 * m.NumVertices() + 1) * sizeof(float) +
+                                         (m.HasNormals() ? m.NumVertices() * sizeof(Vec3f) : 0)),
+                      "shape " + Quote(s.type) + " motion steps", s.loc);
         const Transform startFromRender = renderFromObject.Inverse();
         std::vector<Transform> steps;
         for (int k = 1; k < n; ++k)

@@ -110,8 +110,8 @@ bool Decompose(const Matrix4 &m, Vec3d *T, Quaternion *R, Matrix4 *S) {
     return true;
 }
 
-AnimatedTransform::AnimatedTransform(const Transform &start, double startTime,
-                                     const Transform &end, double endTime)
+AnimatedTransform::AnimatedTransform(const Transform &start, double startTime, const Transform &end,
+                                     double endTime)
     : start_(start), end_(end), startTime_(startTime), endTime_(endTime) {
     if (!(endTime >= startTime))
         throw std::invalid_argument("end time " + std::to_string(endTime) +

@@ -145,7 +145,8 @@ TEST(AnimatedTransform, TimeStepsFollowTheRotation) {
     double worst = 0;
     for (int k = 0; k + 1 < n; ++k) {
         double t0 = double(k) / (n - 1), t1 = double(k + 1) / (n - 1);
-        Vec3d a = r.Interpolate(t0).Point(Vec3d(1, 0, 0)), b = r.Interpolate(t1).Point(Vec3d(1, 0, 0));
+        Vec3d a = r.Interpolate(t0).Point(Vec3d(1, 0, 0)),
+              b = r.Interpolate(t1).Point(Vec3d(1, 0, 0));
         Vec3d mid = r.Interpolate((t0 + t1) / 2).Point(Vec3d(1, 0, 0));
         worst = std::max(worst, Length(mid - (a + b) * 0.5));
     }

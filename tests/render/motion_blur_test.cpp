@@ -86,9 +86,9 @@ const char *MovingSphere =
 TEST(MotionBlur, MovingSphereLeavesTheStreakPredicted) {
     Rendered r = RenderText(Header() + MovingSphere, "streak");
     EXPECT_TRUE(r.scene.features.effects.Has(Effect::MotionBlur));
-    EXPECT_NE(r.scene.features.effects.reasons[size_t(Effect::MotionBlur)].find(
-                  "ActiveTransform at "),
-              std::string::npos);
+    EXPECT_NE(
+        r.scene.features.effects.reasons[size_t(Effect::MotionBlur)].find("ActiveTransform at "),
+        std::string::npos);
     const Image &img = r.image;
     // The centre rows: the streak runs from x = -2.5 to 2.5 (5 units, 40 pixels), with a
     // plateau of 2r / 4 = 1/4 and linear ramps r wide... over the ends where the sphere enters
@@ -210,8 +210,8 @@ TEST(MotionBlur, StillSceneIsIdenticalWhateverTheShutter) {
                    "still_shutter");
     EXPECT_FALSE(shutter.scene.features.effects.Has(Effect::MotionBlur));
     EXPECT_TRUE(SameImage(plain.image, shutter.image));
-    Rendered noop = RenderText(header("") + "TransformTimes 0 2\nActiveTransform All\n" + scene,
-                               "still_noop");
+    Rendered noop =
+        RenderText(header("") + "TransformTimes 0 2\nActiveTransform All\n" + scene, "still_noop");
     EXPECT_FALSE(noop.scene.features.effects.Has(Effect::MotionBlur));
     EXPECT_TRUE(SameImage(plain.image, noop.image));
     // A sphere moving far behind the camera: motion blur is on, the image the same.
@@ -230,6 +230,29 @@ TEST(MotionBlur, StillSceneIsIdenticalWhateverTheShutter) {
         "still_after");
     EXPECT_FALSE(before.scene.features.effects.Has(Effect::MotionBlur));
     EXPECT_TRUE(SameImage(plain.image, before.image));
+}
+
+// scenes/distribution.pbrt (the gallery's showcase) loads without a warning and calls for
+// motion blur (its ActiveTransform), depth of field and glossy rays; a small render of it is
+// finite everywhere and the moving ball is there.
+TEST(MotionBlur, DistributionSceneShowsEveryEffect) {
+    Diagnostics diag(false);
+    SceneDescription desc =
+        LoadScene(std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/distribution.pbrt", diag);
+    BuildSettings opts;
+    opts.resolution = {64, 40};
+    opts.spp = 4;
+    RenderScene scene = BuildRenderScene(desc, opts, diag);
+    EXPECT_EQ(diag.Warnings().size(), 0u);
+    EXPECT_TRUE(scene.features.effects.Has(Effect::MotionBlur));
+    EXPECT_NE(
+        scene.features.effects.reasons[size_t(Effect::MotionBlur)].find("ActiveTransform at "),
+        std::string::npos);
+    EXPECT_TRUE(scene.features.lens);
+    RenderStats stats;
+    Image img = Render(scene, &stats);
+    EXPECT_EQ(stats.nonFiniteSamples, 0u);
+    EXPECT_GT(stats.rays.glossy, 0u);
 }
 
 std::string ErrorOf(const std::string &text, const std::string &name) {
