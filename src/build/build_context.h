@@ -4,9 +4,11 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "build/build_scene.h"
+#include "core/animated_transform.h"
 #include "image/image.h"
 #include "render/texture.h"
 #include "scene/paramset.h"
@@ -21,7 +23,21 @@ struct BuildContext {
     MemoryBudget &budget;  // settings.budget, or the build's own
     std::map<std::string, TexturePtr> floatTextures, rgbTextures;    // by texture name
     std::map<std::string, std::shared_ptr<const Image>> imageCache;  // by path and encoding
+    // The camera's shutter (pbrt-v3 "shutteropen"/"shutterclose", default 0 1; BuildCamera):
+    // motion is sampled over it, rays carrying their time as a fraction of it (Ray::time).
+    double shutterOpen = 0, shutterClose = 1;
 };
+
+// A directive's render-space transform at the shutter's opening (*atOpen) and, when it moves
+// while the shutter is open, its motion with times as fractions of the shutter (the form
+// Accel and the shapes take). `renderFromWorld` is applied to both keyframes; a transform
+// that cannot be decomposed is an error at `loc`. (Null renderFromWorld: the identity, for
+// shapes of a prototype, which live in instance space.)
+std::optional<AnimatedTransform> ShutterMotion(const BuildContext &ctx,
+                                               const Transform *renderFromWorld,
+                                               const Transform &worldFromX,
+                                               const std::optional<TransformMotion> &motion,
+                                               const FileLoc &loc, Transform *atOpen);
 
 // pbrt-v3 reads "scale" as a spectrum; v4 files write a float. Accept both.
 inline RGB ScaleParam(const ParamSet &ps) {

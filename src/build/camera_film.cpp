@@ -96,17 +96,46 @@ void BuildCamera(BuildContext &ctx) {
     scene.features.lens = params.lensRadius > 0;
     const Vec2i res = scene.resolution;
     double frame = cp.GetFloat("frameaspectratio", float(double(res.x) / res.y));
-    WarnIgnored(cp, {"shutteropen", "shutterclose"}, diag, "camera", "no motion blur");
+    // pbrt-v3: the shutter is open from "shutteropen" to "shutterclose" (default 0 1); a
+    // reversed pair is swapped with a warning.
+    double open = cp.GetFloat("shutteropen", 0.f), close = cp.GetFloat("shutterclose", 1.f);
+    if (!std::isfinite(open) || !std::isfinite(close)) {
+        const Param *p = cp.Find("shutteropen");
+        throw SceneError(p ? p->loc : cd.loc, "camera shutter times must be finite");
+    }
+    if (close < open) {
+        const Param *p = cp.Find("shutterclose");
+        diag.Warn(p ? p->loc : cd.loc, "camera shutterclose " + std::to_string(close) +
+                                           " is before shutteropen " + std::to_string(open) +
+                                           "; swapping them (as pbrt-v3)");
+        std::swap(open, close);
+    }
+    ctx.shutterOpen = open;
+    ctx.shutterClose = close;
     cp.ReportUnused(diag, "camera");
 
     Transform worldFromCamera = cd.cameraFromWorld.Inverse();
+    std::optional<TransformMotion> motion;  // a moving camera: worldFromCamera at the end
+    if (cd.motion && !settings.worldFromCamera)
+        motion = TransformMotion{cd.motion->end.Inverse(), cd.motion->startTime, cd.motion->endTime,
+                                 cd.motion->loc};
     if (settings.worldFromCamera) worldFromCamera = *settings.worldFromCamera;
     // Render in camera-centred world space (pbrt-v4 "cameraworld"): far-away scenes keep
-    // full float precision near the viewer.
+    // full float precision near the viewer (the viewer at the shutter's opening).
+    Transform renderFromCamera;
+    std::optional<AnimatedTransform> moving =
+        ShutterMotion(ctx, nullptr, worldFromCamera, motion, cd.loc, &renderFromCamera);
+    worldFromCamera = renderFromCamera;  // at the shutter's opening (still world space here)
     Vec3d eye = worldFromCamera.Point(Vec3d(0, 0, 0));
     scene.renderFromWorld = settings.cameraRelative ? Translate(-eye) : Transform();
     scene.camera = std::make_unique<Camera>(params, scene.renderFromWorld * worldFromCamera,
                                             scene.resolution, frame);
+    if (moving) {
+        // The same motion in render space (its keyframes translated like the world).
+        scene.camera->SetMotion(
+            AnimatedTransform(scene.renderFromWorld * moving->Start(), moving->StartTime(),
+                              scene.renderFromWorld * moving->End(), moving->EndTime()));
+    }
 }
 
 void BuildSampler(BuildContext &ctx) {

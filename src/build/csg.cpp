@@ -27,6 +27,10 @@ struct CsgBuilder : BuildStep {
         if (s.areaLight >= 0)
             diag.Warn(s.loc,
                       "area lights on CSG operands are not supported; the shape does not emit");
+        if (s.motion)
+            diag.Warn(s.loc,
+                      "motion blur of CSG operands is not supported; the operand stays "
+                      "where its start transform puts it");
         for (const char *n : {"alpha", "shadowalpha"})
             if (s.params.Has(n)) {
                 diag.Warn(s.loc, std::string("\"") + n + "\" is ignored on CSG operands");

@@ -11,6 +11,34 @@
 
 namespace prism {
 
+std::optional<AnimatedTransform> ShutterMotion(const BuildContext &ctx,
+                                               const Transform *renderFromWorld,
+                                               const Transform &worldFromX,
+                                               const std::optional<TransformMotion> &motion,
+                                               const FileLoc &loc, Transform *atOpen) {
+    auto toRender = [&](const Transform &t) { return renderFromWorld ? *renderFromWorld * t : t; };
+    if (!motion) {
+        *atOpen = toRender(worldFromX);
+        return std::nullopt;
+    }
+    AnimatedTransform anim;
+    try {
+        anim = AnimatedTransform(toRender(worldFromX), motion->startTime, toRender(motion->end),
+                                 motion->endTime);
+    } catch (const std::invalid_argument &e) {
+        throw SceneError(loc, std::string("motion: ") + e.what());
+    }
+    if (!anim.MovesDuring(ctx.shutterOpen, ctx.shutterClose)) {
+        // Still while the shutter is open (or the shutter takes no time): one transform.
+        *atOpen = anim.Interpolate(ctx.shutterOpen);
+        return std::nullopt;
+    }
+    AnimatedTransform shutter = anim.Remapped(ctx.shutterOpen, ctx.shutterClose);
+    *atOpen = shutter.Interpolate(0);
+    ctx.scene.features.effects.Enable(Effect::MotionBlur, "ActiveTransform", motion->loc);
+    return shutter;
+}
+
 namespace {
 
 // What the BVH estimate (core/memory.h EstimateBvhBytes) counts in an Accel: the triangles of
@@ -55,7 +83,8 @@ struct ShapeBuilder : BuildStep {
     // Creates the geometry of one shape and adds it to `accel`; records its ShapeInfo in
     // `infos` (by accel shape index). Returns the shape index, or -1 if skipped.
     int AddShapeTo(Accel &accel, std::vector<ShapeInfo> &infos, const ShapeDesc &s,
-                   const Transform &renderFromObject) {
+                   const Transform &renderFromObject,
+                   const std::optional<AnimatedTransform> &motion = std::nullopt) {
         ShapeFactoryContext fctx{desc, diag, settings.precision, &budget};
         ShapeGeometry geom = CreateShapeGeometry(s, renderFromObject, fctx);
         if (!geom.mesh && !geom.analytic) return -1;           // skipped with a warning
@@ -76,6 +105,7 @@ struct ShapeBuilder : BuildStep {
         }
         unsigned mask = VisibilityMask(s);
         if (mask == 0) return -1;  // alpha 0: cut out entirely
+        if (motion) AddMotion(s, geom, *motion, renderFromObject);
         int material = materials.MaterialForShape(s);
         s.params.ReportUnused(diag, "shape " + Quote(s.type));
         int index;
@@ -96,8 +126,38 @@ struct ShapeBuilder : BuildStep {
         return index;
     }
 
-    void AddShape(const ShapeDesc &s, const Transform &renderFromObject) {
-        int index = AddShapeTo(*scene.accel, scene.shapes, s, renderFromObject);
+    // Motion blur: an analytic shape interpolates its transform per ray; a mesh gets Embree
+    // time steps (vertices moved by the motion relative to the shutter's opening).
+    void AddMotion(const ShapeDesc &s, ShapeGeometry &geom, const AnimatedTransform &motion,
+                   const Transform &renderFromObject) {
+        if (geom.analytic) {
+            geom.analytic->SetMotion(motion);
+            return;
+        }
+        const int n = MotionTimeSteps(motion);
+        // Each step after the first holds the positions (and normals) again.
+        const TriangleMesh &m = *geom.mesh;
+        budget.Charge(uint64_t(n - 1) * ((3 * m.NumVertices() + 1) * sizeof(float) +
+                                         (m.HasNormals() ? m.NumVertices() * sizeof(Vec3f) : 0)),
+                      "shape " + Quote(s.type) + " motion steps", s.loc);
+        const Transform startFromRender = renderFromObject.Inverse();
+        std::vector<Transform> steps;
+        for (int k = 1; k < n; ++k)
+            steps.push_back(motion.Interpolate(double(k) / (n - 1)) * startFromRender);
+        geom.mesh->SetMotionSteps(steps);
+    }
+
+    void AddShape(const ShapeDesc &s) {
+        Transform renderFromObject;
+        std::optional<AnimatedTransform> motion = ShutterMotion(
+            ctx, &scene.renderFromWorld, s.worldFromObject, s.motion, s.loc, &renderFromObject);
+        int index = AddShapeTo(*scene.accel, scene.shapes, s, renderFromObject, motion);
+        if (index >= 0 && s.areaLight >= 0 && motion) {
+            diag.Warn(s.loc,
+                      "area lights on moving shapes are not supported (as in pbrt-v3); the "
+                      "shape does not emit");
+            return;
+        }
         if (index >= 0 && s.areaLight >= 0)
             if (const AreaLightDesc *a = AddAreaLight(ctx, s, index)) usedAreaLights.push_back(a);
     }
@@ -146,7 +206,10 @@ struct ShapeBuilder : BuildStep {
                     diag.Warn(s.loc,
                               "area lights inside object instances are not supported (as in "
                               "pbrt-v3); the shape does not emit");
-                AddShapeTo(*proto, infos, s, s.worldFromObject);
+                Transform instFromObject;
+                std::optional<AnimatedTransform> motion = ShutterMotion(
+                    ctx, nullptr, s.worldFromObject, s.motion, s.loc, &instFromObject);
+                AddShapeTo(*proto, infos, s, instFromObject, motion);
             }
             // The prototype's BVH, once however many instances use it (the fixed part of the
             // estimate is charged once, with the top level).
@@ -160,8 +223,12 @@ struct ShapeBuilder : BuildStep {
                      .first;
         }
         if (it->second.first->NumShapes() == 0) return;
-        int index = scene.accel->AddInstance(it->second.first,
-                                             scene.renderFromWorld * inst.worldFromInstance);
+        Transform renderFromInstance;
+        std::optional<AnimatedTransform> motion =
+            ShutterMotion(ctx, &scene.renderFromWorld, inst.worldFromInstance, inst.motion,
+                          inst.loc, &renderFromInstance);
+        int index = motion ? scene.accel->AddInstance(it->second.first, *motion)
+                           : scene.accel->AddInstance(it->second.first, renderFromInstance);
         if (int(scene.shapes.size()) <= index) scene.shapes.resize(size_t(index) + 1);
         ShapeInfo info;
         info.type = "instance";
@@ -178,8 +245,7 @@ struct ShapeBuilder : BuildStep {
         ao.expectedSamples = uint64_t(std::max(0, pb.pMax.x - pb.pMin.x)) *
                              uint64_t(std::max(0, pb.pMax.y - pb.pMin.y)) * uint64_t(scene.spp);
         scene.accel = std::make_unique<Accel>(ao);
-        for (const ShapeDesc &s : desc.shapes)
-            AddShape(s, scene.renderFromWorld * s.worldFromObject);
+        for (const ShapeDesc &s : desc.shapes) AddShape(s);
         for (const InstanceDesc &inst : desc.instances) AddInstance(inst);
         for (const CsgDesc &node : desc.csg) AddCsg(node);
         for (const AreaLightDesc *a : usedAreaLights) a->params.ReportUnused(diag, "area light");

@@ -2,9 +2,12 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include "core/check.h"
@@ -65,10 +68,25 @@ void InitRay(const Ray &r, RTCRay *ray, unsigned mask) {
     ray->dir_z = r.d.z;
     ray->tnear = r.tMin;
     ray->tfar = r.tMax;
-    ray->time = 0;
+    ray->time = r.time;
     ray->mask = mask;  // CameraRays or ShadowRays; a zero mask would hit nothing
     ray->id = 0;
     ray->flags = 0;
+}
+
+// Embree's interpolation of a moving instance's step matrices at `time`, in double.
+Transform InstanceTransformAt(const std::vector<Matrix4> &steps, float time) {
+    const int n = int(steps.size());
+    float ft = time * float(n - 1);
+    int seg = std::clamp(int(std::floor(ft)), 0, n - 2);
+    double f = double(ft - float(seg));
+    Matrix4 m;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            m.m[i][j] = (1 - f) * steps[size_t(seg)].m[i][j] + f * steps[size_t(seg) + 1].m[i][j];
+    Matrix4 inv;
+    if (!m.Inverse(&inv)) return Transform(steps[size_t(seg)]);
+    return Transform(m, inv);
 }
 
 void InitRay16(const Ray &r, int i, unsigned mask, RTCRay16 *ray) {
@@ -80,7 +98,7 @@ void InitRay16(const Ray &r, int i, unsigned mask, RTCRay16 *ray) {
     ray->dir_z[i] = r.d.z;
     ray->tnear[i] = r.tMin;
     ray->tfar[i] = r.tMax;
-    ray->time[i] = 0;
+    ray->time[i] = r.time;
     ray->mask[i] = mask;
     ray->id[i] = unsigned(i);
     ray->flags[i] = 0;
@@ -96,6 +114,9 @@ struct Accel::Impl {
         std::unique_ptr<AnalyticShape> analytic;
         std::shared_ptr<const Accel> prototype;  // instances
         Transform renderFromInstance;
+        // A moving instance: renderFromInstance at each Embree time step (evenly spaced over
+        // the shutter), between which Embree interpolates the matrices linearly.
+        std::vector<Matrix4> instanceSteps;
         unsigned needs = NeedAll;  // SurfaceNeeds of the shape's material
     };
     std::vector<Entry> shapes;
@@ -128,8 +149,13 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask) {
     PRISM_CHECK(!impl_->committed);
     Device &dev = GetDevice();
     RTCGeometry geom = rtcNewGeometry(dev.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                               mesh->PositionData(), 0, 3 * sizeof(float), mesh->NumVertices());
+    // A moving mesh has one vertex buffer per time step (TriangleMesh::SetMotionSteps).
+    const int steps = mesh->NumTimeSteps();
+    if (steps > 1) rtcSetGeometryTimeStepCount(geom, unsigned(steps));
+    for (int k = 0; k < steps; ++k)
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, unsigned(k), RTC_FORMAT_FLOAT3,
+                                   mesh->PositionData(k), 0, 3 * sizeof(float),
+                                   mesh->NumVertices());
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh->IndexData(),
                                0, 3 * sizeof(uint32_t), mesh->NumTriangles());
     rtcSetGeometryMask(geom, mask);
@@ -139,29 +165,46 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask) {
     dev.ThrowIfError("adding a triangle mesh");
     int shape = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, shape);
-    impl_->shapes.push_back({std::move(mesh), nullptr, nullptr, {}});
+    impl_->shapes.push_back({std::move(mesh), nullptr, nullptr, {}, {}});
     return shape;
 }
 
 int Accel::AddInstance(std::shared_ptr<const Accel> prototype,
                        const Transform &renderFromInstance) {
+    return AddInstance(std::move(prototype), AnimatedTransform(renderFromInstance));
+}
+
+int Accel::AddInstance(std::shared_ptr<const Accel> prototype,
+                       const AnimatedTransform &renderFromInstance) {
     PRISM_CHECK(!impl_->committed);
     PRISM_CHECK(prototype && prototype->impl_->committed);
     Device &dev = GetDevice();
     RTCGeometry geom = rtcNewGeometry(dev.device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geom, prototype->impl_->scene);
-    float xfm[12];
-    const Matrix4 &m = renderFromInstance.Matrix();
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 4; ++c) xfm[r * 4 + c] = float(m.m[r][c]);
-    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+    std::vector<Matrix4> steps;
+    if (renderFromInstance.MovesDuring(0, 1)) {
+        int n = MotionTimeSteps(renderFromInstance);
+        for (int k = 0; k < n; ++k)
+            steps.push_back(renderFromInstance.InterpolateMatrix(double(k) / (n - 1)));
+        rtcSetGeometryTimeStepCount(geom, unsigned(n));
+    } else {
+        steps.push_back(renderFromInstance.Interpolate(0).Matrix());
+    }
+    for (size_t k = 0; k < steps.size(); ++k) {
+        float xfm[12];
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) xfm[r * 4 + c] = float(steps[k].m[r][c]);
+        rtcSetGeometryTransform(geom, unsigned(k), RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+    }
     rtcCommitGeometry(geom);
     unsigned id = rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);
     dev.ThrowIfError("adding an instance");
     int index = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, index);
-    impl_->shapes.push_back({nullptr, nullptr, std::move(prototype), renderFromInstance});
+    impl_->shapes.push_back({nullptr, nullptr, std::move(prototype),
+                             renderFromInstance.Interpolate(0),
+                             steps.size() > 1 ? std::move(steps) : std::vector<Matrix4>{}});
     return index;
 }
 
@@ -173,7 +216,7 @@ int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask) {
     dev.ThrowIfError("adding an analytic shape");
     int index = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, index);
-    impl_->shapes.push_back({nullptr, std::move(shape), nullptr, {}});
+    impl_->shapes.push_back({nullptr, std::move(shape), nullptr, {}, {}});
     return index;
 }
 
@@ -248,10 +291,12 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         // Phase 2 in instance space, then back to render space. Normals use the inverse
         // transpose and flip when the instance transform swaps handedness, exactly as if the
         // prototype's shapes had been declared with the combined transform.
-        const Transform &w = e.renderFromInstance;
+        std::optional<Transform> moved;  // a moving instance's transform at the ray's time
+        if (!e.instanceSteps.empty()) moved = InstanceTransformAt(e.instanceSteps, r.time);
+        const Transform &w = moved ? *moved : e.renderFromInstance;
         Transform instFromRender = w.Inverse();
         Ray ri{Vec3f(instFromRender.Point(Vec3d(r.o))), Vec3f(instFromRender.Vector(Vec3d(r.d))),
-               r.tMax, r.tMin};
+               r.tMax, r.tMin, r.time};
         RawHit sub = hit;
         sub.shape = hit.instanceShape;
         sub.instanceShape = -1;
@@ -277,10 +322,11 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         si.shape = hit.shape;
         si.instanceShape = hit.instanceShape;
         si.prim = hit.prim;
+        si.time = r.time;
         return si;
     }
     if (e.mesh) {
-        si = e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d, e.needs);
+        si = e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d, e.needs, r.time);
     } else {
         // Phase 2: the callback's object-space hit (the root routine's full-precision result),
         // or, where it was not recorded (instances), the same root routine run again on the
@@ -288,19 +334,23 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         ObjectHit oh;
         if (hit.hasObject) {
             oh = hit.object;
-        } else if (!e.analytic->Intersect(r.o, r.d, r.tMin, r.tMax, impl_->options.precision,
-                                          &oh)) {
+        } else if (!e.analytic->IntersectAt(r.o, r.d, r.tMin, r.tMax, impl_->options.precision,
+                                            r.time, &oh)) {
             // Cannot happen for a deterministic routine; fall back to the float t.
             oh.t = hit.t;
             Vec3d pW = Vec3d(r.o) + Vec3d(r.d) * double(hit.t);
-            oh.p = e.analytic->RenderFromObject().Inverse().Point(pW);
+            const AnimatedTransform *motion = e.analytic->Motion();
+            oh.p = (motion ? motion->Interpolate(r.time) : e.analytic->RenderFromObject())
+                       .Inverse()
+                       .Point(pW);
             oh.pError = Abs(oh.p) * 1e-6;
         }
-        si = e.analytic->Interaction(oh, r.d, e.needs);
+        si = e.analytic->Interaction(oh, r.d, e.needs, r.time);
         si.t = hit.t;
     }
     si.shape = hit.shape;
     si.prim = hit.prim;
+    si.time = r.time;
     return si;
 }
 

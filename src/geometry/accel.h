@@ -56,13 +56,19 @@ class Accel {
     Accel(const Accel &) = delete;
     Accel &operator=(const Accel &) = delete;
 
-    // Each returns the shape index. Call before Commit().
+    // Each returns the shape index. Call before Commit(). Meshes and analytic shapes that move
+    // (TriangleMesh::SetMotionSteps, AnalyticShape::SetMotion) become Embree motion-blur
+    // geometry; rays then carry their time (Ray::time).
     int AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask = AllRays);
     int AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask = AllRays);
     // An Embree instance of a committed prototype (pbrt ObjectInstance). Embree 3 allows one
     // instance level: prototypes hold meshes and analytic shapes only, and analytic shapes
     // apply their own object transform inside the instance.
     int AddInstance(std::shared_ptr<const Accel> prototype, const Transform &renderFromInstance);
+    // A moving instance (motion blur): times are fractions of the shutter (Ray::time); Embree
+    // interpolates the transform between evenly spaced time steps (MotionTimeSteps).
+    int AddInstance(std::shared_ptr<const Accel> prototype,
+                    const AnimatedTransform &renderFromInstance);
     // The surface data Interaction computes for hits on `shape` (SurfaceNeeds; default all).
     void SetSurfaceNeeds(int shape, unsigned needs);
     // Builds the BVH. Throws std::runtime_error with Embree's message on failure.

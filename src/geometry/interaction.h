@@ -27,21 +27,24 @@ struct SurfaceInteraction {
     int shape = -1;          // index of the shape in the render scene
     int prim = 0;            // primitive within the shape (triangle index; 0 for analytic shapes)
     int instanceShape = -1;  // for hits inside an instance: the shape within the prototype
+    float time = 0;          // the incoming ray's time (Ray::time), inherited by spawned rays
 
-    Ray SpawnRay(const Vec3f &d) const { return {OffsetRayOrigin(p, pError, n, d), d, Infinity}; }
+    Ray SpawnRay(const Vec3f &d) const {
+        return {OffsetRayOrigin(p, pError, n, d), d, Infinity, 0, time};
+    }
     // A shadow ray toward pTo that stops (1 - ShadowEpsilon) of the way there.
     Ray SpawnRayTo(const Vec3f &pTo) const {
         Vec3f o = OffsetRayOrigin(p, pError, n, pTo - p);
-        return {o, pTo - o, 1 - ShadowEpsilon};
+        return {o, pTo - o, 1 - ShadowEpsilon, 0, time};
     }
     // The same with the offset method of the render (RenderScene::offset; the default
     // RayOffset gives exactly the rays above).
     Ray SpawnRay(const Vec3f &d, const RayOffset &off) const {
-        return {SpawnOrigin(p, pError, n, d, off), d, Infinity};
+        return {SpawnOrigin(p, pError, n, d, off), d, Infinity, 0, time};
     }
     Ray SpawnRayTo(const Vec3f &pTo, const RayOffset &off) const {
         Vec3f o = SpawnOrigin(p, pError, n, pTo - p, off);
-        return {o, pTo - o, 1 - ShadowEpsilon};
+        return {o, pTo - o, 1 - ShadowEpsilon, 0, time};
     }
 };
 

@@ -19,6 +19,10 @@ struct Ray {
     Vec3f o, d;
     float tMax = Infinity;
     float tMin = 0;  // only `prism trace` sets it; spawned rays rely on their offset origin
+    // When the ray is traced, as a fraction of the camera's shutter interval in [0, 1) (0:
+    // shutteropen; Embree's RTCRay::time). Camera rays draw it per sample where something
+    // moves (else it stays 0); rays spawned from a hit inherit it.
+    float time = 0;
     Vec3f At(float t) const { return o + d * t; }
 };
 

@@ -1,8 +1,11 @@
 #include "geometry/shape.h"
 
 #include <cmath>
+#include <optional>
 
 namespace prism {
+
+static Bounds3f PaddedBounds(const Bounds3d &b);
 
 template <typename Real>
 static Affine3<Real> ToAffine(const Matrix4 &m) {
@@ -22,7 +25,34 @@ AnalyticShape::AnalyticShape(const Transform &renderFromObject, bool reverseOrie
       objectFromRenderD_(ToAffine<double>(renderFromObject.InverseMatrix())) {}
 
 Bounds3f AnalyticShape::RenderBounds() const {
-    Bounds3d b = renderFromObject_.Bounds(ObjectBounds());
+    return PaddedBounds(renderFromObject_.Bounds(ObjectBounds()));
+}
+
+void AnalyticShape::SetMotion(const AnimatedTransform &renderFromObject) {
+    motion_ = std::make_shared<const AnimatedTransform>(renderFromObject);
+    motionSteps_ = prism::MotionTimeSteps(renderFromObject, &motionLinearBounds_);
+}
+
+Bounds3f AnalyticShape::RenderBoundsAtStep(int step) const {
+    if (!motion_ || motionSteps_ < 2) return RenderBounds();
+    double dt = 1.0 / (motionSteps_ - 1), t = step * dt;
+    // Linear motion: the boxes at the steps, which Embree's interpolation between them
+    // covers exactly. Otherwise each step's box covers the motion over the segments on both
+    // sides, so the interpolation of two neighbours holds their shared segment.
+    if (motionLinearBounds_) return PaddedBounds(motion_->Interpolate(t).Bounds(ObjectBounds()));
+    return PaddedBounds(motion_->MotionBounds(ObjectBounds(), t - dt, t + dt));
+}
+
+template <typename Real>
+Affine3<Real> AnalyticShape::ObjectFromRenderAt(float time) const {
+    Matrix4 m = motion_->InterpolateMatrix(double(time)), inv;
+    if (!m.Inverse(&inv)) inv = renderFromObject_.InverseMatrix();
+    return ToAffine<Real>(inv);
+}
+template Affine3<float> AnalyticShape::ObjectFromRenderAt<float>(float) const;
+template Affine3<double> AnalyticShape::ObjectFromRenderAt<double>(float) const;
+
+static Bounds3f PaddedBounds(const Bounds3d &b) {
     // Relative padding: 1e-6 of the largest coordinate magnitude plus the box's own extent,
     // then rounded outward to float.
     double scale = std::max(MaxComponent(Abs(b.pMin)), MaxComponent(Abs(b.pMax)));
@@ -59,27 +89,30 @@ bool AnalyticShape::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
 }
 
 SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir,
-                                              unsigned needs) const {
+                                              unsigned needs, float time) const {
     SurfaceInteraction si;
+    std::optional<Transform> moved;  // (static shapes construct nothing here)
+    if (motion_) moved = motion_->Interpolate(double(time));
+    const Transform &rfo = motion_ ? *moved : renderFromObject_;
     LocalGeometry g;
     if (needs == NeedNone)
         g.n = GeometricNormal(hit);
     else
         g = Geometry(hit);
-    Vec3d pW = renderFromObject_.Point(hit.p);
-    Vec3d errW = renderFromObject_.PointError(hit.p, hit.pError, MachineEpsilon<double>());
+    Vec3d pW = rfo.Point(hit.p);
+    Vec3d errW = rfo.PointError(hit.p, hit.pError, MachineEpsilon<double>());
     si.p = Vec3f(pW);
     // Rounding the double world point to float adds up to half an ulp per component; bound it
     // by the exact difference plus one float ulp of headroom.
     for (int i = 0; i < 3; ++i)
         si.pError[i] = float(errW[i] + std::abs(double(si.p[i]) - pW[i]) +
                              std::abs(pW[i]) * MachineEpsilon<float>());
-    Vec3d n = Normalize(renderFromObject_.Normal(g.n));
+    Vec3d n = Normalize(rfo.Normal(g.n));
     if (flipNormals_) n = -n;
     si.n = si.ns = Vec3f(n);
     if (needs & NeedDpdu) {
-        si.dpdu = Vec3f(renderFromObject_.Vector(g.dpdu));
-        si.dpdv = Vec3f(renderFromObject_.Vector(g.dpdv));
+        si.dpdu = Vec3f(rfo.Vector(g.dpdu));
+        si.dpdv = Vec3f(rfo.Vector(g.dpdv));
     }
     if (needs & NeedUV) si.uv = Vec2f(float(g.uv.x), float(g.uv.y));
     si.wo = Normalize(-rayDir);

@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 
+#include "core/animated_transform.h"
 #include "core/transform.h"
 #include "core/vecmath.h"
 #include "geometry/interaction.h"
@@ -83,6 +84,11 @@ class AnalyticShape {
     // Nearest valid hit with t in (tMin, tMax) for a render-space ray.
     virtual bool Intersect(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
                            Precision precision, ObjectHit *hit) const = 0;
+    // The same for a moving shape at a ray's time (Ray::time); Intersect if it does not move.
+    virtual bool IntersectAt(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
+                             Precision precision, float time, ObjectHit *hit) const {
+        return Intersect(o, d, tMin, tMax, precision, hit);
+    }
     // Object-space differential geometry at a hit found by Intersect.
     virtual LocalGeometry Geometry(const ObjectHit &hit) const = 0;
     // The unnormalized object-space normal alone (Geometry(hit).n), for hits whose material
@@ -115,8 +121,24 @@ class AnalyticShape {
     Bounds3f RenderBounds() const;
     // Phase 2: the full render-space interaction for a hit.
     // `needs` (SurfaceNeeds) says whether uv and dpdu/dpdv are computed; the rest always is.
+    // `time` (Ray::time) matters only for a moving shape.
     SurfaceInteraction Interaction(const ObjectHit &hit, const Vec3f &rayDir,
-                                   unsigned needs = NeedAll) const;
+                                   unsigned needs = NeedAll, float time = 0) const;
+
+    // Motion blur: the render-from-object transform over the shutter, its times fractions of
+    // the shutter interval (0 at shutteropen, 1 at shutterclose; Ray::time), its value at time
+    // 0 the transform the shape was made with. Set before the shape is attached; a shape
+    // without motion (the default) pays nothing. Embree time steps then carry bounds that
+    // cover the motion, and the callbacks interpolate the transform at each ray's time.
+    void SetMotion(const AnimatedTransform &renderFromObject);
+    const AnimatedTransform *Motion() const { return motion_.get(); }
+    int MotionTimeSteps() const { return motionSteps_; }
+    // Render-space bounds around the shape over the time step's share of the motion (steps
+    // MotionTimeSteps(), evenly spaced over [0, 1]), padded as RenderBounds.
+    Bounds3f RenderBoundsAtStep(int step) const;
+    // objectFromRender at a ray's time (moving shapes).
+    template <typename Real>
+    Affine3<Real> ObjectFromRenderAt(float time) const;
 
     const Transform &RenderFromObject() const { return renderFromObject_; }
     bool FlipNormals() const { return flipNormals_; }
@@ -130,6 +152,9 @@ class AnalyticShape {
     }
 
   protected:
+    std::shared_ptr<const AnimatedTransform> motion_;
+    int motionSteps_ = 1;
+    bool motionLinearBounds_ = false;  // per-step boxes interpolate exactly (no rotation, kinks)
     Transform renderFromObject_;
     bool reverseOrientation_, flipNormals_;
     Affine3<float> objectFromRenderF_;
@@ -150,7 +175,12 @@ class AnalyticShapeT : public AnalyticShape {
     template <typename Real>
     bool IntersectRender(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
                          ObjectHit *hit) const {
-        const Affine3<Real> &m = ObjectFromRender<Real>();
+        return IntersectRenderWith<Real>(ObjectFromRender<Real>(), o, d, tMin, tMax, hit);
+    }
+    // With a given objectFromRender (a moving shape's at the ray's time).
+    template <typename Real>
+    bool IntersectRenderWith(const Affine3<Real> &m, const Vec3f &o, const Vec3f &d, float tMin,
+                             float tMax, ObjectHit *hit) const {
         Vec3<Real> ow(o), dw(d);
         Vec3<Real> oo = m.Point(ow), dd = m.Vector(dw);
         // pbrt-v3 transform.h: |error| <= gamma3 (|M| |o| + |t|) per component.
@@ -165,6 +195,15 @@ class AnalyticShapeT : public AnalyticShape {
                    ObjectHit *hit) const override {
         return precision == Precision::Double ? IntersectRender<double>(o, d, tMin, tMax, hit)
                                               : IntersectRender<float>(o, d, tMin, tMax, hit);
+    }
+    bool IntersectAt(const Vec3f &o, const Vec3f &d, float tMin, float tMax, Precision precision,
+                     float time, ObjectHit *hit) const override {
+        if (!motion_) return Intersect(o, d, tMin, tMax, precision, hit);
+        return precision == Precision::Double
+                   ? IntersectRenderWith<double>(ObjectFromRenderAt<double>(time), o, d, tMin, tMax,
+                                                 hit)
+                   : IntersectRenderWith<float>(ObjectFromRenderAt<float>(time), o, d, tMin, tMax,
+                                                hit);
     }
 };
 

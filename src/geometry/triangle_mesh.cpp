@@ -47,6 +47,59 @@ TriangleMesh::TriangleMesh(const Transform &renderFromObject, bool reverseOrient
     }
 }
 
+void TriangleMesh::SetMotionSteps(const std::vector<Transform> &stepFromStart) {
+    stepPositions_.clear();
+    stepNormals_.clear();
+    for (const Transform &m : stepFromStart) {
+        std::vector<float> pos(positions_.size(), 0.f);
+        for (size_t i = 0; i + 1 < positions_.size(); i += 3) {
+            Vec3f w(m.Point(Vec3d(positions_[i], positions_[i + 1], positions_[i + 2])));
+            pos[i] = w.x;
+            pos[i + 1] = w.y;
+            pos[i + 2] = w.z;
+        }
+        stepPositions_.push_back(std::move(pos));
+        if (normals_.empty()) continue;
+        std::vector<Vec3f> nrm(normals_.size());
+        for (size_t i = 0; i < normals_.size(); ++i) {
+            Vec3d n = m.Normal(Vec3d(normals_[i]));
+            double len = Length(n);
+            nrm[i] = len > 0 ? Vec3f(n / len) : Vec3f(0, 0, 0);
+        }
+        stepNormals_.push_back(std::move(nrm));
+    }
+}
+
+namespace {
+
+// Embree's motion interpolation: the segment of `time` among steps - 1 equal ones, and the
+// fraction along it.
+inline void MotionSegment(float time, int steps, int *seg, float *f) {
+    float ft = time * float(steps - 1);
+    int s = std::clamp(int(std::floor(ft)), 0, steps - 2);
+    *seg = s;
+    *f = ft - float(s);
+}
+
+}  // namespace
+
+Vec3f TriangleMesh::PositionAt(uint32_t i, float time) const {
+    int seg;
+    float f;
+    MotionSegment(time, NumTimeSteps(), &seg, &f);
+    const float *a = PositionData(seg) + 3 * size_t(i), *b = PositionData(seg + 1) + 3 * size_t(i);
+    return {(1 - f) * a[0] + f * b[0], (1 - f) * a[1] + f * b[1], (1 - f) * a[2] + f * b[2]};
+}
+
+Vec3f TriangleMesh::NormalAt(uint32_t i, float time) const {
+    int seg;
+    float f;
+    MotionSegment(time, NumTimeSteps(), &seg, &f);
+    const Vec3f &a = seg == 0 ? normals_[i] : stepNormals_[size_t(seg - 1)][i];
+    const Vec3f &b = stepNormals_[size_t(seg)][i];
+    return a * (1 - f) + b * f;
+}
+
 Bounds3f TriangleMesh::RenderBounds() const {
     Bounds3f b;
     for (size_t i = 0; i + 1 < positions_.size(); i += 3)
@@ -87,14 +140,20 @@ Vec3f TriangleMesh::GeometricNormal(size_t prim) const {
 }
 
 SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, float t,
-                                             const Vec3f &rayDir, unsigned needs) const {
+                                             const Vec3f &rayDir, unsigned needs,
+                                             float time) const {
     const uint32_t *vi = Triangle(prim);
-    Vec3f p0 = Position(vi[0]), p1 = Position(vi[1]), p2 = Position(vi[2]);
+    const bool moving = !stepPositions_.empty();
+    Vec3f p0 = moving ? PositionAt(vi[0], time) : Position(vi[0]),
+          p1 = moving ? PositionAt(vi[1], time) : Position(vi[1]),
+          p2 = moving ? PositionAt(vi[2], time) : Position(vi[2]);
     float b0 = 1 - u - v, b1 = u, b2 = v;
     SurfaceInteraction si;
     si.p = p0 * b0 + p1 * b1 + p2 * b2;
     // pbrt-v3 triangle.cpp: gamma7 * sum |b_i p_i|.
-    si.pError = (Abs(p0 * b0) + Abs(p1 * b1) + Abs(p2 * b2)) * Gamma<float>(7);
+    // (A moving mesh's vertices are interpolated here and by Embree, each rounding: more.)
+    si.pError = (Abs(p0 * b0) + Abs(p1 * b1) + Abs(p2 * b2)) *
+                (moving ? Gamma<float>(12) : Gamma<float>(7));
     // pbrt-v3 also rejects its own triangle test's hits below that test's error bound in t;
     // Embree has no such test, so a spawned ray must start beyond the error of Embree's. Its
     // test (Moeller-Trumbore in float; Pluecker when ROBUST) takes the origin's side of the
@@ -138,7 +197,9 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
     }
     si.n = si.ns = n;
     if (!normals_.empty()) {
-        Vec3f ns = normals_[vi[0]] * b0 + normals_[vi[1]] * b1 + normals_[vi[2]] * b2;
+        Vec3f ns = moving ? NormalAt(vi[0], time) * b0 + NormalAt(vi[1], time) * b1 +
+                                NormalAt(vi[2], time) * b2
+                          : normals_[vi[0]] * b0 + normals_[vi[1]] * b1 + normals_[vi[2]] * b2;
         float len = Length(ns);
         if (len > 0) {
             si.ns = ns / len;

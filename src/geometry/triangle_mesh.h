@@ -51,6 +51,15 @@ class TriangleMesh {
             if (!normals_.empty()) __builtin_prefetch(&normals_[v[i]]);
         }
     }
+    // Motion blur (Embree time steps): the mesh moved by each transform (render space to
+    // render space, applied to the mesh as made), one per time step after the first, at equal
+    // spacing over the shutter; step 0 is the mesh itself. Between steps the vertices move
+    // linearly, as Embree interpolates them.
+    void SetMotionSteps(const std::vector<Transform> &stepFromStart);
+    int NumTimeSteps() const { return 1 + int(stepPositions_.size()); }
+    const float *PositionData(int step) const {
+        return step == 0 ? positions_.data() : stepPositions_[size_t(step - 1)].data();
+    }
     bool HasNormals() const { return !normals_.empty(); }
     bool HasUV() const { return !uv_.empty(); }
     bool FlipNormals() const { return flipNormals_; }
@@ -61,11 +70,18 @@ class TriangleMesh {
     Vec3f GeometricNormal(size_t prim) const;
     // Phase 2 for a hit with Embree barycentrics (u, v) of vertices 1 and 2; uv and dpdu/dpdv
     // only as `needs` (SurfaceNeeds) asks.
+    // `time` (Ray::time) matters only for a moving mesh.
     SurfaceInteraction Interaction(size_t prim, float u, float v, float t, const Vec3f &rayDir,
-                                   unsigned needs = NeedAll) const;
+                                   unsigned needs = NeedAll, float time = 0) const;
 
   private:
+    // Vertex i (and its shading normal) where a moving mesh is at `time`.
+    Vec3f PositionAt(uint32_t i, float time) const;
+    Vec3f NormalAt(uint32_t i, float time) const;
+
     std::vector<float> positions_;
+    std::vector<std::vector<float>> stepPositions_;  // motion steps 1..n-1
+    std::vector<std::vector<Vec3f>> stepNormals_;    // (when the mesh has normals)
     std::vector<uint32_t> indices_;
     std::vector<Vec3f> normals_;
     std::vector<Vec2f> uv_;

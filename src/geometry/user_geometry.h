@@ -44,10 +44,11 @@ struct HitContext {
 
 namespace user_geometry_detail {
 
-template <typename S>
+// Moving shapes (AnalyticShape::Motion) have one box per Embree time step.
+template <typename S, bool Moving>
 inline void BoundsFunc(const RTCBoundsFunctionArguments *args) {
     const auto *shape = static_cast<const S *>(args->geometryUserPtr);
-    Bounds3f b = shape->RenderBounds();
+    Bounds3f b = Moving ? shape->RenderBoundsAtStep(int(args->timeStep)) : shape->RenderBounds();
     RTCBounds *o = args->bounds_o;
     o->lower_x = b.pMin.x;
     o->lower_y = b.pMin.y;
@@ -60,32 +61,41 @@ inline void BoundsFunc(const RTCBoundsFunctionArguments *args) {
 // [validate hook] Shapes outside the list below (test-only intersectors, e.g. the broken
 // sphere that `prism validate`'s tests must catch) are attached as AnalyticShape and reached
 // through the virtual Intersect: one indirect call per candidate, fine for them.
-template <typename S, typename Real>
+// A moving shape's routine runs with its transform interpolated at the ray's time.
+template <typename S, typename Real, bool Moving>
 inline bool RootRoutine(const S *shape, const Vec3f &o, const Vec3f &d, float tnear, float tfar,
-                        ObjectHit *hit) {
-    if constexpr (std::is_same_v<S, AnalyticShape>)
-        return shape->Intersect(o, d, tnear, tfar,
-                                std::is_same_v<Real, float> ? Precision::Float : Precision::Double,
-                                hit);
-    else
+                        float time, ObjectHit *hit) {
+    constexpr Precision precision =
+        std::is_same_v<Real, float> ? Precision::Float : Precision::Double;
+    if constexpr (std::is_same_v<S, AnalyticShape>) {
+        if constexpr (Moving)
+            return shape->IntersectAt(o, d, tnear, tfar, precision, time, hit);
+        else
+            return shape->Intersect(o, d, tnear, tfar, precision, hit);
+    } else if constexpr (Moving) {
+        return shape->template IntersectRenderWith<Real>(
+            shape->template ObjectFromRenderAt<Real>(time), o, d, tnear, tfar, hit);
+    } else {
         return shape->template IntersectRender<Real>(o, d, tnear, tfar, hit);
+    }
 }
 
 // The shared root routine for lane i of an N-wide ray packet: true with the float t of the
 // nearest valid hit inside the lane's (tnear, tfar).
-template <typename S, typename Real>
+template <typename S, typename Real, bool Moving>
 inline bool LaneHit(const S *shape, RTCRayN *rays, unsigned N, unsigned i, float *tHit,
                     ObjectHit *hit) {
     Vec3f o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
     Vec3f d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
     float tnear = RTCRayN_tnear(rays, N, i), tfar = RTCRayN_tfar(rays, N, i);
-    if (!RootRoutine<S, Real>(shape, o, d, tnear, tfar, hit)) return false;
+    float time = Moving ? RTCRayN_time(rays, N, i) : 0.f;
+    if (!RootRoutine<S, Real, Moving>(shape, o, d, tnear, tfar, time, hit)) return false;
     float t = float(hit->t);
     *tHit = t;
     return t > tnear && t < tfar;  // rounding to float may leave the interval
 }
 
-template <typename S, typename Real>
+template <typename S, typename Real, bool Moving>
 inline void IntersectFunc(const RTCIntersectFunctionNArguments *args) {
     const auto *shape = static_cast<const S *>(args->geometryUserPtr);
     const unsigned N = args->N;
@@ -97,7 +107,7 @@ inline void IntersectFunc(const RTCIntersectFunctionNArguments *args) {
         if (args->valid[i] != -1) continue;
         float t;
         ObjectHit hit;
-        if (!LaneHit<S, Real>(shape, rays, N, i, &t, &hit)) continue;
+        if (!LaneHit<S, Real, Moving>(shape, rays, N, i, &t, &hit)) continue;
         RTCRayN_tfar(rays, N, i) = t;
         if (unsigned id = RTCRayN_id(rays, N, i); record && id < hc->numRays) {
             hc->objectHits[id] = hit;
@@ -115,7 +125,7 @@ inline void IntersectFunc(const RTCIntersectFunctionNArguments *args) {
     }
 }
 
-template <typename S, typename Real>
+template <typename S, typename Real, bool Moving>
 inline void OccludedFunc(const RTCOccludedFunctionNArguments *args) {
     const auto *shape = static_cast<const S *>(args->geometryUserPtr);
     const unsigned N = args->N;
@@ -124,8 +134,20 @@ inline void OccludedFunc(const RTCOccludedFunctionNArguments *args) {
         if (args->valid[i] != -1) continue;
         float t;
         ObjectHit hit;
-        if (LaneHit<S, Real>(shape, rays, N, i, &t, &hit))
+        if (LaneHit<S, Real, Moving>(shape, rays, N, i, &t, &hit))
             RTCRayN_tfar(rays, N, i) = -std::numeric_limits<float>::infinity();
+    }
+}
+
+template <typename S, bool Moving>
+inline void SetCallbacks(RTCGeometry geom, Precision precision) {
+    rtcSetGeometryBoundsFunction(geom, BoundsFunc<S, Moving>, nullptr);
+    if (precision == Precision::Double) {
+        rtcSetGeometryIntersectFunction(geom, IntersectFunc<S, double, Moving>);
+        rtcSetGeometryOccludedFunction(geom, OccludedFunc<S, double, Moving>);
+    } else {
+        rtcSetGeometryIntersectFunction(geom, IntersectFunc<S, float, Moving>);
+        rtcSetGeometryOccludedFunction(geom, OccludedFunc<S, float, Moving>);
     }
 }
 
@@ -135,13 +157,11 @@ inline unsigned Attach(RTCDevice device, RTCScene scene, const S *shape, Precisi
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, const_cast<S *>(shape));
-    rtcSetGeometryBoundsFunction(geom, BoundsFunc<S>, nullptr);
-    if (precision == Precision::Double) {
-        rtcSetGeometryIntersectFunction(geom, IntersectFunc<S, double>);
-        rtcSetGeometryOccludedFunction(geom, OccludedFunc<S, double>);
+    if (shape->Motion()) {
+        rtcSetGeometryTimeStepCount(geom, unsigned(shape->MotionTimeSteps()));
+        SetCallbacks<S, true>(geom, precision);
     } else {
-        rtcSetGeometryIntersectFunction(geom, IntersectFunc<S, float>);
-        rtcSetGeometryOccludedFunction(geom, OccludedFunc<S, float>);
+        SetCallbacks<S, false>(geom, precision);
     }
     rtcSetGeometryMask(geom, mask);
     rtcCommitGeometry(geom);

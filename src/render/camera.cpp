@@ -48,12 +48,17 @@ Camera::Camera(const CameraParams &p, const Transform &renderFromCamera, Vec2i r
     }
 }
 
-Ray Camera::GenerateRay(Vec2f pFilm, Vec2f uLens) const {
-    if (lensRadius_ <= 0) {
+void Camera::SetMotion(const AnimatedTransform &renderFromCamera) {
+    motion_ = std::make_shared<const AnimatedTransform>(renderFromCamera);
+}
+
+Ray Camera::GenerateRay(Vec2f pFilm, Vec2f uLens, float time) const {
+    if (lensRadius_ <= 0 && !motion_) {
         Ray ray;
         ray.o = o0_ + oX_ * pFilm.x + oY_ * pFilm.y;
         ray.d = Normalize(d0_ + dX_ * pFilm.x + dY_ * pFilm.y);
         ray.tMax = Infinity;
+        ray.time = time;
         return ray;
     }
     // Raster → screen: raster row 0 is the top of the screen window (pbrt ScreenToRaster).
@@ -87,9 +92,16 @@ Ray Camera::GenerateRay(Vec2f pFilm, Vec2f uLens) const {
         d = Normalize(pFocus - o);
     }
     Ray ray;
-    ray.o = Vec3f(renderFromCamera_.Point(o));
-    ray.d = Vec3f(Normalize(renderFromCamera_.Vector(d)));
+    if (motion_) {
+        Transform m = motion_->Interpolate(double(time));
+        ray.o = Vec3f(m.Point(o));
+        ray.d = Vec3f(Normalize(m.Vector(d)));
+    } else {
+        ray.o = Vec3f(renderFromCamera_.Point(o));
+        ray.d = Vec3f(Normalize(renderFromCamera_.Vector(d)));
+    }
     ray.tMax = Infinity;
+    ray.time = time;
     return ray;
 }
 

@@ -2,6 +2,9 @@
 // down). fov applies to the shorter image axis through the default screen window.
 #pragma once
 
+#include <memory>
+
+#include "core/animated_transform.h"
 #include "core/pbrt_defaults.h"
 #include "core/transform.h"
 #include "geometry/ray.h"
@@ -20,10 +23,15 @@ class Camera {
     // renderFromCamera maps camera space to the render space (world translated to the eye).
     Camera(const CameraParams &params, const Transform &renderFromCamera, Vec2i fullResolution,
            double frameAspectRatio);
-    // pFilm: continuous raster position; uLens in [0,1)^2 (used only with a lens).
-    Ray GenerateRay(Vec2f pFilm, Vec2f uLens) const;
+    // pFilm: continuous raster position; uLens in [0,1)^2 (used only with a lens); time: the
+    // ray's time as a fraction of the shutter (Ray::time; it moves only a moving camera).
+    Ray GenerateRay(Vec2f pFilm, Vec2f uLens, float time = 0) const;
+    // Motion blur: renderFromCamera over the shutter (times as fractions of it; its value at 0
+    // the transform the camera was made with).
+    void SetMotion(const AnimatedTransform &renderFromCamera);
 
   private:
+    std::shared_ptr<const AnimatedTransform> motion_;
     bool ortho_;
     double sx0_, sx1_, sy0_, sy1_, tanHalf_;
     double lensRadius_, focalDistance_;

@@ -1,5 +1,7 @@
 #include "scene/scene_builder.h"
 
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/file_io.h"
@@ -24,6 +26,12 @@ prism::Transform TransformOrThrow(const char *directive, const FileLoc &loc, F &
     } catch (const std::invalid_argument &e) {
         throw SceneError(loc, std::string(directive) + ": " + e.what());
     }
+}
+
+std::string FormatNumber(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
 }
 
 }  // namespace
@@ -81,9 +89,14 @@ bool SceneBuilder::OptionAllowed(const char *directive, const FileLoc &loc) {
 // Transforms and scopes.
 
 void SceneBuilder::ApplyTransform(const prism::Transform &t, bool replace) {
-    // With ActiveTransform EndTime only the (unused) end transform would change.
-    if (!applyToStart_) return;
-    ctm_ = replace ? t : ctm_ * t;
+    if (applyToStart_) ctm_ = replace ? t : ctm_ * t;
+    if (applyToEnd_) ctmEnd_ = replace ? t : ctmEnd_ * t;
+    if (applyToStart_ != applyToEnd_) motionLoc_ = activeLoc_;
+}
+
+std::optional<TransformMotion> SceneBuilder::Motion() const {
+    if (ctm_ == ctmEnd_) return std::nullopt;
+    return TransformMotion{ctmEnd_, transformStartTime_, transformEndTime_, motionLoc_};
 }
 
 std::unordered_map<std::string, int> &SceneBuilder::Names(Namespace ns) {
@@ -109,7 +122,8 @@ void SceneBuilder::DefineNamed(Namespace ns, const std::string &name, int index)
 }
 
 void SceneBuilder::PushFrame(FrameKind kind, const FileLoc &loc) {
-    frames_.push_back({kind, loc, ctm_, applyToStart_, gs_, undo_.size()});
+    frames_.push_back(
+        {kind, loc, ctm_, ctmEnd_, applyToStart_, applyToEnd_, motionLoc_, gs_, undo_.size()});
 }
 
 void SceneBuilder::PopFrame(FrameKind kind, const char *directive, const FileLoc &loc) {
@@ -123,7 +137,10 @@ void SceneBuilder::PopFrame(FrameKind kind, const char *directive, const FileLoc
     Frame f = std::move(frames_.back());
     frames_.pop_back();
     ctm_ = f.ctm;
+    ctmEnd_ = f.ctmEnd;
     applyToStart_ = f.applyToStart;
+    applyToEnd_ = f.applyToEnd;
+    motionLoc_ = f.motionLoc;
     if (kind == FrameKind::Transform) return;
     gs_ = f.gs;
     while (undo_.size() > f.undoMark) {
@@ -143,11 +160,6 @@ void SceneBuilder::WarnUnclosedFrames() {
             diag_.Warn(f.loc,
                        std::string(FrameName(int(f.kind))) + " without matching " +
                            (f.kind == FrameKind::Attribute ? "AttributeEnd" : "TransformEnd"));
-}
-
-void SceneBuilder::WarnMotion(const FileLoc &loc) {
-    if (!warnedMotion_) diag_.Warn(loc, "motion blur is not supported; using the start transform");
-    warnedMotion_ = true;
 }
 
 void SceneBuilder::AttributeBegin(const FileLoc &loc) { PushFrame(FrameKind::Attribute, loc); }
@@ -197,22 +209,34 @@ void SceneBuilder::ConcatTransform(const double m[16], const FileLoc &loc) {
 void SceneBuilder::Identity(const FileLoc &) { ApplyTransform(prism::Transform(), true); }
 
 void SceneBuilder::CoordinateSystem(const std::string &name, const FileLoc &) {
-    namedCoordSys_[name] = ctm_;
+    namedCoordSys_[name] = {ctm_, ctmEnd_};
 }
 
 void SceneBuilder::CoordSysTransform(const std::string &name, const FileLoc &loc) {
     auto cs = namedCoordSys_.find(name);
     if (cs == namedCoordSys_.end())
         throw SceneError(loc, "unknown coordinate system " + Quote(name));
-    ApplyTransform(cs->second, true);
+    // Each active CTM takes the named system's transform at its own time.
+    if (applyToStart_) ctm_ = cs->second.first;
+    if (applyToEnd_) ctmEnd_ = cs->second.second;
+    if (applyToStart_ != applyToEnd_) motionLoc_ = activeLoc_;
 }
 
 void SceneBuilder::ActiveTransform(ActiveTransformKind kind, const FileLoc &loc) {
     applyToStart_ = kind != ActiveTransformKind::EndTime;
-    WarnMotion(loc);
+    applyToEnd_ = kind != ActiveTransformKind::StartTime;
+    if (kind != ActiveTransformKind::All) activeLoc_ = loc;
 }
 
-void SceneBuilder::TransformTimes(double, double, const FileLoc &loc) { WarnMotion(loc); }
+void SceneBuilder::TransformTimes(double start, double end, const FileLoc &loc) {
+    if (!std::isfinite(start) || !std::isfinite(end))
+        throw SceneError(loc, "TransformTimes must be finite");
+    if (end < start)
+        throw SceneError(loc, "TransformTimes end time " + FormatNumber(end) +
+                                  " is before the start time " + FormatNumber(start));
+    transformStartTime_ = start;
+    transformEndTime_ = end;
+}
 
 void SceneBuilder::ReverseOrientation(const FileLoc &) {
     gs_.reverseOrientation = !gs_.reverseOrientation;
@@ -227,9 +251,10 @@ void SceneBuilder::Camera(const std::string &type, ParsedParameterVector params,
     CameraDesc &cam = scene_.camera;
     static_cast<SceneEntity &>(cam) = std::move(e);
     cam.cameraFromWorld = ctm_;
+    cam.motion = Motion();
     cam.specified = true;
     // As pbrt-v3 pbrtCamera: "camera" names the camera-to-world frame.
-    namedCoordSys_["camera"] = ctm_.Inverse();
+    namedCoordSys_["camera"] = {ctm_.Inverse(), ctmEnd_.Inverse()};
 }
 
 void SceneBuilder::Film(const std::string &type, ParsedParameterVector params, const FileLoc &loc) {
@@ -280,9 +305,9 @@ void SceneBuilder::ColorSpace(const std::string &, const FileLoc &loc) {
 void SceneBuilder::WorldBegin(const FileLoc &loc) {
     if (inWorld_) throw SceneError(loc, "WorldBegin inside the world block");
     inWorld_ = true;
-    applyToStart_ = true;
-    ctm_ = prism::Transform();
-    namedCoordSys_["world"] = ctm_;
+    applyToStart_ = applyToEnd_ = true;
+    ctm_ = ctmEnd_ = prism::Transform();
+    namedCoordSys_["world"] = {ctm_, ctmEnd_};
 }
 
 void SceneBuilder::WorldEnd(const FileLoc &) {
@@ -372,6 +397,7 @@ void SceneBuilder::Shape(const std::string &type, ParsedParameterVector params,
     if (opts_.budget)
         opts_.budget->Charge(ParamStorageBytes(s.params), "shape " + Quote(type), loc);
     s.worldFromObject = ctm_;
+    s.motion = Motion();
     s.reverseOrientation = gs_.reverseOrientation;
     s.material = gs_.material;
     s.areaLight = gs_.areaLight;
@@ -418,7 +444,7 @@ void SceneBuilder::ObjectInstance(const std::string &name, const FileLoc &loc) {
         throw SceneError(loc, "ObjectInstance cannot be a CSG operand (CSGBegin at " +
                                   csgStack_.back().loc.ToString() + ")");
     if (!FindObject(scene_, name)) throw SceneError(loc, "unknown object " + Quote(name));
-    scene_.instances.push_back({name, ctm_, loc});
+    scene_.instances.push_back({name, ctm_, Motion(), loc});
 }
 
 // CSG (Prism extension, docs/FORMAT.md). A node is not a graphics-state scope: operands take

@@ -93,8 +93,9 @@ class SceneBuilder final : public PbrtTarget {
     struct Frame {
         FrameKind kind;
         FileLoc loc;
-        prism::Transform ctm;
-        bool applyToStart;
+        prism::Transform ctm, ctmEnd;
+        bool applyToStart, applyToEnd;
+        FileLoc motionLoc;
         GraphicsState gs;
         size_t undoMark;  // size of the named-definition undo log when the frame was pushed
     };
@@ -120,23 +121,29 @@ class SceneBuilder final : public PbrtTarget {
     void DefineNamed(Namespace ns, const std::string &name, int index);
     std::unordered_map<std::string, int> &Names(Namespace ns);
     void WarnUnclosedFrames();
-    void WarnMotion(const FileLoc &loc);
+    // The CTM's end-time transform and times for an entity declared now (empty if static).
+    std::optional<TransformMotion> Motion() const;
 
     SceneDescription scene_;
     Diagnostics &diag_;
     PbrtParseOptions opts_;
 
-    prism::Transform ctm_;
-    bool applyToStart_ = true;
+    // pbrt-v3's two CTMs: ctm_ at the start time, ctmEnd_ at the end time; ActiveTransform
+    // chooses which ones the transform directives change.
+    prism::Transform ctm_, ctmEnd_;
+    bool applyToStart_ = true, applyToEnd_ = true;
+    FileLoc activeLoc_;  // the last ActiveTransform StartTime/EndTime
+    FileLoc motionLoc_;  // the ActiveTransform in effect when the two CTMs last diverged
+    double transformStartTime_ = 0, transformEndTime_ = 1;  // TransformTimes
     GraphicsState gs_;
     std::vector<Frame> frames_;
     std::vector<UndoEntry> undo_;
     std::unordered_map<std::string, int> namedMaterials_, floatTextures_, spectrumTextures_;
-    std::unordered_map<std::string, prism::Transform> namedCoordSys_;
+    std::unordered_map<std::string, std::pair<prism::Transform, prism::Transform>> namedCoordSys_;
     std::optional<ObjectDesc> currentObject_;
     std::vector<CsgDesc> csgStack_;  // open CSGBegin nodes, innermost last
     std::unordered_map<std::string, RGB> spdCache_;
-    bool inWorld_ = false, worldEnded_ = false, warnedMotion_ = false;
+    bool inWorld_ = false, worldEnded_ = false;
     int shapeCount_ = 0;
 };
 

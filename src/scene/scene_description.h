@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,9 +21,20 @@ struct SceneEntity {
     FileLoc loc;
 };
 
+// pbrt-v3 ActiveTransform/TransformTimes: a directive's CTM at the end time, when it differs
+// from the start-time CTM (the entity's own transform), and the keyframes' times (the last
+// TransformTimes, default 0 1). `loc` is the ActiveTransform directive that made the two
+// differ (the reason motion blur is on).
+struct TransformMotion {
+    Transform end;
+    double startTime = 0, endTime = 1;
+    FileLoc loc;
+};
+
 struct CameraDesc : SceneEntity {
-    Transform cameraFromWorld;  // CTM at the Camera directive
-    bool specified = false;     // false → reader default (perspective, identity)
+    Transform cameraFromWorld;              // CTM at the Camera directive (start time)
+    std::optional<TransformMotion> motion;  // cameraFromWorld at the end time, if it moves
+    bool specified = false;                 // false → reader default (perspective, identity)
 };
 
 struct TextureDesc : SceneEntity {
@@ -44,7 +56,8 @@ struct AreaLightDesc : SceneEntity {
 };
 
 struct ShapeDesc : SceneEntity {
-    Transform worldFromObject;
+    Transform worldFromObject;              // at the start time
+    std::optional<TransformMotion> motion;  // worldFromObject at the end time, if it moves
     bool reverseOrientation = false;
     int material = -1;       // index into SceneDescription::materials; -1 = the default matte
     int areaLight = -1;      // index into SceneDescription::areaLights; -1 = not emissive
@@ -75,7 +88,8 @@ struct CsgDesc {
 
 struct InstanceDesc {
     std::string object;
-    Transform worldFromInstance;
+    Transform worldFromInstance;            // at the start time
+    std::optional<TransformMotion> motion;  // worldFromInstance at the end time, if it moves
     FileLoc loc;
 };
 
