@@ -78,6 +78,9 @@ struct RenderScene {
     IntegratorKind integrator = IntegratorKind::Whitted;
     int glossySamples = DefaultGlossySamples;  // DistributionIntegrator only
     SceneFeatures features;
+    // --effects all: render with the general kernel instead of the one specialized for
+    // features.effects (render/kernel.h; same image, for comparison).
+    bool allEffects = false;
     double buildSeconds = 0;  // BVH build only
 };
 
