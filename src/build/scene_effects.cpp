@@ -89,8 +89,7 @@ void NoteMaterialEffects(BuildContext &ctx, const Material &m, const std::string
         const ConstantTexture *cu = AsConstant(m.uRoughness), *cv = AsConstant(m.vRoughness);
         roughGlassOnly = cu && cv && (cu->Value().r != 0 || cv->Value().r != 0);
     }
-    if (m.MayReflectSpecularly() && !roughGlassOnly)
-        e.Enable(Effect::SpecularReflection, why, loc);
+    if (m.MayReflectSpecularly() && !roughGlassOnly) e.Enable(Effect::SpecularReflection, why, loc);
     if (m.MayTransmit() && !roughGlassOnly) e.Enable(Effect::Refraction, why, loc);
     if (distribution) {
         if (MayReflectGlossily(m)) e.Enable(Effect::GlossyReflection, why, loc);

@@ -28,28 +28,30 @@ uint32_t KernelMaskFor(const RenderScene &scene) {
     for (const auto &light : scene.lights)
         if (light->UsesSample() || light->NumSamples() != 1 || light->IsArea())
             mask |= KernelLightSamples;
-    for (const Material &m : scene.materials)
+    for (const Material &m : scene.materials) {
         if (m.IsPassThrough()) mask |= KernelPassThrough;
-    return mask;
+        if (!m.IsLambertian() && !m.IsPassThrough()) mask |= KernelBsdf;
+    }
+    return KernelCanonical(mask);
 }
 
 std::string KernelMaskName(uint32_t mask) {
     if (mask == KernelAll) return "all";
-    static const char *const names[KernelBits] = {"specular", "glossy", "light samples",
-                                                  "camera samples", "pass-through"};
+    static const char *const names[KernelBits] = {"specular",       "glossy",       "light samples",
+                                                  "camera samples", "pass-through", "BSDF"};
     std::string s;
     for (int i = 0; i < KernelBits; ++i)
         if (mask & (1u << i)) {
             if (!s.empty()) s += '+';
             s += names[i];
         }
-    return s.empty() ? "diffuse" : s;
+    return s.empty() ? "Lambertian" : s;
 }
 
 namespace {
 template <size_t... M>
 constexpr std::array<RenderTileFn, sizeof...(M)> MakeTable(std::index_sequence<M...>) {
-    return {&RenderTileKernel<uint32_t(M)>...};
+    return {&RenderTileKernel<KernelCanonical(uint32_t(M))>...};
 }
 }  // namespace
 

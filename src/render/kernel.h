@@ -5,9 +5,10 @@
 // runs Kernel<KernelAll>, which decides every effect at run time as the kernel did before it
 // was specialized. Both give bit-identical images (tests/render/kernel_test.cpp).
 //
-// Only the bits that change the work per ray are kernel bits (2^KernelBits instantiations,
-// compiled in parallel over kernel_*.cpp); textures, CSG and instancing live below the kernel
-// (in materials and in the BVH) and cost nothing where absent without a bit of their own.
+// Only the bits that change the work per ray are kernel bits (the 40 valid masks of
+// KernelBits bits are instantiated, compiled in parallel over kernel_*.cpp); textures, CSG and
+// instancing live below the kernel (in materials and in the BVH) and cost nothing where absent
+// without a bit of their own.
 #pragma once
 
 #include <cstdint>
@@ -32,8 +33,11 @@ enum KernelBit : uint32_t {
                                     // emission of hit surfaces, radiance of escaping rays
     KernelCameraSamples = 1u << 3,  // lens samples (depth of field) and ray times (motion blur)
     KernelPassThrough = 1u << 4,    // "none" materials: rays continue through surfaces
+    // Materials other than Lambertian matte: BSDFs are built and evaluated. Without it (every
+    // material Lambertian, so nothing specular or glossy either) f is kd/π.
+    KernelBsdf = 1u << 5,
 };
-inline constexpr int KernelBits = 5;
+inline constexpr int KernelBits = 6;
 inline constexpr uint32_t KernelAll = (1u << KernelBits) - 1;
 
 // The smallest kernel mask that renders `scene` exactly (from scene.features.effects).
@@ -49,6 +53,8 @@ class Kernel {
     static constexpr bool LightSamples = (K & KernelLightSamples) != 0;
     static constexpr bool CameraSamples = (K & KernelCameraSamples) != 0;
     static constexpr bool PassThrough = (K & KernelPassThrough) != 0;
+    static constexpr bool GeneralBsdf = (K & KernelBsdf) != 0;
+    static_assert(GeneralBsdf || !(Specular || Glossy), "a Lambertian kernel does not bounce");
 
     // glossyRays: trace glossy rays (Integrator "distribution"); read only when Glossy.
     Kernel(const RenderScene &scene, bool glossyRays) : scene_(scene), glossyRays_(glossyRays) {}
@@ -71,6 +77,10 @@ class Kernel {
     void AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, GlossyRays mode, int depth,
                    RayCounters &counters, const SampleContext &sc, RGB &L) const;
     bool AboveCutoff(const RGB &beta) const;
+    template <class F>
+    void AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f, GlossyRays glossy,
+                   bool hasDiffuse, int depth, RayCounters &counters, const SampleContext &sc,
+                   RGB &L) const;
 
     const RenderScene &scene_;
     bool glossyRays_;
@@ -85,5 +95,11 @@ struct TileScratch {
 using RenderTileFn = void (*)(const RenderScene &scene, Bounds2i tb, RayCounters &rc,
                               TileScratch &buf, FilmTile *tile);
 RenderTileFn KernelRenderTile(uint32_t mask);
+
+// The instantiated mask that runs `mask`: KernelBsdf is added where the mask bounces (a
+// Lambertian kernel has no specular or glossy code).
+constexpr uint32_t KernelCanonical(uint32_t mask) {
+    return (mask & (KernelSpecular | KernelGlossy)) ? mask | KernelBsdf : mask;
+}
 
 }  // namespace prism

@@ -72,12 +72,6 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
     }
 
     TextureContext tc{si.uv, si.p};
-    BSDF bsdf = mat->GetBSDF(si, tc);
-    // Distribution: rough glass becomes glossy, and glossy rays sample the glossy lobes; the
-    // lights those rays bring back are not light-sampled through them (GlossyRays).
-    GlossyRays glossy = GlossyRays::None;
-    if constexpr (Glossy)
-        if (glossyRays_) glossy = PrepareGlossy(bsdf, depth);
     const Vec3f &wo = si.wo;
     RGB L;
     // Emission of an area light seen directly or through specular paths.
@@ -86,26 +80,63 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
             L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(shape->areaLight)])
                      .L(si.n, wo);
 
-    // Direct lighting through the non-specular lobes: one shadow ray per delta light, and a
-    // stratified set of shadow rays per area or environment light (distribution ray tracing).
-    if (bsdf.HasNonSpecular()) {
-        const bool hasDiffuse = glossy != GlossyRays::None && bsdf.HasDiffuse();
-        for (size_t j = 0; j < scene_.lights.size(); ++j) {
-            const Light &light = *scene_.lights[j];
-            if constexpr (!LightSamples) {
-                // Only delta lights: one sample each, which ignores u.
-                LightSample ls;
-                if (!light.SampleLi(si, Vec2f(0.5f, 0.5f), &ls) || ls.Li.IsBlack() ||
-                    !(ls.pdf > 0))
-                    continue;
-                RGB f = bsdf.f(wo, ls.wi);
-                if (f.IsBlack()) continue;
-                Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene_.offset)
-                                         : si.SpawnRayTo(ls.pLight, scene_.offset);
-                counters.shadow++;
-                if (scene_.accel->Occluded(shadow)) continue;
-                L += f * ls.Li * (AbsDot(ls.wi, bsdf.ns) / ls.pdf);
-            } else {
+    if constexpr (!GeneralBsdf) {
+        // Only Lambertian matte materials (KernelMaskFor): f = kd/π, or 0 where the geometric
+        // normal says wi is transmission, without building a BSDF. Nothing is specular or
+        // glossy. The same bits as BSDF::f of one Lambertian part of weight 1.
+        const RGB kd = mat->LambertianKd(tc);
+        if (kd.IsBlack()) return L;
+        const RGB f = kd * float(InvPi);
+        const float cosO = Dot(wo, si.ns), woNg = Dot(wo, si.n);
+        auto lambert = [&](const Vec3f &wi, bool) {
+            return cosO == 0 || !(Dot(wi, si.n) * woNg > 0) ? RGB(0) : f;
+        };
+        AddDirect(si, si.ns, lambert, GlossyRays::None, false, depth, counters, sc, L);
+        return L;
+    } else {
+        BSDF bsdf = mat->GetBSDF(si, tc);
+        // Distribution: rough glass becomes glossy, and glossy rays sample the glossy lobes; the
+        // lights those rays bring back are not light-sampled through them (GlossyRays).
+        GlossyRays glossy = GlossyRays::None;
+        if constexpr (Glossy)
+            if (glossyRays_) glossy = PrepareGlossy(bsdf, depth);
+        // Direct lighting through the non-specular lobes.
+        if (bsdf.HasNonSpecular()) {
+            const bool hasDiffuse = glossy != GlossyRays::None && bsdf.HasDiffuse();
+            auto general = [&](const Vec3f &wi, bool byGlossyRays) {
+                return byGlossyRays ? bsdf.fDiffuse(wo, wi) : bsdf.f(wo, wi);
+            };
+            AddDirect(si, bsdf.ns, general, glossy, hasDiffuse, depth, counters, sc, L);
+        }
+        if constexpr (Specular) AddSpecular(si, bsdf, depth, counters, sc, L);
+        if constexpr (Glossy)
+            if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, L);
+        return L;
+    }
+}
+
+// Direct lighting: one shadow ray per delta light, and a stratified set of shadow rays per
+// area or environment light (distribution ray tracing). f(wi, byGlossyRays) is the BSDF.
+template <uint32_t K>
+template <class F>
+void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f,
+                          GlossyRays glossy, bool hasDiffuse, int depth, RayCounters &counters,
+                          const SampleContext &sc, RGB &L) const {
+    for (size_t j = 0; j < scene_.lights.size(); ++j) {
+        const Light &light = *scene_.lights[j];
+        if constexpr (!LightSamples) {
+            // Only delta lights: one sample each, which ignores u.
+            LightSample ls;
+            if (!light.SampleLi(si, Vec2f(0.5f, 0.5f), &ls) || ls.Li.IsBlack() || !(ls.pdf > 0))
+                continue;
+            RGB fj = f(ls.wi, false);
+            if (fj.IsBlack()) continue;
+            Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene_.offset)
+                                     : si.SpawnRayTo(ls.pLight, scene_.offset);
+            counters.shadow++;
+            if (scene_.accel->Occluded(shadow)) continue;
+            L += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
+        } else {
             int n = light.NumSamples();
             // Delta lights ignore u: the stratified pattern (a hash chain) only where it is used.
             const bool usesSample = light.UsesSample();
@@ -124,23 +155,17 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
                                      : Vec2f(0.5f, 0.5f);
                 LightSample ls;
                 if (!light.SampleLi(si, u, &ls) || ls.Li.IsBlack() || !(ls.pdf > 0)) continue;
-                RGB f = byGlossyRays ? bsdf.fDiffuse(wo, ls.wi) : bsdf.f(wo, ls.wi);
-                if (f.IsBlack()) continue;
+                RGB fj = f(ls.wi, byGlossyRays);
+                if (fj.IsBlack()) continue;
                 Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene_.offset)
                                          : si.SpawnRayTo(ls.pLight, scene_.offset);
                 counters.shadow++;
                 if (scene_.accel->Occluded(shadow)) continue;
-                Lj += f * ls.Li * (AbsDot(ls.wi, bsdf.ns) / ls.pdf);
+                Lj += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
             }
             L += n == 1 ? Lj : Lj / float(n);
-            }
         }
     }
-
-    if constexpr (Specular) AddSpecular(si, bsdf, depth, counters, sc, L);
-    if constexpr (Glossy)
-        if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, L);
-    return L;
 }
 
 template <uint32_t K>
@@ -187,8 +212,7 @@ GlossyRays Kernel<K>::PrepareGlossy(BSDF &bsdf, int depth) const {
 
 template <uint32_t K>
 void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, GlossyRays mode,
-                          int depth, RayCounters &counters, const SampleContext &sc,
-                          RGB &L) const {
+                          int depth, RayCounters &counters, const SampleContext &sc, RGB &L) const {
     const bool emitted = mode == GlossyRays::AllLights;
     const uint32_t n = sc.afterGlossy ? 1u : uint32_t(scene_.glossySamples);
     // The rays below sample the pixel's samples × n further: the hits they reach stratify
@@ -308,9 +332,9 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
 }
 
 // Explicit instantiation of one mask (kernel_*.cpp).
-#define PRISM_INSTANTIATE_KERNEL(M)                                                           \
-    template class Kernel<M>;                                                                \
-    template void RenderTileKernel<M>(const RenderScene &, Bounds2i, RayCounters &,          \
-                                      TileScratch &, FilmTile *);
+#define PRISM_INSTANTIATE_KERNEL(M)                                                                \
+    template class Kernel<M>;                                                                      \
+    template void RenderTileKernel<M>(const RenderScene &, Bounds2i, RayCounters &, TileScratch &, \
+                                      FilmTile *);
 
 }  // namespace prism

@@ -46,7 +46,7 @@ TEST(EffectsCli, InfoListsEveryEffectWithReasons) {
         EXPECT_TRUE(Has(o, off)) << off << "\n" << o;
     EXPECT_TRUE(Has(o, "4 shadow rays per shading point")) << o;
     EXPECT_TRUE(Has(o, "max useful depth: 6 (maxdepth 6)")) << o;
-    EXPECT_TRUE(Has(o, "kernel:     specular+light samples")) << o;
+    EXPECT_TRUE(Has(o, "kernel:     specular+light samples+BSDF")) << o;
 
     r = RunPrism("info '" + Source + "/scenes/csg.pbrt'", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -62,7 +62,7 @@ TEST(EffectsCli, InfoListsEveryEffectWithReasons) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(Has(r.out, "  specular reflection: off\n")) << r.out;
     EXPECT_TRUE(Has(r.out, "max useful depth: 1 (maxdepth 5)")) << r.out;
-    EXPECT_TRUE(Has(r.out, "kernel:     diffuse")) << r.out;
+    EXPECT_TRUE(Has(r.out, "kernel:     Lambertian")) << r.out;
 
     // An OBJ: the distribution integrator; a specular (mirror) material.
     std::ofstream(dir / "m.mtl") << "newmtl m\nKd 0 0 0\nKs 0.9 0.9 0.9\nillum 3\n"
@@ -81,7 +81,7 @@ TEST(EffectsCli, RenderEffectsAllWritesTheSameImage) {
     const std::string scene = "'" + Source + "/scenes/whitted.pbrt' --res 40x30 --spp 1";
     RunResult a = RunPrism("render " + scene + " -o spec.pfm --no-progress", dir);
     ASSERT_EQ(a.exitCode, 0) << a.err;
-    EXPECT_TRUE(Has(a.err, "kernel: specular+light samples")) << a.err;
+    EXPECT_TRUE(Has(a.err, "kernel: specular+light samples+BSDF")) << a.err;
     RunResult b = RunPrism("render " + scene + " --effects all -o all.pfm --no-progress", dir);
     ASSERT_EQ(b.exitCode, 0) << b.err;
     EXPECT_TRUE(Has(b.err, "kernel: all")) << b.err;

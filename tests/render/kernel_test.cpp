@@ -1,6 +1,8 @@
 // The effect set and the kernels specialized for it (render/kernel.h): which effects real
 // scenes call for and why; for each effect, a scene without it traces no ray of its kind; and
 // the specialized kernel renders bit-identical images to the general one (--effects all).
+#include "render/kernel.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -8,7 +10,6 @@
 #include <fstream>
 
 #include "build/build_scene.h"
-#include "render/kernel.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "test_util.h"
@@ -59,10 +60,11 @@ const std::string Floor =
 
 // Effects of one kind each, for scenes written here.
 std::string DiffuseScene() {
-    return Write("diffuse.pbrt", Header + "WorldBegin\n"
-                                          "LightSource \"point\" \"point3 from\" [ 2 5 -3 ] "
-                                          "\"rgb I\" [ 30 30 30 ]\n" +
-                                          Floor + "Translate 0 1 0\nShape \"sphere\"\nWorldEnd\n");
+    return Write("diffuse.pbrt", Header +
+                                     "WorldBegin\n"
+                                     "LightSource \"point\" \"point3 from\" [ 2 5 -3 ] "
+                                     "\"rgb I\" [ 30 30 30 ]\n" +
+                                     Floor + "Translate 0 1 0\nShape \"sphere\"\nWorldEnd\n");
 }
 std::string LensScene() {
     return Write("lens.pbrt",
@@ -73,20 +75,40 @@ std::string LensScene() {
                      Floor + "Translate 0 1 0\nShape \"sphere\"\nWorldEnd\n");
 }
 std::string PassThroughScene() {
-    return Write("none.pbrt", Header + "WorldBegin\n"
-                                       "LightSource \"point\" \"point3 from\" [ 2 5 -3 ] "
-                                       "\"rgb I\" [ 30 30 30 ]\n" +
-                                       Floor +
-                                       "AttributeBegin\nMaterial \"none\"\nTranslate 0 1 -1\n"
-                                       "Shape \"sphere\" \"float radius\" 1.5\nAttributeEnd\n"
-                                       "Translate 0 1 0\nShape \"sphere\"\nWorldEnd\n");
+    return Write("none.pbrt", Header +
+                                  "WorldBegin\n"
+                                  "LightSource \"point\" \"point3 from\" [ 2 5 -3 ] "
+                                  "\"rgb I\" [ 30 30 30 ]\n" +
+                                  Floor +
+                                  "AttributeBegin\nMaterial \"none\"\nTranslate 0 1 -1\n"
+                                  "Shape \"sphere\" \"float radius\" 1.5\nAttributeEnd\n"
+                                  "Translate 0 1 0\nShape \"sphere\"\nWorldEnd\n");
 }
 std::string AreaLightScene() {
-    return Write("area.pbrt", Header + "WorldBegin\n"
-                                       "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 4 4 "
-                                       "4 ] \"integer nsamples\" [ 4 ]\nTranslate 0 4 0\n"
-                                       "Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n" +
-                                       Floor + "Translate 0 1 0\nShape \"sphere\"\nWorldEnd\n");
+    return Write("area.pbrt", Header +
+                                  "WorldBegin\n"
+                                  "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 4 4 "
+                                  "4 ] \"integer nsamples\" [ 4 ]\nTranslate 0 4 0\n"
+                                  "Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n" +
+                                  Floor + "Translate 0 1 0\nShape \"sphere\"\nWorldEnd\n");
+}
+// Lambertian with a texture (kd evaluated per hit), and with Oren–Nayar (the BSDF kernel).
+std::string TexturedScene() {
+    return Write("textured.pbrt",
+                 Header +
+                     "WorldBegin\nLightSource \"point\" \"point3 from\" [ 2 5 -3 ] "
+                     "\"rgb I\" [ 30 30 30 ]\nLightSource \"distant\" \"point3 to\" [ 0 -1 1 ]\n"
+                     "Texture \"c\" \"spectrum\" \"checkerboard\" \"float uscale\" 8 "
+                     "\"float vscale\" 8\nMaterial \"matte\" \"texture Kd\" \"c\"\n" +
+                     Floor + "Translate 0 1 0\nShape \"sphere\"\nWorldEnd\n");
+}
+std::string OrenNayarScene() {
+    return Write("oren.pbrt", Header +
+                                  "WorldBegin\nLightSource \"point\" \"point3 from\" [ 2 5 -3 ] "
+                                  "\"rgb I\" [ 30 30 30 ]\n" +
+                                  Floor +
+                                  "Material \"matte\" \"float sigma\" 20\nTranslate 0 1 0\n"
+                                  "Shape \"sphere\"\nWorldEnd\n");
 }
 std::string DarkScene() {  // no light at all
     return Write("dark.pbrt", Header + "WorldBegin\n" + Floor + "WorldEnd\n");
@@ -98,11 +120,12 @@ std::string ObjScene() {
     WriteTestFile(dir / "k.mtl",
                   "newmtl white\nKd 0.7 0.7 0.7\n"
                   "newmtl shiny\nKd 0.2 0.2 0.6\nKs 0.5 0.5 0.5\nNs 60\n");
-    return WriteTestFile(dir / "k.obj", "mtllib k.mtl\n"
-                                        "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\n"
-                                        "v -1 0 0\nv 1 0 0\nv 0 2 0.5\n"
-                                        "usemtl white\nf 1 2 3\nf 1 3 4\n"
-                                        "usemtl shiny\nf 5 6 7\n");
+    return WriteTestFile(dir / "k.obj",
+                         "mtllib k.mtl\n"
+                         "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\n"
+                         "v -1 0 0\nv 1 0 0\nv 0 2 0.5\n"
+                         "usemtl white\nf 1 2 3\nf 1 3 4\n"
+                         "usemtl shiny\nf 5 6 7\n");
 }
 
 std::string Scene(const std::string &name) { return Source + "/scenes/" + name; }
@@ -148,7 +171,7 @@ TEST(Effects, WhittedSceneListsItsEffectsWithLocations) {
     EXPECT_EQ(e.lights[0].shadowRays, 1);
     EXPECT_EQ(e.lights[2].shadowRays, 4);  // the infinite light's nsamples
     EXPECT_EQ(e.maxUsefulDepth, 6);
-    EXPECT_EQ(KernelMaskFor(s), KernelSpecular | KernelLightSamples);
+    EXPECT_EQ(KernelMaskFor(s), KernelSpecular | KernelLightSamples | KernelBsdf);
 }
 
 TEST(Effects, CsgGlossyAndDiffuseScenes) {
@@ -171,7 +194,7 @@ TEST(Effects, CsgGlossyAndDiffuseScenes) {
     EXPECT_EQ(d.mask, EffectBit(Effect::Shadows));
     EXPECT_EQ(d.maxUsefulDepth, 1);
     EXPECT_EQ(KernelMaskFor(diffuse), 0u);
-    EXPECT_EQ(KernelMaskName(0), "diffuse");
+    EXPECT_EQ(KernelMaskName(0), "Lambertian");
     EXPECT_EQ(KernelMaskName(KernelAll), "all");
 
     RenderScene lens = Build(LensScene());
@@ -180,6 +203,9 @@ TEST(Effects, CsgGlossyAndDiffuseScenes) {
               std::string::npos);
     EXPECT_EQ(KernelMaskFor(lens), uint32_t(KernelCameraSamples));
     EXPECT_EQ(KernelMaskFor(Build(PassThroughScene())), uint32_t(KernelPassThrough));
+    EXPECT_EQ(KernelMaskFor(Build(TexturedScene())), 0u);
+    EXPECT_TRUE(Build(TexturedScene()).features.effects.Has(Effect::Textures));
+    EXPECT_EQ(KernelMaskFor(Build(OrenNayarScene())), uint32_t(KernelBsdf));
 
     RenderScene obj = Build(ObjScene());
     EXPECT_EQ(obj.integrator, IntegratorKind::Distribution);
@@ -188,9 +214,10 @@ TEST(Effects, CsgGlossyAndDiffuseScenes) {
 
 TEST(Effects, InstancingIsNoted) {
     std::string path =
-        Write("inst.pbrt", Header + "WorldBegin\nLightSource \"point\" \"point3 from\" [ 2 5 -3 ]\n"
-                                    "ObjectBegin \"ball\"\nShape \"sphere\"\nObjectEnd\n"
-                                    "ObjectInstance \"ball\"\nWorldEnd\n");
+        Write("inst.pbrt", Header +
+                               "WorldBegin\nLightSource \"point\" \"point3 from\" [ 2 5 -3 ]\n"
+                               "ObjectBegin \"ball\"\nShape \"sphere\"\nObjectEnd\n"
+                               "ObjectInstance \"ball\"\nWorldEnd\n");
     RenderScene s = Build(path);
     EXPECT_TRUE(s.features.effects.Has(Effect::Instancing));
     EXPECT_NE(s.features.effects.reasons[size_t(Effect::Instancing)].find("inst.pbrt:9"),
@@ -228,7 +255,8 @@ TEST(Effects, ScenesWithoutAnEffectTraceNoneOfItsRays) {
 TEST(Effects, SpecializedAndGeneralKernelsAreBitIdentical) {
     for (const std::string &path :
          {Scene("whitted.pbrt"), Scene("csg.pbrt"), Scene("glossy.pbrt"), Scene("diffuse.pbrt"),
-          ObjScene(), LensScene(), PassThroughScene(), AreaLightScene(), DarkScene()}) {
+          ObjScene(), LensScene(), PassThroughScene(), AreaLightScene(), TexturedScene(),
+          OrenNayarScene(), DarkScene()}) {
         SCOPED_TRACE(path);
         Result spec = RenderWith(path, false), all = RenderWith(path, true);
         EXPECT_EQ(all.stats.kernelMask, KernelAll);
