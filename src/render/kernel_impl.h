@@ -298,6 +298,8 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                         Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : cmj.Sample(s, filmSeed[m]);
                         Vec2f pFilm(float(x) + u.x, float(y) + u.y);
                         Vec2f uLens(0.5f, 0.5f);
+                        // Per-ray camera samples: the lens sample (and, with motion blur, which
+                        // sets the same bit through Effect::MotionBlur, the ray's time).
                         if constexpr (Kernel<K>::CameraSamples)
                             if (lens) {
                                 uLens = cmj.Sample(s, lensSeed[m]);
