@@ -89,5 +89,16 @@ TEST(EffectsCli, RenderEffectsAllWritesTheSameImage) {
     EXPECT_NE(RunPrism("render " + scene + " --effects some -o x.pfm", dir).exitCode, 0);
 }
 
+// prism batch passes --effects on to its renders.
+TEST(EffectsCli, BatchPassesEffectsOn) {
+    fs::path dir = TempDir("batch");
+    fs::create_directories(dir / "in");
+    fs::copy_file(Source + "/scenes/diffuse.pbrt", dir / "in" / "d.pbrt");
+    RunResult r = RunPrism("batch in -o out --quiet --res 32x24 --effects all --format exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "out" / "in_d.exr"));
+    EXPECT_NE(RunPrism("batch in -o out2 --effects none", dir).exitCode, 0);
+}
+
 }  // namespace
 }  // namespace prism

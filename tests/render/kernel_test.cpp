@@ -1,6 +1,7 @@
-// The effect set and the kernels specialized for it (render/kernel.h): which effects real
-// scenes call for and why; for each effect, a scene without it traces no ray of its kind; and
-// the specialized kernel renders bit-identical images to the general one (--effects all).
+// The kernels specialized per effect set (render/kernel.h): the kernel mask of real scenes;
+// for each effect, a scene without it traces no ray of its kind; and the specialized kernel
+// renders bit-identical images to the general one (--effects all). The effect set itself:
+// tests/build/scene_effects_test.cpp.
 #include "render/kernel.h"
 
 #include <gtest/gtest.h>
@@ -145,36 +146,10 @@ void ExpectSameRays(const RayCounters &a, const RayCounters &b) {
     EXPECT_EQ(a.lensSamples, b.lensSamples);
 }
 
-TEST(Effects, WhittedSceneListsItsEffectsWithLocations) {
-    RenderScene s = Build(Scene("whitted.pbrt"));
-    const EffectSet &e = s.features.effects;
-    EXPECT_TRUE(e.Has(Effect::Shadows));
-    EXPECT_TRUE(e.Has(Effect::SpecularReflection));
-    EXPECT_NE(e.reasons[size_t(Effect::SpecularReflection)].find("material \"mirror\" at "),
-              std::string::npos)
-        << e.reasons[size_t(Effect::SpecularReflection)];
-    EXPECT_NE(e.reasons[size_t(Effect::Refraction)].find("material \"glass\" at "),
-              std::string::npos);
-    EXPECT_NE(e.reasons[size_t(Effect::Refraction)].find("whitted.pbrt:39"), std::string::npos)
-        << e.reasons[size_t(Effect::Refraction)];
-    EXPECT_TRUE(e.Has(Effect::Textures));
-    EXPECT_TRUE(e.Has(Effect::Environment));
-    EXPECT_NE(e.reasons[size_t(Effect::Environment)].find("whitted.pbrt:19"), std::string::npos);
-    // Integrator "whitted" traces no glossy rays.
-    EXPECT_FALSE(e.Has(Effect::GlossyReflection));
-    EXPECT_FALSE(e.Has(Effect::SoftShadows));
-    EXPECT_FALSE(e.Has(Effect::DepthOfField));
-    EXPECT_FALSE(e.Has(Effect::MotionBlur));
-    EXPECT_FALSE(e.Has(Effect::Csg));
-    EXPECT_FALSE(e.Has(Effect::Instancing));
-    ASSERT_EQ(e.lights.size(), 3u);
-    EXPECT_EQ(e.lights[0].shadowRays, 1);
-    EXPECT_EQ(e.lights[2].shadowRays, 4);  // the infinite light's nsamples
-    EXPECT_EQ(e.maxUsefulDepth, 6);
-    EXPECT_EQ(KernelMaskFor(s), KernelSpecular | KernelLightSamples | KernelBsdf);
-}
+TEST(Effects, KernelMasksOfRealScenes) {
+    EXPECT_EQ(KernelMaskFor(Build(Scene("whitted.pbrt"))),
+              KernelSpecular | KernelLightSamples | KernelBsdf);
 
-TEST(Effects, CsgGlossyAndDiffuseScenes) {
     RenderScene csg = Build(Scene("csg.pbrt"));
     EXPECT_TRUE(csg.features.effects.Has(Effect::Csg));
     EXPECT_NE(csg.features.effects.reasons[size_t(Effect::Csg)].find("CSGBegin"),
@@ -210,19 +185,6 @@ TEST(Effects, CsgGlossyAndDiffuseScenes) {
     RenderScene obj = Build(ObjScene());
     EXPECT_EQ(obj.integrator, IntegratorKind::Distribution);
     EXPECT_TRUE(obj.features.effects.Has(Effect::GlossyReflection));
-}
-
-TEST(Effects, InstancingIsNoted) {
-    std::string path =
-        Write("inst.pbrt", Header +
-                               "WorldBegin\nLightSource \"point\" \"point3 from\" [ 2 5 -3 ]\n"
-                               "ObjectBegin \"ball\"\nShape \"sphere\"\nObjectEnd\n"
-                               "ObjectInstance \"ball\"\nWorldEnd\n");
-    RenderScene s = Build(path);
-    EXPECT_TRUE(s.features.effects.Has(Effect::Instancing));
-    EXPECT_NE(s.features.effects.reasons[size_t(Effect::Instancing)].find("inst.pbrt:9"),
-              std::string::npos)
-        << s.features.effects.reasons[size_t(Effect::Instancing)];
 }
 
 // For each effect, a scene without it traces none of its rays (and one with it does).
