@@ -68,15 +68,23 @@ class Kernel {
                  const SampleContext &sc) const;
 
   private:
+    // Radiance of a ray that leaves the scene (infinite lights).
     RGB Escaped(const Ray &ray) const;
+    // Radiance along ray given its closest hit si (continues through pass-through surfaces).
     RGB Shade(const Ray &ray, SurfaceInteraction si, int depth, RayCounters &counters,
               const SampleContext &sc, bool emitted) const;
+    // Adds the specular reflection and transmission of every BSDF part to L.
     void AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
                      RayCounters &counters, const SampleContext &sc, RGB &L) const;
+    // Turns rough glass glossy; says how glossy rays are traced from this hit.
     GlossyRays PrepareGlossy(BSDF &bsdf, int depth) const;
+    // Adds the glossy reflection and transmission of every BSDF part to L: the scene's
+    // glossySamples rays per part at the first glossy bounce of a path, 1 deeper down.
     void AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, GlossyRays mode, int depth,
                    RayCounters &counters, const SampleContext &sc, RGB &L) const;
+    // The ray-weight cutoff: true when a secondary ray of throughput beta is traced.
     bool AboveCutoff(const RGB &beta) const;
+    // Direct lighting through f(wi, byGlossyRays) (a BSDF, or kd/π in Lambertian kernels).
     template <class F>
     void AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f, GlossyRays glossy,
                    bool hasDiffuse, int depth, RayCounters &counters, const SampleContext &sc,

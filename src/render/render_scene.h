@@ -16,7 +16,9 @@
 
 namespace prism {
 
-// What the scene calls for; the renderer simulates only these effects.
+// What the scene calls for; the renderer simulates only these effects. `effects` is the full
+// record (with reasons; render/kernel.h KernelMaskFor reads it); the bools below predate it
+// and are kept for their users (study, bench, the lens samples).
 struct SceneFeatures {
     bool specularReflection = false;  // mirror, glass, polished metal
     bool transmission = false;        // glass

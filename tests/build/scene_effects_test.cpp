@@ -1,12 +1,13 @@
 // The effect set (build/scene_effects.h, render/effects.h): which effects a scene calls for,
 // each with the reason and location of the directive that turned it on; each light's shadows;
 // the maximum useful depth; which materials count as specular or glossy under each integrator.
+#include "build/scene_effects.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "build/build_scene.h"
-#include "build/scene_effects.h"
 #include "scene/load_scene.h"
 #include "test_util.h"
 
@@ -82,12 +83,13 @@ TEST(Effects, InstancingIsNoted) {
 }
 
 TEST(Effects, DistributionTurnsRoughGlassAndMetalGlossy) {
-    std::string path = Write("rough.pbrt", Header + "WorldBegin\n"
-                                                    "LightSource \"point\" \"point3 from\" [ 0 5 0 ]\n"
-                                                    "Material \"glass\" \"float roughness\" [ 0.1 ]\n"
-                                                    "Shape \"sphere\"\n"
-                                                    "Material \"metal\" \"float roughness\" [ 0.2 ]\n"
-                                                    "Shape \"sphere\"\nWorldEnd\n");
+    std::string path = Write("rough.pbrt", Header +
+                                               "WorldBegin\n"
+                                               "LightSource \"point\" \"point3 from\" [ 0 5 0 ]\n"
+                                               "Material \"glass\" \"float roughness\" [ 0.1 ]\n"
+                                               "Shape \"sphere\"\n"
+                                               "Material \"metal\" \"float roughness\" [ 0.2 ]\n"
+                                               "Shape \"sphere\"\nWorldEnd\n");
     // Whitted follows rough glass as smooth (pbrt-v3) and shades rough metal by light samples.
     RenderScene w = Build(path, "whitted");
     EXPECT_TRUE(w.features.effects.Has(Effect::SpecularReflection));
@@ -107,12 +109,13 @@ TEST(Effects, DistributionTurnsRoughGlassAndMetalGlossy) {
 }
 
 TEST(Effects, PolishedMetalIsSpecularAndMatteIsNothing) {
-    std::string path = Write("plain.pbrt", Header + "WorldBegin\n"
-                                                    "LightSource \"spot\"\n"
-                                                    "Material \"metal\" \"float roughness\" [ 0 ] "
-                                                    "\"bool remaproughness\" \"false\"\n"
-                                                    "Shape \"sphere\"\n"
-                                                    "Material \"matte\"\nShape \"sphere\"\nWorldEnd\n");
+    std::string path = Write("plain.pbrt", Header +
+                                               "WorldBegin\n"
+                                               "LightSource \"spot\"\n"
+                                               "Material \"metal\" \"float roughness\" [ 0 ] "
+                                               "\"bool remaproughness\" \"false\"\n"
+                                               "Shape \"sphere\"\n"
+                                               "Material \"matte\"\nShape \"sphere\"\nWorldEnd\n");
     RenderScene s = Build(path, "distribution");
     EXPECT_TRUE(s.features.effects.Has(Effect::SpecularReflection));
     EXPECT_FALSE(s.features.effects.Has(Effect::GlossyReflection));
@@ -126,15 +129,15 @@ TEST(Effects, PolishedMetalIsSpecularAndMatteIsNothing) {
 }
 
 TEST(Effects, AreaLightsLensAndCsgHaveTheirLocations) {
-    std::string path = Write(
-        "misc.pbrt",
-        "LookAt 0 1 -5  0 0.5 0  0 1 0\n"
-        "Camera \"perspective\" \"float lensradius\" [ 0.1 ] \"float focaldistance\" [ 5 ]\n"
-        "WorldBegin\n"
-        "AttributeBegin\nAreaLightSource \"diffuse\" \"integer nsamples\" [ 9 ]\n"
-        "Shape \"sphere\"\nAttributeEnd\n"
-        "CSGBegin \"union\"\nShape \"sphere\"\nShape \"sphere\" \"float radius\" 2\nCSGEnd\n"
-        "WorldEnd\n");
+    std::string path =
+        Write("misc.pbrt",
+              "LookAt 0 1 -5  0 0.5 0  0 1 0\n"
+              "Camera \"perspective\" \"float lensradius\" [ 0.1 ] \"float focaldistance\" [ 5 ]\n"
+              "WorldBegin\n"
+              "AttributeBegin\nAreaLightSource \"diffuse\" \"integer nsamples\" [ 9 ]\n"
+              "Shape \"sphere\"\nAttributeEnd\n"
+              "CSGBegin \"union\"\nShape \"sphere\"\nShape \"sphere\" \"float radius\" 2\nCSGEnd\n"
+              "WorldEnd\n");
     RenderScene s = Build(path);
     const EffectSet &e = s.features.effects;
     EXPECT_NE(Reason(s, Effect::DepthOfField).find("\"lensradius\" at "), std::string::npos)
