@@ -38,6 +38,7 @@ struct BatchArgs {
     std::string input, outDir, format = "png";
     int jobs = 1, spp = 0, threads = 0;
     std::string res, maxMemory;
+    std::string effects = "scene";  // passed on to each render (--effects)
     bool force = false, quiet = false;
     ConfineOption confine;  // --confine [DIR]: each scene confined to DIR or its own folder
 };
@@ -213,6 +214,10 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     if (!a.res.empty()) {
         args.push_back("--res");
         args.push_back(a.res);
+    }
+    if (a.effects != "scene") {
+        args.push_back("--effects");
+        args.push_back(a.effects);
     }
     // Concurrent renders share the default budget, so together they stay within it.
     std::string budget = a.maxMemory;
@@ -397,6 +402,9 @@ void AddBatchCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--max-memory", args->maxMemory,
                     "Memory budget of each render, e.g. 4G (default: 75% of RAM)");
     AddConfineOption(cmd, &args->confine);
+    cmd->add_option("--effects", args->effects,
+                    "Kernel for every scene: \"scene\" (specialized) or \"all\" (general)")
+        ->check(CLI::IsMember({"scene", "all"}));
     cmd->add_flag("-q,--quiet", args->quiet, "No progress lines");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunBatch(*args); }); });
 }

@@ -11,6 +11,7 @@
 #include "build/shape_factory.h"
 #include "core/file_io.h"
 #include "core/pbrt_defaults.h"
+#include "render/kernel.h"
 #include "scene/load_scene.h"
 
 namespace prism {
@@ -26,6 +27,29 @@ std::string Counts(const std::map<std::string, int> &m) {
     std::string s;
     for (const auto &[k, v] : m) s += (s.empty() ? "" : ", ") + k + " " + std::to_string(v);
     return s.empty() ? "none" : s;
+}
+
+// Every effect on or off, with the reason (and location) of each one on; each light's shadows;
+// the maximum useful depth; the kernel the renderer runs.
+void PrintEffects(const RenderScene &scene) {
+    const EffectSet &e = scene.features.effects;
+    std::printf("effects:\n");
+    for (size_t i = 0; i < size_t(Effect::Count); ++i) {
+        const Effect eff = Effect(i);
+        if (e.Has(eff))
+            std::printf("  %s: on (%s)\n", EffectName(eff), e.reasons[i].c_str());
+        else if ((eff == Effect::GlossyReflection || eff == Effect::GlossyTransmission) &&
+                 scene.integrator != IntegratorKind::Distribution)
+            std::printf("  %s: off (Integrator \"%s\" traces no glossy rays)\n", EffectName(eff),
+                        scene.integratorName.c_str());
+        else
+            std::printf("  %s: off\n", EffectName(eff));
+    }
+    for (const LightShadows &l : e.lights)
+        std::printf("  shadows of %s: %d shadow ray%s per shading point\n", l.light.c_str(),
+                    l.shadowRays, l.shadowRays == 1 ? "" : "s");
+    std::printf("max useful depth: %d (maxdepth %d)\n", e.maxUsefulDepth, scene.maxDepth);
+    std::printf("kernel:     %s\n", KernelMaskName(KernelMaskFor(scene)).c_str());
 }
 
 int RunInfo(const InfoArgs &a) {
@@ -83,7 +107,7 @@ int RunInfo(const InfoArgs &a) {
     BuildSettings settings;
     settings.budget = &budget;
     settings.buildBvh = false;
-    BuildRenderScene(desc, settings, diag);
+    RenderScene built = BuildRenderScene(desc, settings, diag);
     for (const MaterialDesc &m : desc.materials) materials[m.type]++;
     for (const TextureDesc &t : desc.textures) textures[t.type]++;
     for (const LightDesc &l : desc.lights) lights[l.type]++;
@@ -126,6 +150,7 @@ int RunInfo(const InfoArgs &a) {
                 desc.film.params.GetInt("xresolution", PbrtDefaultXResolution),
                 desc.film.params.GetInt("yresolution", PbrtDefaultYResolution));
     std::printf("integrator: %s\n", desc.integrator.type.c_str());
+    PrintEffects(built);
     std::vector<Warning> w = diag.Warnings();
     std::printf("warnings:   %zu\n", w.size());
     for (const Warning &x : w) std::printf("  %s\n", x.ToString().c_str());

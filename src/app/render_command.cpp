@@ -15,6 +15,7 @@
 #include "build/build_scene.h"
 #include "core/file_io.h"
 #include "image/image_io.h"
+#include "render/kernel.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "study/target_error.h"
@@ -37,7 +38,8 @@ struct RenderArgs {
     int tessellate = 0;      // [validate hook]
     float fov = 0;
     bool quiet = false, noProgress = false;
-    ConfineOption confine;  // --confine [DIR]
+    ConfineOption confine;          // --confine [DIR]
+    std::string effects = "scene";  // --effects: "scene" (specialized kernel) or "all"
     // Accuracy knobs (docs/NUMERICS.md, `prism study`).
     float cutoff = 0, offsetEpsilon = 0;      // offsetEpsilon 0: not given
     std::string offset, bvhQuality = "auto";  // offset empty: not given
@@ -136,6 +138,7 @@ int RunRender(const RenderArgs &a) {
     opts.offset = ParseOffset(a.offset, a.offsetEpsilon);
     opts.robust = a.robust;
     opts.bvhQuality = ParseBvhQuality(a.bvhQuality);
+    opts.allEffects = a.effects == "all";
     // One budget for everything this render holds: scene files and meshes (LoadScene), the
     // film, textures, meshes and BVH (BuildRenderScene); it lives until the render ends.
     MemoryBudget budget(ParseMaxMemory(a.maxMemory));
@@ -233,13 +236,12 @@ int RunRender(const RenderArgs &a) {
                          BvhQualityName(scene.accel->BuildQuality()),
                          scene.accel->Robust() ? ", robust" : "");
         }
-        const SceneFeatures &f = scene.features;
-        auto yn = [](bool b) { return b ? "on" : "off"; };
-        std::fprintf(stderr,
-                     "effects: specular reflection %s, refraction %s, soft shadows %s, "
-                     "environment %s, textures %s, depth of field %s\n",
-                     yn(f.specularReflection), yn(f.transmission), yn(f.areaLights),
-                     yn(f.environment), yn(f.textures), yn(f.lens));
+        std::string on;
+        for (size_t e = 0; e < size_t(Effect::Count); ++e)
+            if (scene.features.effects.Has(Effect(e)))
+                on += std::string(on.empty() ? "" : ", ") + EffectName(Effect(e));
+        std::fprintf(stderr, "effects: %s; kernel: %s\n", on.empty() ? "none" : on.c_str(),
+                     KernelMaskName(stats.kernelMask).c_str());
         if (stats.nonFiniteSamples > 0)
             std::fprintf(stderr,
                          "warning: %llu NaN/Inf samples were written as 0 (first at pixel %d,%d)\n",
@@ -314,6 +316,10 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
                     "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM), for scene "
                     "files, meshes, BVH, textures and film together; more is an error");
     AddConfineOption(cmd, &args->confine);
+    cmd->add_option("--effects", args->effects,
+                    "Kernel: \"scene\" (specialized for the scene's effects; `prism info` lists "
+                    "them) or \"all\" (the general kernel: the same image, for comparison)")
+        ->check(CLI::IsMember({"scene", "all"}));
     cmd->add_flag("-q,--quiet", args->quiet, "No progress, statistics or warnings");
     cmd->add_flag("--no-progress", args->noProgress,
                   "No progress display (statistics and warnings stay)");

@@ -5,6 +5,7 @@
 #include "build/camera_film.h"
 #include "build/lights.h"
 #include "build/materials.h"
+#include "build/scene_effects.h"
 #include "build/shapes.h"
 #include "build/textures.h"
 
@@ -26,6 +27,8 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     BuildLights(ctx);
     MaterialBuilder materials(ctx);  // created on demand, as shapes use them
     BuildShapesAndInstances(ctx, materials);
+    FinishEffects(ctx);
+    scene.allEffects = settings.allEffects;
     if (scene.lights.empty())
         diag.Warn(desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0},
                   "the scene has no light sources");

@@ -66,6 +66,9 @@ struct BuildSettings {
     // false: build everything but the top-level BVH (`prism info`: every build warning, no
     // Embree commit); the scene cannot be rendered then.
     bool buildBvh = true;
+    // --effects all: the renderer runs its general kernel rather than the one specialized for
+    // the scene's effects (RenderScene::allEffects; the same image, for comparison).
+    bool allEffects = false;
     ShapeReplacement replaceAnalyticShape;  // empty: every analytic shape stays analytic
 };
 

@@ -94,6 +94,12 @@ void BuildCamera(BuildContext &ctx) {
     params.lensRadius = cp.GetFloat("lensradius", 0.f);
     params.focalDistance = cp.GetFloat("focaldistance", 1e6f);
     scene.features.lens = params.lensRadius > 0;
+    if (scene.features.lens) {
+        const Param *lr = cp.Find("lensradius");
+        scene.features.effects.Enable(Effect::DepthOfField,
+                                      "Camera " + Quote(type) + " \"lensradius\"",
+                                      lr ? lr->loc : cd.loc);
+    }
     const Vec2i res = scene.resolution;
     double frame = cp.GetFloat("frameaspectratio", float(double(res.x) / res.y));
     // pbrt-v3: the shutter is open from "shutteropen" to "shutterclose" (default 0 1); a

@@ -1,5 +1,6 @@
 #include "build/lights.h"
 
+#include "build/scene_effects.h"
 #include "build/textures.h"
 #include "render/area_light.h"
 #include "render/infinite_light.h"
@@ -11,6 +12,7 @@ void BuildLights(BuildContext &ctx) {
     RenderScene &scene = ctx.scene;
     Diagnostics &diag = ctx.diag;
     for (const LightDesc &l : desc.lights) {
+        const size_t lightsBefore = scene.lights.size();
         const ParamSet &ps = l.params;
         Transform renderFromLight = scene.renderFromWorld * l.worldFromLight;
         RGB sc = ScaleParam(ps);
@@ -56,6 +58,8 @@ void BuildLights(BuildContext &ctx) {
             ps.MarkAllUsed();
         }
         ps.ReportUnused(diag, "light " + Quote(l.type));
+        if (scene.lights.size() > lightsBefore)
+            NoteLightEffects(ctx, "LightSource " + Quote(l.type), l.loc);
     }
 }
 
@@ -86,6 +90,7 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
         std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L, twoSided, n));
     scene.shapes[size_t(shape)].areaLight = int(scene.lights.size()) - 1;
     scene.features.areaLights = true;
+    NoteLightEffects(ctx, "AreaLightSource " + Quote(a.type), a.loc);
     return &a;
 }
 

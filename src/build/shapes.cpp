@@ -6,6 +6,7 @@
 
 #include "build/csg.h"
 #include "build/lights.h"
+#include "build/scene_effects.h"
 #include "build/shape_factory.h"
 #include "core/memory.h"
 
@@ -123,6 +124,9 @@ struct ShapeBuilder : BuildStep {
         accel.SetSurfaceNeeds(index, m.SurfaceNeeds());
         if (m.MayReflectSpecularly()) scene.features.specularReflection = true;
         if (m.MayTransmit()) scene.features.transmission = true;
+        FileLoc materialLoc;
+        std::string why = MaterialWhy(desc, s, &materialLoc);
+        NoteMaterialEffects(ctx, m, why, materialLoc);
         return index;
     }
 
@@ -173,6 +177,8 @@ struct ShapeBuilder : BuildStep {
             needs |= m.SurfaceNeeds();
             if (m.MayReflectSpecularly()) scene.features.specularReflection = true;
             if (m.MayTransmit()) scene.features.transmission = true;
+            NoteMaterialEffects(ctx, m, "material " + Quote(m.typeName) + " of a CSG operand",
+                                node.loc);
         }
         int index = scene.accel->AddAnalytic(std::move(csg));
         scene.accel->SetSurfaceNeeds(index, needs);
@@ -184,6 +190,7 @@ struct ShapeBuilder : BuildStep {
         info.prototype = int(scene.prototypes.size()) - 1;
         scene.shapes[size_t(index)] = info;
         scene.features.csgNodes++;
+        scene.features.effects.Enable(Effect::Csg, "CSGBegin " + Quote(node.op), node.loc);
     }
 
     // ObjectInstance: each ObjectBegin group becomes one committed prototype, shared by all
@@ -234,6 +241,8 @@ struct ShapeBuilder : BuildStep {
         info.type = "instance";
         info.prototype = it->second.second;
         scene.shapes[size_t(index)] = info;
+        scene.features.effects.Enable(Effect::Instancing, "ObjectInstance " + Quote(inst.object),
+                                      inst.loc);
     }
 
     void Build() {

@@ -10,7 +10,7 @@
 // rarely fall inside it: the limit alpha -> 0 is the mirror image) and through light samples
 // when it is wide (where a glossy ray would rarely hit a small light), glossy rays then not
 // counting the emission they hit first. A hit where no glossy ray is traced (the depth limit)
-// shades as Whitted does.
+// shades as Whitted does. The code is the kernel of render/kernel.h (Kernel<K> with KernelGlossy).
 #pragma once
 
 #include "render/whitted.h"
@@ -28,24 +28,16 @@ enum class GlossyRays {
     AllLights,    // glossy rays bring back infinite and area lights
 };
 
+// The distribution integrator as a value: the general kernel (render/kernel.h) with glossy rays.
 class DistributionIntegrator : public WhittedIntegrator {
   public:
     static constexpr bool Glossy = true;
     explicit DistributionIntegrator(const RenderScene &scene) : WhittedIntegrator(scene) {}
-    // emitted false: the emission of the first surface hit is left out (see Shade).
+    // emitted false: the emission of the first surface hit is left out (glossy rays).
     RGB Li(const Ray &ray, int depth, RayCounters &counters, const SampleContext &sc = {},
            bool emitted = true) const;
     RGB LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
                  const SampleContext &sc = {}) const;
-
-  private:
-    friend class WhittedIntegrator;  // its Shade calls the two hooks below
-    // Turns rough glass glossy; says how glossy rays are traced from this hit.
-    GlossyRays PrepareGlossy(BSDF &bsdf, int depth) const;
-    // Adds the glossy reflection and transmission of every BSDF part to L: the scene's
-    // glossySamples rays per part at the first glossy bounce of a path, 1 deeper down.
-    void AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, GlossyRays mode, int depth,
-                   RayCounters &counters, const SampleContext &sc, RGB &L) const;
 };
 
 }  // namespace prism

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -29,10 +30,22 @@ enum class Effect : uint32_t {
 
 inline constexpr uint32_t EffectBit(Effect e) { return 1u << uint32_t(e); }
 
+// One light's shadows: the light ("LightSource \"point\" at scene.pbrt:5") and the shadow rays
+// it sends per shading point (more than one: a stratified set, i.e. soft shadows).
+struct LightShadows {
+    std::string light;
+    int shadowRays = 1;
+};
+
 struct EffectSet {
     uint32_t mask = 0;
     // Why each effect is on ("ActiveTransform at scene.pbrt:12"); empty when off.
     std::array<std::string, size_t(Effect::Count)> reasons;
+    // Each light's shadows, in the order of RenderScene::lights.
+    std::vector<LightShadows> lights;
+    // The depth beyond which no ray is traced: 1 when nothing is specular or glossy (no ray
+    // bounces), else the integrator's maxdepth.
+    int maxUsefulDepth = 1;
 
     bool Has(Effect e) const { return (mask & EffectBit(e)) != 0; }
     // Turns e on; the first reason given is kept.

@@ -60,6 +60,13 @@ bool Material::MayReflectSpecularly() const {
     }
 }
 
+bool Material::IsLambertian() const {
+    if (kind != Kind::Matte) return false;
+    if (!sigma) return true;
+    auto *c = dynamic_cast<const ConstantTexture *>(sigma.get());
+    return c && !(c->Value().r > 0);  // AddParts: Oren–Nayar only for sigma > 0
+}
+
 bool Material::MayTransmit() const {
     switch (kind) {
         case Kind::Glass:

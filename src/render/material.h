@@ -41,6 +41,13 @@ class Material {
     std::shared_ptr<const Material> mix1, mix2;
 
     bool IsPassThrough() const { return kind == Kind::None; }
+    // Lambertian matte (no Oren–Nayar sigma): f = kd/π. Kernels without KernelBsdf
+    // (render/kernel.h) shade such materials from LambertianKd without building a BSDF.
+    bool IsLambertian() const;
+    // kd as GetBSDF gives it (its one part, of weight 1); only for IsLambertian materials.
+    RGB LambertianKd(const TextureContext &tc) const {
+        return fixed_ ? fixedParts_[0].lobes.kd : Kd->Evaluate(tc).Clamped(0.f);
+    }
     bool MayTransmit() const;
     bool MayReflectSpecularly() const;
     // BSDF parts this material can add (mixes add their children's; uber's opacity adds one).

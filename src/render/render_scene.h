@@ -16,7 +16,9 @@
 
 namespace prism {
 
-// What the scene calls for; the renderer simulates only these effects.
+// What the scene calls for; the renderer simulates only these effects. `effects` is the full
+// record (with reasons; render/kernel.h KernelMaskFor reads it); the bools below predate it
+// and are kept for their users (study, bench, the lens samples).
 struct SceneFeatures {
     bool specularReflection = false;  // mirror, glass, polished metal
     bool transmission = false;        // glass
@@ -78,6 +80,9 @@ struct RenderScene {
     IntegratorKind integrator = IntegratorKind::Whitted;
     int glossySamples = DefaultGlossySamples;  // DistributionIntegrator only
     SceneFeatures features;
+    // --effects all: render with the general kernel instead of the one specialized for
+    // features.effects (render/kernel.h; same image, for comparison).
+    bool allEffects = false;
     double buildSeconds = 0;  // BVH build only
 };
 

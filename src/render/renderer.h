@@ -22,7 +22,8 @@ struct RenderStats {
     RayCounters rays;
     uint64_t nonFiniteSamples = 0;
     std::optional<Vec2i> firstNonFinitePixel;
-    bool cancelled = false;  // the cancel flag was raised: the image is incomplete
+    bool cancelled = false;   // the cancel flag was raised: the image is incomplete
+    uint32_t kernelMask = 0;  // the kernel that ran (render/kernel.h KernelMaskName)
 };
 
 // Called with the fraction done (0..1), from a single thread.

@@ -1,6 +1,7 @@
 // pbrt-v3's Whitted integrator (integrators/whitted.cpp): emitted light, one shadow-tested
 // sample per light for the non-specular lobes, and recursion on the specular reflection and
-// transmission lobes up to maxdepth.
+// transmission lobes up to maxdepth. The shading code is the kernel of render/kernel.h, which
+// is specialized per effect set; this header keeps the ray counters and the sample context.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +22,8 @@ struct RayCounters {
     uint64_t glossy = 0;
     // Secondary rays not traced because of the ray-weight cutoff (not part of Total()).
     uint64_t cutoff = 0;
+    // Lens samples drawn for camera rays (depth of field; not rays, not part of Total()).
+    uint64_t lensSamples = 0;
     uint64_t Total() const {
         return camera + shadow + reflection + refraction + passThrough + glossy;
     }
@@ -32,6 +35,7 @@ struct RayCounters {
         passThrough += o.passThrough;
         glossy += o.glossy;
         cutoff += o.cutoff;
+        lensSamples += o.lensSamples;
         return *this;
     }
 };
@@ -46,8 +50,8 @@ struct SampleContext {
     bool afterGlossy = false;  // a glossy bounce lies between the camera and this ray
 };
 
-struct BSDF;
-
+// The Whitted integrator as a value (tests, `prism trace`): the general kernel (render/kernel.h)
+// without glossy rays. The renderer runs the kernel specialized for the scene instead.
 class WhittedIntegrator {
   public:
     static constexpr bool Glossy = false;  // traces no glossy rays (pbrt-v3's "whitted")
@@ -60,24 +64,6 @@ class WhittedIntegrator {
                  const SampleContext &sc = {}) const;
 
   protected:
-    // Shade and AddSpecular are shared with DistributionIntegrator (distribution_integrator.h):
-    // templates over the integrator whose Li secondary rays recurse into, instantiated for
-    // both in whitted.cpp. Integrator::Glossy (a constant) adds the glossy rays.
-
-    // Adds the specular reflection and transmission of every BSDF part to L.
-    template <class Integrator>
-    void AddSpecular(const Integrator &integrator, const SurfaceInteraction &si, const BSDF &bsdf,
-                     int depth, RayCounters &counters, const SampleContext &sc, RGB &L) const;
-    // Radiance of a ray that leaves the scene (infinite lights).
-    RGB Escaped(const Ray &ray) const;
-    // Radiance along ray given its closest hit si (continues through pass-through surfaces).
-    // emitted false (DistributionIntegrator's glossy rays only): the area light of the hit
-    // is not added, because light samples at the previous hit estimated it.
-    template <class Integrator>
-    RGB Shade(const Integrator &integrator, const Ray &ray, SurfaceInteraction si, int depth,
-              RayCounters &counters, const SampleContext &sc, bool emitted = true) const;
-    // The ray-weight cutoff: true when a secondary ray of throughput beta is traced.
-    bool AboveCutoff(const RGB &beta) const;
     const RenderScene &scene_;
 };
 

@@ -1,0 +1,64 @@
+#include "render/kernel.h"
+
+#include <array>
+#include <utility>
+
+#include "render/render_scene.h"
+
+namespace prism {
+
+template <uint32_t K>
+void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &buf,
+                      FilmTile *tile);  // instantiated in kernel_*.cpp
+
+uint32_t KernelMaskFor(const RenderScene &scene) {
+    const EffectSet &e = scene.features.effects;
+    uint32_t mask = 0;
+    // Recursion (specular or glossy) needs a second bounce.
+    const bool recursion = scene.maxDepth > 1;
+    if (recursion && (e.Has(Effect::SpecularReflection) || e.Has(Effect::Refraction)))
+        mask |= KernelSpecular;
+    if (recursion && scene.integrator == IntegratorKind::Distribution &&
+        (e.Has(Effect::GlossyReflection) || e.Has(Effect::GlossyTransmission)))
+        mask |= KernelGlossy;
+    if (e.Has(Effect::SoftShadows) || e.Has(Effect::Environment)) mask |= KernelLightSamples;
+    if (e.Has(Effect::DepthOfField) || e.Has(Effect::MotionBlur)) mask |= KernelCameraSamples;
+    // Details no effect names, read from the scene itself: lights that take stratified samples
+    // (whatever builds them) and "none" materials.
+    for (const auto &light : scene.lights)
+        if (light->UsesSample() || light->NumSamples() != 1 || light->IsArea())
+            mask |= KernelLightSamples;
+    for (const Material &m : scene.materials) {
+        if (m.IsPassThrough()) mask |= KernelPassThrough;
+        if (!m.IsLambertian() && !m.IsPassThrough()) mask |= KernelBsdf;
+    }
+    return KernelCanonical(mask);
+}
+
+std::string KernelMaskName(uint32_t mask) {
+    if (mask == KernelAll) return "all";
+    static const char *const names[KernelBits] = {"specular",       "glossy",       "light samples",
+                                                  "camera samples", "pass-through", "BSDF"};
+    std::string s;
+    for (int i = 0; i < KernelBits; ++i)
+        if (mask & (1u << i)) {
+            if (!s.empty()) s += '+';
+            s += names[i];
+        }
+    return s.empty() ? "Lambertian" : s;
+}
+
+namespace {
+template <size_t... M>
+constexpr std::array<RenderTileFn, sizeof...(M)> MakeTable(std::index_sequence<M...>) {
+    return {&RenderTileKernel<KernelCanonical(uint32_t(M))>...};
+}
+}  // namespace
+
+RenderTileFn KernelRenderTile(uint32_t mask) {
+    static const std::array<RenderTileFn, KernelAll + 1> table =
+        MakeTable(std::make_index_sequence<KernelAll + 1>());
+    return table[mask & KernelAll];
+}
+
+}  // namespace prism

@@ -1,0 +1,113 @@
+// The render kernel, specialized per effect set. Kernel<K> is the Whitted/distribution shading
+// kernel compiled for one kernel mask K: the effects of the mask that are off are compiled out
+// (`if constexpr`), so a ray never branches on an effect its scene lacks. The renderer picks the
+// mask of the scene once per render (KernelMaskFor) and runs that instantiation; `--effects all`
+// runs Kernel<KernelAll>, which decides every effect at run time as the kernel did before it
+// was specialized. Both give bit-identical images (tests/render/kernel_test.cpp).
+//
+// Only the bits that change the work per ray are kernel bits (the 40 valid masks of
+// KernelBits bits are instantiated, compiled in parallel over kernel_*.cpp); textures, CSG and
+// instancing live below the kernel (in materials and in the BVH) and cost nothing where absent
+// without a bit of their own.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/accel.h"
+#include "image/bounds2.h"
+#include "render/whitted.h"
+
+namespace prism {
+
+struct BSDF;
+struct RenderScene;
+class FilmTile;
+enum class GlossyRays;
+
+enum KernelBit : uint32_t {
+    KernelSpecular = 1u << 0,       // delta reflection and transmission: recursion
+    KernelGlossy = 1u << 1,         // glossy rays (Integrator "distribution" only)
+    KernelLightSamples = 1u << 2,   // area or infinite lights: stratified light samples,
+                                    // emission of hit surfaces, radiance of escaping rays
+    KernelCameraSamples = 1u << 3,  // lens samples (depth of field) and ray times (motion blur)
+    KernelPassThrough = 1u << 4,    // "none" materials: rays continue through surfaces
+    // Materials other than Lambertian matte: BSDFs are built and evaluated. Without it (every
+    // material Lambertian, so nothing specular or glossy either) f is kd/π.
+    KernelBsdf = 1u << 5,
+};
+inline constexpr int KernelBits = 6;
+inline constexpr uint32_t KernelAll = (1u << KernelBits) - 1;
+
+// The smallest kernel mask that renders `scene` exactly (from scene.features.effects).
+uint32_t KernelMaskFor(const RenderScene &scene);
+// "specular+light samples", "none" (the diffuse kernel), "all".
+std::string KernelMaskName(uint32_t mask);
+
+template <uint32_t K>
+class Kernel {
+  public:
+    static constexpr bool Specular = (K & KernelSpecular) != 0;
+    static constexpr bool Glossy = (K & KernelGlossy) != 0;
+    static constexpr bool LightSamples = (K & KernelLightSamples) != 0;
+    static constexpr bool CameraSamples = (K & KernelCameraSamples) != 0;
+    static constexpr bool PassThrough = (K & KernelPassThrough) != 0;
+    static constexpr bool GeneralBsdf = (K & KernelBsdf) != 0;
+    static_assert(GeneralBsdf || !(Specular || Glossy), "a Lambertian kernel does not bounce");
+
+    // glossyRays: trace glossy rays (Integrator "distribution"); read only when Glossy.
+    Kernel(const RenderScene &scene, bool glossyRays) : scene_(scene), glossyRays_(glossyRays) {}
+    // Radiance along a ray; depth counts specular bounces (camera rays are depth 0). emitted
+    // false (glossy rays only): the area light of the first hit is not added, because light
+    // samples at the previous hit estimated it.
+    RGB Li(const Ray &ray, int depth, RayCounters &counters, const SampleContext &sc,
+           bool emitted = true) const;
+    // The same for a camera ray whose closest hit is already known (hit.shape < 0: a miss).
+    RGB LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
+                 const SampleContext &sc) const;
+
+  private:
+    // Radiance of a ray that leaves the scene (infinite lights).
+    RGB Escaped(const Ray &ray) const;
+    // Radiance along ray given its closest hit si (continues through pass-through surfaces).
+    RGB Shade(const Ray &ray, SurfaceInteraction si, int depth, RayCounters &counters,
+              const SampleContext &sc, bool emitted) const;
+    // Adds the specular reflection and transmission of every BSDF part to L.
+    void AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
+                     RayCounters &counters, const SampleContext &sc, RGB &L) const;
+    // Turns rough glass glossy; says how glossy rays are traced from this hit.
+    GlossyRays PrepareGlossy(BSDF &bsdf, int depth) const;
+    // Adds the glossy reflection and transmission of every BSDF part to L: the scene's
+    // glossySamples rays per part at the first glossy bounce of a path, 1 deeper down.
+    void AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, GlossyRays mode, int depth,
+                   RayCounters &counters, const SampleContext &sc, RGB &L) const;
+    // The ray-weight cutoff: true when a secondary ray of throughput beta is traced.
+    bool AboveCutoff(const RGB &beta) const;
+    // Direct lighting through f(wi, byGlossyRays) (a BSDF, or kd/π in Lambertian kernels).
+    template <class F>
+    void AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f, GlossyRays glossy,
+                   bool hasDiffuse, int depth, RayCounters &counters, const SampleContext &sc,
+                   RGB &L) const;
+
+    const RenderScene &scene_;
+    bool glossyRays_;
+};
+
+// Per-thread buffers for one tile's samples, reused from tile to tile.
+struct TileScratch {
+    std::vector<Vec2f> pFilm;
+    std::vector<RGB> L;
+};
+// Renders the pixels tb of one tile with Kernel<mask> into `tile`.
+using RenderTileFn = void (*)(const RenderScene &scene, Bounds2i tb, RayCounters &rc,
+                              TileScratch &buf, FilmTile *tile);
+RenderTileFn KernelRenderTile(uint32_t mask);
+
+// The instantiated mask that runs `mask`: KernelBsdf is added where the mask bounces (a
+// Lambertian kernel has no specular or glossy code).
+constexpr uint32_t KernelCanonical(uint32_t mask) {
+    return (mask & (KernelSpecular | KernelGlossy)) ? mask | KernelBsdf : mask;
+}
+
+}  // namespace prism

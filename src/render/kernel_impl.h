@@ -1,0 +1,351 @@
+// The definitions of Kernel<K> (render/kernel.h) and of the tile loop that runs it; included
+// only by the kernel_*.cpp files that instantiate the masks (and nowhere else, so the
+// instantiations compile once, in parallel).
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "image/film.h"
+#include "render/area_light.h"
+#include "render/bsdf.h"
+#include "render/distribution_integrator.h"
+#include "render/kernel.h"
+#include "render/render_scene.h"
+#include "render/renderer.h"
+#include "render/sampler.h"
+
+namespace prism {
+
+// Consecutive invisible-interface crossings allowed before a ray is dropped; guards against
+// stacks of coincident "none" surfaces without changing any real scene.
+inline constexpr int MaxPassThrough = 256;
+
+// TimePurpose: a pattern of its own, so the time dimension shifts no other.
+enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1, TimePurpose = 0x74696d65 };
+
+template <uint32_t K>
+RGB Kernel<K>::Escaped(const Ray &ray) const {
+    RGB L;
+    // Only infinite lights give radiance to escaping rays; without them (no light-sample bit)
+    // the sum over the lights is 0.
+    if constexpr (LightSamples)
+        for (const auto &light : scene_.lights) L += light->Le(ray);
+    return L;
+}
+
+template <uint32_t K>
+RGB Kernel<K>::Li(const Ray &ray, int depth, RayCounters &counters, const SampleContext &sc,
+                  bool emitted) const {
+    SurfaceInteraction si;
+    if (!scene_.accel->Intersect(ray, &si)) return Escaped(ray);
+    return Shade(ray, si, depth, counters, sc, emitted);
+}
+
+template <uint32_t K>
+RGB Kernel<K>::LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
+                        const SampleContext &sc) const {
+    if (hit.shape < 0) return Escaped(ray);
+    return Shade(ray, scene_.accel->Interaction(ray, hit), 0, counters, sc, true);
+}
+
+template <uint32_t K>
+bool Kernel<K>::AboveCutoff(const RGB &beta) const {
+    return !(scene_.rayCutoff > 0 && !(beta.MaxComponent() * scene_.filmScale > scene_.rayCutoff));
+}
+
+template <uint32_t K>
+RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCounters &counters,
+                     const SampleContext &sc, bool emitted) const {
+    const ShapeInfo *shape = &scene_.Info(si);
+    const Material *mat = &scene_.materials[size_t(shape->material)];
+    if constexpr (PassThrough) {
+        Ray ray = rayIn;
+        for (int pass = 0; mat->IsPassThrough(); ++pass) {
+            if (pass >= MaxPassThrough) return RGB(0);
+            // pbrt: a surface without a BSDF continues the ray without counting a bounce.
+            ray = si.SpawnRay(ray.d, scene_.offset);
+            counters.passThrough++;
+            if (!scene_.accel->Intersect(ray, &si)) return Escaped(ray);
+            shape = &scene_.Info(si);
+            mat = &scene_.materials[size_t(shape->material)];
+        }
+    }
+
+    TextureContext tc{si.uv, si.p};
+    const Vec3f &wo = si.wo;
+    RGB L;
+    // Emission of an area light seen directly or through specular paths.
+    if constexpr (LightSamples)
+        if (shape->areaLight >= 0 && (!Glossy || emitted))
+            L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(shape->areaLight)])
+                     .L(si.n, wo);
+
+    if constexpr (!GeneralBsdf) {
+        // Only Lambertian matte materials (KernelMaskFor): f = kd/π, or 0 where the geometric
+        // normal says wi is transmission, without building a BSDF. Nothing is specular or
+        // glossy. The same bits as BSDF::f of one Lambertian part of weight 1.
+        const RGB kd = mat->LambertianKd(tc);
+        if (kd.IsBlack()) return L;
+        const RGB f = kd * float(InvPi);
+        const float cosO = Dot(wo, si.ns), woNg = Dot(wo, si.n);
+        auto lambert = [&](const Vec3f &wi, bool) {
+            return cosO == 0 || !(Dot(wi, si.n) * woNg > 0) ? RGB(0) : f;
+        };
+        AddDirect(si, si.ns, lambert, GlossyRays::None, false, depth, counters, sc, L);
+        return L;
+    } else {
+        BSDF bsdf = mat->GetBSDF(si, tc);
+        // Distribution: rough glass becomes glossy, and glossy rays sample the glossy lobes; the
+        // lights those rays bring back are not light-sampled through them (GlossyRays).
+        GlossyRays glossy = GlossyRays::None;
+        if constexpr (Glossy)
+            if (glossyRays_) glossy = PrepareGlossy(bsdf, depth);
+        // Direct lighting through the non-specular lobes.
+        if (bsdf.HasNonSpecular()) {
+            const bool hasDiffuse = glossy != GlossyRays::None && bsdf.HasDiffuse();
+            auto general = [&](const Vec3f &wi, bool byGlossyRays) {
+                return byGlossyRays ? bsdf.fDiffuse(wo, wi) : bsdf.f(wo, wi);
+            };
+            AddDirect(si, bsdf.ns, general, glossy, hasDiffuse, depth, counters, sc, L);
+        }
+        if constexpr (Specular) AddSpecular(si, bsdf, depth, counters, sc, L);
+        if constexpr (Glossy)
+            if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, L);
+        return L;
+    }
+}
+
+// Direct lighting: one shadow ray per delta light, and a stratified set of shadow rays per
+// area or environment light (distribution ray tracing). f(wi, byGlossyRays) is the BSDF.
+template <uint32_t K>
+template <class F>
+void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f,
+                          GlossyRays glossy, bool hasDiffuse, int depth, RayCounters &counters,
+                          const SampleContext &sc, RGB &L) const {
+    for (size_t j = 0; j < scene_.lights.size(); ++j) {
+        const Light &light = *scene_.lights[j];
+        if constexpr (!LightSamples) {
+            // Only delta lights: one sample each, which ignores u.
+            LightSample ls;
+            if (!light.SampleLi(si, Vec2f(0.5f, 0.5f), &ls) || ls.Li.IsBlack() || !(ls.pdf > 0))
+                continue;
+            RGB fj = f(ls.wi, false);
+            if (fj.IsBlack()) continue;
+            Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene_.offset)
+                                     : si.SpawnRayTo(ls.pLight, scene_.offset);
+            counters.shadow++;
+            if (scene_.accel->Occluded(shadow)) continue;
+            L += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
+        } else {
+            int n = light.NumSamples();
+            // Delta lights ignore u: the stratified pattern (a hash chain) only where it is used.
+            const bool usesSample = light.UsesSample();
+            // Whether this light reaches the glossy lobes through glossy rays only.
+            const bool byGlossyRays =
+                usesSample && (glossy == GlossyRays::AllLights ||
+                               (glossy == GlossyRays::Environment && !light.IsArea()));
+            if (byGlossyRays && !hasDiffuse) continue;
+            uint32_t seed =
+                usesSample ? PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919))
+                           : 0;
+            RGB Lj;
+            for (int k = 0; k < n; ++k) {
+                Vec2f u = usesSample ? CMJSample(sc.sample * uint32_t(n) + uint32_t(k),
+                                                 sc.spp * uint32_t(n), seed)
+                                     : Vec2f(0.5f, 0.5f);
+                LightSample ls;
+                if (!light.SampleLi(si, u, &ls) || ls.Li.IsBlack() || !(ls.pdf > 0)) continue;
+                RGB fj = f(ls.wi, byGlossyRays);
+                if (fj.IsBlack()) continue;
+                Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene_.offset)
+                                         : si.SpawnRayTo(ls.pLight, scene_.offset);
+                counters.shadow++;
+                if (scene_.accel->Occluded(shadow)) continue;
+                Lj += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
+            }
+            L += n == 1 ? Lj : Lj / float(n);
+        }
+    }
+}
+
+template <uint32_t K>
+void Kernel<K>::AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
+                            RayCounters &counters, const SampleContext &sc, RGB &L) const {
+    const Vec3f &wo = si.wo;
+    // Specular recursion, for the delta lobes of every BSDF part (mix materials have several).
+    if (depth + 1 < scene_.maxDepth) {
+        Vec3f wi;
+        RGB weight;
+        // Traces the ray along wi unless the ray-weight cutoff drops it: the radiance it could
+        // bring back is unknown, so a ray "can change the pixel by more than the cutoff" when its
+        // throughput (max RGB component, times the Film's scale) exceeds the cutoff, as if it
+        // brought back radiance 1 (pbrt-style ray weights; the pixel filter's share of the
+        // sample is ignored). Cutoff 0 traces every ray, exactly as without the cutoff.
+        auto trace = [&](uint64_t &kind) {
+            SampleContext next = sc;
+            next.beta = sc.beta * weight;
+            if (!AboveCutoff(next.beta)) {
+                counters.cutoff++;
+                return;
+            }
+            kind++;
+            L += weight * Li(si.SpawnRay(wi, scene_.offset), depth + 1, counters, next);
+        };
+        for (int part = 0; part < bsdf.NumParts(); ++part) {
+            if (bsdf.SampleSpecularReflection(part, wo, &wi, &weight)) trace(counters.reflection);
+            if (bsdf.SampleSpecularTransmission(part, wo, &wi, &weight)) trace(counters.refraction);
+        }
+    }
+}
+
+template <uint32_t K>
+GlossyRays Kernel<K>::PrepareGlossy(BSDF &bsdf, int depth) const {
+    if (!bsdf.MakeRoughSpecularGlossy() || depth + 1 >= scene_.maxDepth) return GlossyRays::None;
+    for (int i = 0; i < bsdf.NumParts(); ++i) {
+        const BxDFLobes &l = bsdf.Part(i);
+        if (!bsdf.Weight(i).IsBlack() && l.HasGlossy() &&
+            std::min(l.alphaX, l.alphaY) < GlossyLightSampleAlpha)
+            return GlossyRays::AllLights;
+    }
+    return GlossyRays::Environment;
+}
+
+template <uint32_t K>
+void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, GlossyRays mode,
+                          int depth, RayCounters &counters, const SampleContext &sc, RGB &L) const {
+    const bool emitted = mode == GlossyRays::AllLights;
+    const uint32_t n = sc.afterGlossy ? 1u : uint32_t(scene_.glossySamples);
+    // The rays below sample the pixel's samples × n further: the hits they reach stratify
+    // their own samples over that larger set (while the count stays small).
+    const bool refine = uint64_t(sc.spp) * n <= (1u << 24);
+    for (int part = 0; part < bsdf.NumParts(); ++part) {
+        if (bsdf.Weight(part).IsBlack() || !bsdf.Part(part).HasGlossy()) continue;
+        // A stratified pattern over the pixel's samples × n, per pixel, depth and part.
+        const uint32_t seed =
+            PatternSeed(sc.x, sc.y, uint32_t(0x6c6f7373u + uint32_t(depth) * 977u + uint32_t(part)),
+                        sc.afterGlossy ? 0x9e3779b9u : 0u);
+        for (uint32_t k = 0; k < n; ++k) {
+            const uint32_t index = sc.sample * n + k;
+            Vec2f u = CMJSample(index, sc.spp * n, seed);
+            float uc = HashFloat(index, seed ^ 0x5bd1e995u);
+            Vec3f wi;
+            RGB weight;
+            if (!bsdf.SampleGlossy(part, si.wo, u, uc, &wi, &weight)) continue;
+            if (n > 1) weight = weight / float(n);
+            SampleContext next = sc;
+            next.beta = sc.beta * weight;
+            next.afterGlossy = true;
+            if (refine) {
+                next.sample = index;
+                next.spp = sc.spp * n;
+            }
+            if (!AboveCutoff(next.beta)) {
+                counters.cutoff++;
+                continue;
+            }
+            counters.glossy++;
+            L += weight * Li(si.SpawnRay(wi, scene_.offset), depth + 1, counters, next, emitted);
+        }
+    }
+}
+
+// Camera rays are traced in packets of up to RenderPacketW x RenderPacketH pixels at one sample
+// index (coherent rays through Embree's 16-wide packet path), then shaded one by one from their
+// hits. Samples are added to the tile afterwards in pixel-then-sample order, so the film sums
+// exactly as when each sample was traced and added in turn.
+template <uint32_t K>
+void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &buf,
+                      FilmTile *tile) {
+    constexpr int PacketW = RenderPacketW, PacketH = RenderPacketH;
+    const Kernel<K> kernel(scene, scene.integrator == IntegratorKind::Distribution);
+    // Lens samples: compiled in with the camera-sample bit, then drawn when the camera has a
+    // lens (the general kernel decides this at run time, a specialized one knows).
+    const bool lens = Kernel<K>::CameraSamples && scene.features.lens;
+    // Motion blur: each camera ray's time (a fraction of the shutter) is stratified over the
+    // pixel's samples; scenes where nothing moves keep time 0 and draw nothing.
+    const bool motion = Kernel<K>::CameraSamples && scene.features.effects.Has(Effect::MotionBlur);
+    const uint32_t spp = uint32_t(scene.spp);
+    const int w = tb.pMax.x - tb.pMin.x, h = tb.pMax.y - tb.pMin.y;
+    const size_t n = size_t(w) * size_t(h) * spp;
+    if (buf.L.size() < n) {
+        buf.L.resize(n);
+        buf.pFilm.resize(n);
+    }
+    auto index = [&](int x, int y, uint32_t s) {
+        return (size_t(y - tb.pMin.y) * size_t(w) + size_t(x - tb.pMin.x)) * spp + s;
+    };
+    Ray rays[16];
+    RawHit hits[16];
+    size_t slot[16];
+    uint32_t filmSeed[16], lensSeed[16], timeSeed[16];
+    const CMJPattern cmj(spp);
+    for (int by = tb.pMin.y; by < tb.pMax.y; by += PacketH) {
+        for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += PacketW) {
+            const int ex = std::min(bx + PacketW, tb.pMax.x),
+                      ey = std::min(by + PacketH, tb.pMax.y);
+            // The packet's pattern seeds, once for all its samples.
+            if (spp > 1 || lens || motion) {
+                int m = 0;
+                for (int y = by; y < ey; ++y)
+                    for (int x = bx; x < ex; ++x, ++m) {
+                        filmSeed[m] = PatternSeed(x, y, FilmPurpose);
+                        if constexpr (Kernel<K>::CameraSamples) {
+                            lensSeed[m] = lens ? PatternSeed(x, y, LensPurpose) : 0;
+                            timeSeed[m] = motion ? PatternSeed(x, y, TimePurpose) : 0;
+                        }
+                    }
+            }
+            for (uint32_t s = 0; s < spp; ++s) {
+                int m = 0;
+                for (int y = by; y < ey; ++y) {
+                    for (int x = bx; x < ex; ++x, ++m) {
+                        // One sample: the pixel centre; more: correlated multi-jittered.
+                        Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : cmj.Sample(s, filmSeed[m]);
+                        Vec2f pFilm(float(x) + u.x, float(y) + u.y);
+                        Vec2f uLens(0.5f, 0.5f);
+                        float time = 0;
+                        // Per-ray camera samples: the lens sample (and, with motion blur, which
+                        // sets the same bit through Effect::MotionBlur, the ray's time).
+                        if constexpr (Kernel<K>::CameraSamples)
+                            if (lens) {
+                                uLens = cmj.Sample(s, lensSeed[m]);
+                                rc.lensSamples++;
+                            }
+                        if constexpr (Kernel<K>::CameraSamples)
+                            if (motion) time = cmj.Sample(s, timeSeed[m]).x;
+                        rays[m] = scene.camera->GenerateRay(pFilm, uLens, time);
+                        slot[m] = index(x, y, s);
+                        buf.pFilm[slot[m]] = pFilm;
+                    }
+                }
+                scene.accel->IntersectPacket(rays, m, hits);
+                scene.accel->PrefetchHits(hits, m);
+                rc.camera += uint64_t(m);
+                for (int i = 0; i < m; ++i) {
+                    SampleContext sc{bx + i % (ex - bx), by + i / (ex - bx), s, spp};
+                    RGB L = kernel.LiCamera(rays[i], hits[i], rc, sc) * scene.filmScale;
+                    if (scene.maxSampleLuminance < Infinity && L.IsFinite()) {
+                        float lum = L.Luminance();
+                        if (lum > scene.maxSampleLuminance) L *= scene.maxSampleLuminance / lum;
+                    }
+                    buf.L[slot[i]] = L;
+                }
+            }
+        }
+    }
+    for (int y = tb.pMin.y; y < tb.pMax.y; ++y)
+        for (int x = tb.pMin.x; x < tb.pMax.x; ++x)
+            for (uint32_t s = 0; s < spp; ++s) {
+                size_t i = index(x, y, s);
+                tile->AddSample(buf.pFilm[i], buf.L[i]);
+            }
+}
+
+// Explicit instantiation of one mask (kernel_*.cpp).
+#define PRISM_INSTANTIATE_KERNEL(M)                                                                \
+    template class Kernel<M>;                                                                      \
+    template void RenderTileKernel<M>(const RenderScene &, Bounds2i, RayCounters &, TileScratch &, \
+                                      FilmTile *);
+
+}  // namespace prism
