@@ -203,19 +203,27 @@ Vec3d SceneUpAxis(const SceneDescription &desc) {
 }
 
 Transform EnvironmentFrame(const SceneDescription &desc, double rotateDeg) {
-    Vec3d up = SceneUpAxis(desc), forward(0, 0, -1);
+    Vec3d up = SceneUpAxis(desc), forward(0, 0, -1), right(1, 0, 0);
     if (desc.format == "pbrt") {
-        Vec3d view = desc.camera.cameraFromWorld.Inverse().Vector(Vec3d(0, 0, 1));
-        forward = NearestAxis(view, up);
+        // pbrt worlds may be left- or right-handed: "right" is the side the camera shows on
+        // the image's right, so the map is never seen mirrored.
+        Transform worldFromCamera = desc.camera.cameraFromWorld.Inverse();
+        forward = NearestAxis(worldFromCamera.Vector(Vec3d(0, 0, 1)), up);
+        right = Cross(forward, up);
+        if (Dot(right, worldFromCamera.Vector(Vec3d(1, 0, 0))) < 0) right = -right;
     }
-    Vec3d right = Cross(forward, up);
+    // Turning by rotateDeg counterclockwise seen from above: forward turns toward the left.
+    double c = std::cos(Radians(rotateDeg)), s = std::sin(Radians(rotateDeg));
+    Vec3d f = forward * c - right * s, r = right * c + forward * s;
     // Light space: z is the pole (up); pbrt's map u = atan2(y, x) / 2pi, so x = -forward and
-    // y = -right put the map's centre (u = 1/2) ahead and u growing to the right.
+    // y = -right put the map's centre (u = 1/2) ahead and u growing to the right. The columns
+    // are orthonormal, so the inverse is the transpose (a reflection is fine: only directions
+    // go through it).
     Matrix4 m = Matrix4::Identity();
-    const Vec3d cols[3] = {-forward, -right, up};
-    for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) m.m[size_t(r)][size_t(c)] = cols[c][r];
-    return Rotate(rotateDeg, up) * Transform(m, m.Transposed());
+    const Vec3d cols[3] = {-f, -r, up};
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row) m.m[size_t(row)][size_t(col)] = cols[col][row];
+    return Transform(m, m.Transposed());
 }
 
 void AddEnvironment(SceneDescription &desc, const EnvironmentSpec &spec) {

@@ -87,8 +87,9 @@ Vec3d SceneUpAxis(const SceneDescription &desc);
 // +z pole), chosen so that the map's top row is the scene's up axis, its centre column faces the
 // scene's forward axis (-z for y-up formats; for pbrt scenes the world axis nearest to the
 // camera's view direction), u grows to the right of a viewer facing that way (the usual
-// panorama convention, not pbrt-v3's mirrored one) and the whole is turned by `rotateDeg` about
-// up, counterclockwise seen from above.
+// panorama convention, not pbrt-v3's mirrored one; in pbrt scenes, the side the camera shows on
+// the image's right) and the whole is turned by `rotateDeg` about up, counterclockwise seen
+// from above (+90 brings what was ahead to the viewer's left).
 Transform EnvironmentFrame(const SceneDescription &desc, double rotateDeg);
 
 // Adds the environment as an "infinite" LightSource (with "mapname" when it has a map), after

@@ -137,19 +137,18 @@ TEST(OutputCli, FurnaceUnderAUniformEnvironment) {
             ASSERT_NEAR(c.b, 1.0, 1e-4) << x << "," << y;
         }
     // add: the point light shines too.
-    ASSERT_EQ(RunPrism("render sphere.pbrt -q --env 0.5,0.25,1 --env-mode add -o a.exr", dir)
-                  .exitCode,
-              0);
+    ASSERT_EQ(
+        RunPrism("render sphere.pbrt -q --env 0.5,0.25,1 --env-mode add -o a.exr", dir).exitCode,
+        0);
     Image a = ReadImage((dir / "a.exr").string());
     EXPECT_GT(a.GetRGB(12, 10).g, 0.25 + 0.1);
     EXPECT_NEAR(a.GetRGB(0, 0).g, 0.25, 1e-4);  // background: the environment alone
 
     for (const char *op : {"neutral", "aces", "filmic", "none"}) {
         std::string out = std::string(op) + ".png";
-        RunResult r =
-            RunPrism("render sphere.pbrt -q --env 2,0.5,0.1 --tonemap " + std::string(op) +
-                         " -o " + out,
-                     dir);
+        RunResult r = RunPrism(
+            "render sphere.pbrt -q --env 2,0.5,0.1 --tonemap " + std::string(op) + " -o " + out,
+            dir);
         ASSERT_EQ(r.exitCode, 0) << r.err;
         ToneMap tm;
         ASSERT_TRUE(ParseToneMap(op, &tm));
@@ -218,7 +217,8 @@ TEST(LightingCli, EnvironmentMapAndRotation) {
     WriteImage((dir / "side.hdr").string(), side);
     WriteImage((dir / "top.exr").string(), top);
     auto render = [&](const std::string &args) {
-        RunResult r = RunPrism("render sphere.obj --res 48x48 --spp 4 -q " + args + " -o e.exr", dir);
+        RunResult r =
+            RunPrism("render sphere.obj --res 48x48 --spp 4 -q " + args + " -o e.exr", dir);
         EXPECT_EQ(r.exitCode, 0) << r.err;
         return ReadImage((dir / "e.exr").string());
     };
@@ -277,8 +277,8 @@ TEST(LightingCli, BatchPassesExposureAndEnvironmentOn) {
     fs::path dir = TempDir("batch");
     fs::create_directories(dir / "scenes");
     Write(dir / "scenes" / "sphere.pbrt", SphereScene());
-    RunResult r = RunPrism(
-        "batch scenes -o out --format exr --quiet --exposure 1 --env 0.25,0.25,0.25", dir);
+    RunResult r =
+        RunPrism("batch scenes -o out --format exr --quiet --exposure 1 --env 0.25,0.25,0.25", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     Image img = ReadImage((dir / "out" / "scenes_sphere.exr").string());
     for (float v : img.pixels) ASSERT_NEAR(v, 0.5, 1e-4);

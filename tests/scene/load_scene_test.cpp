@@ -193,6 +193,10 @@ TEST(LoadScene, EnvironmentFrameAndReplaceOrAdd) {
     Transform pf = EnvironmentFrame(p, 0);
     EXPECT_NEAR(uv(pf, {0, 0, 1}).second, 0, 1e-9);
     EXPECT_NEAR(uv(pf, {0, 1, 0}).first, 0.5, 1e-9);  // the camera looks along +y
+    // pbrt's LookAt frame is left-handed: the camera shows world -x on the image's right, and
+    // that is where u grows.
+    EXPECT_NEAR(uv(pf, {-1, 0, 0}).first, 0.75, 1e-9);
+    EXPECT_NEAR(uv(EnvironmentFrame(p, 90), {1, 0, 0}).first, 0.5, 1e-9);
 }
 
 TEST(LoadScene, EmissiveObjGetsNoDefaultLight) {
