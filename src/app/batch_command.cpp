@@ -41,6 +41,8 @@ struct BatchArgs {
     std::string effects = "scene";  // passed on to each render (--effects)
     bool force = false, quiet = false;
     ConfineOption confine;  // --confine [DIR]: each scene confined to DIR or its own folder
+    // Passed on to every `prism render` (empty: not given).
+    std::string exposure, toneMap, env, envRotate, envMode;
 };
 
 struct Job {
@@ -219,6 +221,15 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
         args.push_back("--effects");
         args.push_back(a.effects);
     }
+    for (auto [flag, value] : {std::pair{"--exposure", &a.exposure},
+                               {"--tonemap", &a.toneMap},
+                               {"--env", &a.env},
+                               {"--env-rotate", &a.envRotate},
+                               {"--env-mode", &a.envMode}})
+        if (!value->empty()) {
+            args.push_back(flag);
+            args.push_back(*value);
+        }
     // Concurrent renders share the default budget, so together they stay within it.
     std::string budget = a.maxMemory;
     if (budget.empty() && a.jobs > 1)
@@ -292,6 +303,10 @@ int RunBatch(const BatchArgs &a) {
     std::vector<std::string> scenes = CollectScenes(a.input);
     if (scenes.empty()) throw UsageError("no scenes found in \"" + a.input + "\"");
     ParseMaxMemory(a.maxMemory);  // a bad value is a usage error now, not one per scene
+    if (!a.env.empty())           // likewise a missing map or a bad R,G,B
+        ParseEnvironment(a.env, a.envRotate.empty() ? 0.0 : std::stod(a.envRotate), a.envMode);
+    else if (!a.envRotate.empty() || !a.envMode.empty())
+        throw UsageError("--env-rotate and --env-mode need --env");
     std::error_code ec;
     fs::create_directories(a.outDir, ec);
     if (!fs::is_directory(a.outDir))
@@ -405,6 +420,18 @@ void AddBatchCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--effects", args->effects,
                     "Kernel for every scene: \"scene\" (specialized) or \"all\" (general)")
         ->check(CLI::IsMember({"scene", "all"}));
+    cmd->add_option("--exposure", args->exposure, "Exposure in EV for every scene (2^EV)")
+        ->check(CLI::Range(-64.0, 64.0));
+    cmd->add_option("--tonemap", args->toneMap,
+                    "Tone map of PNG outputs: none, neutral, aces or filmic (default: per scene "
+                    "format, as prism render)")
+        ->check(CLI::IsMember({"none", "neutral", "aces", "filmic"}));
+    cmd->add_option("--env", args->env,
+                    "Environment light for every scene: FILE.exr|hdr or R,G,B (as prism render)");
+    cmd->add_option("--env-rotate", args->envRotate, "Turn the --env map by DEG about up")
+        ->check(CLI::Number);
+    cmd->add_option("--env-mode", args->envMode, "replace (default) or add")
+        ->check(CLI::IsMember({"replace", "add"}));
     cmd->add_flag("-q,--quiet", args->quiet, "No progress lines");
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunBatch(*args); }); });
 }

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -112,6 +113,45 @@ Precision ParsePrecision(const std::string &s) {
     if (s == "float") return Precision::Float;
     if (s == "double") return Precision::Double;
     throw UsageError("--precision must be float or double");
+}
+
+EnvironmentSpec ParseEnvironment(const std::string &spec, double rotateDeg,
+                                 const std::string &mode) {
+    EnvironmentSpec env;
+    if (!mode.empty() && mode != "replace" && mode != "add")
+        throw UsageError("--env-mode must be replace or add (got \"" + mode + "\")");
+    env.replace = mode != "add";
+    if (!std::isfinite(rotateDeg)) throw UsageError("--env-rotate expects an angle in degrees");
+    env.rotateDeg = rotateDeg;
+    std::string ext = LowerExtension(spec);
+    if (ext == ".exr" || ext == ".hdr") {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(spec, ec))
+            throw UsageError("--env: environment map \"" + spec +
+                             "\" does not exist or is not a "
+                             "regular file");
+        env.mapFile = spec;
+        return env;
+    }
+    const std::string expected =
+        "--env expects an equirectangular .exr or .hdr file or a "
+        "radiance R,G,B of three non-negative numbers (got \"" +
+        spec + "\")";
+    std::vector<float> v;
+    try {
+        v = SplitFloats(spec, ',');
+    } catch (const UsageError &) {
+        throw UsageError(expected);
+    }
+    if (v.size() != 3 || spec.back() == ',') throw UsageError(expected);
+    for (float f : v)
+        if (!(f >= 0) || !std::isfinite(f)) throw UsageError(expected);
+    env.L = RGB(v[0], v[1], v[2]);
+    return env;
+}
+
+ToneMap DefaultToneMap(const std::string &sceneFormat) {
+    return sceneFormat == "pbrt" ? ToneMap::None : ToneMap::Neutral;
 }
 
 void CheckOutputPath(const std::string &path) {

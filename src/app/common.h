@@ -10,6 +10,8 @@
 #include "core/transform.h"
 #include "core/vecmath.h"
 #include "geometry/shape.h"
+#include "image/tonemap.h"
+#include "scene/load_scene.h"
 
 namespace CLI {
 class App;
@@ -35,6 +37,14 @@ Precision ParsePrecision(const std::string &s);
 uint64_t ParseMaxMemory(const std::string &s);
 // "ex,ey,ez,lx,ly,lz,ux,uy,uz" → worldFromCamera (pbrt LookAt, inverted).
 Transform ParseLookAt(const std::string &s);
+// --env SPEC [--env-rotate DEG] [--env-mode replace|add]: SPEC is an equirectangular .exr or
+// .hdr file (which must exist) or a uniform radiance "R,G,B" (finite, non-negative). `rotate`
+// and `mode` are those options' values ("" for a mode not given). UsageError on bad values.
+EnvironmentSpec ParseEnvironment(const std::string &spec, double rotateDeg,
+                                 const std::string &mode);
+// The tone map 8-bit outputs get when neither --tonemap nor the Film says: none (clamp, as
+// pbrt-v3) for pbrt scenes, neutral (Khronos PBR Neutral) for OBJ, glTF and PLY.
+ToneMap DefaultToneMap(const std::string &sceneFormat);
 // Fails early (UsageError) if the image format is unsupported or the directory is missing.
 void CheckOutputPath(const std::string &path);
 // Fails early (UsageError) when no file can be created in `dir` ("" is the working

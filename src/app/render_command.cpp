@@ -48,7 +48,28 @@ struct RenderArgs {
     // with, as given on the command line.
     double targetError = 0;
     bool verify = false, sppGiven = false, cutoffGiven = false, lightSamplesGiven = false;
+    // Output (docs: README "Exposure and tone mapping"): empty / not given → the Film's, else
+    // the scene format's default.
+    float exposure = 0;
+    bool exposureGiven = false;
+    std::string toneMap;
+    // --env (README "Lighting"): empty when not given.
+    std::string env, envMode;
+    double envRotate = 0;
+    bool envRotateGiven = false;
 };
+
+// The output transform: the command line's, else the Film's, else the format's default.
+OutputTransform ChooseOutputTransform(const RenderArgs &a, const RenderScene &scene,
+                                      const SceneDescription &desc) {
+    OutputTransform t;
+    t.exposure = a.exposureGiven ? a.exposure : scene.filmExposure;
+    if (!a.toneMap.empty())
+        ParseToneMap(a.toneMap, &t.toneMap);  // checked by CLI11
+    else
+        t.toneMap = scene.filmToneMap.value_or(DefaultToneMap(desc.format));
+    return t;
+}
 
 // --target-error chooses spp, cutoff and light samples itself: giving one of them too is a
 // usage error rather than a silent override either way.
@@ -122,7 +143,15 @@ void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool t
 
 int RunRender(const RenderArgs &a) {
     CheckTargetErrorArgs(a);
-    ScopedReadConfinement confined(ConfinementFolderFor(a.confine, a.scene));
+    std::optional<EnvironmentSpec> env;
+    if (!a.env.empty())
+        env = ParseEnvironment(a.env, a.envRotate, a.envMode);
+    else if (a.envRotateGiven || !a.envMode.empty())
+        throw UsageError("--env-rotate and --env-mode need --env");
+    // The --env map is the operator's, not the scene's: --confine does not apply to it.
+    std::vector<std::string> operatorFiles;
+    if (env && !env->mapFile.empty()) operatorFiles.push_back(env->mapFile);
+    ScopedReadConfinement confined(ConfinementFolderFor(a.confine, a.scene), operatorFiles);
     BuildSettings opts;
     opts.spp = a.spp;
     opts.maxDepth = a.maxDepth;
@@ -155,6 +184,7 @@ int RunRender(const RenderArgs &a) {
     Diagnostics diag(!a.quiet);
     auto t0 = std::chrono::steady_clock::now();
     SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
+    if (env) AddEnvironment(desc, *env);
     double parseSeconds = SecondsSince(t0);
     std::optional<TargetChoice> target;
     if (a.targetError > 0) {
@@ -199,7 +229,15 @@ int RunRender(const RenderArgs &a) {
         std::fprintf(stderr, "interrupted: no image written\n");
         return ExitInterrupted;
     }
-    WriteImage(out, img);
+    const OutputTransform outTransform = ChooseOutputTransform(a, scene, desc);
+    const bool linearOut = IsLinearImageExtension(LowerExtension(out));
+    if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
+        WriteImage(out, img);
+    } else {
+        Image toWrite = img;  // --verify compares the linear render
+        ApplyOutputTransform(toWrite, outTransform, linearOut);
+        WriteImage(out, toWrite);
+    }
     sigaction(SIGINT, &old, nullptr);
     if (target && a.verify) {
         TargetVerification v = VerifyTarget(desc, opts, *target, img, diag);
@@ -236,6 +274,11 @@ int RunRender(const RenderArgs &a) {
                          BvhQualityName(scene.accel->BuildQuality()),
                          scene.accel->Robust() ? ", robust" : "");
         }
+        if (outTransform.exposure != 0 || outTransform.toneMap != ToneMap::None ||
+            !a.toneMap.empty())
+            std::fprintf(stderr, "output: exposure %+g EV, tone map %s\n",
+                         double(outTransform.exposure),
+                         linearOut ? "none (linear output)" : ToneMapName(outTransform.toneMap));
         std::string on;
         for (size_t e = 0; e < size_t(Effect::Count); ++e)
             if (scene.features.effects.Has(Effect(e)))
@@ -329,7 +372,30 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
         ->check(CLI::Range(1e-6, 1e6));
     cmd->add_flag("--verify", args->verify,
                   "With --target-error: render a reference too and report the error reached");
-    cmd->callback([args, exitCode, spp, cutoff, lightSamples] {
+    CLI::Option *exposure =
+        cmd->add_option("--exposure", args->exposure,
+                        "Exposure in EV: every output is scaled by 2^EV (default: the Film's "
+                        "\"exposure\", else 0)")
+            ->check(CLI::Range(-64.0, 64.0));
+    cmd->add_option("--tonemap", args->toneMap,
+                    "Tone map of 8-bit outputs (PNG, JPEG, ...): none (clamp), neutral (Khronos "
+                    "PBR Neutral), aces (Hill's ACES fit) or filmic (Hable); default: the Film's "
+                    "\"tonemap\", else none for pbrt scenes and neutral for OBJ, glTF and PLY. "
+                    "EXR, PFM and HDR stay linear")
+        ->check(CLI::IsMember({"none", "neutral", "aces", "filmic"}));
+    cmd->add_option("--env", args->env,
+                    "Environment light: an equirectangular FILE.exr|hdr (importance-sampled) or a "
+                    "uniform radiance R,G,B");
+    CLI::Option *envRotate = cmd->add_option(
+        "--env-rotate", args->envRotate,
+        "Turn the --env map by DEG about the up axis (counterclockwise seen from above)");
+    cmd->add_option("--env-mode", args->envMode,
+                    "replace (default: the scene's light sources and the studio rig are dropped) "
+                    "or add (the environment joins them)")
+        ->check(CLI::IsMember({"replace", "add"}));
+    cmd->callback([args, exitCode, spp, cutoff, lightSamples, exposure, envRotate] {
+        args->exposureGiven = exposure->count() > 0;
+        args->envRotateGiven = envRotate->count() > 0;
         args->sppGiven = spp->count() > 0;
         args->cutoffGiven = cutoff->count() > 0;
         args->lightSamplesGiven = lightSamples->count() > 0;

@@ -5,6 +5,7 @@
 
 #include "core/memory.h"
 #include "core/pbrt_defaults.h"
+#include "image/tonemap.h"
 #include "render/renderer.h"
 
 namespace prism {
@@ -50,6 +51,21 @@ void BuildFilm(BuildContext &ctx) {
     scene.outputFilename = film.GetString("filename", "");
     scene.filmScale = film.GetFloat("scale", 1.f);
     scene.maxSampleLuminance = film.GetFloat("maxsampleluminance", Infinity);
+    // Prism extensions (docs/FORMAT.md): exposure in EV and the tone map of 8-bit outputs;
+    // the command line's --exposure and --tonemap replace them.
+    scene.filmExposure = film.GetFloat("exposure", 0.f);
+    if (!std::isfinite(scene.filmExposure) || std::abs(scene.filmExposure) > 64) {
+        const Param *p = film.Find("exposure");
+        throw SceneError(p ? p->loc : desc.film.loc, "film \"exposure\" must lie in [-64, 64]");
+    }
+    if (const Param *p = film.Find("tonemap")) {
+        ToneMap op;
+        std::string name = film.GetString("tonemap", "");
+        if (!ParseToneMap(name, &op))
+            throw SceneError(p->loc, "unknown film \"tonemap\" " + Quote(name) +
+                                         " (expected none, neutral, aces or filmic)");
+        scene.filmToneMap = op;
+    }
     WarnIgnored(film, {"diagonal"}, diag, "film", "the film's physical size is not simulated");
     film.ReportUnused(diag, "film");
 }

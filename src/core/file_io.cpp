@@ -18,7 +18,15 @@ namespace prism {
 namespace {
 
 std::mutex g_confinementMutex;
-std::string g_confinementFolder;  // canonical; empty: reads are not confined
+std::string g_confinementFolder;           // canonical; empty: reads are not confined
+std::vector<std::string> g_operatorFiles;  // canonical files allowed outside it
+
+bool OperatorFile(const std::string &canonicalPath) {
+    std::lock_guard<std::mutex> lock(g_confinementMutex);
+    for (const std::string &f : g_operatorFiles)
+        if (f == canonicalPath) return true;
+    return false;
+}
 
 // Whether `canonicalPath` lies inside the canonical folder `folder` (or is the folder).
 bool InsideFolder(const std::string &canonicalPath, const std::string &folder) {
@@ -40,7 +48,8 @@ std::string RefusalOfOpenFile(int fd, const std::string &folder) {
     std::error_code ec;
     std::filesystem::path real = std::filesystem::read_symlink(link, ec);
     if (ec) return {};  // no /proc: the path check before opening stands
-    if (!InsideFolder(real.string(), folder)) return OutsideReason(real.string(), folder);
+    if (!InsideFolder(real.string(), folder) && !OperatorFile(real.string()))
+        return OutsideReason(real.string(), folder);
     return {};
 }
 
@@ -180,16 +189,22 @@ std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc, MemoryB
     throw SceneError(loc, "cannot open file " + Quote(path) + ": " + err.reason);
 }
 
-ScopedReadConfinement::ScopedReadConfinement(const std::string &folder) {
+ScopedReadConfinement::ScopedReadConfinement(const std::string &folder,
+                                             const std::vector<std::string> &operatorFiles) {
     std::string canonical = folder.empty() ? std::string() : CanonicalPath(folder);
+    std::vector<std::string> allowed;
+    for (const std::string &f : operatorFiles) allowed.push_back(CanonicalPath(f));
     std::lock_guard<std::mutex> lock(g_confinementMutex);
     previous_ = g_confinementFolder;
+    previousAllowed_ = g_operatorFiles;
     g_confinementFolder = canonical;
+    g_operatorFiles = std::move(allowed);
 }
 
 ScopedReadConfinement::~ScopedReadConfinement() {
     std::lock_guard<std::mutex> lock(g_confinementMutex);
     g_confinementFolder = previous_;
+    g_operatorFiles = previousAllowed_;
 }
 
 std::string ReadConfinementFolder() {
@@ -201,7 +216,8 @@ std::string ReadConfinementRefusal(const std::string &path) {
     const std::string folder = ReadConfinementFolder();
     if (folder.empty()) return {};
     std::string resolved = CanonicalPath(path);
-    if (!InsideFolder(resolved, folder)) return OutsideReason(resolved, folder);
+    if (!InsideFolder(resolved, folder) && !OperatorFile(resolved))
+        return OutsideReason(resolved, folder);
     struct stat st;
     if (::stat(resolved.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
         return "it is not a regular file (" + Quote(resolved) + ")";

@@ -34,14 +34,18 @@ struct FileReadError {
 class ScopedReadConfinement {
   public:
     // Confines reads to `folder` (made canonical here) until destroyed; the previous setting
-    // is restored then. An empty `folder` leaves reads unconfined.
-    explicit ScopedReadConfinement(const std::string &folder);
+    // is restored then. An empty `folder` leaves reads unconfined. `operatorFiles` are files
+    // the operator named on the command line (e.g. `--env`), not the scene: they may be read
+    // wherever they are (each exact file, after symlinks; nothing else beside it).
+    explicit ScopedReadConfinement(const std::string &folder,
+                                   const std::vector<std::string> &operatorFiles = {});
     ~ScopedReadConfinement();
     ScopedReadConfinement(const ScopedReadConfinement &) = delete;
     ScopedReadConfinement &operator=(const ScopedReadConfinement &) = delete;
 
   private:
     std::string previous_;
+    std::vector<std::string> previousAllowed_;
 };
 
 // The confinement folder (canonical), or "" when reads are not confined.

@@ -48,6 +48,9 @@ void WriteImage(const std::string &path, const Image &img);
 // Whether WriteImage writes the format of `ext` (the extension with its dot, in lower case as
 // LowerExtension returns it): the one list of output formats.
 bool IsWritableImageExtension(const std::string &ext);
+// Whether WriteImage stores linear float values for `ext` (.exr, .pfm, .hdr): such outputs get
+// the exposure but no tone mapping (image/tonemap.h).
+bool IsLinearImageExtension(const std::string &ext);
 
 // The exact piecewise sRGB curves (IEC 61966-2-1).
 float SrgbToLinear(float v);

@@ -76,6 +76,11 @@ bool IsWritableImageExtension(const std::string &ext) {
     return LookupOutputFormat(ext, &format);
 }
 
+bool IsLinearImageExtension(const std::string &ext) {
+    OutputFormat format;
+    return LookupOutputFormat(ext, &format) && format.kind == OutKind::Float;
+}
+
 void WriteImage(const std::string &path, const Image &img) {
     auto fail = [&](const std::string &why) -> std::runtime_error {
         return std::runtime_error("cannot write image " + Quote(path) + ": " + why);

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/pbrt_defaults.h"
 #include "geometry/accel.h"
 #include "image/film.h"
+#include "image/tonemap.h"
 #include "render/camera.h"
 #include "render/effects.h"
 #include "render/light.h"
@@ -76,6 +78,10 @@ struct RenderScene {
     float rayCutoff = 0;
     RayOffset offset;
     std::string outputFilename;  // Film "filename"
+    // Film "exposure" (EV) and "tonemap" (Prism extensions, image/tonemap.h); no tone map given:
+    // the format's default (the app decides).
+    float filmExposure = 0;
+    std::optional<ToneMap> filmToneMap;
     std::string integratorName;
     IntegratorKind integrator = IntegratorKind::Whitted;
     int glossySamples = DefaultGlossySamples;  // DistributionIntegrator only

@@ -32,6 +32,24 @@ void ExpandMesh(const ShapeDesc &s, const Transform &worldFromObject, Bounds3f &
     }
 }
 
+// The coordinate axis (with its sign) nearest to v among those orthogonal to `exclude` (any
+// axis when `exclude` is zero).
+Vec3d NearestAxis(const Vec3d &v, const Vec3d &exclude) {
+    Vec3d best(0, 0, 0);
+    double bestDot = -1;
+    for (int i = 0; i < 3; ++i) {
+        Vec3d axis(0, 0, 0);
+        axis[i] = 1;
+        if (std::abs(Dot(axis, exclude)) > 0.5) continue;
+        double d = std::abs(v[i]);
+        if (d > bestDot) {
+            bestDot = d;
+            best = axis * (v[i] < 0 ? -1.0 : 1.0);
+        }
+    }
+    return best;
+}
+
 bool HasEmitters(const SceneDescription &desc) {
     if (!desc.lights.empty()) return true;
     for (const ShapeDesc &s : desc.shapes)
@@ -150,16 +168,12 @@ void FrameDefaultCamera(SceneDescription &desc, const Bounds3f &bounds) {
     cd.specified = true;
 }
 
-// Two distant lights placed relative to the camera, so the lit side faces the viewer whether
-// the camera was framed here or came from the file: a key of L = 2.5 from the camera's upper
-// left, slightly behind the viewer (a white Lambertian surface facing it reflects
-// 2.5 / pi ≈ 0.8), and a fill of L = 0.8 from the right at a low angle so surfaces facing away
-// from the key are not black. Camera space has +x to the image's right, +y up and +z ahead
-// for every camera Prism builds (see FrameDefaultCamera and the glTF reader).
-void AddDefaultLight(SceneDescription &desc) {
+void AddStudioRig(SceneDescription &desc) {
     FileLoc loc{desc.sourceFile};
+    // Camera space has +x to the image's right, +y up and +z ahead for every camera Prism
+    // builds (see FrameDefaultCamera and the glTF reader).
     Transform worldFromCamera = desc.camera.cameraFromWorld.Inverse();
-    auto Add = [&](Vec3d towardLightCamera, double L) {
+    auto AddDistant = [&](Vec3d towardLightCamera, double L) {
         Vec3d w = Normalize(worldFromCamera.Vector(towardLightCamera));
         LightDesc l;
         l.type = "distant";
@@ -169,8 +183,61 @@ void AddDefaultLight(SceneDescription &desc) {
         AddPoint3(l.params, "to", Vec3d(0, 0, 0), loc);
         desc.lights.push_back(std::move(l));
     };
-    Add(Vec3d(-0.5, 0.8, -0.6), 2.5);
-    Add(Vec3d(1.0, 0.1, -0.3), 0.8);
+    // Key: a white Lambertian surface facing it reflects 2.5 / pi ≈ 0.8.
+    AddDistant(Vec3d(-0.35, 1.0, -0.6), 2.5);
+    // Fill: keeps the side away from the key from going black.
+    AddDistant(Vec3d(1.0, 0.15, -0.3), 0.6);
+    // Environment: ambient light in every crevice it reaches, and the background.
+    LightDesc env;
+    env.type = "infinite";
+    env.loc = loc;
+    AddRGB(env.params, "L", 0.15, 0.15, 0.15, loc);
+    AddInts(env.params, "nsamples", {16}, loc);
+    desc.lights.push_back(std::move(env));
+}
+
+Vec3d SceneUpAxis(const SceneDescription &desc) {
+    if (desc.format != "pbrt") return Vec3d(0, 1, 0);
+    Vec3d up = desc.camera.cameraFromWorld.Inverse().Vector(Vec3d(0, 1, 0));
+    return NearestAxis(up, Vec3d(0, 0, 0));
+}
+
+Transform EnvironmentFrame(const SceneDescription &desc, double rotateDeg) {
+    Vec3d up = SceneUpAxis(desc), forward(0, 0, -1), right(1, 0, 0);
+    if (desc.format == "pbrt") {
+        // pbrt worlds may be left- or right-handed: "right" is the side the camera shows on
+        // the image's right, so the map is never seen mirrored.
+        Transform worldFromCamera = desc.camera.cameraFromWorld.Inverse();
+        forward = NearestAxis(worldFromCamera.Vector(Vec3d(0, 0, 1)), up);
+        right = Cross(forward, up);
+        if (Dot(right, worldFromCamera.Vector(Vec3d(1, 0, 0))) < 0) right = -right;
+    }
+    // Turning by rotateDeg counterclockwise seen from above: forward turns toward the left.
+    double c = std::cos(Radians(rotateDeg)), s = std::sin(Radians(rotateDeg));
+    Vec3d f = forward * c - right * s, r = right * c + forward * s;
+    // Light space: z is the pole (up); pbrt's map u = atan2(y, x) / 2pi, so x = -forward and
+    // y = -right put the map's centre (u = 1/2) ahead and u growing to the right. The columns
+    // are orthonormal, so the inverse is the transpose (a reflection is fine: only directions
+    // go through it).
+    Matrix4 m = Matrix4::Identity();
+    const Vec3d cols[3] = {-f, -r, up};
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row) m.m[size_t(row)][size_t(col)] = cols[col][row];
+    return Transform(m, m.Transposed());
+}
+
+void AddEnvironment(SceneDescription &desc, const EnvironmentSpec &spec) {
+    if (spec.replace) desc.lights.clear();
+    FileLoc loc{"--env"};
+    LightDesc l;
+    l.type = "infinite";
+    l.loc = loc;
+    l.worldFromLight = EnvironmentFrame(desc, spec.rotateDeg);
+    AddRGB(l.params, "L", spec.L.r, spec.L.g, spec.L.b, loc);
+    AddInts(l.params, "nsamples", {spec.nSamples}, loc);
+    if (!spec.mapFile.empty())
+        AddString(l.params, "mapname", std::filesystem::absolute(spec.mapFile).string(), loc);
+    desc.lights.push_back(std::move(l));
 }
 
 SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const LoadOptions &opts) {
@@ -211,8 +278,8 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
         desc.notes.push_back("no camera in file: framed the bounding box");
     }
     if (opts.defaultLights && !HasEmitters(desc)) {
-        AddDefaultLight(desc);
-        desc.notes.push_back("no lights in file: added a default key and fill light");
+        AddStudioRig(desc);
+        desc.notes.push_back("no lights in file: added the studio rig (key, fill, environment)");
     }
     return desc;
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/color.h"
 #include "core/memory.h"
 #include "core/vecmath.h"
 #include "scene/pbrt_parser.h"
@@ -60,8 +61,39 @@ Bounds3f SceneMeshBounds(const SceneDescription &desc);
 // of `bounds` from the front, right and above, far enough for the bounding sphere to fit.
 void FrameDefaultCamera(SceneDescription &desc, const Bounds3f &bounds);
 
-// Adds a distant key light from the camera's upper left (from the viewer's side) and a weaker
-// fill from the right; directions follow desc.camera, so call it after the camera is final.
-void AddDefaultLight(SceneDescription &desc);
+// The studio rig every OBJ, glTF or PLY file without lights (and without emissive materials)
+// gets (README.md "Lighting"): a distant key light of L = 2.5 from above the camera, slightly
+// left and behind the viewer; a distant fill of L = 0.6 from the camera's right at a low angle;
+// and a dim uniform environment of L = 0.15 (16 samples), which is also the background. The key
+// and fill directions follow desc.camera (framed by the model's bounds when the file has none),
+// so call it after the camera is final; being distant and infinite lights, they light a model
+// the same whatever its size or units.
+void AddStudioRig(SceneDescription &desc);
+
+// --env: an environment light added to (or replacing) a scene's lights.
+struct EnvironmentSpec {
+    std::string mapFile;   // an equirectangular .exr or .hdr (absolute or relative to the cwd)
+    RGB L{1};              // the uniform radiance without a map; the map's scale with one
+    double rotateDeg = 0;  // about the up axis, counterclockwise seen from above
+    bool replace = true;   // drop every LightSource (and the studio rig) first
+    int nSamples = 16;     // shadow rays per shading point (--light-samples overrides)
+};
+
+// The scene's up axis for environments: +y for OBJ, glTF and PLY; for pbrt scenes the world axis
+// nearest to the camera's up direction.
+Vec3d SceneUpAxis(const SceneDescription &desc);
+
+// worldFromLight for an equirectangular map on pbrt's "infinite" light (map row 0 is the light's
+// +z pole), chosen so that the map's top row is the scene's up axis, its centre column faces the
+// scene's forward axis (-z for y-up formats; for pbrt scenes the world axis nearest to the
+// camera's view direction), u grows to the right of a viewer facing that way (the usual
+// panorama convention, not pbrt-v3's mirrored one; in pbrt scenes, the side the camera shows on
+// the image's right) and the whole is turned by `rotateDeg` about up, counterclockwise seen
+// from above (+90 brings what was ahead to the viewer's left).
+Transform EnvironmentFrame(const SceneDescription &desc, double rotateDeg);
+
+// Adds the environment as an "infinite" LightSource (with "mapname" when it has a map), after
+// removing every LightSource when spec.replace. Emissive shapes (area lights) keep emitting.
+void AddEnvironment(SceneDescription &desc, const EnvironmentSpec &spec);
 
 }  // namespace prism

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -74,7 +75,8 @@ TEST(LoadScene, ObjGetsFramedCameraAndDefaultLights) {
     EXPECT_EQ(d.camera.params.GetFloat("fov", 0), 40.f);
     EXPECT_TRUE(HasNote(d, "no camera in file"));
     EXPECT_TRUE(HasNote(d, "no lights in file"));
-    ASSERT_EQ(d.lights.size(), 2u);
+    // The studio rig: key, fill, environment.
+    ASSERT_EQ(d.lights.size(), 3u);
     EXPECT_EQ(d.lights[0].type, "distant");
     // The key light shines from the viewer's side, upper left, in camera space.
     Vec3d from = Vec3d(d.lights[0].params.GetPoint3("from", Vec3f(0, 0, 0)));
@@ -103,6 +105,98 @@ TEST(LoadScene, ObjGetsFramedCameraAndDefaultLights) {
         EXPECT_LE(std::abs(p.x / p.z), tanHalf) << i;
         EXPECT_LE(std::abs(p.y / p.z), tanHalf) << i;
     }
+}
+
+// The studio rig (docs: README "Lighting a light-less model"): a key from above the camera, a
+// weaker fill from its right, a dim uniform environment with stratified samples.
+TEST(LoadScene, LightLessModelGetsTheStudioRig) {
+    std::string path = WriteFile("ls_rig.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");
+    Diagnostics diag;
+    SceneDescription d = LoadScene(path, diag);
+    ASSERT_EQ(d.lights.size(), 3u);
+    EXPECT_TRUE(HasNote(d, "studio rig"));
+    const Transform &cw = d.camera.cameraFromWorld;
+    auto toward = [&](const LightDesc &l) {
+        Vec3d from = Vec3d(l.params.GetPoint3("from", Vec3f(0, 0, 0)));
+        Vec3d to = Vec3d(l.params.GetPoint3("to", Vec3f(0, 0, 0)));
+        return Normalize(cw.Vector(from - to));
+    };
+    EXPECT_EQ(d.lights[0].type, "distant");
+    EXPECT_EQ(d.lights[1].type, "distant");
+    Vec3d key = toward(d.lights[0]), fill = toward(d.lights[1]);
+    EXPECT_GT(key.y, 0.7);   // from above the camera
+    EXPECT_LT(key.z, 0);     // on the viewer's side
+    EXPECT_GT(fill.x, 0.8);  // from the right
+    float keyL = d.lights[0].params.GetRGB("L", RGB(0)).g;
+    float fillL = d.lights[1].params.GetRGB("L", RGB(0)).g;
+    EXPECT_GT(keyL, 2 * fillL);
+    const LightDesc &env = d.lights[2];
+    EXPECT_EQ(env.type, "infinite");
+    EXPECT_EQ(env.params.GetString("mapname", ""), "");
+    float envL = env.params.GetRGB("L", RGB(0)).g;
+    EXPECT_GT(envL, 0.05f);
+    EXPECT_LT(envL, 0.3f);  // dim: the background stays darker than a lit white surface
+    EXPECT_EQ(env.params.GetInt("nsamples", 1), 16);
+
+    // LoadOptions::defaultLights off: no rig.
+    LoadOptions noLights;
+    noLights.defaultLights = false;
+    EXPECT_TRUE(LoadScene(path, diag, noLights).lights.empty());
+}
+
+// --env: the equirectangular frame puts the map's top row up and its centre column ahead
+// (-z for y-up formats), u growing to the viewer's right (+x), turned about up by the angle.
+TEST(LoadScene, EnvironmentFrameAndReplaceOrAdd) {
+    std::string path = WriteFile("ls_env.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    Diagnostics diag;
+    SceneDescription d = LoadScene(path, diag);
+    EXPECT_EQ(SceneUpAxis(d), Vec3d(0, 1, 0));
+    // Light space (pbrt's infinite light): z is the pole, u = atan2(y, x) / 2pi.
+    auto uv = [](const Transform &worldFromLight, Vec3d wWorld) {
+        Vec3d w = Normalize(worldFromLight.Inverse().Vector(wWorld));
+        double phi = std::atan2(w.y, w.x);
+        if (phi < 0) phi += 2 * Pi;
+        return std::pair{phi / (2 * Pi), std::acos(std::clamp(w.z, -1.0, 1.0)) / Pi};
+    };
+    Transform f = EnvironmentFrame(d, 0);
+    EXPECT_NEAR(uv(f, {0, 1, 0}).second, 0, 1e-9);    // up: top row
+    EXPECT_NEAR(uv(f, {0, 0, -1}).first, 0.5, 1e-9);  // ahead: centre column
+    EXPECT_NEAR(uv(f, {0, 0, -1}).second, 0.5, 1e-9);
+    EXPECT_NEAR(uv(f, {1, 0, 0}).first, 0.75, 1e-9);  // right: u grows
+    EXPECT_NEAR(uv(f, {-1, 0, 0}).first, 0.25, 1e-9);
+    // Turned by 90 degrees counterclockwise seen from above: what was ahead is now at -x.
+    Transform r = EnvironmentFrame(d, 90);
+    EXPECT_NEAR(uv(r, {-1, 0, 0}).first, 0.5, 1e-9);
+    EXPECT_NEAR(uv(r, {0, 0, 1}).first, 0.25, 1e-6);
+
+    EnvironmentSpec spec;
+    spec.L = RGB(0.5f, 0.25f, 1.f);
+    SceneDescription added = d;
+    spec.replace = false;
+    AddEnvironment(added, spec);
+    ASSERT_EQ(added.lights.size(), 4u);  // the rig and the environment
+    EXPECT_EQ(added.lights.back().type, "infinite");
+    EXPECT_EQ(added.lights.back().params.GetRGB("L", RGB(0)), spec.L);
+    spec.replace = true;
+    spec.mapFile = "sky.exr";
+    AddEnvironment(d, spec);
+    ASSERT_EQ(d.lights.size(), 1u);
+    std::string map = d.lights[0].params.GetString("mapname", "");
+    EXPECT_TRUE(std::filesystem::path(map).is_absolute()) << map;
+
+    // pbrt: up is the world axis nearest the camera's up, ahead the one nearest its view.
+    std::string pbrt = WriteFile("ls_env.pbrt",
+                                 "LookAt 0 -5 1  0 0 0.9  0 0.1 1\nCamera \"perspective\"\n"
+                                 "WorldBegin\nWorldEnd\n");
+    SceneDescription p = LoadScene(pbrt, diag);
+    EXPECT_EQ(SceneUpAxis(p), Vec3d(0, 0, 1));
+    Transform pf = EnvironmentFrame(p, 0);
+    EXPECT_NEAR(uv(pf, {0, 0, 1}).second, 0, 1e-9);
+    EXPECT_NEAR(uv(pf, {0, 1, 0}).first, 0.5, 1e-9);  // the camera looks along +y
+    // pbrt's LookAt frame is left-handed: the camera shows world -x on the image's right, and
+    // that is where u grows.
+    EXPECT_NEAR(uv(pf, {-1, 0, 0}).first, 0.75, 1e-9);
+    EXPECT_NEAR(uv(EnvironmentFrame(p, 90), {1, 0, 0}).first, 0.5, 1e-9);
 }
 
 TEST(LoadScene, EmissiveObjGetsNoDefaultLight) {
@@ -240,7 +334,7 @@ TEST(SharedSceneDetails, SpiderTexturesAndDamagedHelmetImages) {
     EXPECT_EQ(s.textures.size(), 5u);
     for (const TextureDesc &t : s.textures)
         EXPECT_EQ(t.params.GetString("filename", "").find('\\'), std::string::npos);
-    EXPECT_EQ(s.lights.size(), 2u);  // default key + fill
+    EXPECT_EQ(s.lights.size(), 3u);  // the studio rig: key, fill, environment
 
     SceneDescription h = LoadScene(helmet, diag);
     ASSERT_EQ(h.materials.size(), 1u);
