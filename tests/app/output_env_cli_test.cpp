@@ -192,7 +192,11 @@ TEST(LightingCli, LightLessObjGetsTheStudioRig) {
         << info.out;
     RunResult r = RunPrism("render sphere.obj --res 48x48 --spp 4 --no-progress -o r.exr", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("environment on"), std::string::npos) << r.err;
+    const size_t effects = r.err.find("effects: ");
+    ASSERT_NE(effects, std::string::npos) << r.err;
+    EXPECT_NE(r.err.substr(effects, r.err.find('\n', effects) - effects).find("environment"),
+              std::string::npos)
+        << r.err;
     Image img = ReadImage((dir / "r.exr").string());
     double mean = MeanLuminance(img, 0, 48, 0, 48);
     EXPECT_GT(mean, 0.15);
@@ -302,7 +306,7 @@ TEST(LightingCli, EnvironmentMapIsNotConfinedWithTheScene) {
 Camera "perspective"
 Film "image" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
 WorldBegin
-Texture "t" "spectrum" "imagemap" "string filename" "../side.exr"
+Texture "t" "spectrum" "imagemap" "string filename" "../other.exr"
 Material "matte" "texture Kd" "t"
 Shape "sphere"
 WorldEnd
