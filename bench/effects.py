@@ -79,6 +79,10 @@ def variants(base):
          base.replace(green_sphere, 'Translate 2.5 1.2 1.5\n  CSGBegin "union"\n'
                       '  Shape "sphere" "float radius" [ 1.2 ]\n  AttributeBegin Translate 0.5 0 0 '
                       'Shape "sphere" "float radius" [ 1 ] AttributeEnd\n  CSGEnd'), []),
+        ("motion blur (the green sphere moves 0.5 while the shutter is open)",
+         base.replace(green_sphere, 'Translate 2.5 1.2 1.5\n  ActiveTransform EndTime\n'
+                      '  Translate 0.5 0 0\n  ActiveTransform All\n'
+                      '  Shape "sphere" "float radius" [ 1.2 ]'), []),
         ("instancing (the green sphere as an ObjectInstance)",
          base.replace(green_sphere, 'ObjectBegin "ball"\n  Shape "sphere" "float radius" [ 1.2 ]\n'
                       '  ObjectEnd\n  Translate 2.5 1.2 1.5\n  ObjectInstance "ball"'), []),

@@ -6,6 +6,36 @@
 
 namespace prism {
 
+namespace {
+
+// The inverse of m's upper-left 3x3 part (cofactors), as a Matrix4 with an identity last row
+// and column. A singular part (a decomposition never yields one) gives the general inverse.
+Matrix4 Inverse3x3(const Matrix4 &m) {
+    const auto &a = m.m;
+    double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+    double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+    double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+    double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
+    Matrix4 r = Matrix4::Identity();
+    if (!(det != 0) || !std::isfinite(det)) {
+        Matrix4 inv;
+        return m.Inverse(&inv) ? inv : r;
+    }
+    double s = 1 / det;
+    r.m[0][0] = c00 * s;
+    r.m[1][0] = c01 * s;
+    r.m[2][0] = c02 * s;
+    r.m[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) * s;
+    r.m[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) * s;
+    r.m[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) * s;
+    r.m[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) * s;
+    r.m[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) * s;
+    r.m[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) * s;
+    return r;
+}
+
+}  // namespace
+
 double Dot(const Quaternion &a, const Quaternion &b) { return Dot(a.v, b.v) + a.w * b.w; }
 
 Quaternion Normalize(const Quaternion &q) {
@@ -124,6 +154,11 @@ AnimatedTransform::AnimatedTransform(const Transform &start, double startTime, c
     if (Dot(R_[0], R_[1]) < 0) R_[1] = Quaternion{-R_[1].v, -R_[1].w};  // shorter arc
     rotationAngle_ = prism::RotationAngle(R_[0], R_[1]);
     if (rotationAngle_ < 1e-12) rotationAngle_ = 0;
+    sameR_ = R_[0].v == R_[1].v && R_[0].w == R_[1].w;
+    sameS_ = S_[0] == S_[1];
+    Rt0_ = QuaternionToMatrix(R_[0]).Transposed();
+    Sinv0_ = Inverse3x3(S_[0]);
+    L0_ = Sinv0_ * Rt0_;
 }
 
 AnimatedTransform AnimatedTransform::Remapped(double t0, double t1) const {
@@ -157,10 +192,35 @@ Matrix4 AnimatedTransform::InterpolateMatrix(double t) const {
     return m;
 }
 
+Matrix4 AnimatedTransform::InterpolateInverseMatrix(double t) const {
+    if (!animated_ || !(t > startTime_)) return start_.InverseMatrix();
+    if (t >= endTime_) return end_.InverseMatrix();
+    const double f = Fraction(t);
+    const Vec3d T = T_[0] * (1 - f) + T_[1] * f;
+    if (sameR_ && sameS_) {
+        Matrix4 L = L0_;
+        for (int i = 0; i < 3; ++i)
+            L.m[i][3] = -(L.m[i][0] * T.x + L.m[i][1] * T.y + L.m[i][2] * T.z);
+        return L;
+    }
+    const Matrix4 Rt = sameR_ ? Rt0_ : QuaternionToMatrix(Slerp(f, R_[0], R_[1])).Transposed();
+    Matrix4 Sinv = Sinv0_;
+    if (!sameS_) {
+        Matrix4 S;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) S.m[i][j] = S_[0].m[i][j] * (1 - f) + S_[1].m[i][j] * f;
+        Sinv = Inverse3x3(S);
+    }
+    // (T R S)^-1 = S^-1 R^T T^-1: the 3x3 part L = S^-1 R^T, the translation -L T.
+    Matrix4 L = Sinv * Rt;
+    for (int i = 0; i < 3; ++i) L.m[i][3] = -(L.m[i][0] * T.x + L.m[i][1] * T.y + L.m[i][2] * T.z);
+    return L;
+}
+
 Transform AnimatedTransform::Interpolate(double t) const {
     if (!animated_ || !(t > startTime_)) return start_;
     if (t >= endTime_) return end_;
-    return Transform(InterpolateMatrix(t));
+    return Transform(InterpolateMatrix(t), InterpolateInverseMatrix(t));
 }
 
 Bounds3d AnimatedTransform::MotionBounds(const Bounds3d &b, double t0, double t1) const {

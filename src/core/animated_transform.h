@@ -67,6 +67,10 @@ class AnimatedTransform {
     // or after the end time.
     Transform Interpolate(double t) const;
     Matrix4 InterpolateMatrix(double t) const;
+    // The inverse of InterpolateMatrix(t), from the parts (S^-1 R^T T^-1) rather than by a
+    // general 4x4 inversion: moving analytic shapes need it for every ray they test. A stretch
+    // or rotation that stays the same between the keyframes is inverted once, up front.
+    Matrix4 InterpolateInverseMatrix(double t) const;
     // A conservative box around b (object space) transformed at every time in [t0, t1].
     Bounds3d MotionBounds(const Bounds3d &b, double t0, double t1) const;
 
@@ -85,6 +89,11 @@ class AnimatedTransform {
     Vec3d T_[2];
     Quaternion R_[2];
     Matrix4 S_[2];
+    // Precomputed for InterpolateInverseMatrix when the rotation or the stretch is the same in
+    // both keyframes: R^T and S^-1 (3x3 parts).
+    bool sameR_ = false, sameS_ = false;
+    Matrix4 Rt0_, Sinv0_;
+    Matrix4 L0_;  // S^-1 R^T when both stay the same (a pure translation): only T moves
     double rotationAngle_ = 0;
 };
 

@@ -45,9 +45,7 @@ Bounds3f AnalyticShape::RenderBoundsAtStep(int step) const {
 
 template <typename Real>
 Affine3<Real> AnalyticShape::ObjectFromRenderAt(float time) const {
-    Matrix4 m = motion_->InterpolateMatrix(double(time)), inv;
-    if (!m.Inverse(&inv)) inv = renderFromObject_.InverseMatrix();
-    return ToAffine<Real>(inv);
+    return ToAffine<Real>(motion_->InterpolateInverseMatrix(double(time)));
 }
 template Affine3<float> AnalyticShape::ObjectFromRenderAt<float>(float) const;
 template Affine3<double> AnalyticShape::ObjectFromRenderAt<double>(float) const;

@@ -87,6 +87,34 @@ TEST(AnimatedTransform, InterpolatesTranslationRotationAndScale) {
     EXPECT_NEAR(sh.Interpolate(1).Point(Vec3d(0, 0, 0)).x, 6, 1e-12);
 }
 
+// The inverse built from the parts (S^-1 R^T T^-1, what moving analytic shapes use for every
+// ray) is the inverse of the interpolated matrix, for motions that translate, rotate, stretch
+// and shear, with the rotation or the stretch held fixed or not.
+TEST(AnimatedTransform, InverseFromThePartsInvertsTheMatrix) {
+    Matrix4 shear = Matrix4::Identity();
+    shear.m[0][1] = 0.4;
+    shear.m[2][0] = -0.3;
+    const AnimatedTransform motions[] = {
+        {Translate({1, 2, 3}), 0, Translate({-4, 0, 2}), 1},
+        {Translate({1, 2, 3}) * Scale(2, 0.5, 3), 0, Translate({-4, 0, 2}) * Scale(2, 0.5, 3), 1},
+        {RotateZ(10) * Scale(1, 2, 3), 0, Translate({3, 1, 0}) * RotateX(120) * Scale(1, 2, 3), 1},
+        {Translate({0, 1, 0}) * RotateY(20), 0, Translate({5, 1, 0}) * RotateY(20) * Scale(4, 1, 1),
+         1},
+        {Transform(shear) * Scale(0.001, 1000, 1), 0.25, RotateZ(170) * Transform(shear), 0.75},
+    };
+    for (const AnimatedTransform &m : motions)
+        for (double t : {0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0}) {
+            Matrix4 fwd = m.InterpolateMatrix(t), inv;
+            ASSERT_TRUE(fwd.Inverse(&inv));
+            Matrix4 parts = m.InterpolateInverseMatrix(t);
+            double scale = 0;
+            for (int i = 0; i < 4; ++i)
+                for (int j = 0; j < 4; ++j) scale = std::max(scale, std::abs(inv.m[i][j]));
+            EXPECT_LT(MaxDiff(parts, inv), 1e-12 * scale) << t;
+            EXPECT_LT(MaxDiff(m.Interpolate(t).InverseMatrix(), inv), 1e-12 * scale) << t;
+        }
+}
+
 TEST(AnimatedTransform, EndBeforeStartIsRejected) {
     EXPECT_THROW(AnimatedTransform(Transform(), 1, Translate({1, 0, 0}), 0), std::invalid_argument);
     // Equal times are allowed (pbrt: the start transform up to that time, the end after).
