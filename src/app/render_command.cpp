@@ -1,25 +1,14 @@
-#include <fmt/core.h>
+// `prism render`: one scene to one image, on this machine (src/mpi has `prism-mpi render`).
 #include <signal.h>
-#include <tbb/global_control.h>
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
-#include <optional>
 
 #include "app/commands.h"
 #include "app/common.h"
-#include "build/build_scene.h"
-#include "core/file_io.h"
-#include "image/image_io.h"
-#include "render/kernel.h"
+#include "app/render_options.h"
 #include "render/renderer.h"
-#include "scene/load_scene.h"
-#include "study/target_error.h"
-#include "validate/tessellate.h"
 
 namespace prism {
 
@@ -31,192 +20,9 @@ namespace {
 volatile sig_atomic_t g_cancel = 0;
 void OnInterrupt(int) { g_cancel = 1; }
 
-struct RenderArgs {
-    std::string scene, output, res, crop, precision = "double", lookAt, maxMemory;
-    int spp = 0, threads = 0, maxDepth = -1, lightSamples = 0, glossySamples = 0;
-    std::string integrator;  // empty: the scene's
-    int tessellate = 0;      // [validate hook]
-    float fov = 0;
-    bool quiet = false, noProgress = false;
-    ConfineOption confine;          // --confine [DIR]
-    std::string effects = "scene";  // --effects: "scene" (specialized kernel) or "all"
-    // Accuracy knobs (docs/NUMERICS.md, `prism study`).
-    float cutoff = 0, offsetEpsilon = 0;      // offsetEpsilon 0: not given
-    std::string offset, bvhQuality = "auto";  // offset empty: not given
-    bool robust = false;
-    // --target-error (docs/ACCURACY.md): 0 when not given; the explicit options it conflicts
-    // with, as given on the command line.
-    double targetError = 0;
-    bool verify = false, sppGiven = false, cutoffGiven = false, lightSamplesGiven = false;
-    // Output (docs: README "Exposure and tone mapping"): empty / not given → the Film's, else
-    // the scene format's default.
-    float exposure = 0;
-    bool exposureGiven = false;
-    std::string toneMap;
-    // --env (README "Lighting"): empty when not given.
-    std::string env, envMode;
-    double envRotate = 0;
-    bool envRotateGiven = false;
-};
-
-// The output transform: the command line's, else the Film's, else the format's default.
-OutputTransform ChooseOutputTransform(const RenderArgs &a, const RenderScene &scene,
-                                      const SceneDescription &desc) {
-    OutputTransform t;
-    t.exposure = a.exposureGiven ? a.exposure : scene.filmExposure;
-    if (!a.toneMap.empty())
-        ParseToneMap(a.toneMap, &t.toneMap);  // checked by CLI11
-    else
-        t.toneMap = scene.filmToneMap.value_or(DefaultToneMap(desc.format));
-    return t;
-}
-
-// --target-error chooses spp, cutoff and light samples itself: giving one of them too is a
-// usage error rather than a silent override either way.
-void CheckTargetErrorArgs(const RenderArgs &a) {
-    if (a.verify && a.targetError <= 0) throw UsageError("--verify needs --target-error");
-    if (a.targetError <= 0) return;
-    for (auto [given, name] : {std::pair{a.sppGiven, "--spp"}, std::pair{a.cutoffGiven, "--cutoff"},
-                               std::pair{a.lightSamplesGiven, "--light-samples"}})
-        if (given)
-            throw UsageError(std::string("--target-error chooses ") + (name + 2) +
-                             " itself; drop " + name);
-}
-
-// --offset and --offset-epsilon: the epsilon alone implies `--offset epsilon`.
-RayOffset ParseOffset(const std::string &mode, float epsilon) {
-    RayOffset off;
-    if (mode == "epsilon" || (mode.empty() && epsilon > 0))
-        off.mode = OffsetMode::FixedEpsilon;
-    else if (mode == "none")
-        off.mode = OffsetMode::None;
-    if (epsilon > 0) {
-        if (off.mode != OffsetMode::FixedEpsilon)
-            throw UsageError("--offset-epsilon needs --offset epsilon (not " + mode + ")");
-        off.epsilon = epsilon;
-    }
-    return off;
-}
-
-BvhQuality ParseBvhQuality(const std::string &q) {
-    if (q == "low") return BvhQuality::Low;
-    if (q == "medium") return BvhQuality::Medium;
-    if (q == "high") return BvhQuality::High;
-    return BvhQuality::Auto;
-}
-
-const char *BvhQualityName(BvhQuality q) {
-    switch (q) {
-        case BvhQuality::Low:
-            return "low";
-        case BvhQuality::Medium:
-            return "medium";
-        case BvhQuality::High:
-            return "high";
-        default:
-            return "auto";
-    }
-}
-
-void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool tty,
-                   int *lastQuarter) {
-    double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    double eta = f > 0 ? elapsed * (1 - f) / f : 0;
-    if (tty) {
-        const int width = 40;
-        int filled = int(f * width + 0.5);
-        std::string bar(size_t(filled), '#');
-        bar += std::string(size_t(width - filled), '.');
-        std::fprintf(stderr, "\r[%s] %3.0f%%  %.1fs elapsed  ETA %.1fs ", bar.c_str(), 100 * f,
-                     elapsed, eta);
-        if (f >= 1) std::fprintf(stderr, "\n");
-    } else {
-        int q = int(f * 4);
-        if (q > *lastQuarter) {
-            *lastQuarter = q;
-            std::fprintf(stderr, "render: %3.0f%% (%.1fs elapsed, ETA %.1fs)\n", 100.0 * q / 4,
-                         elapsed, eta);
-        }
-    }
-}
-
 int RunRender(const RenderArgs &a) {
-    CheckTargetErrorArgs(a);
-    std::optional<EnvironmentSpec> env;
-    if (!a.env.empty())
-        env = ParseEnvironment(a.env, a.envRotate, a.envMode);
-    else if (a.envRotateGiven || !a.envMode.empty())
-        throw UsageError("--env-rotate and --env-mode need --env");
-    // The --env map is the operator's, not the scene's: --confine does not apply to it.
-    std::vector<std::string> operatorFiles;
-    if (env && !env->mapFile.empty()) operatorFiles.push_back(env->mapFile);
-    ScopedReadConfinement confined(ConfinementFolderFor(a.confine, a.scene), operatorFiles);
-    BuildSettings opts;
-    opts.spp = a.spp;
-    opts.maxDepth = a.maxDepth;
-    if (!a.res.empty()) opts.resolution = ParseResolution(a.res);
-    if (!a.crop.empty()) opts.crop = ParseCrop(a.crop);
-    opts.precision = ParsePrecision(a.precision);
-    if (!a.lookAt.empty()) opts.worldFromCamera = ParseLookAt(a.lookAt);
-    opts.fovDeg = a.fov;
-    opts.lightSamples = a.lightSamples;
-    opts.integrator = a.integrator;
-    opts.glossySamples = a.glossySamples;
-    opts.rayCutoff = a.cutoff;
-    opts.offset = ParseOffset(a.offset, a.offsetEpsilon);
-    opts.robust = a.robust;
-    opts.bvhQuality = ParseBvhQuality(a.bvhQuality);
-    opts.allEffects = a.effects == "all";
-    // One budget for everything this render holds: scene files and meshes (LoadScene), the
-    // film, textures, meshes and BVH (BuildRenderScene); it lives until the render ends.
-    MemoryBudget budget(ParseMaxMemory(a.maxMemory));
-    opts.budget = &budget;
-    LoadOptions loadOpts;
-    loadOpts.budget = &budget;
-    if (a.tessellate > 0) opts.replaceAnalyticShape = TessellateWith(a.tessellate);
-
-    std::unique_ptr<tbb::global_control> threadLimit;
-    if (a.threads > 0)
-        threadLimit = std::make_unique<tbb::global_control>(
-            tbb::global_control::max_allowed_parallelism, size_t(a.threads));
-
-    Diagnostics diag(!a.quiet);
-    auto t0 = std::chrono::steady_clock::now();
-    SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
-    if (env) AddEnvironment(desc, *env);
-    double parseSeconds = SecondsSince(t0);
-    std::optional<TargetChoice> target;
-    if (a.targetError > 0) {
-        // The pilot takes seconds: a bad -o must fail before it (the Film's filename is
-        // checked after the build, as without --target-error).
-        if (!a.output.empty()) CheckOutputPath(a.output);
-        TargetOptions to;
-        to.target = a.targetError;
-        target = ChooseTargetSettings(desc, opts, to, diag);
-        opts = ApplyTargetChoice(opts, *target);
-        if (!a.quiet) std::fprintf(stderr, "%s\n", DescribeChoice(*target).c_str());
-    }
-    auto t1 = std::chrono::steady_clock::now();
-    RenderScene scene = BuildRenderScene(desc, opts, diag);
-    // Scene setup: meshes read (PLY), textures decoded, materials and lights built.
-    double setupSeconds = SecondsSince(t1) - scene.buildSeconds;
-
-    std::string out = a.output;
-    if (out.empty()) {
-        out = scene.outputFilename;
-        // An untrusted scene names no output outside the confined folder either.
-        if (!out.empty()) CheckOutputConfinement(out, desc.film);
-    }
-    if (out.empty()) out = std::filesystem::path(a.scene).stem().string() + ".png";
-    CheckOutputPath(out);  // before rendering: a long render must not fail at the end
-
-    auto start = std::chrono::steady_clock::now();
-    int lastQuarter = 0;
-    bool tty = isatty(STDERR_FILENO);
-    ProgressFn progress;
-    if (!a.quiet && !a.noProgress)
-        progress = [&](double f) { PrintProgress(f, start, tty, &lastQuarter); };
+    RenderJob job(a);
+    ProgressFn progress = job.Progress();
     RenderStats stats;
     struct sigaction sa {
     }, old{};
@@ -224,73 +30,14 @@ int RunRender(const RenderArgs &a) {
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, &old);
     sigaction(SIGTERM, &sa, nullptr);
-    Image img = Render(scene, &stats, progress, &g_cancel);
+    Image img = Render(job.Scene(), &stats, progress, &g_cancel);
     if (stats.cancelled || g_cancel) {
         std::fprintf(stderr, "interrupted: no image written\n");
         return ExitInterrupted;
     }
-    const OutputTransform outTransform = ChooseOutputTransform(a, scene, desc);
-    const bool linearOut = IsLinearImageExtension(LowerExtension(out));
-    if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
-        WriteImage(out, img);
-    } else {
-        Image toWrite = img;  // --verify compares the linear render
-        ApplyOutputTransform(toWrite, outTransform, linearOut);
-        WriteImage(out, toWrite);
-    }
+    job.Write(img);
     sigaction(SIGINT, &old, nullptr);
-    if (target && a.verify) {
-        TargetVerification v = VerifyTarget(desc, opts, *target, img, diag);
-        std::fprintf(stderr, "%s\n", DescribeVerification(*target, v).c_str());
-    }
-
-    if (!a.quiet) {
-        const RayCounters &r = stats.rays;
-        std::fprintf(stderr,
-                     "%s: %dx%d, %d spp, maxdepth %d, %s precision, %s integrator\n"
-                     "time: parse %.3fs, setup %.3fs, BVH build %.3fs, render %.3fs\n"
-                     "rays: camera %llu, shadow %llu, reflection %llu, refraction %llu, "
-                     "pass-through %llu, glossy %llu; %.2f Mrays/s\n",
-                     out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
-                     scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
-                     a.precision.c_str(),
-                     scene.integrator == IntegratorKind::Distribution ? "distribution" : "whitted",
-                     parseSeconds, setupSeconds, scene.buildSeconds, stats.renderSeconds,
-                     (unsigned long long)r.camera, (unsigned long long)r.shadow,
-                     (unsigned long long)r.reflection, (unsigned long long)r.refraction,
-                     (unsigned long long)r.passThrough, (unsigned long long)r.glossy,
-                     stats.renderSeconds > 0 ? r.Total() / stats.renderSeconds * 1e-6 : 0.0);
-        // The accuracy knobs, when any differs from Prism's defaults.
-        if (opts.rayCutoff > 0 || opts.offset.mode != OffsetMode::ErrorBounds || opts.robust ||
-            opts.bvhQuality != BvhQuality::Auto) {
-            std::string off = opts.offset.mode == OffsetMode::ErrorBounds ? "error bounds"
-                              : opts.offset.mode == OffsetMode::None
-                                  ? "none"
-                                  : fmt::format("epsilon {:g}", opts.offset.epsilon);
-            std::fprintf(stderr,
-                         "accuracy: ray cutoff %g (rays saved by cutoff %llu), offset %s, BVH %s "
-                         "quality%s\n",
-                         double(opts.rayCutoff), (unsigned long long)r.cutoff, off.c_str(),
-                         BvhQualityName(scene.accel->BuildQuality()),
-                         scene.accel->Robust() ? ", robust" : "");
-        }
-        if (outTransform.exposure != 0 || outTransform.toneMap != ToneMap::None ||
-            !a.toneMap.empty())
-            std::fprintf(stderr, "output: exposure %+g EV, tone map %s\n",
-                         double(outTransform.exposure),
-                         linearOut ? "none (linear output)" : ToneMapName(outTransform.toneMap));
-        std::string on;
-        for (size_t e = 0; e < size_t(Effect::Count); ++e)
-            if (scene.features.effects.Has(Effect(e)))
-                on += std::string(on.empty() ? "" : ", ") + EffectName(Effect(e));
-        std::fprintf(stderr, "effects: %s; kernel: %s\n", on.empty() ? "none" : on.c_str(),
-                     KernelMaskName(stats.kernelMask).c_str());
-        if (stats.nonFiniteSamples > 0)
-            std::fprintf(stderr,
-                         "warning: %llu NaN/Inf samples were written as 0 (first at pixel %d,%d)\n",
-                         (unsigned long long)stats.nonFiniteSamples, stats.firstNonFinitePixel->x,
-                         stats.firstNonFinitePixel->y);
-    }
+    job.Report(img, stats);
     return ExitOk;
 }
 
@@ -300,105 +47,9 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App *cmd =
         app.add_subcommand("render", "Render a scene (.pbrt, .obj, .gltf, .glb, .ply) to an image");
-    cmd->add_option("scene", args->scene, "Scene file")->required();
-    cmd->add_option("-o,--output", args->output,
-                    "Output image (.exr linear float, .png sRGB); default: the Film's filename");
-    CLI::Option *spp =
-        cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the Sampler)")
-            ->check(CLI::Range(1, 1 << 16));
-    cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
-        ->check(CLI::Range(1, 4096));
-    cmd->add_option("--res", args->res, "Resolution WxH (overrides the Film)");
-    cmd->add_option("--maxdepth", args->maxDepth,
-                    "Maximum specular depth (overrides the Integrator)")
-        ->check(CLI::Range(0, 1000));
-    cmd->add_option("--integrator", args->integrator,
-                    "whitted (pbrt-v3's: no glossy rays) or distribution (Whitted plus glossy "
-                    "reflection and transmission); default: the scene's Integrator (OBJ and glTF: "
-                    "distribution)")
-        ->check(CLI::IsMember({"whitted", "distribution"}));
-    cmd->add_option("--glossy-samples", args->glossySamples,
-                    "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "
-                    "(distribution integrator; overrides \"glossysamples\", default 8)")
-        ->check(CLI::Range(1, 1024));
-    cmd->add_option("--crop", args->crop,
-                    "Crop window x0,x1,y0,y1 in [0,1] (like Film \"cropwindow\")");
-    cmd->add_option("--precision", args->precision, "Arithmetic of the analytic intersectors")
-        ->check(CLI::IsMember({"float", "double"}));
-    CLI::Option *lightSamples =
-        cmd->add_option("--light-samples", args->lightSamples,
-                        "Shadow rays per area/infinite light (overrides nsamples)")
-            ->check(CLI::Range(1, 4096));
-    CLI::Option *cutoff =
-        cmd->add_option(
-               "--cutoff", args->cutoff,
-               "Ray-weight cutoff: trace a reflected or refracted ray only if its throughput "
-               "exceeds this (default 0: every ray)")
-            ->check(CLI::Range(0.0, 1e30));
-    cmd->add_option("--offset", args->offset,
-                    "How secondary rays leave a surface: errorbounds (default), epsilon or none")
-        ->check(CLI::IsMember({"errorbounds", "epsilon", "none"}));
-    cmd->add_option("--offset-epsilon", args->offsetEpsilon,
-                    "Distance along the normal for --offset epsilon, in scene units (default 1e-4)")
-        ->check(CLI::Range(1e-30, 1e30));
-    cmd->add_flag("--robust", args->robust,
-                  "Build the BVH with Embree's ROBUST flag (watertight triangle traversal)");
-    cmd->add_option("--bvh-quality", args->bvhQuality,
-                    "Embree build quality: auto (default: by triangles and samples), low, "
-                    "medium or high")
-        ->check(CLI::IsMember({"auto", "low", "medium", "high"}));
-    cmd->add_option("--lookat", args->lookAt,
-                    "Camera ex,ey,ez,lx,ly,lz,ux,uy,uz (replaces the scene's camera)");
-    cmd->add_option("--fov", args->fov, "Field of view in degrees on the shorter image axis")
-        ->check(CLI::Range(0.001, 179.999));
-    cmd->add_option(
-           "--tessellate", args->tessellate,
-           "Replace every analytic shape by its triangle twin with N segments around the axis")
-        ->check(CLI::Range(3, 4096));
-    cmd->add_option("--max-memory", args->maxMemory,
-                    "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM), for scene "
-                    "files, meshes, BVH, textures and film together; more is an error");
-    AddConfineOption(cmd, &args->confine);
-    cmd->add_option("--effects", args->effects,
-                    "Kernel: \"scene\" (specialized for the scene's effects; `prism info` lists "
-                    "them) or \"all\" (the general kernel: the same image, for comparison)")
-        ->check(CLI::IsMember({"scene", "all"}));
-    cmd->add_flag("-q,--quiet", args->quiet, "No progress, statistics or warnings");
-    cmd->add_flag("--no-progress", args->noProgress,
-                  "No progress display (statistics and warnings stay)");
-    cmd->add_option("--target-error", args->targetError,
-                    "Choose spp, cutoff and light samples by a pilot study to reach this "
-                    "relative RMSE against a reference (docs/ACCURACY.md)")
-        ->check(CLI::Range(1e-6, 1e6));
-    cmd->add_flag("--verify", args->verify,
-                  "With --target-error: render a reference too and report the error reached");
-    CLI::Option *exposure =
-        cmd->add_option("--exposure", args->exposure,
-                        "Exposure in EV: every output is scaled by 2^EV (default: the Film's "
-                        "\"exposure\", else 0)")
-            ->check(CLI::Range(-64.0, 64.0));
-    cmd->add_option("--tonemap", args->toneMap,
-                    "Tone map of 8-bit outputs (PNG, JPEG, ...): none (clamp), neutral (Khronos "
-                    "PBR Neutral), aces (Hill's ACES fit) or filmic (Hable); default: the Film's "
-                    "\"tonemap\", else none for pbrt scenes and neutral for OBJ, glTF and PLY. "
-                    "EXR, PFM and HDR stay linear")
-        ->check(CLI::IsMember({"none", "neutral", "aces", "filmic"}));
-    cmd->add_option("--env", args->env,
-                    "Environment light: an equirectangular FILE.exr|hdr (importance-sampled) or a "
-                    "uniform radiance R,G,B");
-    CLI::Option *envRotate = cmd->add_option(
-        "--env-rotate", args->envRotate,
-        "Turn the --env map by DEG about the up axis (counterclockwise seen from above)");
-    cmd->add_option("--env-mode", args->envMode,
-                    "replace (default: the scene's light sources and the studio rig are dropped) "
-                    "or add (the environment joins them)")
-        ->check(CLI::IsMember({"replace", "add"}));
-    cmd->callback([args, exitCode, spp, cutoff, lightSamples, exposure, envRotate] {
-        args->exposureGiven = exposure->count() > 0;
-        args->envRotateGiven = envRotate->count() > 0;
-        args->sppGiven = spp->count() > 0;
-        args->cutoffGiven = cutoff->count() > 0;
-        args->lightSamplesGiven = lightSamples->count() > 0;
+    std::function<void()> recordGiven = AddRenderOptions(cmd, args.get());
+    cmd->callback([args, exitCode, recordGiven] {
+        recordGiven();
         *exitCode = RunGuarded([&] { return RunRender(*args); });
     });
 }
