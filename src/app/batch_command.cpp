@@ -1,27 +1,309 @@
 // `prism batch LIST|DIR -o OUTDIR [--jobs N] [--force] [--format png|exr]`: renders many
-// scenes unattended, each in its own `prism render` process (app/batch_jobs.h).
+// scenes unattended. Each scene renders in its own child process (`prism render`), so a scene
+// that crashes or runs out of memory cannot take the batch or the finished images with it.
+// report.json and summary.txt are rewritten (atomically) after every scene. The parts that
+// `prism-mpi batch` shares are declared in app/batch_jobs.h.
+#include <fmt/core.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <thread>
 
 #include "app/batch_jobs.h"
 #include "app/commands.h"
 #include "app/common.h"
+#include "app/output_file.h"
+#include "core/file_io.h"
+#include "core/memory.h"
+#include "scene/load_scene.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
+
+namespace {
+
+bool IsSceneFile(const fs::path &p) { return IsSceneExtension(p.extension().string()); }
+
+// Files that the collected scenes name (includes, meshes, textures): not scenes of their own.
+std::set<std::string> ReferencedByScenes(const std::vector<std::string> &scenes) {
+    std::set<std::string> referenced;
+    for (const std::string &s : scenes)
+        for (std::string &f : ReferencedFiles(s)) referenced.insert(std::move(f));
+    return referenced;
+}
+
+std::vector<std::string> CollectScenes(const std::string &input) {
+    std::vector<std::string> scenes;
+    if (fs::is_directory(input)) {
+        for (const auto &e : fs::recursive_directory_iterator(input))
+            if (e.is_regular_file() && IsSceneFile(e.path())) scenes.push_back(e.path().string());
+        std::sort(scenes.begin(), scenes.end());
+        std::set<std::string> referenced = ReferencedByScenes(scenes);
+        std::erase_if(scenes,
+                      [&](const std::string &s) { return referenced.count(CanonicalPath(s)) > 0; });
+        return scenes;
+    }
+    std::ifstream in(input);
+    if (!in) throw UsageError("cannot open scene list or directory \"" + input + "\"");
+    fs::path base = fs::path(input).parent_path();
+    std::string line;
+    while (std::getline(in, line)) {
+        line = line.substr(0, line.find('#'));
+        line.erase(0, line.find_first_not_of(" \t\r"));
+        line.erase(line.find_last_not_of(" \t\r") + 1);
+        if (line.empty()) continue;
+        fs::path p(line);
+        scenes.push_back(p.is_absolute() || base.empty() ? p.string() : (base / p).string());
+    }
+    return scenes;
+}
+
+// Output names: the scene's path relative to the common root with separators replaced, so
+// scenes with the same file name in different folders do not collide.
+std::vector<std::string> OutputNames(const std::vector<std::string> &scenes,
+                                     const std::string &ext) {
+    std::vector<std::string> names;
+    std::set<std::string> used;
+    for (const std::string &s : scenes) {
+        fs::path p(s);
+        std::string stem = p.parent_path().filename().string() + "_" + p.stem().string();
+        if (stem.front() == '_') stem.erase(0, 1);
+        std::string name = stem + "." + ext;
+        for (int k = 2; used.count(name); ++k) name = stem + "-" + std::to_string(k) + "." + ext;
+        used.insert(name);
+        names.push_back(name);
+    }
+    return names;
+}
+
+std::string JsonEscape(const std::string &s) {
+    std::string o;
+    for (char c : s) {
+        switch (c) {
+            case '"':
+                o += "\\\"";
+                break;
+            case '\\':
+                o += "\\\\";
+                break;
+            case '\n':
+                o += "\\n";
+                break;
+            case '\t':
+                o += "\\t";
+                break;
+            default:
+                if (static_cast<unsigned char>(c) < 0x20)
+                    o += fmt::format("\\u{:04x}", int(c));
+                else
+                    o += c;
+        }
+    }
+    return o;
+}
+
+}  // namespace
+
+void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds) {
+    std::map<std::string, int> counts;
+    double renderSum = 0;
+    for (const Job &j : jobs) {
+        counts[j.status]++;
+        if (j.renderSeconds > 0) renderSum += j.renderSeconds;
+    }
+    std::string json = "{\n  \"scenes\": [\n";
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        const Job &j = jobs[i];
+        json += fmt::format(
+            "    {{\"scene\": \"{}\", \"output\": \"{}\", \"status\": \"{}\", "
+            "\"seconds\": {:.3f}, \"exit_code\": {}, \"error\": \"{}\", ",
+            JsonEscape(j.scene), JsonEscape(j.output), j.status, j.seconds, j.exitCode,
+            JsonEscape(j.error));
+        if (j.rank >= 0) json += fmt::format("\"rank\": {}, ", j.rank);
+        if (j.peakRssKiB >= 0)
+            json += fmt::format("\"peak_rss_kib\": {}, \"end_seconds\": {:.3f}, ", j.peakRssKiB,
+                                j.endSeconds);
+        if (j.renderSeconds >= 0)
+            json += fmt::format(
+                "\"phases\": {{\"parse\": {:.3f}, \"setup\": {:.3f}, \"bvh\": {:.3f}, "
+                "\"render\": {:.3f}}}, ",
+                j.parseSeconds, j.setupSeconds, j.bvhSeconds, j.renderSeconds);
+        json += "\"warnings\": [";
+        for (size_t k = 0; k < j.warnings.size(); ++k)
+            json += (k ? ", \"" : "\"") + JsonEscape(j.warnings[k]) + "\"";
+        json += std::string("]}") + (i + 1 < jobs.size() ? ",\n" : "\n");
+    }
+    json += "  ],\n  \"summary\": {";
+    bool first = true;
+    for (const char *k : {"ok", "skipped", "failed", "interrupted", "pending"}) {
+        json += fmt::format("{}\"{}\": {}", first ? "" : ", ", k, counts[k]);
+        first = false;
+    }
+    json += fmt::format("}},\n  \"wall_seconds\": {:.3f}, \"render_seconds\": {:.3f}\n}}\n",
+                        wallSeconds, renderSum);
+    WriteFileAtomically((fs::path(outDir) / "report.json").string(), json);
+
+    std::string txt =
+        fmt::format("{:<11} {:>8}  {:>5}  {}\n", "status", "seconds", "warn", "scene");
+    for (const Job &j : jobs) {
+        txt += fmt::format("{:<11} {:>8.2f}  {:>5}  {}\n", j.status, j.seconds, j.warnings.size(),
+                           j.scene);
+        if (!j.error.empty()) txt += "            error: " + j.error + "\n";
+    }
+    txt += fmt::format("\n{} ok, {} skipped (up to date), {} failed, {} interrupted, {} not run\n",
+                       counts["ok"], counts["skipped"], counts["failed"], counts["interrupted"],
+                       counts["pending"]);
+    txt +=
+        fmt::format("batch {:.2f} s; the renders' render phases add up to {:.2f} s ({:.0f}%)\n",
+                    wallSeconds, renderSum, wallSeconds > 0 ? 100 * renderSum / wallSeconds : 0.0);
+    WriteFileAtomically((fs::path(outDir) / "summary.txt").string(), txt);
+}
+
+std::string RunningExecutable() {
+    std::error_code ec;
+    fs::path p = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw std::runtime_error("cannot locate the prism executable");
+    return p.string();
+}
+
+void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
+            bool dieWithParent) {
+    j.logPath = j.output + ".log.tmp";
+    std::vector<std::string> args = {exe, "render", j.scene, "-o", j.output, "--no-progress"};
+    if (a.spp > 0) {
+        args.push_back("--spp");
+        args.push_back(std::to_string(a.spp));
+    }
+    if (!a.res.empty()) {
+        args.push_back("--res");
+        args.push_back(a.res);
+    }
+    if (a.effects != "scene") {
+        args.push_back("--effects");
+        args.push_back(a.effects);
+    }
+    for (auto [flag, value] : {std::pair{"--exposure", &a.exposure},
+                               {"--tonemap", &a.toneMap},
+                               {"--env", &a.env},
+                               {"--env-rotate", &a.envRotate},
+                               {"--env-mode", &a.envMode}})
+        if (!value->empty()) {
+            args.push_back(flag);
+            args.push_back(*value);
+        }
+    // Concurrent renders share the default budget, so together they stay within it.
+    std::string budget = a.maxMemory;
+    if (budget.empty() && a.jobs > 1)
+        budget = std::to_string(DefaultMemoryBudget() / uint64_t(a.jobs));
+    if (!budget.empty()) {
+        args.push_back("--max-memory");
+        args.push_back(budget);
+    }
+    args.push_back("--threads");
+    args.push_back(std::to_string(threadsPerJob));
+    if (a.confine.Given()) args.push_back("--confine=" + ConfinementFolderFor(a.confine, j.scene));
+    j.start = std::chrono::steady_clock::now();
+    pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("cannot start a render process");
+    if (pid == 0) {
+        if (dieWithParent) prctl(PR_SET_PDEATHSIG, SIGTERM);
+        FILE *log = std::freopen(j.logPath.c_str(), "w", stderr);
+        (void)log;
+        std::freopen("/dev/null", "w", stdout);
+        std::vector<char *> argv;
+        for (auto &s : args) argv.push_back(s.data());
+        argv.push_back(nullptr);
+        execv(exe.c_str(), argv.data());
+        _exit(127);
+    }
+    j.pid = pid;
+    j.status = "running";
+}
+
+void Finish(Job &j, int status, const struct rusage &usage, bool interrupted) {
+    j.seconds = SecondsSince(j.start);
+    j.peakRssKiB = usage.ru_maxrss;
+    std::ifstream log(j.logPath);
+    std::string line;
+    while (std::getline(log, line)) {
+        double p, su, b, r;
+        if (std::sscanf(line.c_str(), "time: parse %lfs, setup %lfs, BVH build %lfs, render %lfs",
+                        &p, &su, &b, &r) == 4) {
+            j.parseSeconds = p, j.setupSeconds = su, j.bvhSeconds = b, j.renderSeconds = r;
+            continue;
+        }
+        if (line.find("warning:") != std::string::npos)
+            j.warnings.push_back(line);
+        else if (line.find("error:") != std::string::npos && j.error.empty())
+            j.error = line;
+    }
+    std::error_code ec;
+    fs::remove(j.logPath, ec);
+    if (WIFEXITED(status)) {
+        j.exitCode = WEXITSTATUS(status);
+        j.status =
+            j.exitCode == 0 ? "ok" : (j.exitCode == ExitInterrupted ? "interrupted" : "failed");
+        if (j.status == "failed" && j.error.empty())
+            j.error = "exit status " + std::to_string(j.exitCode);
+    } else if (WIFSIGNALED(status)) {
+        int sig = WTERMSIG(status);
+        j.exitCode = 128 + sig;
+        j.status = (sig == SIGINT && interrupted) ? "interrupted" : "failed";
+        if (j.status == "failed") {
+            const char *abbrev = sigabbrev_np(sig);
+            j.error = "render process killed by signal " +
+                      (abbrev ? "SIG" + std::string(abbrev) : std::to_string(sig)) + " (" +
+                      strsignal(sig) + ")";
+            if (sig == SIGKILL) j.error += "; out of memory? The kernel's OOM killer sends SIGKILL";
+        }
+    }
+    j.pid = -1;
+}
+
+std::vector<Job> PrepareBatch(const BatchArgs &a) {
+    if (a.format != "png" && a.format != "exr") throw UsageError("--format must be png or exr");
+    std::vector<std::string> scenes = CollectScenes(a.input);
+    if (scenes.empty()) throw UsageError("no scenes found in \"" + a.input + "\"");
+    ParseMaxMemory(a.maxMemory);  // a bad value is a usage error now, not one per scene
+    if (!a.env.empty())           // likewise a missing map or a bad R,G,B
+        ParseEnvironment(a.env, a.envRotate.empty() ? 0.0 : std::stod(a.envRotate), a.envMode);
+    else if (!a.envRotate.empty() || !a.envMode.empty())
+        throw UsageError("--env-rotate and --env-mode need --env");
+    std::error_code ec;
+    fs::create_directories(a.outDir, ec);
+    if (!fs::is_directory(a.outDir))
+        throw UsageError("cannot create output directory \"" + a.outDir + "\"");
+    CheckWritableDirectory(a.outDir);  // read-only or full: say so before any render
+    if (a.confine.Given() && !a.confine.dir.empty()) ConfinementFolderFor(a.confine, "");
+    std::vector<std::string> names = OutputNames(scenes, a.format);
+    std::vector<Job> jobs(scenes.size());
+    for (size_t i = 0; i < scenes.size(); ++i) {
+        jobs[i].scene = scenes[i];
+        jobs[i].output = (fs::path(a.outDir) / names[i]).string();
+        // Up to date: the output is newer than the scene file (included files are not
+        // tracked; use --force after editing them).
+        if (!a.force && fs::exists(jobs[i].output) && fs::exists(scenes[i]) &&
+            fs::last_write_time(jobs[i].output) >= fs::last_write_time(scenes[i]))
+            jobs[i].status = "skipped";
+    }
+    return jobs;
+}
 
 namespace {
 
@@ -99,6 +381,44 @@ int RunBatch(const BatchArgs &a) {
 }
 
 }  // namespace
+
+void AddBatchOptions(CLI::App *cmd, BatchArgs *args) {
+    cmd->add_option("input", args->input,
+                    "A directory (searched recursively) or a file listing scenes, one per line")
+        ->required();
+    cmd->add_option("-o,--output", args->outDir,
+                    "Output directory for images, report.json and summary.txt")
+        ->required();
+    cmd->add_option("--jobs", args->jobs, "Scenes rendered at once (cores are shared between them)")
+        ->check(CLI::Range(1, 256));
+    cmd->add_flag("--force", args->force, "Re-render scenes whose output is up to date");
+    cmd->add_option("--format", args->format, "Image format: png or exr")
+        ->check(CLI::IsMember({"png", "exr"}));
+    cmd->add_option("--spp", args->spp, "Samples per pixel for every scene")
+        ->check(CLI::Range(1, 1 << 16));
+    cmd->add_option("--res", args->res, "Resolution WxH for every scene");
+    cmd->add_option("--threads", args->threads, "Threads per scene (default: cores / jobs)")
+        ->check(CLI::Range(1, 4096));
+    cmd->add_option("--max-memory", args->maxMemory,
+                    "Memory budget of each render, e.g. 4G (default: 75% of RAM)");
+    AddConfineOption(cmd, &args->confine);
+    cmd->add_option("--effects", args->effects,
+                    "Kernel for every scene: \"scene\" (specialized) or \"all\" (general)")
+        ->check(CLI::IsMember({"scene", "all"}));
+    cmd->add_option("--exposure", args->exposure, "Exposure in EV for every scene (2^EV)")
+        ->check(CLI::Range(-64.0, 64.0));
+    cmd->add_option("--tonemap", args->toneMap,
+                    "Tone map of PNG outputs: none, neutral, aces or filmic (default: per scene "
+                    "format, as prism render)")
+        ->check(CLI::IsMember({"none", "neutral", "aces", "filmic"}));
+    cmd->add_option("--env", args->env,
+                    "Environment light for every scene: FILE.exr|hdr or R,G,B (as prism render)");
+    cmd->add_option("--env-rotate", args->envRotate, "Turn the --env map by DEG about up")
+        ->check(CLI::Number);
+    cmd->add_option("--env-mode", args->envMode, "replace (default) or add")
+        ->check(CLI::IsMember({"replace", "add"}));
+    cmd->add_flag("-q,--quiet", args->quiet, "No progress lines");
+}
 
 void AddBatchCommand(CLI::App &app, int *exitCode) {
     auto args = std::make_shared<BatchArgs>();
