@@ -12,7 +12,7 @@ namespace prism::mpi {
 namespace {
 // Between polls: short enough that a worker asking for tiles waits little (tiles take
 // milliseconds), long enough that a waiting rank uses almost no CPU.
-constexpr auto PollSleep = std::chrono::microseconds(50);
+constexpr auto PollSleep = std::chrono::microseconds(100);
 void OnStop(int) { g_stop = 1; }
 }  // namespace
 

@@ -66,9 +66,24 @@ void ExpectBitIdentical(const fs::path &dir, const std::string &scene, const std
 }
 
 TEST_F(MpiTest, RenderIsBitIdenticalForQuadricsPbrt) {
-    // A gaussian filter: tiles overlap, so the merge order matters.
+    // The box filter's footprints overlap by a pixel, so the merge order matters already.
     ExpectBitIdentical(dir_, std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt",
                        "--res 72x40 --spp 2");
+}
+
+TEST_F(MpiTest, RenderIsBitIdenticalWithGaussianFilterAndGlossyRays) {
+    // Footprints 4 pixels wider than the tiles; the distribution integrator's glossy rays.
+    ExpectBitIdentical(dir_, std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/distribution.pbrt",
+                       "--res 40x24 --spp 1");
+}
+
+TEST_F(MpiTest, TargetErrorIsRefusedOnce) {
+    std::string scene = std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt";
+    RunResult r = RunMpi(2, "render '" + scene + "' -o t.png --target-error 0.1", dir_);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    size_t first = r.err.find("--target-error");
+    ASSERT_NE(first, std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("does not take", first + 1), std::string::npos) << r.err;
 }
 
 TEST_F(MpiTest, RenderIsBitIdenticalForObj) {
