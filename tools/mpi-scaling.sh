@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Measures prism-mpi against prism render on this machine (docs/DISTRIBUTED.md): ROUNDS rounds,
 # each running every configuration once (interleaved, so load changes hit them alike), and
-# prints the median render phase and wall time of each. Usage:
+# prints the medians of each one's render phase, wall time and CPU time (user + system of every
+# process: on a shared machine the wall time depends on what else runs, the CPU time less).
+# Needs /usr/bin/time. Usage:
 #   tools/mpi-scaling.sh [SCENE] [ROUNDS] [prism render options...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,18 +33,16 @@ declare -A THREADS=(
 for ((r = 0; r < ROUNDS; r++)); do
   for name in "${!CONFIGS[@]}"; do
     key="$(echo "$name" | tr -c 'a-z0-9' _)"
-    start=$(date +%s.%N)
-    ${CONFIGS[$name]} "$SCENE" -o "$TMP/out.exr" --no-progress --threads "${THREADS[$name]}" \
-      "${OPTS[@]}" 2>"$TMP/err"
-    end=$(date +%s.%N)
+    /usr/bin/time -f "%e %U %S" -o "$TMP/time" ${CONFIGS[$name]} "$SCENE" -o "$TMP/out.exr" \
+      --no-progress --threads "${THREADS[$name]}" "${OPTS[@]}" 2>"$TMP/err"
     render=$(sed -n 's/.*render \([0-9.]*\)s$/\1/p' "$TMP/err" | head -1)
-    echo "$render $(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f", b - a }')" >>"$TMP/$key"
+    echo "$render $(awk '{ printf "%.3f %.3f", $1, $2 + $3 }' "$TMP/time")" >>"$TMP/$key"
   done
 done
-printf '%-40s %12s %12s\n' configuration "render (s)" "wall (s)"
+printf '%-40s %12s %12s %12s\n' configuration "render (s)" "wall (s)" "CPU (s)"
 for name in "${!CONFIGS[@]}"; do
   key="$(echo "$name" | tr -c 'a-z0-9' _)"
   med() { sort -n | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
-  printf '%-40s %12s %12s\n' "$name" "$(cut -d' ' -f1 "$TMP/$key" | med)" \
-    "$(cut -d' ' -f2 "$TMP/$key" | med)"
+  printf '%-40s %12s %12s %12s\n' "$name" "$(cut -d' ' -f1 "$TMP/$key" | med)" \
+    "$(cut -d' ' -f2 "$TMP/$key" | med)" "$(cut -d' ' -f3 "$TMP/$key" | med)"
 done

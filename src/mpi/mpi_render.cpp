@@ -2,6 +2,7 @@
 // tiles on request (a slow rank asks less often, so it gets fewer), the other ranks render them
 // with TBB and send back the tiles' filtered sums, and rank 0 merges them in tile order: the
 // image is bit-identical to `prism render`'s. Rank 0 only coordinates (docs/DISTRIBUTED.md).
+#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -64,7 +65,10 @@ void RunWorker(const RenderJob &job) {
     std::vector<FilmTile> tiles;
     RayCounters rays;
     double busy = 0;
-    const int threads = tbb::this_task_arena::max_concurrency();
+    // --threads limits TBB through a global_control, which the arena's concurrency ignores.
+    const int threads = int(std::min<size_t>(
+        size_t(tbb::this_task_arena::max_concurrency()),
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
     Writer first;  // a tile message without tiles: a request
     first.Put(int32_t(0)), first.Put(int32_t(0)), first.Put(int32_t(threads));
     for (int k = 0; k < RequestsInFlight; ++k) Send(0, TagTiles, first.Bytes());
