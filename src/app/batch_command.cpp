@@ -184,7 +184,7 @@ std::string RunningExecutable() {
 
 void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
             bool dieWithParent) {
-    j.logPath = j.output + ".log.tmp";
+    if (j.logPath.empty()) j.logPath = j.output + ".log.tmp";
     std::vector<std::string> args = {exe, "render", j.scene, "-o", j.output, "--no-progress"};
     if (a.spp > 0) {
         args.push_back("--spp");

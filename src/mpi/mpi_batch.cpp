@@ -82,6 +82,11 @@ void RunWorker(const BatchArgs &a, const std::string &exe) {
             Job j;
             j.scene = r.GetString();
             j.output = r.GetString();
+            // The render's log stays on this node, so a rank that dies leaves nothing in the
+            // output folder but finished images.
+            j.logPath =
+                (fs::temp_directory_path() / fmt::format("prism-mpi-{}-{}.log", getpid(), index))
+                    .string();
             Launch(j, a, exe, threadsPerJob, /*dieWithParent=*/true);
             running.emplace(j.pid, std::pair{index, std::move(j)});
         }
@@ -131,8 +136,6 @@ int Coordinate(const BatchArgs &a, std::vector<Job> &jobs) {
                 if (j.status != "running") continue;
                 j.status = "interrupted";
                 j.error = "rank " + std::to_string(j.rank) + " ended before finishing it";
-                std::error_code ec;  // the render's log (app/batch_jobs.cpp Launch)
-                fs::remove(j.output + ".log.tmp", ec);
                 lost += fmt::format("{}{} (rank {})", lost.empty() ? "" : ", ", j.scene, j.rank);
             }
             WriteReports(a.outDir, jobs, SecondsSince(batchStart));
@@ -158,6 +161,9 @@ int Coordinate(const BatchArgs &a, std::vector<Job> &jobs) {
                 w.PutString(j.scene);
                 w.PutString(j.output);
                 ++next;
+                // Recorded at once: should rank 0 be killed before it can say so, the report
+                // still shows which rank had which scene.
+                writeReports();
             } else {
                 w.Put(int32_t(-1));
             }
