@@ -207,6 +207,7 @@ TEST_F(MpiTest, KilledRankEndsTheBatchAndKeepsFinishedImages) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     ASSERT_GT(victim, 0) << "no finished scene or no rank 2 within 60 s";
+    const pid_t other = FindRank(1, fs::canonical(dir_));
     kill(victim, SIGKILL);
     while (!fs::exists(dir_ / "rc.txt") &&
            std::chrono::steady_clock::now() < deadline + std::chrono::seconds(60))
@@ -225,9 +226,15 @@ TEST_F(MpiTest, KilledRankEndsTheBatchAndKeepsFinishedImages) {
          it != std::sregex_iterator(); ++it, ++ok)
         EXPECT_TRUE(fs::exists(dir_ / (*it)[1].str())) << (*it)[1].str();
     EXPECT_GE(ok, 1) << report;
-    // No half-written file is left behind (rank 0 removes the logs of unfinished scenes).
+    // No half-written file is left behind: the renders' logs are in the temporary folder.
     for (const auto &e : fs::directory_iterator(dir_ / "out"))
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+    // The logs of the renders the job cut short (mpi_batch.cpp names them by rank pid).
+    for (const auto &e : fs::directory_iterator(fs::temp_directory_path())) {
+        std::string name = e.path().filename();
+        for (pid_t p : {victim, other})
+            if (name.rfind("prism-mpi-" + std::to_string(p) + "-", 0) == 0) fs::remove(e.path());
+    }
 }
 
 }  // namespace
