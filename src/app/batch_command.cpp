@@ -1,15 +1,18 @@
 // `prism batch LIST|DIR -o OUTDIR [--jobs N] [--force] [--format png|exr]`: renders many
 // scenes unattended. Each scene renders in its own child process (`prism render`), so a scene
 // that crashes or runs out of memory cannot take the batch or the finished images with it.
-// report.json and summary.txt are rewritten (atomically) after every scene.
+// report.json and summary.txt are rewritten (atomically) after every scene. The parts that
+// `prism-mpi batch` shares are declared in app/batch_jobs.h.
 #include <fmt/core.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -21,6 +24,7 @@
 #include <sstream>
 #include <thread>
 
+#include "app/batch_jobs.h"
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/output_file.h"
@@ -33,37 +37,6 @@ namespace fs = std::filesystem;
 namespace prism {
 
 namespace {
-
-struct BatchArgs {
-    std::string input, outDir, format = "png";
-    int jobs = 1, spp = 0, threads = 0;
-    std::string res, maxMemory;
-    std::string effects = "scene";  // passed on to each render (--effects)
-    bool force = false, quiet = false;
-    ConfineOption confine;  // --confine [DIR]: each scene confined to DIR or its own folder
-    // Passed on to every `prism render` (empty: not given).
-    std::string exposure, toneMap, env, envRotate, envMode;
-};
-
-struct Job {
-    std::string scene, output;
-    std::string status = "pending";  // ok, failed, skipped, interrupted
-    double seconds = 0;              // whole child process
-    // The child's own phases, from its statistics line; negative when it printed none.
-    double parseSeconds = -1, setupSeconds = -1, bvhSeconds = -1, renderSeconds = -1;
-    int exitCode = 0;
-    long peakRssKiB = -1;
-    double endSeconds = -1;  // when it finished, from the batch's start (the soak's clock)  // the
-                             // render process's peak resident memory (wait4), -1: unknown
-    std::vector<std::string> warnings;
-    std::string error;
-    pid_t pid = -1;
-    std::string logPath;
-    std::chrono::steady_clock::time_point start;
-};
-
-volatile sig_atomic_t g_interrupted = 0;
-void OnSigint(int) { g_interrupted = 1; }
 
 bool IsSceneFile(const fs::path &p) { return IsSceneExtension(p.extension().string()); }
 
@@ -145,6 +118,8 @@ std::string JsonEscape(const std::string &s) {
     return o;
 }
 
+}  // namespace
+
 void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds) {
     std::map<std::string, int> counts;
     double renderSum = 0;
@@ -160,6 +135,7 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
             "\"seconds\": {:.3f}, \"exit_code\": {}, \"error\": \"{}\", ",
             JsonEscape(j.scene), JsonEscape(j.output), j.status, j.seconds, j.exitCode,
             JsonEscape(j.error));
+        if (j.rank >= 0) json += fmt::format("\"rank\": {}, ", j.rank);
         if (j.peakRssKiB >= 0)
             json += fmt::format("\"peak_rss_kib\": {}, \"end_seconds\": {:.3f}, ", j.peakRssKiB,
                                 j.endSeconds);
@@ -199,15 +175,16 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
     WriteFileAtomically((fs::path(outDir) / "summary.txt").string(), txt);
 }
 
-std::string SelfExecutable() {
+std::string RunningExecutable() {
     std::error_code ec;
     fs::path p = fs::read_symlink("/proc/self/exe", ec);
     if (ec) throw std::runtime_error("cannot locate the prism executable");
     return p.string();
 }
 
-void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob) {
-    j.logPath = j.output + ".log.tmp";
+void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
+            bool dieWithParent) {
+    if (j.logPath.empty()) j.logPath = j.output + ".log.tmp";
     std::vector<std::string> args = {exe, "render", j.scene, "-o", j.output, "--no-progress"};
     if (a.spp > 0) {
         args.push_back("--spp");
@@ -245,6 +222,7 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("cannot start a render process");
     if (pid == 0) {
+        if (dieWithParent) prctl(PR_SET_PDEATHSIG, SIGTERM);
         FILE *log = std::freopen(j.logPath.c_str(), "w", stderr);
         (void)log;
         std::freopen("/dev/null", "w", stdout);
@@ -258,7 +236,7 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     j.status = "running";
 }
 
-void Finish(Job &j, int status, const struct rusage &usage) {
+void Finish(Job &j, int status, const struct rusage &usage, bool interrupted) {
     j.seconds = SecondsSince(j.start);
     j.peakRssKiB = usage.ru_maxrss;
     std::ifstream log(j.logPath);
@@ -286,7 +264,7 @@ void Finish(Job &j, int status, const struct rusage &usage) {
     } else if (WIFSIGNALED(status)) {
         int sig = WTERMSIG(status);
         j.exitCode = 128 + sig;
-        j.status = (sig == SIGINT && g_interrupted) ? "interrupted" : "failed";
+        j.status = (sig == SIGINT && interrupted) ? "interrupted" : "failed";
         if (j.status == "failed") {
             const char *abbrev = sigabbrev_np(sig);
             j.error = "render process killed by signal " +
@@ -298,7 +276,7 @@ void Finish(Job &j, int status, const struct rusage &usage) {
     j.pid = -1;
 }
 
-int RunBatch(const BatchArgs &a) {
+std::vector<Job> PrepareBatch(const BatchArgs &a) {
     if (a.format != "png" && a.format != "exr") throw UsageError("--format must be png or exr");
     std::vector<std::string> scenes = CollectScenes(a.input);
     if (scenes.empty()) throw UsageError("no scenes found in \"" + a.input + "\"");
@@ -324,7 +302,17 @@ int RunBatch(const BatchArgs &a) {
             fs::last_write_time(jobs[i].output) >= fs::last_write_time(scenes[i]))
             jobs[i].status = "skipped";
     }
-    std::string exe = SelfExecutable();
+    return jobs;
+}
+
+namespace {
+
+volatile sig_atomic_t g_interrupted = 0;
+void OnSigint(int) { g_interrupted = 1; }
+
+int RunBatch(const BatchArgs &a) {
+    std::vector<Job> jobs = PrepareBatch(a);
+    std::string exe = RunningExecutable();
     int cores = int(std::max(1u, std::thread::hardware_concurrency()));
     int nJobs = std::max(1, a.jobs);
     int threadsPerJob = a.threads > 0 ? a.threads : std::max(1, cores / nJobs);
@@ -362,7 +350,7 @@ int RunBatch(const BatchArgs &a) {
         }
         for (Job &j : jobs) {
             if (j.pid != pid) continue;
-            Finish(j, status, usage);
+            Finish(j, status, usage, g_interrupted);
             j.endSeconds = SecondsSince(batchStart);
             --running;
             if (!a.quiet)
@@ -394,10 +382,7 @@ int RunBatch(const BatchArgs &a) {
 
 }  // namespace
 
-void AddBatchCommand(CLI::App &app, int *exitCode) {
-    auto args = std::make_shared<BatchArgs>();
-    CLI::App *cmd = app.add_subcommand(
-        "batch", "Render many scenes; keeps going past failures and writes a report");
+void AddBatchOptions(CLI::App *cmd, BatchArgs *args) {
     cmd->add_option("input", args->input,
                     "A directory (searched recursively) or a file listing scenes, one per line")
         ->required();
@@ -433,6 +418,13 @@ void AddBatchCommand(CLI::App &app, int *exitCode) {
     cmd->add_option("--env-mode", args->envMode, "replace (default) or add")
         ->check(CLI::IsMember({"replace", "add"}));
     cmd->add_flag("-q,--quiet", args->quiet, "No progress lines");
+}
+
+void AddBatchCommand(CLI::App &app, int *exitCode) {
+    auto args = std::make_shared<BatchArgs>();
+    CLI::App *cmd = app.add_subcommand(
+        "batch", "Render many scenes; keeps going past failures and writes a report");
+    AddBatchOptions(cmd, args.get());
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunBatch(*args); }); });
 }
 

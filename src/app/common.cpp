@@ -21,7 +21,15 @@
 
 namespace prism {
 
-int RunGuarded(const std::function<int()> &fn) {
+int RunGuarded(const std::function<int()> &fn) { return RunGuarded(fn, nullptr); }
+
+int RunGuarded(const std::function<int()> &fn, std::string *message) {
+    auto emit = [message](const std::string &line) {
+        if (message)
+            *message = line;
+        else
+            std::fprintf(stderr, "%s\n", line.c_str());
+    };
     try {
         return fn();
     } catch (const SceneError &e) {
@@ -36,16 +44,16 @@ int RunGuarded(const std::function<int()> &fn) {
             (what.size() < flag.size() ||
              what.compare(what.size() - flag.size(), flag.size(), flag) != 0))
             what += flag;
-        std::fprintf(stderr, "%s\n", what.c_str());
+        emit(what);
         return ExitBadInput;
     } catch (const UsageError &e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        emit(std::string("error: ") + e.what());
         return ExitBadInput;
     } catch (const std::bad_alloc &) {
-        std::fprintf(stderr, "error: out of memory\n");
+        emit("error: out of memory");
         return ExitInternal;
     } catch (const std::exception &e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        emit(std::string("error: ") + e.what());
         return ExitInternal;
     }
 }

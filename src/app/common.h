@@ -25,6 +25,9 @@ struct SceneEntity;
 // Runs a command, turning exceptions into messages and exit statuses: SceneError and
 // UsageError → 2, anything else → 1.
 int RunGuarded(const std::function<int()> &fn);
+// The same, but the error line goes to *message instead of stderr (prism-mpi: only rank 0
+// prints).
+int RunGuarded(const std::function<int()> &fn, std::string *message);
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;

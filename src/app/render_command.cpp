@@ -12,6 +12,7 @@
 
 #include "app/commands.h"
 #include "app/common.h"
+#include "app/render_options.h"
 #include "build/build_scene.h"
 #include "core/file_io.h"
 #include "image/image_io.h"
@@ -24,40 +25,6 @@
 namespace prism {
 
 namespace {
-
-// SIGINT during a render sets this flag: the renderer stops between tiles and nothing is
-// written. During the final write the signal is deferred, so the output is either complete or
-// absent.
-volatile sig_atomic_t g_cancel = 0;
-void OnInterrupt(int) { g_cancel = 1; }
-
-struct RenderArgs {
-    std::string scene, output, res, crop, precision = "double", lookAt, maxMemory;
-    int spp = 0, threads = 0, maxDepth = -1, lightSamples = 0, glossySamples = 0;
-    std::string integrator;  // empty: the scene's
-    int tessellate = 0;      // [validate hook]
-    float fov = 0;
-    bool quiet = false, noProgress = false;
-    ConfineOption confine;          // --confine [DIR]
-    std::string effects = "scene";  // --effects: "scene" (specialized kernel) or "all"
-    // Accuracy knobs (docs/NUMERICS.md, `prism study`).
-    float cutoff = 0, offsetEpsilon = 0;      // offsetEpsilon 0: not given
-    std::string offset, bvhQuality = "auto";  // offset empty: not given
-    bool robust = false;
-    // --target-error (docs/ACCURACY.md): 0 when not given; the explicit options it conflicts
-    // with, as given on the command line.
-    double targetError = 0;
-    bool verify = false, sppGiven = false, cutoffGiven = false, lightSamplesGiven = false;
-    // Output (docs: README "Exposure and tone mapping"): empty / not given → the Film's, else
-    // the scene format's default.
-    float exposure = 0;
-    bool exposureGiven = false;
-    std::string toneMap;
-    // --env (README "Lighting"): empty when not given.
-    std::string env, envMode;
-    double envRotate = 0;
-    bool envRotateGiven = false;
-};
 
 // The output transform: the command line's, else the Film's, else the format's default.
 OutputTransform ChooseOutputTransform(const RenderArgs &a, const RenderScene &scene,
@@ -141,9 +108,35 @@ void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool t
     }
 }
 
-int RunRender(const RenderArgs &a) {
-    CheckTargetErrorArgs(a);
+}  // namespace
+
+struct RenderJob::State {
+    RenderArgs a;
     std::optional<EnvironmentSpec> env;
+    std::unique_ptr<ScopedReadConfinement> confined;
+    BuildSettings opts;
+    // One budget for everything this render holds: scene files and meshes (LoadScene), the
+    // film, textures, meshes and BVH (BuildRenderScene); it lives until the render ends.
+    std::unique_ptr<MemoryBudget> budget;
+    std::unique_ptr<tbb::global_control> threadLimit;
+    Diagnostics diag;
+    SceneDescription desc;
+    double parseSeconds = 0, setupSeconds = 0;
+    std::optional<TargetChoice> target;
+    std::optional<RenderScene> scene;
+    std::string out;
+    std::chrono::steady_clock::time_point start;
+    int lastQuarter = 0;
+
+    State(const RenderArgs &args, bool writer) : a(args), diag(writer && !args.quiet) {}
+};
+
+RenderJob::RenderJob(const RenderArgs &args, bool writer)
+    : s_(std::make_unique<State>(args, writer)) {
+    const RenderArgs &a = s_->a;
+    BuildSettings &opts = s_->opts;
+    CheckTargetErrorArgs(a);
+    std::optional<EnvironmentSpec> &env = s_->env;
     if (!a.env.empty())
         env = ParseEnvironment(a.env, a.envRotate, a.envMode);
     else if (a.envRotateGiven || !a.envMode.empty())
@@ -151,8 +144,8 @@ int RunRender(const RenderArgs &a) {
     // The --env map is the operator's, not the scene's: --confine does not apply to it.
     std::vector<std::string> operatorFiles;
     if (env && !env->mapFile.empty()) operatorFiles.push_back(env->mapFile);
-    ScopedReadConfinement confined(ConfinementFolderFor(a.confine, a.scene), operatorFiles);
-    BuildSettings opts;
+    s_->confined = std::make_unique<ScopedReadConfinement>(ConfinementFolderFor(a.confine, a.scene),
+                                                           operatorFiles);
     opts.spp = a.spp;
     opts.maxDepth = a.maxDepth;
     if (!a.res.empty()) opts.resolution = ParseResolution(a.res);
@@ -168,68 +161,66 @@ int RunRender(const RenderArgs &a) {
     opts.robust = a.robust;
     opts.bvhQuality = ParseBvhQuality(a.bvhQuality);
     opts.allEffects = a.effects == "all";
-    // One budget for everything this render holds: scene files and meshes (LoadScene), the
-    // film, textures, meshes and BVH (BuildRenderScene); it lives until the render ends.
-    MemoryBudget budget(ParseMaxMemory(a.maxMemory));
-    opts.budget = &budget;
+    s_->budget = std::make_unique<MemoryBudget>(ParseMaxMemory(a.maxMemory));
+    opts.budget = s_->budget.get();
     LoadOptions loadOpts;
-    loadOpts.budget = &budget;
+    loadOpts.budget = s_->budget.get();
     if (a.tessellate > 0) opts.replaceAnalyticShape = TessellateWith(a.tessellate);
 
-    std::unique_ptr<tbb::global_control> threadLimit;
     if (a.threads > 0)
-        threadLimit = std::make_unique<tbb::global_control>(
+        s_->threadLimit = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, size_t(a.threads));
 
-    Diagnostics diag(!a.quiet);
+    Diagnostics &diag = s_->diag;
     auto t0 = std::chrono::steady_clock::now();
-    SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
+    s_->desc = LoadScene(a.scene, diag, loadOpts);
+    SceneDescription &desc = s_->desc;
     if (env) AddEnvironment(desc, *env);
-    double parseSeconds = SecondsSince(t0);
-    std::optional<TargetChoice> target;
+    s_->parseSeconds = SecondsSince(t0);
     if (a.targetError > 0) {
         // The pilot takes seconds: a bad -o must fail before it (the Film's filename is
         // checked after the build, as without --target-error).
-        if (!a.output.empty()) CheckOutputPath(a.output);
+        if (!a.output.empty() && writer) CheckOutputPath(a.output);
         TargetOptions to;
         to.target = a.targetError;
-        target = ChooseTargetSettings(desc, opts, to, diag);
-        opts = ApplyTargetChoice(opts, *target);
-        if (!a.quiet) std::fprintf(stderr, "%s\n", DescribeChoice(*target).c_str());
+        s_->target = ChooseTargetSettings(desc, opts, to, diag);
+        opts = ApplyTargetChoice(opts, *s_->target);
+        if (!a.quiet && writer) std::fprintf(stderr, "%s\n", DescribeChoice(*s_->target).c_str());
     }
     auto t1 = std::chrono::steady_clock::now();
-    RenderScene scene = BuildRenderScene(desc, opts, diag);
+    s_->scene.emplace(BuildRenderScene(desc, opts, diag));
+    const RenderScene &scene = *s_->scene;
     // Scene setup: meshes read (PLY), textures decoded, materials and lights built.
-    double setupSeconds = SecondsSince(t1) - scene.buildSeconds;
+    s_->setupSeconds = SecondsSince(t1) - scene.buildSeconds;
 
-    std::string out = a.output;
+    std::string &out = s_->out;
+    out = a.output;
     if (out.empty()) {
         out = scene.outputFilename;
         // An untrusted scene names no output outside the confined folder either.
-        if (!out.empty()) CheckOutputConfinement(out, desc.film);
+        if (!out.empty() && writer) CheckOutputConfinement(out, desc.film);
     }
     if (out.empty()) out = std::filesystem::path(a.scene).stem().string() + ".png";
-    CheckOutputPath(out);  // before rendering: a long render must not fail at the end
+    if (writer) CheckOutputPath(out);  // before rendering: a long render must not fail at the end
+}
 
-    auto start = std::chrono::steady_clock::now();
-    int lastQuarter = 0;
+RenderJob::~RenderJob() = default;
+
+const RenderScene &RenderJob::Scene() const { return *s_->scene; }
+const std::string &RenderJob::Output() const { return s_->out; }
+
+ProgressFn RenderJob::Progress() {
+    s_->start = std::chrono::steady_clock::now();
+    s_->lastQuarter = 0;
+    if (s_->a.quiet || s_->a.noProgress) return {};
     bool tty = isatty(STDERR_FILENO);
-    ProgressFn progress;
-    if (!a.quiet && !a.noProgress)
-        progress = [&](double f) { PrintProgress(f, start, tty, &lastQuarter); };
-    RenderStats stats;
-    struct sigaction sa {
-    }, old{};
-    sa.sa_handler = OnInterrupt;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, &old);
-    sigaction(SIGTERM, &sa, nullptr);
-    Image img = Render(scene, &stats, progress, &g_cancel);
-    if (stats.cancelled || g_cancel) {
-        std::fprintf(stderr, "interrupted: no image written\n");
-        return ExitInterrupted;
-    }
-    const OutputTransform outTransform = ChooseOutputTransform(a, scene, desc);
+    State *s = s_.get();
+    return [s, tty](double f) { PrintProgress(f, s->start, tty, &s->lastQuarter); };
+}
+
+void RenderJob::Write(const Image &img) {
+    const OutputTransform outTransform = ChooseOutputTransform(s_->a, *s_->scene, s_->desc);
+    const std::string &out = s_->out;
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
     if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
         WriteImage(out, img);
@@ -238,12 +229,20 @@ int RunRender(const RenderArgs &a) {
         ApplyOutputTransform(toWrite, outTransform, linearOut);
         WriteImage(out, toWrite);
     }
-    sigaction(SIGINT, &old, nullptr);
-    if (target && a.verify) {
-        TargetVerification v = VerifyTarget(desc, opts, *target, img, diag);
-        std::fprintf(stderr, "%s\n", DescribeVerification(*target, v).c_str());
-    }
+}
 
+void RenderJob::Report(const Image &img, const RenderStats &stats) {
+    const RenderArgs &a = s_->a;
+    const RenderScene &scene = *s_->scene;
+    const SceneDescription &desc = s_->desc;
+    const BuildSettings &opts = s_->opts;
+    const std::string &out = s_->out;
+    const OutputTransform outTransform = ChooseOutputTransform(a, scene, desc);
+    const bool linearOut = IsLinearImageExtension(LowerExtension(out));
+    if (s_->target && a.verify) {
+        TargetVerification v = VerifyTarget(desc, opts, *s_->target, img, s_->diag);
+        std::fprintf(stderr, "%s\n", DescribeVerification(*s_->target, v).c_str());
+    }
     if (!a.quiet) {
         const RayCounters &r = stats.rays;
         std::fprintf(stderr,
@@ -255,7 +254,7 @@ int RunRender(const RenderArgs &a) {
                      scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
                      a.precision.c_str(),
                      scene.integrator == IntegratorKind::Distribution ? "distribution" : "whitted",
-                     parseSeconds, setupSeconds, scene.buildSeconds, stats.renderSeconds,
+                     s_->parseSeconds, s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,
                      (unsigned long long)r.camera, (unsigned long long)r.shadow,
                      (unsigned long long)r.reflection, (unsigned long long)r.refraction,
                      (unsigned long long)r.passThrough, (unsigned long long)r.glossy,
@@ -291,15 +290,40 @@ int RunRender(const RenderArgs &a) {
                          (unsigned long long)stats.nonFiniteSamples, stats.firstNonFinitePixel->x,
                          stats.firstNonFinitePixel->y);
     }
+}
+
+namespace {
+
+// SIGINT during a render sets this flag: the renderer stops between tiles and nothing is
+// written. During the final write the signal is deferred, so the output is either complete or
+// absent.
+volatile sig_atomic_t g_cancel = 0;
+void OnInterrupt(int) { g_cancel = 1; }
+
+int RunRender(const RenderArgs &a) {
+    RenderJob job(a);
+    ProgressFn progress = job.Progress();
+    RenderStats stats;
+    struct sigaction sa {
+    }, old{};
+    sa.sa_handler = OnInterrupt;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old);
+    sigaction(SIGTERM, &sa, nullptr);
+    Image img = Render(job.Scene(), &stats, progress, &g_cancel);
+    if (stats.cancelled || g_cancel) {
+        std::fprintf(stderr, "interrupted: no image written\n");
+        return ExitInterrupted;
+    }
+    job.Write(img);
+    sigaction(SIGINT, &old, nullptr);
+    job.Report(img, stats);
     return ExitOk;
 }
 
 }  // namespace
 
-void AddRenderCommand(CLI::App &app, int *exitCode) {
-    auto args = std::make_shared<RenderArgs>();
-    CLI::App *cmd =
-        app.add_subcommand("render", "Render a scene (.pbrt, .obj, .gltf, .glb, .ply) to an image");
+std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
     cmd->add_option("scene", args->scene, "Scene file")->required();
     cmd->add_option("-o,--output", args->output,
                     "Output image (.exr linear float, .png sRGB); default: the Film's filename");
@@ -393,12 +417,22 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
                     "replace (default: the scene's light sources and the studio rig are dropped) "
                     "or add (the environment joins them)")
         ->check(CLI::IsMember({"replace", "add"}));
-    cmd->callback([args, exitCode, spp, cutoff, lightSamples, exposure, envRotate] {
+    return [args, spp, cutoff, lightSamples, exposure, envRotate] {
         args->exposureGiven = exposure->count() > 0;
         args->envRotateGiven = envRotate->count() > 0;
         args->sppGiven = spp->count() > 0;
         args->cutoffGiven = cutoff->count() > 0;
         args->lightSamplesGiven = lightSamples->count() > 0;
+    };
+}
+
+void AddRenderCommand(CLI::App &app, int *exitCode) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App *cmd =
+        app.add_subcommand("render", "Render a scene (.pbrt, .obj, .gltf, .glb, .ply) to an image");
+    std::function<void()> recordGiven = AddRenderOptions(cmd, args.get());
+    cmd->callback([args, exitCode, recordGiven] {
+        recordGiven();
         *exitCode = RunGuarded([&] { return RunRender(*args); });
     });
 }

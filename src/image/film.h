@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/color.h"
@@ -77,6 +78,11 @@ class FilmTile {
     // Pixels this tile accumulates into (within the film's crop window).
     const Bounds2i &PixelBounds() const { return bounds_; }
     const NonFiniteRecord &NonFinite() const { return nonFinite_; }
+    // The sums, row-major over PixelBounds(), and the NaN/Inf record, for a tile rendered in
+    // another process (prism-mpi): filled into a tile the receiver reset for the same pixels.
+    std::span<FilmPixel> Sums() { return pixels_; }
+    std::span<const FilmPixel> Sums() const { return pixels_; }
+    void SetNonFinite(const NonFiniteRecord &r) { nonFinite_ = r; }
 
   private:
     friend class Film;

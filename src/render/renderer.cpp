@@ -140,3 +140,55 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
 }
 
 }  // namespace prism
+
+namespace prism {
+
+FrameTiles::FrameTiles(const RenderScene &scene)
+    : scene_(scene),
+      kernelMask_(scene.allEffects ? KernelAll : KernelMaskFor(scene)),
+      film_(std::make_unique<TiledFilm>(scene.resolution, scene.pixelBounds, scene.filter,
+                                        RenderTileSize)) {}
+
+FrameTiles::~FrameTiles() = default;
+
+int FrameTiles::NumTiles() const { return film_->NumTiles(); }
+
+void FrameTiles::RenderTiles(int begin, int end, std::vector<FilmTile> *tiles,
+                             RayCounters *rays) const {
+    tiles->resize(size_t(end - begin));
+    const RenderTileFn renderTile = KernelRenderTile(kernelMask_);
+    tbb::enumerable_thread_specific<RayCounters> counters;
+    tbb::enumerable_thread_specific<TileScratch> scratch;
+    tbb::parallel_for(tbb::blocked_range<int>(begin, end, 1),
+                      [&](const tbb::blocked_range<int> &r) {
+                          // As in Render(): denormals flushed to zero in every worker, so the
+                          // samples match.
+                          _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+                          _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+                          RayCounters &rc = counters.local();
+                          for (int t = r.begin(); t != r.end(); ++t) {
+                              FilmTile *tile = &(*tiles)[size_t(t - begin)];
+                              film_->ResetTile(t, tile);
+                              renderTile(scene_, film_->TilePixels(t), rc, scratch.local(), tile);
+                          }
+                      });
+    for (const RayCounters &c : counters) *rays += c;
+}
+
+void FrameTiles::ResetTile(int t, FilmTile *tile) const { film_->ResetTile(t, tile); }
+
+void FrameTiles::MergeNext(const FilmTile &tile) { film_->MergeNext(&tile); }
+
+int FrameTiles::NextTile() const { return film_->NextTile(); }
+
+Image FrameTiles::Finish(RenderStats *stats) {
+    Image img = film_->Finish();
+    if (stats) {
+        stats->nonFiniteSamples = film_->NonFiniteCount();
+        stats->firstNonFinitePixel = film_->FirstNonFinitePixel();
+        stats->kernelMask = kernelMask_;
+    }
+    return img;
+}
+
+}  // namespace prism

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 
 #include "image/image.h"
 #include "render/render_scene.h"
@@ -33,5 +34,34 @@ using ProgressFn = std::function<void(double fraction)>;
 // skipped and stats->cancelled is set.
 Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &progress = {},
              const volatile int *cancel = nullptr);
+
+// A frame rendered tile by tile by a caller that hands the tiles out itself (prism-mpi: tiles
+// rendered on other processes). Rendering every tile with RenderTile and merging them with
+// MergeNext in index order gives exactly Render()'s image: the same tiles, kernel, samples and
+// merge order.
+class FrameTiles {
+  public:
+    explicit FrameTiles(const RenderScene &scene);
+    ~FrameTiles();
+
+    int NumTiles() const;
+    uint32_t KernelMask() const { return kernelMask_; }
+    // Renders tiles [begin, end) in parallel (TBB) into tiles[0 .. end - begin), adding their
+    // rays to *rays; the vector is resized and its buffers reused.
+    void RenderTiles(int begin, int end, std::vector<FilmTile> *tiles, RayCounters *rays) const;
+    // Prepares `tile` (bounds, filter, zeroed sums) for tile t: a receiver fills its sums with
+    // FilmTile::Sums() before merging.
+    void ResetTile(int t, FilmTile *tile) const;
+    // Merges the next tile in index order (NextTile()).
+    void MergeNext(const FilmTile &tile);
+    int NextTile() const;
+    // After the last merge: the image, with stats' non-finite sample counts and kernel set.
+    Image Finish(RenderStats *stats);
+
+  private:
+    const RenderScene &scene_;
+    uint32_t kernelMask_;
+    std::unique_ptr<TiledFilm> film_;
+};
 
 }  // namespace prism

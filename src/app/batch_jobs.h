@@ -1,0 +1,70 @@
+// `prism batch`'s options, scene list, render processes and reports, shared by `prism batch`
+// and `prism-mpi batch` (src/mpi): each scene renders in its own child process (`prism
+// render`), so a scene that crashes or runs out of memory cannot take the batch or the finished
+// images with it; report.json and summary.txt are rewritten (atomically) after every scene.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "app/common.h"
+
+struct rusage;
+
+namespace CLI {
+class App;
+}
+
+namespace prism {
+
+struct BatchArgs {
+    std::string input, outDir, format = "png";
+    int jobs = 1, spp = 0, threads = 0;
+    std::string res, maxMemory;
+    std::string effects = "scene";  // passed on to each render (--effects)
+    bool force = false, quiet = false;
+    ConfineOption confine;  // --confine [DIR]: each scene confined to DIR or its own folder
+    // Passed on to every `prism render` (empty: not given).
+    std::string exposure, toneMap, env, envRotate, envMode;
+};
+
+struct Job {
+    std::string scene, output;
+    std::string status = "pending";  // ok, failed, skipped, interrupted
+    double seconds = 0;              // whole child process
+    // The child's own phases, from its statistics line; negative when it printed none.
+    double parseSeconds = -1, setupSeconds = -1, bvhSeconds = -1, renderSeconds = -1;
+    int exitCode = 0;
+    long peakRssKiB = -1;
+    double endSeconds = -1;  // when it finished, from the batch's start (the soak's clock)  // the
+                             // render process's peak resident memory (wait4), -1: unknown
+    std::vector<std::string> warnings;
+    std::string error;
+    int rank = -1;  // prism-mpi: the rank that rendered it (-1: not written to the report)
+    pid_t pid = -1;
+    std::string logPath;
+    std::chrono::steady_clock::time_point start;
+};
+
+// Registers the batch options on `cmd` (its positionals included).
+void AddBatchOptions(CLI::App *cmd, BatchArgs *args);
+// Checks the options (UsageError), collects the scenes, creates the output directory and marks
+// the scenes whose output is up to date as skipped.
+std::vector<Job> PrepareBatch(const BatchArgs &a);
+// Rewrites report.json and summary.txt in a.outDir atomically.
+void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds);
+// The running executable (/proc/self/exe).
+std::string RunningExecutable();
+// Starts `exe render` for j in a child process (stderr to j.logPath, by default a log beside
+// the output).
+// dieWithParent: the child gets SIGTERM when this process dies (prism-mpi's ranks).
+void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
+            bool dieWithParent = false);
+// Records the child's end: status, phases and warnings from its log. `interrupted`: the batch
+// was interrupted (a render ended by SIGINT is then "interrupted", not "failed").
+void Finish(Job &j, int status, const struct rusage &usage, bool interrupted);
+
+}  // namespace prism
