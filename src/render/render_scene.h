@@ -50,6 +50,7 @@ struct ShapeInfo {
     int directiveIndex = 0;  // Shape directive order in the scene file
     std::string type;
     int prototype = -1;  // instances: index into RenderScene::prototypes
+    int instance = -1;   // instances: index into SceneDescription::instances (pick, AOVs)
 };
 
 struct RenderScene {
