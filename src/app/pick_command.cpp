@@ -65,15 +65,17 @@ struct Picker {
     std::string text;
 
     Picker(const SceneDescription &d, const RenderScene &s, int bounces)
-        : desc(d), scene(s), lookup(d, s), worldFromRender(s.renderFromWorld.Inverse()),
+        : desc(d),
+          scene(s),
+          lookup(d, s),
+          worldFromRender(s.renderFromWorld.Inverse()),
           maxBounces(bounces) {}
 
     // Traces `ray` (render space) and returns its JSON object; appends text lines.
     std::string Follow(Ray ray, const std::string &kind, int depth, const std::string &indent) {
         const Vec3d o = worldFromRender.Point(Vec3d(ray.o));
-        std::string j = "{\"kind\": " + JsonString(kind) + ", \"depth\": " +
-                        std::to_string(depth) + ", \"origin\": " + Vec(o) +
-                        ", \"direction\": " + Vec(ray.d);
+        std::string j = "{\"kind\": " + JsonString(kind) + ", \"depth\": " + std::to_string(depth) +
+                        ", \"origin\": " + Vec(o) + ", \"direction\": " + Vec(ray.d);
         text += indent + kind + " ray: origin " + Vec(o) + ", direction " + Vec(ray.d) + "\n";
         SurfaceInteraction si;
         int passThrough = 0;
@@ -146,10 +148,10 @@ struct Picker {
              ", \"point\": " + Vec(p) + ", \"geometricNormal\": " + Vec(ng) +
              ", \"shadingNormal\": " + Vec(si.ns) + ", \"uv\": [" + Num(si.uv.x) + ", " +
              Num(si.uv.y) + "]";
-        text += indent + "  primitive " + std::to_string(si.prim) + ", t " + Num(si.t) +
-                "\n" + indent + "  point " + Vec(p) + " (world space)\n" + indent +
-                "  geometric normal " + Vec(ng) + ", shading normal " + Vec(si.ns) + "\n" +
-                indent + "  uv [" + Num(si.uv.x) + ", " + Num(si.uv.y) + "]\n";
+        text += indent + "  primitive " + std::to_string(si.prim) + ", t " + Num(si.t) + "\n" +
+                indent + "  point " + Vec(p) + " (world space)\n" + indent + "  geometric normal " +
+                Vec(ng) + ", shading normal " + Vec(si.ns) + "\n" + indent + "  uv [" +
+                Num(si.uv.x) + ", " + Num(si.uv.y) + "]\n";
         // The specular lobes, as the Whitted kernel follows them (depth + 1 < maxdepth).
         std::string next;
         if (depth < maxBounces && depth + 1 < scene.maxDepth) {
@@ -197,14 +199,14 @@ int RunPick(const PickArgs &a) {
     std::string path = picker.Follow(ray, "camera", 0, "");
     std::string out;
     if (a.json) {
-        out = "{\"scene\": " + JsonString(a.scene) + ", \"pixel\": [" + std::to_string(a.x) +
-              ", " + std::to_string(a.y) + "], \"resolution\": [" +
-              std::to_string(scene.resolution.x) + ", " + std::to_string(scene.resolution.y) +
+        out = "{\"scene\": " + JsonString(a.scene) + ", \"pixel\": [" + std::to_string(a.x) + ", " +
+              std::to_string(a.y) + "], \"resolution\": [" + std::to_string(scene.resolution.x) +
+              ", " + std::to_string(scene.resolution.y) +
               "], \"space\": \"world\", \"ray\": " + path + "}\n";
     } else {
         out = "pixel (" + std::to_string(a.x) + ", " + std::to_string(a.y) + ") of " + a.scene +
-              " (" + std::to_string(scene.resolution.x) + "x" +
-              std::to_string(scene.resolution.y) + "; points in world space)\n" + picker.text;
+              " (" + std::to_string(scene.resolution.x) + "x" + std::to_string(scene.resolution.y) +
+              "; points in world space)\n" + picker.text;
     }
     std::fwrite(out.data(), 1, out.size(), stdout);
     return ExitOk;

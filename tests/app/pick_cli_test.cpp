@@ -75,13 +75,11 @@ TEST(PickCli, NamesTheShapeAndItsAnalyticHitPoint) {
     fs::path dir = TempDir("sphere");
     std::ofstream(dir / "s.pbrt") << kScene;
     for (auto [x, y] : {std::pair{10, 10}, std::pair{12, 8}, std::pair{8, 11}}) {
-        RunResult r = RunPrism("pick s.pbrt " + std::to_string(x) + " " + std::to_string(y) +
-                                   " --json",
-                               dir);
+        RunResult r =
+            RunPrism("pick s.pbrt " + std::to_string(x) + " " + std::to_string(y) + " --json", dir);
         ASSERT_EQ(r.exitCode, 0) << r.err;
         EXPECT_NE(r.out.find("\"type\": \"sphere\""), std::string::npos) << r.out;
-        EXPECT_NE(r.out.find("s.pbrt\", \"line\": 6, \"column\": 1"), std::string::npos)
-            << r.out;
+        EXPECT_NE(r.out.find("s.pbrt\", \"line\": 6, \"column\": 1"), std::string::npos) << r.out;
         std::vector<double> p = ArrayAfter(r.out, "point"), want = AnalyticHit(x, y);
         ASSERT_EQ(p.size(), 3u) << r.out;
         for (int i = 0; i < 3; ++i) EXPECT_NEAR(p[size_t(i)], want[size_t(i)], 1e-6) << r.out;
