@@ -5,11 +5,13 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
 
+#include "app/aov_output.h"
 #include "app/commands.h"
 #include "app/common.h"
 #include "build/build_scene.h"
@@ -57,6 +59,7 @@ struct RenderArgs {
     std::string env, envMode;
     double envRotate = 0;
     bool envRotateGiven = false;
+    std::string aov;  // --aov LIST|all (render/aov.h); empty: the Film's "aovs"
 };
 
 // The output transform: the command line's, else the Film's, else the format's default.
@@ -143,6 +146,7 @@ void PrintProgress(double f, std::chrono::steady_clock::time_point start, bool t
 
 int RunRender(const RenderArgs &a) {
     CheckTargetErrorArgs(a);
+    CheckAovOption(a.aov, a.output);
     std::optional<EnvironmentSpec> env;
     if (!a.env.empty())
         env = ParseEnvironment(a.env, a.envRotate, a.envMode);
@@ -210,6 +214,7 @@ int RunRender(const RenderArgs &a) {
     }
     if (out.empty()) out = std::filesystem::path(a.scene).stem().string() + ".png";
     CheckOutputPath(out);  // before rendering: a long render must not fail at the end
+    const std::vector<Aov> aovs = ChooseAovs(a.aov, scene, out, diag);
 
     auto start = std::chrono::steady_clock::now();
     int lastQuarter = 0;
@@ -231,7 +236,12 @@ int RunRender(const RenderArgs &a) {
     }
     const OutputTransform outTransform = ChooseOutputTransform(a, scene, desc);
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
-    if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
+    if (!aovs.empty()) {
+        // A separate pass after the beauty, so renders without AOVs run none of it.
+        Image toWrite = img;
+        ApplyOutputTransform(toWrite, outTransform, true);
+        WriteAovExr(out, toWrite, std::exp2(outTransform.exposure), scene, desc, aovs);
+    } else if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
         WriteImage(out, img);
     } else {
         Image toWrite = img;  // --verify compares the linear render
@@ -393,6 +403,10 @@ void AddRenderCommand(CLI::App &app, int *exitCode) {
                     "replace (default: the scene's light sources and the studio rig are dropped) "
                     "or add (the environment joins them)")
         ->check(CLI::IsMember({"replace", "add"}));
+    cmd->add_option("--aov", args->aov,
+                    "Write AOV layers beside RGB into the .exr output: all, or a list of depth, "
+                    "P, N, Ng, albedo, uv, shape_id, primitive_id, instance_id, material_id, "
+                    "direct, indirect, variance (default: the Film's \"aovs\")");
     cmd->callback([args, exitCode, spp, cutoff, lightSamples, exposure, envRotate] {
         args->exposureGiven = exposure->count() > 0;
         args->envRotateGiven = envRotate->count() > 0;

@@ -83,6 +83,8 @@ struct RenderScene {
     // the format's default (the app decides).
     float filmExposure = 0;
     std::optional<ToneMap> filmToneMap;
+    // Film "aovs" (Prism extension, render/aov.h): "" or a checked AOV list ("all", "Z,N").
+    std::string filmAovs;
     std::string integratorName;
     IntegratorKind integrator = IntegratorKind::Whitted;
     int glossySamples = DefaultGlossySamples;  // DistributionIntegrator only
