@@ -106,10 +106,11 @@ struct Picker {
         std::string h = "{";
         if (d.shape) {
             h += "\"shape\": {\"type\": " + JsonString(d.shape->type) +
+                 ", \"name\": " + JsonString(d.shape->name) +
                  ", \"id\": " + std::to_string(d.shapeId) + ", \"loc\": " + LocJson(d.shape->loc) +
                  "}";
-            text += indent + "  shape: " + d.shape->type + " at " + d.shape->loc.ToString() +
-                    " (shape id " + std::to_string(d.shapeId) + ")\n";
+            text += indent + "  shape: " + lookup.ShapeLabel(d.shapeId) + " (shape id " +
+                    std::to_string(d.shapeId) + ")\n";
         } else {
             h += "\"shape\": {\"type\": " + JsonString(info.type) + "}";
             text += indent + "  shape: " + info.type + "\n";

@@ -48,7 +48,8 @@ ShapeDeclaration ShapeLookup::Find(const SurfaceInteraction &si) const {
 std::string ShapeLookup::ShapeLabel(int shapeId) const {
     if (shapeId < 1 || size_t(shapeId) > shapes_.size()) return "";
     const ShapeDesc &s = *shapes_[size_t(shapeId) - 1];
-    return s.type + " at " + s.loc.ToString();
+    return (s.name.empty() ? s.type : "\"" + s.name + "\" (" + s.type + ")") + " at " +
+           s.loc.ToString();
 }
 
 std::string ShapeLookup::MaterialLabel(int materialId) const {

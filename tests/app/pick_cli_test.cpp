@@ -115,6 +115,17 @@ TEST(PickCli, FollowsTheMirrorAndPrintsValidJson) {
     }
 }
 
+TEST(PickCli, NamesObjObjectsAndMaterials) {
+    fs::path dir = TempDir("obj");
+    std::ofstream(dir / "quad.mtl") << "newmtl red\nKd 0.8 0.1 0.1\n";
+    std::ofstream(dir / "quad.obj") << "mtllib quad.mtl\no panel\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\n"
+                                       "v -1 1 0\nusemtl red\nf 1 2 3 4\n";
+    RunResult r = RunPrism("pick quad.obj 10 10 --res 21x21 --json", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("\"name\": \"panel\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"name\": \"red\""), std::string::npos) << r.out;
+}
+
 TEST(PickCli, PixelOutsideTheImageIsAUsageError) {
     fs::path dir = TempDir("outside");
     std::ofstream(dir / "s.pbrt") << kScene;
