@@ -19,6 +19,7 @@ inline constexpr int ExitInterrupted = 130;  // SIGINT or SIGTERM: nothing half-
 // Registers the subcommand's options on `app`; the returned callback runs it.
 void AddRenderCommand(CLI::App &app, int *exitCode);
 void AddTraceCommand(CLI::App &app, int *exitCode);
+void AddPickCommand(CLI::App &app, int *exitCode);
 void AddInfoCommand(CLI::App &app, int *exitCode);
 void AddBatchCommand(CLI::App &app, int *exitCode);
 void AddValidateCommand(CLI::App &app, int *exitCode);  // exit 3/4: see validate/validate.h

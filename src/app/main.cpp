@@ -1,5 +1,5 @@
-// prism: a Whitted ray tracer on Embree. Subcommands: render, info, trace, validate, batch,
-// bench and study (with no arguments: render scenes/whitted.pbrt).
+// prism: a Whitted ray tracer on Embree. Subcommands: render, info, trace, pick, validate,
+// batch, bench and study (with no arguments: render scenes/whitted.pbrt).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 
@@ -14,6 +14,7 @@ int main(int argc, char **argv) {
     int exitCode = 0;
     prism::AddRenderCommand(app, &exitCode);
     prism::AddTraceCommand(app, &exitCode);
+    prism::AddPickCommand(app, &exitCode);
     prism::AddInfoCommand(app, &exitCode);
     prism::AddBatchCommand(app, &exitCode);
     prism::AddValidateCommand(app, &exitCode);

@@ -5,11 +5,13 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
 
+#include "app/aov_output.h"
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/render_options.h"
@@ -125,6 +127,7 @@ struct RenderJob::State {
     std::optional<TargetChoice> target;
     std::optional<RenderScene> scene;
     std::string out;
+    std::vector<Aov> aovs;  // empty: no AOV pass
     std::chrono::steady_clock::time_point start;
     int lastQuarter = 0;
 
@@ -136,6 +139,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     const RenderArgs &a = s_->a;
     BuildSettings &opts = s_->opts;
     CheckTargetErrorArgs(a);
+    CheckAovOption(a.aov, a.output);
     std::optional<EnvironmentSpec> &env = s_->env;
     if (!a.env.empty())
         env = ParseEnvironment(a.env, a.envRotate, a.envMode);
@@ -202,6 +206,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     }
     if (out.empty()) out = std::filesystem::path(a.scene).stem().string() + ".png";
     if (writer) CheckOutputPath(out);  // before rendering: a long render must not fail at the end
+    s_->aovs = ChooseAovs(a.aov, scene, out, s_->diag);
 }
 
 RenderJob::~RenderJob() = default;
@@ -222,7 +227,12 @@ void RenderJob::Write(const Image &img) {
     const OutputTransform outTransform = ChooseOutputTransform(s_->a, *s_->scene, s_->desc);
     const std::string &out = s_->out;
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
-    if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
+    if (!s_->aovs.empty()) {
+        // A separate pass after the beauty, so renders without AOVs run none of it.
+        Image toWrite = img;
+        ApplyOutputTransform(toWrite, outTransform, true);
+        WriteAovExr(out, toWrite, std::exp2(outTransform.exposure), *s_->scene, s_->desc, s_->aovs);
+    } else if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
         WriteImage(out, img);
     } else {
         Image toWrite = img;  // --verify compares the linear render
@@ -417,6 +427,10 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "replace (default: the scene's light sources and the studio rig are dropped) "
                     "or add (the environment joins them)")
         ->check(CLI::IsMember({"replace", "add"}));
+    cmd->add_option("--aov", args->aov,
+                    "Write AOV layers beside RGB into the .exr output: all, or a list of depth, "
+                    "P, N, Ng, albedo, uv, shape_id, primitive_id, instance_id, material_id, "
+                    "direct, indirect, variance (default: the Film's \"aovs\")");
     return [args, spp, cutoff, lightSamples, exposure, envRotate] {
         args->exposureGiven = exposure->count() > 0;
         args->envRotateGiven = envRotate->count() > 0;

@@ -42,6 +42,7 @@ struct RenderArgs {
     std::string env, envMode;
     double envRotate = 0;
     bool envRotateGiven = false;
+    std::string aov;  // --aov LIST|all (render/aov.h); empty: the Film's "aovs"
 };
 
 // Registers the render options on `cmd` (its positional "scene" included). Call the returned

@@ -6,6 +6,7 @@
 #include "core/memory.h"
 #include "core/pbrt_defaults.h"
 #include "image/tonemap.h"
+#include "render/aov.h"
 #include "render/renderer.h"
 
 namespace prism {
@@ -65,6 +66,13 @@ void BuildFilm(BuildContext &ctx) {
             throw SceneError(p->loc, "unknown film \"tonemap\" " + Quote(name) +
                                          " (expected none, neutral, aces or filmic)");
         scene.filmToneMap = op;
+    }
+    if (const Param *p = film.Find("aovs")) {
+        std::vector<Aov> aovs;
+        std::string error;
+        scene.filmAovs = film.GetString("aovs", "");
+        if (!ParseAovList(scene.filmAovs, &aovs, &error))
+            throw SceneError(p->loc, "film \"aovs\": " + error);
     }
     WarnIgnored(film, {"diagonal"}, diag, "film", "the film's physical size is not simulated");
     film.ReportUnused(diag, "film");

@@ -240,6 +240,7 @@ struct ShapeBuilder : BuildStep {
         ShapeInfo info;
         info.type = "instance";
         info.prototype = it->second.second;
+        info.instance = int(&inst - desc.instances.data());
         scene.shapes[size_t(index)] = info;
         scene.features.effects.Enable(Effect::Instancing, "ObjectInstance " + Quote(inst.object),
                                       inst.loc);

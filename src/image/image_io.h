@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "image/image.h"
@@ -45,6 +46,17 @@ Image ReadImageFromMemory(const std::vector<unsigned char> &bytes, const std::st
 // file in the same directory and renamed over `path` only after a successful close, so `path`
 // is never left partially written. Throws std::runtime_error on any failure.
 void WriteImage(const std::string &path, const Image &img);
+// An EXR of img's channels (R G B [A]) and further named float channels (`extra`: name and the
+// channel's values, one per pixel, top row first), with string header attributes; written
+// atomically like WriteImage. `path` must end in .exr.
+struct NamedChannel {
+    std::string name;
+    const float *data = nullptr;
+    size_t xStride = 1;  // floats from one pixel's value to the next
+};
+void WriteMultiChannelExr(const std::string &path, const Image &img,
+                          const std::vector<NamedChannel> &extra,
+                          const std::vector<std::pair<std::string, std::string>> &attributes);
 // Whether WriteImage writes the format of `ext` (the extension with its dot, in lower case as
 // LowerExtension returns it): the one list of output formats.
 bool IsWritableImageExtension(const std::string &ext);

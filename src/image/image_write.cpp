@@ -172,4 +172,34 @@ void WriteImage(const std::string &path, const Image &img) {
     tmp.armed = false;
 }
 
+void WriteMultiChannelExr(const std::string &path, const Image &img,
+                          const std::vector<NamedChannel> &extra,
+                          const std::vector<std::pair<std::string, std::string>> &attributes) {
+    auto fail = [&](const std::string &why) -> std::runtime_error {
+        return std::runtime_error("cannot write image " + Quote(path) + ": " + why);
+    };
+    if (LowerExtension(path) != ".exr") throw fail("named channels need an .exr output");
+    static const char *const kNames[] = {"R", "G", "B", "A"};
+    std::vector<ExrChannel> channels;
+    for (int c = 0; c < std::min(img.channels, 4); ++c)
+        channels.push_back({img.channels >= 3 ? kNames[c] : (c == 0 ? "Y" : "A"),
+                            img.pixels.data() + c, size_t(img.channels)});
+    for (const NamedChannel &n : extra) channels.push_back({n.name, n.data, n.xStride});
+    fs::path target(path);
+    std::error_code dirEc;
+    fs::path dir = target.parent_path();
+    if (!dir.empty() && !fs::is_directory(dir, dirEc))
+        throw fail("directory " + Quote(dir.string()) + " does not exist");
+    TempFileGuard tmp{TempPathFor(target)};
+    try {
+        WriteExrChannels(tmp.path.string(), img.width, img.height, channels, attributes);
+    } catch (const std::runtime_error &e) {
+        throw fail(e.what());
+    }
+    std::error_code ec;
+    fs::rename(tmp.path, target, ec);
+    if (ec) throw fail(ec.message());
+    tmp.armed = false;
+}
+
 }  // namespace prism

@@ -7,6 +7,7 @@
 #include <ImfHeader.h>
 #include <ImfIO.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 #include <png.h>
 
 #include <bit>
@@ -132,6 +133,35 @@ void WriteExr(const std::string &path, int width, int height, int channels, bool
             // Insert casts away const: OpenEXR's Slice takes char *, but only reads when writing.
             char *base = reinterpret_cast<char *>(const_cast<float *>(data + c));
             fb.insert(names[c], Imf::Slice(Imf::FLOAT, base, xStride, xStride * size_t(width)));
+        }
+        Imf::OutputFile out(stream, header);
+        out.setFrameBuffer(fb);
+        out.writePixels(height);
+    } catch (const std::exception &e) {
+        if (stream.failed()) throw std::runtime_error(ErrnoText("write error", stream.error()));
+        throw std::runtime_error(std::string("OpenEXR: ") + e.what());
+    }
+    if (stream.failed()) throw std::runtime_error(ErrnoText("write error", stream.error()));
+    file.Close();
+}
+
+void WriteExrChannels(const std::string &path, int width, int height,
+                      const std::vector<ExrChannel> &channels,
+                      const std::vector<std::pair<std::string, std::string>> &attributes) {
+    File file(path);
+    ExrStream stream(file.get(), path);
+    try {
+        Imf::Header header(width, height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        header.zipCompressionLevel() = 1;  // as in WriteExr
+        for (const auto &[name, value] : attributes)
+            header.insert(name, Imf::StringAttribute(value));
+        Imf::FrameBuffer fb;
+        for (const ExrChannel &c : channels) {
+            header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+            size_t xStride = sizeof(float) * c.xStride;
+            char *base = reinterpret_cast<char *>(const_cast<float *>(c.data));
+            fb.insert(c.name, Imf::Slice(Imf::FLOAT, base, xStride, xStride * size_t(width)));
         }
         Imf::OutputFile out(stream, header);
         out.setFrameBuffer(fb);

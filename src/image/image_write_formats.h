@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace prism {
 
@@ -17,6 +19,18 @@ void WritePng(const std::string &path, int width, int height, int channels, bool
 // compression, scanlines, increasing y.
 void WriteExr(const std::string &path, int width, int height, int channels, bool alpha,
               const float *data);
+
+// One float channel of a multi-channel EXR: `name` ("R", "P.X", "Z", ...), its first value and
+// the distance between a pixel's values and the next pixel's, in floats.
+struct ExrChannel {
+    std::string name;
+    const float *data = nullptr;
+    size_t xStride = 1;
+};
+// OpenEXR with any named float channels (ZIP, scanlines) and string attributes in the header.
+void WriteExrChannels(const std::string &path, int width, int height,
+                      const std::vector<ExrChannel> &channels,
+                      const std::vector<std::pair<std::string, std::string>> &attributes);
 
 // PFM: "PF" (RGB) or "Pf" (gray), size, scale (negative = little-endian), then float rows from
 // the bottom of the image to the top.

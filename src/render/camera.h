@@ -29,6 +29,8 @@ class Camera {
     // Motion blur: renderFromCamera over the shutter (times as fractions of it; its value at 0
     // the transform the camera was made with).
     void SetMotion(const AnimatedTransform &renderFromCamera);
+    // Camera space to render space at time 0 (the AOVs' depth axis, render/aov.h).
+    const Transform &RenderFromCamera() const { return renderFromCamera_; }
 
   private:
     std::shared_ptr<const AnimatedTransform> motion_;

@@ -50,6 +50,7 @@ struct ShapeInfo {
     int directiveIndex = 0;  // Shape directive order in the scene file
     std::string type;
     int prototype = -1;  // instances: index into RenderScene::prototypes
+    int instance = -1;   // instances: index into SceneDescription::instances (pick, AOVs)
 };
 
 struct RenderScene {
@@ -82,6 +83,8 @@ struct RenderScene {
     // the format's default (the app decides).
     float filmExposure = 0;
     std::optional<ToneMap> filmToneMap;
+    // Film "aovs" (Prism extension, render/aov.h): "" or a checked AOV list ("all", "Z,N").
+    std::string filmAovs;
     std::string integratorName;
     IntegratorKind integrator = IntegratorKind::Whitted;
     int glossySamples = DefaultGlossySamples;  // DistributionIntegrator only

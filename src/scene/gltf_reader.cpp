@@ -351,6 +351,7 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
         ShapeDesc s;
         s.type = "trianglemesh";
         s.loc = loc_;
+        s.name = mesh.name;
         s.worldFromObject = worldFromObject;
         s.material = prim.material;  // desc.materials mirrors model.materials
         s.areaLight = prim.material >= 0 ? areaLightOfMaterial_[size_t(prim.material)] : -1;

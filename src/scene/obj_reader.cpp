@@ -377,6 +377,7 @@ SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag, MemoryB
             ShapeDesc s;
             s.type = "trianglemesh";
             s.loc = fileLoc;
+            s.name = shape.name;
             s.material = mat;
             s.areaLight = mat >= 0 ? areaLightOf[size_t(mat)] : -1;
             s.directiveIndex = int(desc.shapes.size());

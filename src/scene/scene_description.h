@@ -62,6 +62,7 @@ struct ShapeDesc : SceneEntity {
     int material = -1;       // index into SceneDescription::materials; -1 = the default matte
     int areaLight = -1;      // index into SceneDescription::areaLights; -1 = not emissive
     int directiveIndex = 0;  // 0-based Shape directive order in the top-level file
+    std::string name;        // OBJ object/group name, glTF mesh name ("" for pbrt shapes)
 };
 
 // ObjectBegin/ObjectEnd: shapes recorded with the CTM at their declaration.
