@@ -283,6 +283,8 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
         if (mat.MaxParts() > BSDF::MaxParts)
             throw SceneError(m.loc, "mix material combines more than " +
                                         std::to_string(BSDF::MaxParts) + " materials");
+    } else if (type == "gltf") {
+        MakeGltfMaterial(mat, mp);
     } else if (type == "none" || type.empty()) {
         mat.kind = Material::Kind::None;
     } else {
@@ -300,6 +302,52 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
     }
     if (usedShape) *usedShape = mp.usedShape;
     return mat;
+}
+
+// Prism's "gltf" material (written by the glTF reader, usable in .pbrt files): the glTF 2.0
+// metallic-roughness model (render/gltf_material.h). Maps are named textures; "<map>transform"
+// is KHR_texture_transform as [offset.u offset.v rotation scale.u scale.v].
+void MaterialBuilder::MakeGltfMaterial(Material &mat, MaterialParams &mp) {
+    mat.kind = Material::Kind::Gltf;
+    GltfMaterialParams &g = mat.gltf;
+    auto map = [&](const char *name) -> TexturePtr {
+        if (!mp.Has(name)) return nullptr;
+        TexturePtr t = mp.RGBTex(name, RGB(1));
+        const std::string tn = std::string(name) + "transform";
+        if (mp.Has(tn)) {
+            std::vector<float> v = mp.Src(tn).GetFloats(tn);
+            if (v.size() != 5) {
+                const Param *p = mp.Src(tn).Find(tn);
+                throw SceneError(p->loc, "\"" + tn + "\" must have 5 values");
+            }
+            t = std::make_shared<UVTransformTexture>(t, Vec2f(v[0], v[1]), v[2], Vec2f(v[3], v[4]));
+        }
+        return t;
+    };
+    const RGB baseFactor = mp.Rgb("basecolor", RGB(1));
+    if (TexturePtr t = map("basecolormap"))
+        g.baseColor = std::make_shared<ScaleTexture>(t, Constant(baseFactor));
+    else
+        g.baseColor = Constant(baseFactor);
+    g.metallic = mp.Src("metallic").GetFloat("metallic", 1.f);
+    g.roughness = mp.Src("roughness").GetFloat("roughness", 1.f);
+    g.metallicRoughness = map("metallicroughnessmap");
+    const RGB emissive = mp.Rgb("emissive", RGB(0));
+    // Emission the material carries itself (the glTF reader turns untextured emission into an
+    // area light on the mesh instead, which light samples reach).
+    if (TexturePtr t = map("emissivemap")) {
+        if (!emissive.IsBlack()) g.emissive = std::make_shared<ScaleTexture>(t, Constant(emissive));
+    } else if (!emissive.IsBlack()) {
+        g.emissive = Constant(emissive);
+    }
+    g.occlusion = map("occlusionmap");
+    g.occlusionStrength = mp.Src("occlusionstrength").GetFloat("occlusionstrength", 1.f);
+    g.ior = mp.Src("ior").GetFloat("ior", 1.5f);
+    g.transmission = mp.Src("transmission").GetFloat("transmission", 0.f);
+    g.specular = mp.Src("specular").GetFloat("specular", 1.f);
+    g.specularColor = mp.Rgb("specularcolor", RGB(1));
+    g.clearcoat = mp.Src("clearcoat").GetFloat("clearcoat", 0.f);
+    g.clearcoatRoughness = mp.Src("clearcoatroughness").GetFloat("clearcoatroughness", 0.f);
 }
 
 // The scene material index for a shape: the shared one, or a new one when the shape's own

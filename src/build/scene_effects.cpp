@@ -50,6 +50,11 @@ bool MayReflectGlossily(const Material &m) {
             return MaybeRoughGlass(m) && MaybeNonBlack(m.Kr);
         case Material::Kind::Mix:
             return MayReflectGlossily(*m.mix1) || MayReflectGlossily(*m.mix2);
+        case Material::Kind::Gltf:
+            return m.gltf.metallicRoughness ||
+                   m.gltf.roughness * m.gltf.roughness > SpecularMetalAlpha ||
+                   (m.gltf.clearcoat > 0 &&
+                    m.gltf.clearcoatRoughness * m.gltf.clearcoatRoughness > SpecularMetalAlpha);
         default:
             return false;
     }
@@ -63,6 +68,9 @@ bool MayTransmitGlossily(const Material &m) {
             return MaybeRoughGlass(m) && MaybeNonBlack(m.Kt);
         case Material::Kind::Mix:
             return MayTransmitGlossily(*m.mix1) || MayTransmitGlossily(*m.mix2);
+        case Material::Kind::Gltf:
+            return m.MayTransmit() && (m.gltf.metallicRoughness ||
+                                       m.gltf.roughness * m.gltf.roughness > SpecularMetalAlpha);
         default:
             return false;
     }

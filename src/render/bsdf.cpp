@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/check.h"
+#include "render/microfacet.h"
 
 namespace prism {
 
@@ -51,6 +52,12 @@ float RoughnessToAlpha(float roughness) {
            0.000640711f * x * x * x * x;
 }
 
+RGB FrSchlick(float cosTheta, const RGB &f0, const RGB &f90) {
+    float m = Clamp(1 - std::abs(cosTheta), 0.f, 1.f);
+    float m5 = (m * m) * (m * m) * m;
+    return f0 + (f90 - f0) * m5;
+}
+
 RGB Fresnel::Evaluate(float cosThetaI) const {
     switch (kind) {
         case FresnelKind::None:
@@ -59,6 +66,8 @@ RGB Fresnel::Evaluate(float cosThetaI) const {
             return RGB(FrDielectric(cosThetaI, etaI, etaT));
         case FresnelKind::Conductor:
             return FrConductor(std::abs(cosThetaI), RGB(1), eta, k);
+        case FresnelKind::Schlick:
+            return FrSchlick(cosThetaI, f0, f90);
     }
     return RGB(1);
 }
@@ -106,6 +115,25 @@ float TrowbridgeReitzLambda(const Vec3f &w, float ax, float ay) {
     return (-1 + std::sqrt(1 + alpha2 * tan2)) / 2;
 }
 
+// glTF: the share of light that passes the dielectric specular layer, 1 - max(F_d(cos)).
+float DielectricPass(const BxDFLobes &l, float cosTheta) {
+    return 1 - FrSchlick(cosTheta, l.dielectricF0, l.dielectricF90).MaxComponent();
+}
+
+// glTF clearcoat: the share of light that passes the coat, 1 - coat·F_c(cos), F_c = Schlick
+// with f0 0.04 (the coat's index 1.5).
+float CoatPass(const BxDFLobes &l, float cosTheta) {
+    if (l.coat == 0) return 1;
+    return 1 - l.coat * FrSchlick(cosTheta, RGB(0.04f), RGB(1)).r;
+}
+
+// |v·h| for the half vector of wo and wi (reflection), or 1 when it is undefined.
+float CosHalf(const Vec3f &wo, const Vec3f &wi) {
+    Vec3f wh = wo + wi;
+    if (wh.x == 0 && wh.y == 0 && wh.z == 0) return 1;
+    return AbsDot(wo, Normalize(wh));
+}
+
 }  // namespace
 
 namespace {
@@ -121,7 +149,8 @@ RGB MicrofacetReflectionF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) 
     RGB F = l.glossyFresnel.Evaluate(Dot(wi, whF));
     float G = 1 / (1 + TrowbridgeReitzLambda(wo, l.alphaX, l.alphaY) +
                    TrowbridgeReitzLambda(wi, l.alphaX, l.alphaY));
-    return l.ks * F * (TrowbridgeReitzD(wh, l.alphaX, l.alphaY) * G / (4 * cosI * cosO));
+    float coat = l.coat == 0 ? 1.f : CoatPass(l, Dot(wi, whF));
+    return l.ks * F * (TrowbridgeReitzD(wh, l.alphaX, l.alphaY) * G * coat / (4 * cosI * cosO));
 }
 
 // pbrt-v3 MicrofacetTransmission::f (TransportMode::Radiance) with FresnelDielectric(1, eta):
@@ -177,8 +206,27 @@ RGB FresnelBlendF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
     return FresnelBlendDiffuseF(l, wo, wi) + FresnelBlendCoatF(l, wo, wi);
 }
 
+// glTF thin-walled transmission: the GGX lobe of the reflection mirrored through the surface
+// (wi flipped to wo's side), so a straight-through ray is its peak; no refraction.
+RGB ThinTransmissionF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    const Vec3f wr(wi.x, wi.y, -wi.z);
+    float cosO = std::abs(wo.z), cosI = std::abs(wr.z);
+    if (cosI == 0 || cosO == 0 || wo.z * wr.z <= 0) return RGB(0);
+    Vec3f wh = Normalize(wo + wr);
+    float G = 1 / (1 + TrowbridgeReitzLambda(wo, l.alphaX, l.alphaY) +
+                   TrowbridgeReitzLambda(wr, l.alphaX, l.alphaY));
+    float v = TrowbridgeReitzD(wh, l.alphaX, l.alphaY) * G / (4 * cosI * cosO);
+    return l.thinTransmit * (v * DielectricPass(l, Dot(wo, wh)) * CoatPass(l, Dot(wo, wh)));
+}
+
 // Lambertian or Oren–Nayar reflection (pbrt-v3 LambertianReflection, OrenNayar).
 RGB DiffuseReflectionF(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    if (l.gltfDiffuse) {
+        // glTF: fresnel_mix leaves the diffuse base the light that the specular layer (and
+        // the clearcoat) do not reflect at this pair of directions.
+        float c = CosHalf(wo, wi);
+        return l.kd * (float(InvPi) * DielectricPass(l, c) * CoatPass(l, c));
+    }
     if (!l.orenNayar) return l.kd * float(InvPi);
     float sinThetaI = std::sqrt(Sin2Theta(wi)), sinThetaO = std::sqrt(Sin2Theta(wo));
     float maxCos = 0;
@@ -236,8 +284,9 @@ RGB BxDFLobes::fGlossy(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     if (reflect) {
         if (!ks.IsBlack()) result += MicrofacetReflectionF(*this, wo, wi);
         if (fresnelBlend) result += FresnelBlendCoatF(*this, wo, wi);
-    } else if (!ksTransmit.IsBlack()) {
-        result += MicrofacetTransmissionF(*this, wo, wi);
+    } else {
+        if (!ksTransmit.IsBlack()) result += MicrofacetTransmissionF(*this, wo, wi);
+        if (!thinTransmit.IsBlack()) result += ThinTransmissionF(*this, wo, wi);
     }
     return result;
 }
@@ -251,6 +300,7 @@ RGB BxDFLobes::f(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     } else {
         if (!kdTransmit.IsBlack()) result += kdTransmit * float(InvPi);
         if (!ksTransmit.IsBlack()) result += MicrofacetTransmissionF(*this, wo, wi);
+        if (!thinTransmit.IsBlack()) result += ThinTransmissionF(*this, wo, wi);
     }
     return result;
 }
@@ -318,6 +368,7 @@ bool BSDF::SampleGlossy(int part, const Vec3f &woW, Vec2f u, float uc, Vec3f *wi
     if (!(cosOH > 0)) return false;
     const float pdfWh = VisibleNormalPdf(woUp, wh, l.alphaX, l.alphaY);
     const bool hasT = !l.ksTransmit.IsBlack();
+    const bool hasThin = !l.thinTransmit.IsBlack();
     // eta: index on wi's side over wo's side for a refraction (pbrt-v3 MicrofacetTransmission).
     const float eta = side > 0 ? l.glossyEta : 1 / l.glossyEta;
     float pR = 1;
@@ -327,6 +378,12 @@ bool BSDF::SampleGlossy(int part, const Vec3f &woW, Vec2f u, float uc, Vec3f *wi
         float wT = l.ksTransmit.Luminance() * (1 - F);
         if (!(wR + wT > 0)) return false;
         pR = wR / (wR + wT);
+    } else if (hasThin) {
+        // glTF: the specular reflection against the thin-walled transmission at this facet.
+        float wR = l.ks.IsBlack() ? 0.f : (l.ks * l.glossyFresnel.Evaluate(cosOH)).Luminance();
+        float wT = l.thinTransmit.Luminance() * DielectricPass(l, cosOH);
+        if (!(wR + wT > 0)) return false;
+        pR = wR / (wR + wT);
     }
     Vec3f wiUp;
     float pdf;
@@ -334,6 +391,12 @@ bool BSDF::SampleGlossy(int part, const Vec3f &woW, Vec2f u, float uc, Vec3f *wi
         wiUp = -woUp + wh * (2 * cosOH);
         if (!(wiUp.z > 0)) return false;
         pdf = pR * pdfWh / (4 * cosOH);
+    } else if (hasThin) {
+        // The mirrored reflection: wi continues through the surface.
+        wiUp = -woUp + wh * (2 * cosOH);
+        if (!(wiUp.z > 0)) return false;
+        wiUp.z = -wiUp.z;
+        pdf = (1 - pR) * pdfWh / (4 * cosOH);
     } else {
         float e = 1 / eta;  // etaI / etaT
         float sin2T = e * e * std::max(0.f, 1 - cosOH * cosOH);
@@ -360,6 +423,7 @@ bool BSDF::SampleSpecularReflection(int part, const Vec3f &woW, Vec3f *wiW, RGB 
     if (wi.z == 0) return false;
     // f = F(cos) R / |cos|; the |cos| cancels with the one in the rendering equation.
     *weight = weight_[part] * l.kr * l.specularFresnel.Evaluate(CosTheta(wi));
+    if (l.coat != 0) *weight *= CoatPass(l, CosTheta(wi));
     *wiW = FromLocal(wi);
     return !weight->IsBlack();
 }
@@ -373,6 +437,8 @@ bool BSDF::SampleSpecularTransmission(int part, const Vec3f &woW, Vec3f *wiW, RG
         // An index-matched interface (uber opacity, mixes with "none"): straight through,
         // with no Fresnel loss and no radiance scaling.
         *weight = weight_[part] * l.kt;
+        // glTF thin-walled transmission: what the specular layer and the coat let through.
+        if (l.gltfDiffuse) *weight *= DielectricPass(l, wo.z) * CoatPass(l, wo.z);
         *wiW = -woW;
         return !weight->IsBlack();
     }
@@ -392,6 +458,14 @@ bool BSDF::SampleSpecularTransmission(int part, const Vec3f &woW, Vec3f *wiW, RG
     *weight = weight_[part] * l.kt * (1 - F) * ((etaI * etaI) / (etaT * etaT));
     *wiW = FromLocal(wi);
     return !weight->IsBlack();
+}
+
+Vec3f TrowbridgeReitzSampleVisible(const Vec3f &w, float ax, float ay, Vec2f u) {
+    return SampleVisibleNormal(w, ax, ay, u);
+}
+
+float TrowbridgeReitzVisiblePdf(const Vec3f &w, const Vec3f &wh, float ax, float ay) {
+    return VisibleNormalPdf(w, wh, ax, ay);
 }
 
 }  // namespace prism

@@ -16,12 +16,17 @@ RGB FrConductor(float cosThetaI, const RGB &etaI, const RGB &etaT, const RGB &k)
 // pbrt-v3 TrowbridgeReitzDistribution::RoughnessToAlpha.
 float RoughnessToAlpha(float roughness);
 
-enum class FresnelKind { None, Dielectric, Conductor };
+// Schlick: F = f0 + (f90 - f0)(1 - cos)^5 per channel (glTF's metallic-roughness model).
+enum class FresnelKind { None, Dielectric, Conductor, Schlick };
+
+// Schlick's approximation with a colour at normal incidence f0 and at grazing incidence f90.
+RGB FrSchlick(float cosTheta, const RGB &f0, const RGB &f90);
 
 struct Fresnel {
     FresnelKind kind = FresnelKind::None;
     float etaI = 1, etaT = 1.5f;  // dielectric
     RGB eta, k;                   // conductor (etaI = 1)
+    RGB f0, f90{1, 1, 1};         // Schlick
     RGB Evaluate(float cosThetaI) const;
 };
 
@@ -40,6 +45,15 @@ struct BxDFLobes {
     float glossyEta = 1.5f;  // its relative index (outside 1, inside glossyEta)
     RGB blendRd, blendRs;    // FresnelBlend (substrate): diffuse and specular reflectance
     bool fresnelBlend = false;
+    // glTF metallic-roughness (render/gltf_bsdf.h): kd is then scaled by 1 - max(F_d(v·h)),
+    // F_d = FrSchlick(dielectricF0, dielectricF90); thinTransmit is the thin-walled GGX
+    // transmission lobe (alphaX/Y, scaled by the same 1 - max(F_d)); coat is the clearcoat
+    // weight above this part: every lobe of the part is scaled by 1 - coat·F_c(v·h), F_c =
+    // Schlick with f0 0.04 (v·h = cos θo for the delta lobes).
+    bool gltfDiffuse = false;
+    RGB dielectricF0, dielectricF90;
+    RGB thinTransmit;
+    float coat = 0;
 
     // Delta lobes, followed by recursion.
     RGB kr;                   // specular reflection scale
@@ -53,13 +67,15 @@ struct BxDFLobes {
 
     bool HasNonSpecular() const {
         return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() || !ksTransmit.IsBlack() ||
-               fresnelBlend;
+               fresnelBlend || !thinTransmit.IsBlack();
     }
     // Lobes that are sampled by light samples only (Lambertian, Oren–Nayar, diffuse
     // transmission, FresnelBlend's diffuse base) and lobes that glossy rays sample
     // (microfacet reflection and transmission, FresnelBlend's glossy coat).
     bool HasDiffuse() const { return !kd.IsBlack() || !kdTransmit.IsBlack() || fresnelBlend; }
-    bool HasGlossy() const { return !ks.IsBlack() || !ksTransmit.IsBlack() || fresnelBlend; }
+    bool HasGlossy() const {
+        return !ks.IsBlack() || !ksTransmit.IsBlack() || fresnelBlend || !thinTransmit.IsBlack();
+    }
     // f split into those two sets (f = fDiffuse + fGlossy up to rounding).
     RGB fDiffuse(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
     RGB fGlossy(const Vec3f &wo, const Vec3f &wi, bool reflect) const;

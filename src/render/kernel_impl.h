@@ -80,6 +80,8 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
         if (shape->areaLight >= 0 && (!Glossy || emitted))
             L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(shape->areaLight)])
                      .L(si.n, wo);
+    // Emission a material carries itself (glTF emissive textures): seen by every ray.
+    if (mat->HasEmission()) L += mat->Emitted(tc);
 
     if constexpr (!GeneralBsdf) {
         // Only Lambertian matte materials (KernelMaskFor): f = kd/π, or 0 where the geometric

@@ -55,6 +55,13 @@ bool Material::MayReflectSpecularly() const {
             return MaybeNonBlack(Kr);
         case Kind::Mix:
             return mix1->MayReflectSpecularly() || mix2->MayReflectSpecularly();
+        case Kind::Gltf: {
+            // Textured roughness may go either way; a smooth base or coat is a mirror.
+            if (gltf.metallicRoughness) return true;
+            float a = gltf.roughness * gltf.roughness;
+            float ca = gltf.clearcoatRoughness * gltf.clearcoatRoughness;
+            return a <= SpecularMetalAlpha || (gltf.clearcoat > 0 && ca <= SpecularMetalAlpha);
+        }
         default:
             return false;
     }
@@ -77,6 +84,8 @@ bool Material::MayTransmit() const {
             // A "none" child lets part of the light straight through.
             return mix1->MayTransmit() || mix2->MayTransmit() || mix1->IsPassThrough() ||
                    mix2->IsPassThrough();
+        case Kind::Gltf:
+            return gltf.transmission > 0 && gltf.metallic < 1;
         default:
             return false;
     }
@@ -108,6 +117,10 @@ unsigned Material::SurfaceNeeds() const {
     for (const TexturePtr *t : {&Kd, &Ks, &Kr, &Kt, &sigma, &roughness, &uRoughness, &vRoughness,
                                 &index, &opacity, &reflect, &transmit, &amount})
         if (Varies(*t)) needs |= NeedUV;
+    if (kind == Kind::Gltf)
+        for (const TexturePtr *t :
+             {&gltf.baseColor, &gltf.metallicRoughness, &gltf.emissive, &gltf.occlusion})
+            if (Varies(*t)) needs |= NeedUV;
     switch (kind) {
         case Kind::Metal:
         case Kind::Substrate:
@@ -130,6 +143,8 @@ int Material::MaxParts() const {
             return mix1->MaxParts() + mix2->MaxParts();
         case Kind::Uber:
             return MaybeBelowOne(opacity) ? 2 : 1;
+        case Kind::Gltf:
+            return gltf.MaxParts();
         default:
             return 1;
     }
@@ -164,6 +179,10 @@ void Material::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) co
         RGB s2 = (RGB(1) - s1).Clamped(0.f, 1.f);
         if (!s1.IsBlack()) mix1->AddParts(b, tc, weight * s1);
         if (!s2.IsBlack()) mix2->AddParts(b, tc, weight * s2);
+        return;
+    }
+    if (kind == Kind::Gltf) {
+        gltf.AddParts(b, tc, weight);
         return;
     }
     if (kind == Kind::Uber && opacity) {
@@ -291,6 +310,7 @@ void Material::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) co
             l.eta = 1;
             break;
         case Kind::Mix:
+        case Kind::Gltf:
             break;
     }
 }

@@ -9,6 +9,7 @@
 
 #include "geometry/interaction.h"
 #include "render/bsdf.h"
+#include "render/gltf_material.h"
 #include "render/texture.h"
 
 namespace prism {
@@ -25,6 +26,7 @@ class Material {
         Substrate,
         Translucent,
         Mix,
+        Gltf,  // glTF 2.0 metallic-roughness (render/gltf_material.h)
         None
     };
 
@@ -39,6 +41,13 @@ class Material {
     bool remapRoughness = true;
     // Mix: pbrt-v3 weights mix1 by amount and mix2 by 1 - amount (MixMaterial).
     std::shared_ptr<const Material> mix1, mix2;
+    // Gltf: the glTF parameters.
+    GltfMaterialParams gltf;
+
+    // Radiance the surface emits itself (glTF emissive textures, which are no area lights):
+    // seen by camera rays and by the rays that Whitted and glossy recursion trace.
+    bool HasEmission() const { return kind == Kind::Gltf && gltf.emissive != nullptr; }
+    RGB Emitted(const TextureContext &tc) const { return gltf.emissive->Evaluate(tc).Clamped(0.f); }
 
     bool IsPassThrough() const { return kind == Kind::None; }
     // Lambertian matte (no Oren–Nayar sigma): f = kd/π. Kernels without KernelBsdf
@@ -71,9 +80,5 @@ class Material {
     std::vector<FixedPart> fixedParts_;
     bool fixed_ = false;
 };
-
-// Roughness (after remapping) below which a metal is treated as a polished conductor: a delta
-// reflection that recursion follows, instead of a highlight that point lights would miss.
-inline constexpr float SpecularMetalAlpha = 0.02f;
 
 }  // namespace prism

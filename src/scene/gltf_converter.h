@@ -45,7 +45,9 @@ class GltfConverter {
     void AddCamera(const tinygltf::Node &node, const Matrix4 &world);
     void AddLight(const tinygltf::Node &node, const Matrix4 &world);
     void ConvertMaterials();
-    std::string TextureFor(int textureIndex);
+    std::string TextureFor(int textureIndex, bool linear);
+    bool AddMap(ParamSet &ps, const std::string &param, int textureIndex, int texCoord,
+                const tinygltf::ExtensionMap &ext, bool linear);
     std::string ImageFilename(int imageIndex);
 
     [[noreturn]] void Fail(const std::string &msg) const { throw SceneError(loc_, msg); }
@@ -58,6 +60,7 @@ class GltfConverter {
     std::map<int, std::string> textureNames_;
     std::map<int, std::string> imageFilenames_;
     std::set<int> warnedModes_;
+    int warnedTexCoord_ = 0;
     bool haveCamera_ = false;
 };
 

@@ -74,9 +74,11 @@ std::string GltfConverter::ImageFilename(int imageIndex) {
 }
 
 // An "imagemap" texture for a glTF texture, shared by every material that uses it; "" if the
-// texture has no usable image.
-std::string GltfConverter::TextureFor(int textureIndex) {
-    auto it = textureNames_.find(textureIndex);
+// texture has no usable image. `linear`: the image holds data (metallicRoughness, occlusion),
+// not sRGB colours.
+std::string GltfConverter::TextureFor(int textureIndex, bool linear) {
+    const int key = linear ? -2 - textureIndex : textureIndex;
+    auto it = textureNames_.find(key);
     if (it != textureNames_.end()) return it->second;
     std::string name;
     if (textureIndex >= 0 && size_t(textureIndex) < model_.textures.size()) {
@@ -86,9 +88,10 @@ std::string GltfConverter::TextureFor(int textureIndex) {
             if (!file.empty()) {
                 TextureDesc t;
                 t.type = "imagemap";
-                t.name = "gltf:texture" + std::to_string(textureIndex);
+                t.name = "gltf:texture" + std::to_string(textureIndex) + (linear ? ":linear" : "");
                 t.loc = loc_;
                 AddString(t.params, "filename", file, loc_);
+                if (linear) AddBool(t.params, "gamma", false, loc_);
                 if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size() &&
                     model_.samplers[size_t(tex.sampler)].wrapS ==
                         TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
@@ -101,27 +104,60 @@ std::string GltfConverter::TextureFor(int textureIndex) {
     if (name.empty())
         diag_.Warn(loc_,
                    "texture " + std::to_string(textureIndex) + " has no usable image; ignored");
-    textureNames_[textureIndex] = name;
+    textureNames_[key] = name;
     return name;
 }
 
-// Metallic-roughness → pbrt-v3 materials (Whitted approximations):
-//  - KHR_materials_transmission > 0 → "glass" (index = KHR_materials_ior, default 1.5;
-//    Kt = base colour factor; roughness = glTF roughness² (alpha), remaproughness false: rough
-//    glass for the distribution integrator, smooth for Whitted).
-//  - metallic >= 0.5 → "metal" with eta = 1 and k = 2 sqrt(F0) / sqrt(1 - F0) per channel,
-//    F0 = base colour factor clamped below 0.999: for eta = 1 the conductor Fresnel at normal
-//    incidence is k² / (4 + k²), which this choice makes equal to F0. roughness = glTF
-//    roughness² (alpha), remaproughness false. Base colour textures are not used for metals.
-//    A metal whose metalness comes from a metallicRoughnessTexture and whose colour comes
-//    from a baseColorTexture (e.g. DamagedHelmet) is treated as plastic instead: per-texel
-//    metalness cannot be expressed, and an untextured tinted metal would hide the texture.
-//  - otherwise → "plastic": Kd = base colour (texture × factor), Ks = 1, roughness = glTF
-//    roughness², remaproughness false. Ks is 1, not 0.04, because pbrt's plastic already
-//    multiplies Ks by a dielectric Fresnel term with eta 1.5, which is 0.04 at normal incidence.
-//  - emissiveFactor × KHR_materials_emissive_strength → a "diffuse" area light on every shape
-//    with the material, unless an emissiveTexture modulates it (not supported: a full-strength
-//    emitter would be far brighter than intended, so emission is dropped with a warning).
+namespace {
+
+// A number array in a glTF extension object, or `def`.
+std::vector<double> ExtNumbers(const tinygltf::ExtensionMap &ext, const char *extName,
+                               const char *key, std::vector<double> def) {
+    auto it = ext.find(extName);
+    if (it == ext.end() || !it->second.IsObject() || !it->second.Has(key)) return def;
+    const tinygltf::Value &v = it->second.Get(key);
+    if (!v.IsArray() || v.ArrayLen() != def.size()) return def;
+    std::vector<double> out(def.size());
+    for (size_t i = 0; i < def.size(); ++i) {
+        const tinygltf::Value &e = v.Get(int(i));
+        out[i] = e.IsNumber() || e.IsInt() ? e.GetNumberAsDouble() : def[i];
+    }
+    return out;
+}
+
+}  // namespace
+
+// A texture map of a "gltf" material: "<param>" names the imagemap, "<param>transform" holds
+// KHR_texture_transform. False when the texture has no usable image.
+bool GltfConverter::AddMap(ParamSet &ps, const std::string &param, int textureIndex, int texCoord,
+                           const tinygltf::ExtensionMap &ext, bool linear) {
+    if (textureIndex < 0) return false;
+    std::string tex = TextureFor(textureIndex, linear);
+    if (tex.empty()) return false;
+    AddTexture(ps, param, tex, loc_);
+    const char *tt = "KHR_texture_transform";
+    texCoord = int(ExtNumber(ext, tt, "texCoord", texCoord));
+    if (texCoord != 0 && warnedTexCoord_++ == 0)
+        diag_.Warn(loc_, "texture coordinate set " + std::to_string(texCoord) +
+                             " is read as TEXCOORD_0 (only one set reaches the renderer)");
+    if (ext.count(tt)) {
+        std::vector<double> off = ExtNumbers(ext, tt, "offset", {0, 0});
+        std::vector<double> sc = ExtNumbers(ext, tt, "scale", {1, 1});
+        double rot = ExtNumber(ext, tt, "rotation", 0);
+        Param p = MakeParam(ParamType::Float, param + "transform", loc_);
+        p.numbers = {off[0], off[1], rot, sc[0], sc[1]};
+        ps.Add(std::move(p));
+    }
+    return true;
+}
+
+// Metallic-roughness → Prism's "gltf" material (render/gltf_material.h), which evaluates the
+// specification's BRDF with KHR_materials_ior, _specular, _transmission, _clearcoat; the
+// texture maps (baseColor sRGB, metallicRoughness and occlusion linear, emissive sRGB) with
+// KHR_texture_transform. Emission: emissiveFactor × KHR_materials_emissive_strength becomes a
+// "diffuse" area light on every shape with the material (light samples reach it); with an
+// emissiveTexture the material emits texture × factor × strength itself, seen by camera and
+// recursive rays but not light-sampled (docs/MATERIALS.md).
 void GltfConverter::ConvertMaterials() {
     for (size_t mi = 0; mi < model_.materials.size(); ++mi) {
         const tinygltf::Material &m = model_.materials[mi];
@@ -129,60 +165,35 @@ void GltfConverter::ConvertMaterials() {
         MaterialDesc md;
         md.name = m.name.empty() ? "material " + std::to_string(mi) : m.name;
         md.loc = loc_;
+        md.type = "gltf";
         ParamSet &ps = md.params;
         double base[3] = {1, 1, 1};
         if (pbr.baseColorFactor.size() >= 3)
             for (int i = 0; i < 3; ++i) base[i] = Clamp(pbr.baseColorFactor[size_t(i)], 0.0, 1.0);
-        double rough = Clamp(pbr.roughnessFactor, 0.0, 1.0);
-        double alpha = rough * rough;
-        double metallic = Clamp(pbr.metallicFactor, 0.0, 1.0);
-        double transmission =
-            ExtNumber(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0);
-        if (transmission > 0) {
-            md.type = "glass";
-            AddFloat(ps, "index", ExtNumber(m.extensions, "KHR_materials_ior", "ior", 1.5), loc_);
-            AddRGB(ps, "Kr", 1, 1, 1, loc_);
-            AddRGB(ps, "Kt", base[0], base[1], base[2], loc_);
-            if (alpha > 0) {
-                AddFloat(ps, "roughness", alpha, loc_);
-                AddBool(ps, "remaproughness", false, loc_);
-            }
-        } else if (metallic >= 0.5 &&
-                   !(pbr.metallicRoughnessTexture.index >= 0 && pbr.baseColorTexture.index >= 0)) {
-            md.type = "metal";
-            double k[3];
-            for (int i = 0; i < 3; ++i) {
-                double f0 = std::min(base[i], 0.999);
-                k[i] = 2 * std::sqrt(f0) / std::sqrt(1 - f0);
-            }
-            AddRGB(ps, "eta", 1, 1, 1, loc_);
-            AddRGB(ps, "k", k[0], k[1], k[2], loc_);
-            AddFloat(ps, "roughness", alpha, loc_);
-            AddBool(ps, "remaproughness", false, loc_);
-        } else {
-            md.type = "plastic";
-            std::string tex;
-            if (pbr.baseColorTexture.index >= 0) tex = TextureFor(pbr.baseColorTexture.index);
-            if (tex.empty()) {
-                AddRGB(ps, "Kd", base[0], base[1], base[2], loc_);
-            } else if (base[0] == 1 && base[1] == 1 && base[2] == 1) {
-                AddTexture(ps, "Kd", tex, loc_);
-            } else {
-                // pbrt's imagemap has no tint: multiply with a "scale" texture.
-                TextureDesc sc;
-                sc.type = "scale";
-                sc.name = "gltf:material" + std::to_string(mi) + ":baseColor";
-                sc.loc = loc_;
-                AddTexture(sc.params, "tex1", tex, loc_);
-                AddRGB(sc.params, "tex2", base[0], base[1], base[2], loc_);
-                AddTexture(ps, "Kd", sc.name, loc_);
-                desc_.textures.push_back(std::move(sc));
-            }
-            AddRGB(ps, "Ks", 1, 1, 1, loc_);
-            AddFloat(ps, "roughness", alpha, loc_);
-            AddBool(ps, "remaproughness", false, loc_);
-        }
-        desc_.materials.push_back(std::move(md));
+        AddRGB(ps, "basecolor", base[0], base[1], base[2], loc_);
+        AddMap(ps, "basecolormap", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+               pbr.baseColorTexture.extensions, false);
+        AddFloat(ps, "metallic", Clamp(pbr.metallicFactor, 0.0, 1.0), loc_);
+        AddFloat(ps, "roughness", Clamp(pbr.roughnessFactor, 0.0, 1.0), loc_);
+        AddMap(ps, "metallicroughnessmap", pbr.metallicRoughnessTexture.index,
+               pbr.metallicRoughnessTexture.texCoord, pbr.metallicRoughnessTexture.extensions,
+               true);
+        if (AddMap(ps, "occlusionmap", m.occlusionTexture.index, m.occlusionTexture.texCoord,
+                   m.occlusionTexture.extensions, true))
+            AddFloat(ps, "occlusionstrength", m.occlusionTexture.strength, loc_);
+        const auto &ext = m.extensions;
+        AddFloat(ps, "ior", ExtNumber(ext, "KHR_materials_ior", "ior", 1.5), loc_);
+        AddFloat(ps, "transmission",
+                 ExtNumber(ext, "KHR_materials_transmission", "transmissionFactor", 0), loc_);
+        AddFloat(ps, "specular", ExtNumber(ext, "KHR_materials_specular", "specularFactor", 1),
+                 loc_);
+        std::vector<double> sc =
+            ExtNumbers(ext, "KHR_materials_specular", "specularColorFactor", {1, 1, 1});
+        AddRGB(ps, "specularcolor", sc[0], sc[1], sc[2], loc_);
+        AddFloat(ps, "clearcoat", ExtNumber(ext, "KHR_materials_clearcoat", "clearcoatFactor", 0),
+                 loc_);
+        AddFloat(ps, "clearcoatroughness",
+                 ExtNumber(ext, "KHR_materials_clearcoat", "clearcoatRoughnessFactor", 0), loc_);
 
         int light = -1;
         double e[3] = {0, 0, 0};
@@ -191,10 +202,11 @@ void GltfConverter::ConvertMaterials() {
         double strength =
             ExtNumber(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1);
         if (e[0] > 0 || e[1] > 0 || e[2] > 0) {
-            if (m.emissiveTexture.index >= 0) {
-                diag_.Warn(loc_, "material \"" + desc_.materials.back().name +
-                                     "\": emissive textures are not supported; emission ignored");
+            if (AddMap(ps, "emissivemap", m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                       m.emissiveTexture.extensions, false)) {
+                AddRGB(ps, "emissive", e[0] * strength, e[1] * strength, e[2] * strength, loc_);
             } else {
+                // Constant emission: an area light (the material itself emits nothing).
                 AreaLightDesc al;
                 al.type = "diffuse";
                 al.loc = loc_;
@@ -206,6 +218,7 @@ void GltfConverter::ConvertMaterials() {
                 desc_.areaLights.push_back(std::move(al));
             }
         }
+        desc_.materials.push_back(std::move(md));
         areaLightOfMaterial_.push_back(light);
     }
 }

@@ -509,8 +509,10 @@ void GltfConverter::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<i
 
 void GltfConverter::Read() {
     static const std::set<std::string> supported = {
-        "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-        "KHR_materials_emissive_strength"};
+        "KHR_lights_punctual",    "KHR_materials_transmission",
+        "KHR_materials_ior",      "KHR_materials_emissive_strength",
+        "KHR_materials_specular", "KHR_materials_clearcoat",
+        "KHR_texture_transform"};
     std::string unknown;
     for (const std::string &e : model_.extensionsRequired)
         if (!supported.count(e)) unknown += (unknown.empty() ? "" : ", ") + e;

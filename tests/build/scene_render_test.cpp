@@ -274,9 +274,6 @@ TEST(SceneRender, SharedScenesRender) {
             if (name.find("teapot-area-light") != std::string::npos &&
                 w.message == "Accelerator \"kdtree\" is replaced by Embree's BVH")
                 continue;  // the file names pbrt's kd-tree; Prism always builds Embree's BVH
-            if (name.find("DamagedHelmet") != std::string::npos &&
-                w.message.find("emissive textures") != std::string::npos)
-                continue;
             ADD_FAILURE() << "unexpected warning: " << w.ToString();
         }
     }

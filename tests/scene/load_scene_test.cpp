@@ -338,10 +338,13 @@ TEST(SharedSceneDetails, SpiderTexturesAndDamagedHelmetImages) {
 
     SceneDescription h = LoadScene(helmet, diag);
     ASSERT_EQ(h.materials.size(), 1u);
-    // Metalness from a texture + a base colour texture → textured plastic (see gltf_reader).
-    EXPECT_EQ(h.materials[0].type, "plastic");
-    EXPECT_FALSE(h.materials[0].params.GetTexture("Kd").empty());
-    EXPECT_EQ(h.embeddedImages.size(), 1u);  // only the base colour image is referenced
+    // The glTF metallic-roughness material with its four material maps.
+    EXPECT_EQ(h.materials[0].type, "gltf");
+    for (const char *map : {"basecolormap", "metallicroughnessmap", "emissivemap", "occlusionmap"})
+        EXPECT_FALSE(h.materials[0].params.GetTexture(map).empty()) << map;
+    // Base colour, metallic-roughness, emissive and occlusion images (the normal map is not
+    // read by the material).
+    EXPECT_EQ(h.embeddedImages.size(), 4u);
     for (const EmbeddedImage &img : h.embeddedImages) {
         EXPECT_EQ(img.mimeType, "image/jpeg");
         ASSERT_GE(img.bytes.size(), 2u);

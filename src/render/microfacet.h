@@ -1,0 +1,14 @@
+// Trowbridge–Reitz (GGX) helpers of bsdf.cpp shared with the glTF material's full sampling
+// (render/gltf_sampling.h), in the shading frame.
+#pragma once
+
+#include "core/vecmath.h"
+
+namespace prism {
+
+// A microfacet normal sampled from the distribution of normals visible from w (w.z > 0;
+// Heitz 2018) and its density.
+Vec3f TrowbridgeReitzSampleVisible(const Vec3f &w, float ax, float ay, Vec2f u);
+float TrowbridgeReitzVisiblePdf(const Vec3f &w, const Vec3f &wh, float ax, float ay);
+
+}  // namespace prism
