@@ -39,6 +39,14 @@ class Material {
     bool remapRoughness = true;
     // Mix: pbrt-v3 weights mix1 by amount and mix2 by 1 - amount (MixMaterial).
     std::shared_ptr<const Material> mix1, mix2;
+    // Shading-normal perturbation (render/bump.cpp), applied to the hit before it is shaded:
+    // pbrt-v3's "bumpmap" (a float displacement texture), or a tangent-space normal map (glTF
+    // normalTexture, OBJ norm, pbrt-v4 "normalmap") whose x and y are scaled by normalScale.
+    TexturePtr bump, normalMap;
+    float normalScale = 1;
+    bool PerturbsShading() const { return bump || normalMap; }
+    // Moves si.ns (and dpdu/dpdv) as the bump or normal map says; needs uv and dpdu/dpdv.
+    void PerturbShading(SurfaceInteraction &si) const;
 
     bool IsPassThrough() const { return kind == Kind::None; }
     // Lambertian matte (no Oren–Nayar sigma): f = kd/π. Kernels without KernelBsdf
@@ -64,6 +72,8 @@ class Material {
     void Prepare();
 
   private:
+    // SurfaceNeeds of the lobes alone (without the shading perturbation).
+    unsigned LobeNeeds() const;
     struct FixedPart {
         RGB weight;
         BxDFLobes lobes;

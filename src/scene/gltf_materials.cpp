@@ -182,6 +182,7 @@ void GltfConverter::ConvertMaterials() {
             AddFloat(ps, "roughness", alpha, loc_);
             AddBool(ps, "remaproughness", false, loc_);
         }
+        AddNormalMap(m, md.params);
         desc_.materials.push_back(std::move(md));
 
         int light = -1;

@@ -341,7 +341,9 @@ TEST(SharedSceneDetails, SpiderTexturesAndDamagedHelmetImages) {
     // Metalness from a texture + a base colour texture → textured plastic (see gltf_reader).
     EXPECT_EQ(h.materials[0].type, "plastic");
     EXPECT_FALSE(h.materials[0].params.GetTexture("Kd").empty());
-    EXPECT_EQ(h.embeddedImages.size(), 1u);  // only the base colour image is referenced
+    // The base colour and the normal map (issue 13) are referenced.
+    EXPECT_EQ(h.embeddedImages.size(), 2u);
+    EXPECT_FALSE(h.materials[0].params.GetString("normalmap", "").empty());
     for (const EmbeddedImage &img : h.embeddedImages) {
         EXPECT_EQ(img.mimeType, "image/jpeg");
         ASSERT_GE(img.bytes.size(), 2u);
