@@ -8,7 +8,6 @@
 #include <bit>
 #include <cstdint>
 #include <functional>
-#include <limits>
 #include <memory>
 
 #include "core/vecmath.h"
@@ -18,16 +17,18 @@ namespace prism {
 struct AlphaTest {
     // The alpha at a hit (uv, and p in the space the shape is traced in).
     std::function<float(const Vec2f &uv, const Vec3f &p)> alpha;
-    // Cutoff: a hit is kept where alpha >= cutoff (pbrt-v3 cuts out where alpha is 0: the
-    // default; glTF MASK: alphaCutoff). Stochastic (glTF BLEND): kept where alpha exceeds a
-    // hash of the ray and the hit in [0, 1) (deterministic, so images do not depend on threads).
+    // Cutoff: a hit is kept where alpha >= cutoff (glTF MASK: alphaCutoff), or with cutoff 0
+    // (the default) where alpha > 0: pbrt-v3 cuts out where alpha is 0. (Not a denormal
+    // cutoff: Embree's threads run with denormals flushed to zero.) Stochastic (glTF BLEND): kept
+    // where alpha exceeds a hash of the ray and the hit in [0, 1) (deterministic, so images do not
+    // depend on threads).
     bool stochastic = false;
-    float cutoff = std::numeric_limits<float>::denorm_min();
+    float cutoff = 0;
 
     bool Keeps(const Vec2f &uv, const Vec3f &p, const Vec3f &o, const Vec3f &d,
                uint32_t prim) const {
         const float a = alpha(uv, p);
-        if (!stochastic) return a >= cutoff;
+        if (!stochastic) return cutoff > 0 ? a >= cutoff : a > 0;
         if (a >= 1) return true;
         if (!(a > 0)) return false;
         return a > HashThreshold(o, d, prim);

@@ -53,7 +53,8 @@ PixelFilter "box"
 WorldBegin
 LightSource "distant" "point from" [1 0 1] "point to" [0 0 0] "rgb L" [1 1 1]
 Texture "h" "float" "imagemap" "string filename" "h.exr"
-)" + material + R"(
+)" + material +
+           R"(
 Shape "trianglemesh" "point P" [0 0 0 1 0 0 1 1 0 0 1 0] "integer indices" [0 1 2 0 2 3]
   "float uv" [0 0 1 0 1 1 0 1]
 WorldEnd
@@ -200,8 +201,8 @@ Texture "check" "float" "checkerboard" "float uscale" [4] "float vscale" [4]
     }
     {
         // A constant shadowalpha 0 beside a textured alpha: no shadows at all.
-        Built b = BuildFile(Write("c.pbrt", head + QuadWithAlpha +
-                                                R"("texture alpha" "check" "float shadowalpha" 0)"));
+        Built b = BuildFile(Write(
+            "c.pbrt", head + QuadWithAlpha + R"("texture alpha" "check" "float shadowalpha" 0)"));
         Through t = CountThrough(b.scene, 0, 32);
         EXPECT_EQ(t.camera, t.total / 2);
         EXPECT_EQ(t.shadow, 0);
@@ -261,8 +262,7 @@ TEST_F(SurfaceDetail, GltfMaskAndBlend) {
     EXPECT_EQ(opaque.camera, 32 * 32);
     Through cut = count("m2.gltf", base + R"(0.4]}, "alphaMode": "MASK"})");
     EXPECT_EQ(cut.camera, 0);
-    Through cutoff =
-        count("m3.gltf", base + R"(0.6]}, "alphaMode": "MASK", "alphaCutoff": 0.7})");
+    Through cutoff = count("m3.gltf", base + R"(0.6]}, "alphaMode": "MASK", "alphaCutoff": 0.7})");
     EXPECT_EQ(cutoff.camera, 0);
     // BLEND: stochastic transparency of the camera rays, about alpha of them hit; shadows
     // stay off for blended materials.
@@ -309,8 +309,9 @@ TEST_F(SurfaceDetail, ObjBumpAndNormMapsAreRead) {
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x) h.SetRGB(x, y, RGB(float(x) / 4, 0.5f, 1.f));
     WriteImage(Path("tex.exr"), h);
-    Write("m.mtl", "newmtl a\nKd 0.5 0.5 0.5\nbump -bm 0.5 tex.exr\nnewmtl b\nKd 0.5 0.5 0.5\n"
-                   "norm tex.exr\n");
+    Write("m.mtl",
+          "newmtl a\nKd 0.5 0.5 0.5\nbump -bm 0.5 tex.exr\nnewmtl b\nKd 0.5 0.5 0.5\n"
+          "norm tex.exr\n");
     std::string obj = Write("m.obj", R"(mtllib m.mtl
 v 0 0 0
 v 1 0 0

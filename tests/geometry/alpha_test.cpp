@@ -2,6 +2,7 @@
 // and on an analytic disk and sphere (user-geometry callbacks) lets exactly the cut-out half of
 // the camera rays and of the shadow rays through, single and in packets.
 #include <gtest/gtest.h>
+#include <xmmintrin.h>
 
 #include <cmath>
 
@@ -25,8 +26,8 @@ std::shared_ptr<AlphaTest> Checker() {
 std::unique_ptr<TriangleMesh> Quad() {
     std::vector<Vec3f> P = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     std::vector<Vec2f> uv = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    return std::make_unique<TriangleMesh>(Transform(), false, P, std::vector<uint32_t>{0, 1, 2, 0, 2, 3},
-                                          std::vector<Vec3f>{}, uv);
+    return std::make_unique<TriangleMesh>(
+        Transform(), false, P, std::vector<uint32_t>{0, 1, 2, 0, 2, 3}, std::vector<Vec3f>{}, uv);
 }
 
 struct Counts {
@@ -71,6 +72,20 @@ TEST(Alpha, CheckerboardMeshLetsHalfTheCameraAndShadowRaysThrough) {
     EXPECT_EQ(c.shadow, c.total / 2);
     EXPECT_EQ(c.packetCamera, c.total / 2);
     EXPECT_EQ(c.packetShadow, c.total / 2);
+}
+
+TEST(Alpha, ZeroIsCutOutWithDenormalsFlushedToZero) {
+    // Embree's render threads run with FTZ/DAZ: pbrt's "cut out where alpha is 0" must not
+    // rest on a denormal threshold, which reads as 0 there.
+    const unsigned csr = _mm_getcsr();
+    _mm_setcsr(csr | 0x8040);  // FTZ | DAZ
+    AlphaTest a;
+    a.alpha = [](const Vec2f &uv, const Vec3f &) { return uv.x; };
+    const bool zeroKept = a.Keeps(Vec2f(0, 0), {}, {}, {}, 0);
+    const bool smallKept = a.Keeps(Vec2f(1e-3f, 0), {}, {}, {}, 0);
+    _mm_setcsr(csr);
+    EXPECT_FALSE(zeroKept);
+    EXPECT_TRUE(smallKept);
 }
 
 TEST(Alpha, CameraAndShadowTestsAreSeparate) {
