@@ -209,6 +209,30 @@ Texture "check" "float" "checkerboard" "float uscale" [4] "float vscale" [4]
     }
 }
 
+TEST_F(SurfaceDetail, RenderedCheckerboardAlphaShowsExactlyHalfTheQuad) {
+    // The same cut-out through the renderer's threads and packets (Embree runs them with
+    // denormals flushed to zero): an orthographic view that the quad fills, 8 x 8 pixels per
+    // checker cell; the pixels whose camera ray hits the quad are lit, the others see nothing.
+    const std::string text = R"(LookAt 0.5 0.5 5  0.5 0.5 0  0 1 0
+Camera "orthographic" "float screenwindow" [-0.5 0.5 -0.5 0.5]
+Film "image" "integer xresolution" [32] "integer yresolution" [32]
+PixelFilter "box"
+WorldBegin
+LightSource "point" "point from" [0.5 0.5 3]
+Texture "check" "float" "checkerboard" "float uscale" [4] "float vscale" [4]
+  "float tex1" [0] "float tex2" [1]
+)" + std::string(QuadWithAlpha) +
+                             R"("texture alpha" "check")";
+    Built b = BuildFile(Write("r.pbrt", text));
+    RenderStats stats;
+    Image img = Render(b.scene, &stats);
+    int lit = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) lit += img.GetRGB(x, y).g > 0;
+    EXPECT_EQ(lit, 512);
+    EXPECT_EQ(stats.rays.shadow, 512u);  // one shadow ray per hit
+}
+
 // A glTF quad (z = 0, [0,1]^2) with one material given as JSON.
 std::string GltfQuad(const std::string &material) {
     // 4 float3 positions (48 bytes), 4 float2 uv (32 bytes), 6 ushort indices (12 bytes).
