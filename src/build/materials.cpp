@@ -5,6 +5,7 @@
 
 #include "build/textures.h"
 #include "render/bsdf.h"
+#include "render/texture.h"
 
 namespace prism {
 
@@ -122,6 +123,32 @@ void MaterialBuilder::Roughness(Material &mat, MaterialParams &mp, float def) {
     mat.remapRoughness = mp.Bool("remaproughness", true);
 }
 
+// pbrt-v3 "bumpmap" (v4 "displacement"): a float texture; a tangent-space normal map, as
+// pbrt-v4's "string normalmap" (an image file, read linearly) or a Prism "texture normalmap",
+// with the Prism extension "float normalscale" (glTF's normalTexture.scale; default 1).
+void MaterialBuilder::ShadingPerturbation(Material &mat, MaterialParams &mp,
+                                          const MaterialDesc &m) {
+    for (const char *n : {"bumpmap", "displacement"})
+        if (!mat.bump && mp.Has(n)) {
+            mat.bump = mp.FloatTex(n, 0.f);
+            if (mat.bump->IsConstant()) mat.bump = nullptr;  // a constant moves nothing
+        }
+    if (mp.Has("normalmap")) {
+        const ParamSet &ps = mp.Src("normalmap");
+        const Param *p = ps.Find("normalmap");
+        if (p->type == ParamType::String) {
+            std::string file = ps.GetString("normalmap", "");
+            auto img =
+                LoadSceneImage(ctx, m, file, ReadImageOptions::Encoding::Linear, "normalmap");
+            mat.normalMap =
+                std::make_shared<ImageTexture>(TextureMapping{}, img, WrapMode::Repeat, 1.f, false);
+        } else {
+            mat.normalMap = mp.RGBTex("normalmap", RGB(0.5f, 0.5f, 1.f));
+        }
+        mat.normalScale = mp.Src("normalscale").GetFloat("normalscale", 1.f);
+    }
+}
+
 // `descIndex` is the material's position in desc.materials (mix names resolve from there);
 // `depth` counts enclosing mixes.
 Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
@@ -142,13 +169,7 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
     else if (type == "diffusetransmission")
         type = "translucent";
     mp.mat.MarkUsed("type");
-    if (mp.Has("bumpmap") || mp.Has("displacement")) {
-        const Param *p = m.params.Find("bumpmap");
-        if (!p) p = m.params.Find("displacement");
-        diag.Warn(p ? p->loc : m.loc, "bump mapping is not supported; ignored");
-        m.params.MarkUsed("bumpmap");
-        m.params.MarkUsed("displacement");
-    }
+    ShadingPerturbation(mat, mp, m);
     if (type == "matte") {
         mat.kind = Material::Kind::Matte;
         mat.Kd = mp.Has("reflectance") ? mp.RGBTex("reflectance", RGB(0.5f))

@@ -27,6 +27,7 @@ class MaterialBuilder : BuildStep {
     TexturePtr AnyTex(MaterialParams &mp, const std::string &n, RGB def);
     void Roughness(Material &mat, MaterialParams &mp, float def);
     void MakeGltfMaterial(Material &mat, MaterialParams &mp);
+    void ShadingPerturbation(Material &mat, MaterialParams &mp, const MaterialDesc &m);
 
     std::vector<int> sharedMaterial_;  // desc material index → scene material index (-1: not yet)
     // Named materials referenced by mix materials, built once each (by desc index); the state

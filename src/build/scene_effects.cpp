@@ -104,6 +104,8 @@ void NoteMaterialEffects(BuildContext &ctx, const Material &m, const std::string
         if (MayTransmitGlossily(m)) e.Enable(Effect::GlossyTransmission, why, loc);
     }
     if (m.SurfaceNeeds() & NeedUV) e.Enable(Effect::Textures, why + " (textured)", loc);
+    if (m.bump) e.Enable(Effect::BumpMapping, why + " (bumpmap)", loc);
+    if (m.normalMap) e.Enable(Effect::NormalMapping, why + " (normal map)", loc);
 }
 
 void NoteLightEffects(BuildContext &ctx, const std::string &why, const FileLoc &loc) {

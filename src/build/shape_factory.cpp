@@ -81,6 +81,14 @@ ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromO
     // these float copies are at most half of it) are freed when this returns.
     g.mesh =
         MakeMesh(s, renderFromObject, P, indices, N, uv, budget, ArrayBytes(P, indices, N, uv));
+    // Prism extension (glTF TANGENT): "float tangent", xyz and the bitangent sign per vertex.
+    if (ps.Has("tangent")) {
+        try {
+            g.mesh->SetTangents(renderFromObject, ps.GetFloats("tangent"));
+        } catch (const std::invalid_argument &e) {
+            throw SceneError(ParamLoc(s, "tangent"), std::string(s.type) + ": " + e.what());
+        }
+    }
     return g;
 }
 

@@ -8,6 +8,7 @@
 #include "build/lights.h"
 #include "build/scene_effects.h"
 #include "build/shape_factory.h"
+#include "build/textures.h"
 #include "core/memory.h"
 
 namespace prism {
@@ -56,28 +57,58 @@ struct ShapeBuilder : BuildStep {
     std::vector<const AreaLightDesc *> usedAreaLights;  // unused parameters reported at the end
 
     // pbrt's "alpha" / "shadowalpha": a constant 0 removes the shape from all rays / from
-    // shadow rays (pbrt-v3 cuts out only where alpha is exactly 0). Textured alpha is not
-    // supported and treated as opaque.
-    unsigned VisibilityMask(const ShapeDesc &s) {
+    // shadow rays (pbrt-v3 cuts out only where alpha is exactly 0); a texture becomes a
+    // cut-out test on each hit (geometry/alpha.h). "shadowalpha" defaults to "alpha". Prism
+    // extensions, written by the glTF and OBJ readers: "string alphamode" "mask" (kept where
+    // alpha >= "float alphacutoff", default 0.5) or "blend" (stochastic: kept where alpha
+    // exceeds a hash of the ray; used for camera rays, shadows keep the cutoff).
+    unsigned VisibilityMask(const ShapeDesc &s, ShapeAlpha *cutouts) {
         const ParamSet &ps = s.params;
         float alpha = 1, shadowAlpha = 1;
+        TexturePtr alphaTex, shadowTex;
         for (const char *n : {"alpha", "shadowalpha"}) {
             const Param *p = ps.Find(n);
             if (!p) continue;
+            const bool isAlpha = std::string(n) == "alpha";
             if (p->type == ParamType::Texture) {
-                diag.WarnOnce(
-                    std::string("texalpha:") + n, p->loc,
-                    std::string("textured \"") + n + "\" is not supported; treated as opaque");
-                ps.MarkUsed(n);
+                TexturePtr t = TextureParam(ctx, ps, n, true, RGB(1));
+                if (auto *c = dynamic_cast<const ConstantTexture *>(t.get()))
+                    (isAlpha ? alpha : shadowAlpha) = c->Value().r;
+                else
+                    (isAlpha ? alphaTex : shadowTex) = t;
+                scene.features.effects.Enable(Effect::Alpha, "\"" + std::string(n) + "\" texture",
+                                              p->loc);
                 continue;
             }
-            (std::string(n) == "alpha" ? alpha : shadowAlpha) = ps.GetFloat(n, 1.f);
+            (isAlpha ? alpha : shadowAlpha) = ps.GetFloat(n, 1.f);
         }
-        if (!ps.Has("shadowalpha") || ps.Find("shadowalpha")->type == ParamType::Texture)
+        if (!ps.Has("shadowalpha")) {
             shadowAlpha = alpha;
+            shadowTex = alphaTex;
+        }
+        const std::string mode = ps.GetString("alphamode", "");
+        if (!mode.empty() && mode != "mask" && mode != "blend")
+            throw SceneError(ps.Find("alphamode")->loc,
+                             "\"alphamode\" must be \"mask\" or \"blend\", not " + Quote(mode));
+        const float cutoff = ps.GetFloat("alphacutoff", 0.5f);
+        // A constant alpha between 0 and 1 is a stochastic cut-out in "blend" mode.
+        if (mode == "blend" && !alphaTex && alpha > 0 && alpha < 1) {
+            alphaTex = Constant(RGB(alpha));
+            scene.features.effects.Enable(Effect::Alpha, "\"alphamode\" \"blend\"",
+                                          ps.Find("alphamode")->loc);
+        }
+        auto test = [&](const TexturePtr &t, bool stochastic) {
+            auto a = std::make_shared<AlphaTest>();
+            a->alpha = [t](const Vec2f &uv, const Vec3f &p) { return t->Evaluate({uv, p}).r; };
+            if (mode == "mask") a->cutoff = cutoff;
+            a->stochastic = stochastic && mode == "blend";
+            return a;
+        };
+        if (alphaTex) cutouts->camera = test(alphaTex, true);
+        if (shadowTex) cutouts->shadow = test(shadowTex, false);
         unsigned mask = AllRays;
-        if (alpha == 0) mask &= ~CameraRays;
-        if (shadowAlpha == 0) mask &= ~ShadowRays;
+        if (alpha == 0 && !alphaTex) mask &= ~CameraRays;
+        if (shadowAlpha == 0 && !shadowTex) mask &= ~ShadowRays;
         return mask;
     }
 
@@ -104,19 +135,23 @@ struct ShapeBuilder : BuildStep {
                 throw SceneError(s.loc, e.what());
             }
         }
-        unsigned mask = VisibilityMask(s);
+        ShapeAlpha cutouts;
+        unsigned mask = VisibilityMask(s, &cutouts);
         if (mask == 0) return -1;  // alpha 0: cut out entirely
         if (motion) AddMotion(s, geom, *motion, renderFromObject);
         int material = materials.MaterialForShape(s);
+        // Normal maps read tangents: the mesh's own ("tangent"), else generated ones.
+        if (geom.mesh && scene.materials[size_t(material)].normalMap && !geom.mesh->HasTangents())
+            geom.mesh->GenerateTangents();
         s.params.ReportUnused(diag, "shape " + Quote(s.type));
         int index;
         if (geom.mesh) {
             scene.features.meshes++;
             scene.features.triangles += geom.mesh->NumTriangles();
-            index = accel.AddMesh(std::move(geom.mesh), mask);
+            index = accel.AddMesh(std::move(geom.mesh), mask, std::move(cutouts));
         } else {
             scene.features.analyticShapes++;
-            index = accel.AddAnalytic(std::move(geom.analytic), mask);
+            index = accel.AddAnalytic(std::move(geom.analytic), mask, std::move(cutouts));
         }
         if (int(infos.size()) <= index) infos.resize(size_t(index) + 1);
         infos[size_t(index)] = {material, -1, s.directiveIndex, s.type, -1};

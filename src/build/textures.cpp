@@ -206,7 +206,25 @@ struct TextureBuilder : BuildStep {
             WarnIgnored(ps, {"filter", "trilinear", "maxanisotropy"}, diag, "imagemap texture",
                         "Prism looks textures up bilinearly, without MIP maps");
             auto img = LoadImage(t, file, enc, "filename");
-            if (f && img->channels >= 3) {
+            // Prism extension for cut-outs (glTF baseColor alpha, OBJ map_d): a float texture
+            // of the image's "alpha" channel (1 without one), or "alphaorluminance".
+            std::string channel = f ? ps.GetString("channel", "luminance") : "luminance";
+            if (channel != "luminance" && channel != "alpha" && channel != "alphaorluminance")
+                throw SceneError(ps.Find("channel")->loc,
+                                 "imagemap \"channel\" must be \"luminance\", \"alpha\" or "
+                                 "\"alphaorluminance\", not " +
+                                     Quote(channel));
+            if (channel != "luminance" && (img->HasAlpha() || channel == "alpha")) {
+                const Param *fp = ps.Find("filename");
+                budget.Charge(img->pixels.size() * sizeof(float), "texture " + Quote(file),
+                              fp ? fp->loc : t.loc);
+                auto a = std::make_shared<Image>(*img);
+                const int ac = img->channels == 2 ? 1 : 3;
+                for (int y = 0; y < a->height; ++y)
+                    for (int x = 0; x < a->width; ++x)
+                        a->SetRGB(x, y, RGB(img->HasAlpha() ? img->At(x, y, ac) : 1.f));
+                img = a;
+            } else if (f && img->channels >= 3) {
                 // pbrt converts RGB texels of float textures to luminance, in a copy.
                 const Param *fp = ps.Find("filename");
                 budget.Charge(img->pixels.size() * sizeof(float), "texture " + Quote(file),

@@ -104,6 +104,34 @@ void InitRay16(const Ray &r, int i, unsigned mask, RTCRay16 *ray) {
     ray->flags[i] = 0;
 }
 
+// A mesh's cut-outs, the user data of its Embree geometry.
+struct MeshAlpha {
+    const TriangleMesh *mesh;
+    ShapeAlpha alpha;
+};
+
+// Embree's intersection (Shadow false) and occlusion (true) filter for a mesh with cut-outs:
+// rejects the candidate hits its AlphaTest does not keep. Embree passes the candidate's
+// distance as the ray's tfar.
+template <bool Shadow>
+void MeshAlphaFilter(const RTCFilterFunctionNArguments *args) {
+    const auto *ma = static_cast<const MeshAlpha *>(args->geometryUserPtr);
+    const AlphaTest *test = Shadow ? ma->alpha.shadow.get() : ma->alpha.camera.get();
+    if (!test) return;
+    const unsigned N = args->N;
+    RTCRayN *ray = args->ray;
+    RTCHitN *hit = args->hit;
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] != -1) continue;
+        Vec3f o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
+        Vec3f d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
+        const unsigned prim = RTCHitN_primID(hit, N, i);
+        Vec2f uv = ma->mesh->UVAt(prim, RTCHitN_u(hit, N, i), RTCHitN_v(hit, N, i));
+        Vec3f p = o + d * RTCRayN_tfar(ray, N, i);
+        if (!test->Keeps(uv, p, o, d, prim)) args->valid[i] = 0;
+    }
+}
+
 }  // namespace
 
 struct Accel::Impl {
@@ -117,7 +145,8 @@ struct Accel::Impl {
         // A moving instance: renderFromInstance at each Embree time step (evenly spaced over
         // the shutter), between which Embree interpolates the matrices linearly.
         std::vector<Matrix4> instanceSteps;
-        unsigned needs = NeedAll;  // SurfaceNeeds of the shape's material
+        unsigned needs = NeedAll;          // SurfaceNeeds of the shape's material
+        std::unique_ptr<MeshAlpha> alpha;  // a mesh's cut-outs (the filters' user data)
     };
     std::vector<Entry> shapes;
     std::vector<int> shapeOfGeom;  // geomID -> shape index
@@ -145,7 +174,7 @@ static void MapGeom(std::vector<int> &table, unsigned geomID, int shape) {
     table[geomID] = shape;
 }
 
-int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask) {
+int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask, ShapeAlpha alpha) {
     PRISM_CHECK(!impl_->committed);
     Device &dev = GetDevice();
     RTCGeometry geom = rtcNewGeometry(dev.device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -159,6 +188,15 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask) {
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh->IndexData(),
                                0, 3 * sizeof(uint32_t), mesh->NumTriangles());
     rtcSetGeometryMask(geom, mask);
+    std::unique_ptr<MeshAlpha> cutouts;
+    if (alpha.Any()) {
+        cutouts = std::make_unique<MeshAlpha>(MeshAlpha{mesh.get(), std::move(alpha)});
+        rtcSetGeometryUserData(geom, cutouts.get());
+        if (cutouts->alpha.camera)
+            rtcSetGeometryIntersectFilterFunction(geom, MeshAlphaFilter<false>);
+        if (cutouts->alpha.shadow)
+            rtcSetGeometryOccludedFilterFunction(geom, MeshAlphaFilter<true>);
+    }
     rtcCommitGeometry(geom);
     unsigned id = rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);
@@ -166,6 +204,7 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask) {
     int shape = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, shape);
     impl_->shapes.push_back({std::move(mesh), nullptr, nullptr, {}, {}});
+    impl_->shapes.back().alpha = std::move(cutouts);
     return shape;
 }
 
@@ -208,8 +247,9 @@ int Accel::AddInstance(std::shared_ptr<const Accel> prototype,
     return index;
 }
 
-int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask) {
+int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask, ShapeAlpha alpha) {
     PRISM_CHECK(!impl_->committed);
+    if (alpha.Any()) shape->SetAlpha(std::move(alpha));
     Device &dev = GetDevice();
     unsigned id =
         AttachUserGeometry(dev.device, impl_->scene, shape.get(), impl_->options.precision, mask);

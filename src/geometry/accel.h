@@ -59,8 +59,11 @@ class Accel {
     // Each returns the shape index. Call before Commit(). Meshes and analytic shapes that move
     // (TriangleMesh::SetMotionSteps, AnalyticShape::SetMotion) become Embree motion-blur
     // geometry; rays then carry their time (Ray::time).
-    int AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask = AllRays);
-    int AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask = AllRays);
+    // `alpha` (geometry/alpha.h): cut-outs tested on each candidate hit (Embree filter
+    // functions for meshes, the user-geometry callbacks for analytic shapes).
+    int AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask = AllRays, ShapeAlpha alpha = {});
+    int AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask = AllRays,
+                    ShapeAlpha alpha = {});
     // An Embree instance of a committed prototype (pbrt ObjectInstance). Embree 3 allows one
     // instance level: prototypes hold meshes and analytic shapes only, and analytic shapes
     // apply their own object transform inside the instance.

@@ -15,6 +15,7 @@
 #include "core/animated_transform.h"
 #include "core/transform.h"
 #include "core/vecmath.h"
+#include "geometry/alpha.h"
 #include "geometry/interaction.h"
 
 namespace prism {
@@ -142,6 +143,10 @@ class AnalyticShape {
 
     const Transform &RenderFromObject() const { return renderFromObject_; }
     bool FlipNormals() const { return flipNormals_; }
+    // Cut-outs (geometry/alpha.h), tested by the user-geometry callbacks; set before the
+    // shape is attached. Without them (the default) the callbacks test nothing.
+    void SetAlpha(ShapeAlpha alpha) { alpha_ = std::move(alpha); }
+    const ShapeAlpha &Alpha() const { return alpha_; }
 
     template <typename Real>
     const Affine3<Real> &ObjectFromRender() const {
@@ -152,6 +157,7 @@ class AnalyticShape {
     }
 
   protected:
+    ShapeAlpha alpha_;
     std::shared_ptr<const AnimatedTransform> motion_;
     int motionSteps_ = 1;
     bool motionLinearBounds_ = false;  // per-step boxes interpolate exactly (no rotation, kinks)

@@ -207,10 +207,101 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
             si.n = FaceForward(n, si.ns);
         }
     }
+    if ((needs & NeedDpdu) && !tangents_.empty()) {
+        Vec3f tg = tangents_[vi[0]] * b0 + tangents_[vi[1]] * b1 + tangents_[vi[2]] * b2;
+        if (LengthSquared(tg) > 0) {
+            si.dpdu = tg;
+            si.dpdv = bitangents_[vi[0]] * b0 + bitangents_[vi[1]] * b1 + bitangents_[vi[2]] * b2;
+        }
+    }
     si.wo = Normalize(-rayDir);
     si.t = t;
     si.prim = int(prim);
     return si;
+}
+
+void TriangleMesh::SetTangents(const Transform &renderFromObject, const std::vector<float> &xyzw) {
+    const size_t nv = NumVertices();
+    if (xyzw.size() != 4 * nv)
+        throw std::invalid_argument("\"tangent\" has " + std::to_string(xyzw.size()) +
+                                    " values but there are " + std::to_string(nv) +
+                                    " vertices (4 each)");
+    tangents_.resize(nv);
+    std::vector<float> signs(nv);
+    for (size_t i = 0; i < nv; ++i) {
+        Vec3d t = renderFromObject.Vector(
+            Vec3d(double(xyzw[4 * i]), double(xyzw[4 * i + 1]), double(xyzw[4 * i + 2])));
+        double len = Length(t);
+        tangents_[i] = len > 0 && std::isfinite(len) ? Vec3f(t / len) : Vec3f(0, 0, 0);
+        // A transform that swaps handedness mirrors the bitangent too.
+        float w = xyzw[4 * i + 3] < 0 ? -1.f : 1.f;
+        signs[i] = renderFromObject.SwapsHandedness() ? -w : w;
+    }
+    FinishTangents(signs);
+}
+
+void TriangleMesh::FinishTangents(const std::vector<float> &signs) {
+    const size_t nv = NumVertices();
+    std::vector<Vec3f> N = normals_;
+    if (N.empty()) {
+        N.assign(nv, Vec3f(0, 0, 0));
+        for (size_t f = 0; f < NumTriangles(); ++f) {
+            const uint32_t *v = Triangle(f);
+            Vec3f fn = Cross(Position(v[1]) - Position(v[0]), Position(v[2]) - Position(v[0]));
+            for (int k = 0; k < 3; ++k) N[v[k]] += fn;
+        }
+    }
+    bitangents_.assign(nv, Vec3f(0, 0, 0));
+    for (size_t i = 0; i < nv; ++i) {
+        if (!(LengthSquared(N[i]) > 0)) continue;
+        bitangents_[i] = Cross(Normalize(N[i]), tangents_[i]) * signs[i];
+    }
+}
+
+void TriangleMesh::GenerateTangents() {
+    const size_t nv = NumVertices();
+    std::vector<Vec3f> T(nv, Vec3f(0, 0, 0)), B(nv, Vec3f(0, 0, 0)), N(nv, Vec3f(0, 0, 0));
+    for (size_t f = 0; f < NumTriangles(); ++f) {
+        const uint32_t *v = Triangle(f);
+        Vec3f p[3] = {Position(v[0]), Position(v[1]), Position(v[2])};
+        Vec2f uv[3] = {Vec2f(0, 0), Vec2f(1, 0), Vec2f(1, 1)};
+        if (!uv_.empty())
+            for (int k = 0; k < 3; ++k) uv[k] = uv_[v[k]];
+        Vec3f e1 = p[1] - p[0], e2 = p[2] - p[0];
+        Vec3f fn = Cross(e1, e2);
+        if (!(LengthSquared(fn) > 0)) continue;
+        Vec2f d1 = uv[1] - uv[0], d2 = uv[2] - uv[0];
+        float det = d1.x * d2.y - d1.y * d2.x;
+        if (det == 0 || !std::isfinite(det)) continue;
+        Vec3f dpdu = (e1 * d2.y - e2 * d1.y) / det, dpdv = (e2 * d1.x - e1 * d2.x) / det;
+        float lu = Length(dpdu), lv = Length(dpdv);
+        if (!(lu > 0) || !(lv > 0) || !std::isfinite(lu) || !std::isfinite(lv)) continue;
+        dpdu = dpdu / lu;
+        dpdv = dpdv / lv;
+        fn = Normalize(fn);
+        for (int k = 0; k < 3; ++k) {
+            Vec3f a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+            float la = Length(a), lb = Length(b);
+            if (!(la > 0) || !(lb > 0)) continue;
+            float angle = std::acos(std::clamp(Dot(a, b) / (la * lb), -1.f, 1.f));
+            T[v[k]] += dpdu * angle;
+            B[v[k]] += dpdv * angle;
+            N[v[k]] += fn * angle;
+        }
+    }
+    tangents_.assign(nv, Vec3f(0, 0, 0));
+    std::vector<float> signs(nv, 1.f);
+    for (size_t i = 0; i < nv; ++i) {
+        Vec3f n = !normals_.empty() ? normals_[i] : N[i];
+        if (!(LengthSquared(n) > 0)) continue;
+        n = Normalize(n);
+        Vec3f t = T[i] - n * Dot(n, T[i]);
+        float len = Length(t);
+        if (!(len > 0) || !std::isfinite(len)) continue;
+        tangents_[i] = t / len;
+        signs[i] = Dot(Cross(n, tangents_[i]), B[i]) < 0 ? -1.f : 1.f;
+    }
+    FinishTangents(signs);
 }
 
 }  // namespace prism

@@ -60,11 +60,27 @@ class TriangleMesh {
     const float *PositionData(int step) const {
         return step == 0 ? positions_.data() : stepPositions_[size_t(step - 1)].data();
     }
+    // Per-vertex tangents for tangent-space normal maps: Interaction then gives dpdu and dpdv =
+    // the interpolated tangent and bitangent (sign * (n x tangent) at each vertex). SetTangents
+    // takes the mesh's own (glTF TANGENT: object-space xyz and the bitangent sign w, 4 floats per
+    // vertex); GenerateTangents averages each triangle's dp/du (from its uv) over the triangles
+    // around a vertex, weighted by the corner's angle (as MikkTSpace does), made orthogonal to the
+    // vertex normal, with the sign of dp/dv's side.
+    void SetTangents(const Transform &renderFromObject, const std::vector<float> &xyzw);
+    void GenerateTangents();
+    bool HasTangents() const { return !tangents_.empty(); }
     bool HasNormals() const { return !normals_.empty(); }
     bool HasUV() const { return !uv_.empty(); }
     bool FlipNormals() const { return flipNormals_; }
     Bounds3f RenderBounds() const;
 
+    // The uv at Embree barycentrics (u, v) of triangle `prim` (pbrt's (0,0), (1,0), (1,1)
+    // without uv), for cut-out tests.
+    Vec2f UVAt(size_t prim, float u, float v) const {
+        if (uv_.empty()) return {u + v, v};
+        const uint32_t *vi = Triangle(prim);
+        return uv_[vi[0]] * (1 - u - v) + uv_[vi[1]] * u + uv_[vi[2]] * v;
+    }
     // Geometric normal as the trace command defines it: (p1-p0) x (p2-p0), flipped by
     // ReverseOrientation XOR handedness; unit length; zero for degenerate triangles.
     Vec3f GeometricNormal(size_t prim) const;
@@ -85,6 +101,11 @@ class TriangleMesh {
     std::vector<uint32_t> indices_;
     std::vector<Vec3f> normals_;
     std::vector<Vec2f> uv_;
+    std::vector<Vec3f> tangents_;  // render space, unit (or zero)
+    std::vector<Vec3f> bitangents_;
+    // Bitangents from tangents_, the vertex normals (or the angle-weighted face normals) and
+    // each vertex's sign.
+    void FinishTangents(const std::vector<float> &signs);
     bool flipNormals_;
 };
 

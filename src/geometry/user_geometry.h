@@ -6,6 +6,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <cmath>
 #include <limits>
 #include <type_traits>
 
@@ -81,18 +82,28 @@ inline bool RootRoutine(const S *shape, const Vec3f &o, const Vec3f &d, float tn
 }
 
 // The shared root routine for lane i of an N-wide ray packet: true with the float t of the
-// nearest valid hit inside the lane's (tnear, tfar).
+// nearest valid hit inside the lane's (tnear, tfar). A shape with a cut-out for this kind of ray
+// (`test`, geometry/alpha.h) skips the hits the test rejects and tries the next root beyond.
 template <typename S, typename Real, bool Moving>
 inline bool LaneHit(const S *shape, RTCRayN *rays, unsigned N, unsigned i, float *tHit,
-                    ObjectHit *hit) {
+                    ObjectHit *hit, const AlphaTest *test = nullptr) {
     Vec3f o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
     Vec3f d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
     float tnear = RTCRayN_tnear(rays, N, i), tfar = RTCRayN_tfar(rays, N, i);
     float time = Moving ? RTCRayN_time(rays, N, i) : 0.f;
-    if (!RootRoutine<S, Real, Moving>(shape, o, d, tnear, tfar, time, hit)) return false;
-    float t = float(hit->t);
-    *tHit = t;
-    return t > tnear && t < tfar;  // rounding to float may leave the interval
+    // A quartic has at most four roots: a few more tries than that end the search.
+    for (int tries = 0; tries < 8; ++tries) {
+        if (!RootRoutine<S, Real, Moving>(shape, o, d, tnear, tfar, time, hit)) return false;
+        float t = float(hit->t);
+        *tHit = t;
+        if (!(t > tnear && t < tfar)) return false;  // rounding to float may leave the interval
+        if (!test) return true;
+        SurfaceInteraction si = shape->Interaction(*hit, d, NeedUV, time);
+        if (test->Keeps(si.uv, si.p, o, d, 0)) return true;
+        // Past this root (whose double t may lie just above its float rounding).
+        tnear = std::nextafter(t, std::numeric_limits<float>::infinity());
+    }
+    return false;
 }
 
 template <typename S, typename Real, bool Moving>
@@ -107,7 +118,8 @@ inline void IntersectFunc(const RTCIntersectFunctionNArguments *args) {
         if (args->valid[i] != -1) continue;
         float t;
         ObjectHit hit;
-        if (!LaneHit<S, Real, Moving>(shape, rays, N, i, &t, &hit)) continue;
+        if (!LaneHit<S, Real, Moving>(shape, rays, N, i, &t, &hit, shape->Alpha().camera.get()))
+            continue;
         RTCRayN_tfar(rays, N, i) = t;
         if (unsigned id = RTCRayN_id(rays, N, i); record && id < hc->numRays) {
             hc->objectHits[id] = hit;
@@ -134,7 +146,7 @@ inline void OccludedFunc(const RTCOccludedFunctionNArguments *args) {
         if (args->valid[i] != -1) continue;
         float t;
         ObjectHit hit;
-        if (LaneHit<S, Real, Moving>(shape, rays, N, i, &t, &hit))
+        if (LaneHit<S, Real, Moving>(shape, rays, N, i, &t, &hit, shape->Alpha().shadow.get()))
             RTCRayN_tfar(rays, N, i) = -std::numeric_limits<float>::infinity();
     }
 }

@@ -28,6 +28,12 @@ const char *EffectName(Effect e) {
             return "CSG";
         case Effect::Instancing:
             return "instancing";
+        case Effect::BumpMapping:
+            return "bump mapping";
+        case Effect::NormalMapping:
+            return "normal mapping";
+        case Effect::Alpha:
+            return "alpha";
         case Effect::Count:
             break;
     }

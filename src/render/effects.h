@@ -25,6 +25,9 @@ enum class Effect : uint32_t {
     MotionBlur,          // ActiveTransform/TransformTimes with a moving transform, and a shutter
     Csg,                 // CSGBegin/CSGEnd nodes
     Instancing,          // ObjectInstance
+    BumpMapping,         // a material's "bumpmap" (render/bump.cpp)
+    NormalMapping,       // a material's tangent-space normal map
+    Alpha,               // cut-outs: textured "alpha"/"shadowalpha", glTF MASK/BLEND, OBJ map_d
     Count
 };
 

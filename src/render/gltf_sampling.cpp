@@ -47,7 +47,8 @@ float GlossyPdf(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
     if (!(cosOH > 0)) return 0;
     float pR = 1;
     if (!l.thinTransmit.IsBlack()) {
-        const float wR = l.ks.IsBlack() ? 0.f : (l.ks * l.glossyFresnel.Evaluate(cosOH)).Luminance();
+        const float wR =
+            l.ks.IsBlack() ? 0.f : (l.ks * l.glossyFresnel.Evaluate(cosOH)).Luminance();
         const float f = FrSchlick(cosOH, l.dielectricF0, l.dielectricF90).MaxComponent();
         const float wT = l.thinTransmit.Luminance() * (1 - f);
         if (!(wR + wT > 0)) return 0;

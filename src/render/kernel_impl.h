@@ -72,6 +72,9 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
         }
     }
 
+    // Bump and normal maps move the shading normal before anything reads it (one test of a
+    // flag per hit for scenes without them: no kernel bit).
+    if (mat->PerturbsShading()) mat->PerturbShading(si);
     TextureContext tc{si.uv, si.p};
     const Vec3f &wo = si.wo;
     RGB L;

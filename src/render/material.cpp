@@ -108,6 +108,11 @@ bool MaybeAnisotropic(const TexturePtr &u, const TexturePtr &v) {
 
 unsigned Material::SurfaceNeeds() const {
     if (kind == Kind::None) return NeedNone;
+    return LobeNeeds() | (PerturbsShading() ? unsigned(NeedAll) : unsigned(NeedNone));
+}
+
+unsigned Material::LobeNeeds() const {
+    if (kind == Kind::None) return NeedNone;
     unsigned needs = NeedNone;
     if (kind == Kind::Mix) {
         needs |= mix1->SurfaceNeeds() | mix2->SurfaceNeeds();
@@ -160,7 +165,7 @@ BSDF Material::GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) c
 void Material::Prepare() {
     fixed_ = false;
     fixedParts_.clear();
-    if (kind == Kind::None || (SurfaceNeeds() & NeedUV)) return;
+    if (kind == Kind::None || (LobeNeeds() & NeedUV)) return;
     // Every texture is constant: the parts do not depend on the hit.
     BSDF b;
     AddParts(b, TextureContext{}, RGB(1));

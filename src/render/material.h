@@ -48,6 +48,14 @@ class Material {
     // seen by camera rays and by the rays that Whitted and glossy recursion trace.
     bool HasEmission() const { return kind == Kind::Gltf && gltf.emissive != nullptr; }
     RGB Emitted(const TextureContext &tc) const { return gltf.emissive->Evaluate(tc).Clamped(0.f); }
+    // Shading-normal perturbation (render/bump.cpp), applied to the hit before it is shaded:
+    // pbrt-v3's "bumpmap" (a float displacement texture), or a tangent-space normal map (glTF
+    // normalTexture, OBJ norm, pbrt-v4 "normalmap") whose x and y are scaled by normalScale.
+    TexturePtr bump, normalMap;
+    float normalScale = 1;
+    bool PerturbsShading() const { return bump || normalMap; }
+    // Moves si.ns (and dpdu/dpdv) as the bump or normal map says; needs uv and dpdu/dpdv.
+    void PerturbShading(SurfaceInteraction &si) const;
 
     bool IsPassThrough() const { return kind == Kind::None; }
     // Lambertian matte (no Oren–Nayar sigma): f = kd/π. Kernels without KernelBsdf
@@ -73,6 +81,8 @@ class Material {
     void Prepare();
 
   private:
+    // SurfaceNeeds of the lobes alone (without the shading perturbation).
+    unsigned LobeNeeds() const;
     struct FixedPart {
         RGB weight;
         BxDFLobes lobes;

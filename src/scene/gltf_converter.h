@@ -22,6 +22,9 @@ struct AccessorView {
     bool normalized = false;
 };
 
+// One component of element i as double (normalized integers in [0, 1] / [-1, 1]).
+double Component(const AccessorView &v, size_t i, int c);
+
 // A number in a material's glTF extension object (`def` if absent).
 double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const char *key,
                  double def);
@@ -49,6 +52,10 @@ class GltfConverter {
     bool AddMap(ParamSet &ps, const std::string &param, int textureIndex, int texCoord,
                 const tinygltf::ExtensionMap &ext, bool linear);
     std::string ImageFilename(int imageIndex);
+    // gltf_surface.cpp: normalTexture on a material; alphaMode and TANGENT on a primitive.
+    void AddNormalMap(const tinygltf::Material &m, ParamSet &materialParams);
+    void AddSurfaceParams(const tinygltf::Primitive &prim, size_t vertices, ParamSet &shapeParams);
+    std::string AlphaTextureFor(int material);
 
     [[noreturn]] void Fail(const std::string &msg) const { throw SceneError(loc_, msg); }
 
@@ -59,6 +66,7 @@ class GltfConverter {
     std::vector<int> areaLightOfMaterial_;
     std::map<int, std::string> textureNames_;
     std::map<int, std::string> imageFilenames_;
+    std::map<int, std::string> alphaTextures_;  // material → its alpha texture ("" if none)
     std::set<int> warnedModes_;
     int warnedTexCoord_ = 0;
     bool haveCamera_ = false;

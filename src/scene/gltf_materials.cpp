@@ -218,6 +218,7 @@ void GltfConverter::ConvertMaterials() {
                 desc_.areaLights.push_back(std::move(al));
             }
         }
+        AddNormalMap(m, md.params);
         desc_.materials.push_back(std::move(md));
         areaLightOfMaterial_.push_back(light);
     }

@@ -361,6 +361,7 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
         // keeps lamp housings such as shadows-spot's emissive bulb from blocking their light.
         if (prim.material >= 0 && model_.materials[size_t(prim.material)].alphaMode == "BLEND")
             AddFloat(s.params, "shadowalpha", 0, loc_);
+        AddSurfaceParams(prim, P.size(), s.params);
         desc_.shapes.push_back(std::move(s));
     }
 }

@@ -84,7 +84,47 @@ MaterialDesc ConvertMaterial(const tinyobj::material_t &m, const FileLoc &loc,
         md.type = "matte";
         Kd();
     }
+    // Surface detail on any material: "norm" is a tangent-space normal map (read linearly),
+    // "bump"/"map_Bump" a height map (a float "bumpmap" texture scaled by -bm).
+    if (!m.normal_texname.empty())
+        AddString(ps, "normalmap", NormalizeTexturePath(m.normal_texname), loc);
+    if (!m.bump_texname.empty()) {
+        TextureDesc t;
+        t.type = "imagemap";
+        t.name = "obj:" + m.name + ":bump";
+        t.loc = loc;
+        t.isFloat = true;
+        AddString(t.params, "filename", NormalizeTexturePath(m.bump_texname), loc);
+        AddString(t.params, "encoding", "linear", loc);
+        AddFloat(t.params, "scale", m.bump_texopt.bump_multiplier, loc);
+        desc.textures.push_back(std::move(t));
+        AddTexture(ps, "bumpmap", desc.textures.back().name, loc);
+    }
     return md;
+}
+
+// map_d: a cut-out from the image's alpha channel (its luminance when it has none), kept where
+// it is at least 0.5 (as glTF's MASK); for every shape of the material.
+void AddObjAlpha(const tinyobj::material_t &m, const FileLoc &loc, SceneDescription &desc,
+                 ParamSet &shapeParams) {
+    if (m.alpha_texname.empty()) return;
+    const std::string name = "obj:" + m.name + ":map_d";
+    bool have = false;
+    for (const TextureDesc &t : desc.textures) have = have || t.name == name;
+    if (!have) {
+        TextureDesc t;
+        t.type = "imagemap";
+        t.name = name;
+        t.loc = loc;
+        t.isFloat = true;
+        AddString(t.params, "filename", NormalizeTexturePath(m.alpha_texname), loc);
+        AddString(t.params, "encoding", "linear", loc);
+        AddString(t.params, "channel", "alphaorluminance", loc);
+        desc.textures.push_back(std::move(t));
+    }
+    AddTexture(shapeParams, "alpha", name, loc);
+    AddString(shapeParams, "alphamode", "mask", loc);
+    AddFloat(shapeParams, "alphacutoff", 0.5, loc);
 }
 
 struct VertexKey {
@@ -382,6 +422,7 @@ SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag, MemoryB
             s.areaLight = mat >= 0 ? areaLightOf[size_t(mat)] : -1;
             s.directiveIndex = int(desc.shapes.size());
             s.params = TriangleMeshParams(b.indices, b.P, b.N, b.uv, fileLoc);
+            if (mat >= 0) AddObjAlpha(materials[size_t(mat)], fileLoc, desc, s.params);
             if (budget) budget->Charge(ParamStorageBytes(s.params), "mesh", fileLoc);
             desc.shapes.push_back(std::move(s));
         }

@@ -67,6 +67,13 @@ inline void AddInts(ParamSet &ps, const std::string &name, const std::vector<int
     ps.Add(std::move(p));
 }
 
+inline void AddFloats(ParamSet &ps, const std::string &name, const std::vector<double> &v,
+                      const FileLoc &loc) {
+    Param p = MakeParam(ParamType::Float, name, loc);
+    p.numbers.assign(v.begin(), v.end());
+    ps.Add(std::move(p));
+}
+
 // Point3 / Normal arrays (3 numbers per element).
 inline void AddVec3s(ParamSet &ps, ParamType type, const std::string &name,
                      const std::vector<Vec3f> &v, const FileLoc &loc) {

@@ -50,7 +50,8 @@ AttributeBegin
   Material "matte" "rgb Kd" [0.5 0.8 0.3]
   Shape "disk" "float radius" 20 "float height" -1.2
 AttributeEnd
-)" + material + R"(
+)" + material +
+           R"(
 Shape "sphere" "float radius" 1
 WorldEnd
 )";
@@ -60,7 +61,8 @@ TEST(GltfMaterialRender, PolishedMetalSphereIsAMirror) {
     Diagnostics d1, d2;
     Image gltf = RenderText(
         "gltf_mirror",
-        SphereScene(R"(Material "gltf" "rgb basecolor" [0.9 0.7 0.4] "float metallic" 1 "float roughness" 0)"),
+        SphereScene(
+            R"(Material "gltf" "rgb basecolor" [0.9 0.7 0.4] "float metallic" 1 "float roughness" 0)"),
         d1);
     Image mirror =
         RenderText("pbrt_mirror", SphereScene(R"(Material "mirror" "rgb Kr" [0.9 0.7 0.4])"), d2);

@@ -88,8 +88,8 @@ TEST(GltfMaterial, MatchesTheSpecificationFormulas) {
                         for (int c = 0; c < 3; ++c) {
                             double ref = SpecBrdf(p.base[c], metallic, roughness, wo, wi);
                             EXPECT_NEAR(f[c], ref, 1e-4 + 2e-4 * ref)
-                                << "m " << metallic << " r " << roughness << " to " << to
-                                << " ti " << ti << " phi " << phi << " c " << c;
+                                << "m " << metallic << " r " << roughness << " to " << to << " ti "
+                                << ti << " phi " << phi << " c " << c;
                         }
                     }
 }
@@ -125,7 +125,7 @@ TEST(GltfMaterial, WhiteFurnace) {
                     // A white conductor loses only single-scattering energy: little for smooth
                     // lobes, about 70% for alpha = 1 at normal incidence (0.307, integrated
                     // independently from the specification's D and V).
-                    double lower = roughness <= 0.3f  ? 0.93
+                    double lower = roughness <= 0.3f   ? 0.93
                                    : roughness <= 0.5f ? 0.82
                                    : roughness < 1     ? 0.55
                                                        : 0.29;

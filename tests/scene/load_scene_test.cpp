@@ -338,13 +338,13 @@ TEST(SharedSceneDetails, SpiderTexturesAndDamagedHelmetImages) {
 
     SceneDescription h = LoadScene(helmet, diag);
     ASSERT_EQ(h.materials.size(), 1u);
-    // The glTF metallic-roughness material with its four material maps.
+    // The glTF metallic-roughness material with its four material maps and the normal map.
     EXPECT_EQ(h.materials[0].type, "gltf");
     for (const char *map : {"basecolormap", "metallicroughnessmap", "emissivemap", "occlusionmap"})
         EXPECT_FALSE(h.materials[0].params.GetTexture(map).empty()) << map;
-    // Base colour, metallic-roughness, emissive and occlusion images (the normal map is not
-    // read by the material).
-    EXPECT_EQ(h.embeddedImages.size(), 4u);
+    // Base colour, metallic-roughness, emissive, occlusion and normal-map images.
+    EXPECT_EQ(h.embeddedImages.size(), 5u);
+    EXPECT_FALSE(h.materials[0].params.GetString("normalmap", "").empty());
     for (const EmbeddedImage &img : h.embeddedImages) {
         EXPECT_EQ(img.mimeType, "image/jpeg");
         ASSERT_GE(img.bytes.size(), 2u);

@@ -1,0 +1,72 @@
+// Bump and normal mapping: the shading normal moved by pbrt-v3's "bumpmap" displacement
+// (Material::Bump) or by a tangent-space normal map, before the hit is shaded.
+#include <cmath>
+
+#include "render/material.h"
+
+namespace prism {
+
+namespace {
+
+// pbrt-v3 Material::Bump without ray differentials: its fallback step du = dv = .0005 (pbrt
+// takes .5 (|dudx| + |dudy|) and uses .0005 when that is 0). The dndu/dndv term is left out:
+// Prism's hits carry no normal derivatives (it vanishes on flat surfaces).
+void Bump(const Texture &d, SurfaceInteraction &si) {
+    constexpr float du = .0005f, dv = .0005f;
+    const Vec3f n = si.ns;
+    const float displace = d.Evaluate({si.uv, si.p}).r;
+    const float uDisplace = d.Evaluate({si.uv + Vec2f(du, 0), si.p + si.dpdu * du}).r;
+    const float vDisplace = d.Evaluate({si.uv + Vec2f(0, dv), si.p + si.dpdv * dv}).r;
+    const Vec3f dpdu = si.dpdu + n * ((uDisplace - displace) / du);
+    const Vec3f dpdv = si.dpdv + n * ((vDisplace - displace) / dv);
+    Vec3f ns = Cross(dpdu, dpdv);
+    const float len = Length(ns);
+    if (!(len > 0) || !std::isfinite(len)) return;
+    ns = ns / len;
+    // pbrt's SetShadingGeometry(..., false): the shading normal turns to the geometric side.
+    // (Cross(dpdu, dpdv) points along the unperturbed normal or against it with the
+    // parameterization's handedness; orient it by the unperturbed shading normal first.)
+    if (Dot(Cross(si.dpdu, si.dpdv), n) < 0) ns = -ns;
+    si.ns = FaceForward(ns, si.n);
+    si.dpdu = dpdu;
+    si.dpdv = dpdv;
+}
+
+// A tangent-space normal map (glTF's convention: x along the tangent dp/du, y along the
+// bitangent dp/dv, z along the shading normal; texel values c map to 2c - 1, and x and y are
+// multiplied by the scale). The tangent is si.dpdu (a mesh's interpolated per-vertex tangent,
+// TriangleMesh::GenerateTangents, else the parameterization's), made orthogonal to ns; the
+// bitangent is ns x tangent, on dpdv's side.
+void NormalMap(const Texture &map, float scale, SurfaceInteraction &si) {
+    const Vec3f n = si.ns;
+    Vec3f t = si.dpdu - n * Dot(n, si.dpdu);
+    float tl = Length(t);
+    Vec3f b;
+    if (tl > 0 && std::isfinite(tl)) {
+        t = t / tl;
+        b = Cross(n, t);
+        if (Dot(b, si.dpdv) < 0) b = -b;
+    } else {
+        CoordinateSystem(n, &t, &b);
+    }
+    const RGB c = map.Evaluate({si.uv, si.p});
+    const Vec3f m((2 * c.r - 1) * scale, (2 * c.g - 1) * scale, 2 * c.b - 1);
+    Vec3f ns = t * m.x + b * m.y + n * m.z;
+    const float len = Length(ns);
+    if (!(len > 0) || !std::isfinite(len)) return;
+    ns = ns / len;
+    si.ns = FaceForward(ns, si.n);
+    // The tangent frame follows: dpdu made orthogonal to the new normal.
+    si.dpdu = t - si.ns * Dot(si.ns, t);
+    si.dpdv = Cross(si.ns, si.dpdu);
+    if (Dot(si.dpdv, b) < 0) si.dpdv = -si.dpdv;
+}
+
+}  // namespace
+
+void Material::PerturbShading(SurfaceInteraction &si) const {
+    if (normalMap) NormalMap(*normalMap, normalScale, si);
+    if (bump) Bump(*bump, si);
+}
+
+}  // namespace prism

@@ -1,0 +1,108 @@
+// glTF surface detail beyond the BRDF: normalTexture (a tangent-space normal map, with the
+// primitive's TANGENT attribute when it has one) and alphaMode MASK / BLEND (cut-outs from the
+// base colour's alpha), as the pbrt-style parameters build/ reads ("normalmap", "normalscale",
+// "tangent", "alpha", "alphamode", "alphacutoff").
+#include <cmath>
+
+#include "scene/gltf_converter.h"
+#include "scene/param_builders.h"
+
+namespace prism::gltf_internal {
+
+using namespace reader;
+
+// normalTexture → "string normalmap" (the image, read linearly) and "float normalscale".
+// Only texture coordinate set 0 is read.
+void GltfConverter::AddNormalMap(const tinygltf::Material &m, ParamSet &ps) {
+    const tinygltf::NormalTextureInfo &nt = m.normalTexture;
+    if (nt.index < 0 || size_t(nt.index) >= model_.textures.size()) return;
+    const tinygltf::Texture &tex = model_.textures[size_t(nt.index)];
+    if (tex.source < 0 || size_t(tex.source) >= model_.images.size()) return;
+    if (nt.texCoord != 0) {
+        diag_.Warn(loc_, "material \"" + m.name + "\": normalTexture reads TEXCOORD_" +
+                             std::to_string(nt.texCoord) + ", which is not read; ignored");
+        return;
+    }
+    std::string file = ImageFilename(tex.source);
+    if (file.empty()) return;
+    AddString(ps, "normalmap", file, loc_);
+    AddFloat(ps, "normalscale", nt.scale, loc_);
+}
+
+// The base colour's alpha for a MASK or BLEND material: baseColorFactor's alpha times the
+// alpha channel of baseColorTexture (a float "imagemap" of its alpha channel, scaled), or ""
+// when there is no texture (the factor alone then decides).
+std::string GltfConverter::AlphaTextureFor(int material) {
+    auto it = alphaTextures_.find(material);
+    if (it != alphaTextures_.end()) return it->second;
+    const tinygltf::Material &m = model_.materials[size_t(material)];
+    const auto &pbr = m.pbrMetallicRoughness;
+    double factor = pbr.baseColorFactor.size() >= 4 ? pbr.baseColorFactor[3] : 1.0;
+    std::string name;
+    if (pbr.baseColorTexture.index >= 0 &&
+        size_t(pbr.baseColorTexture.index) < model_.textures.size()) {
+        const tinygltf::Texture &tex = model_.textures[size_t(pbr.baseColorTexture.index)];
+        std::string file = tex.source >= 0 && size_t(tex.source) < model_.images.size()
+                               ? ImageFilename(tex.source)
+                               : std::string();
+        if (!file.empty()) {
+            TextureDesc t;
+            t.type = "imagemap";
+            t.isFloat = true;
+            t.name = "gltf:material" + std::to_string(material) + ":alpha";
+            t.loc = loc_;
+            AddString(t.params, "filename", file, loc_);
+            AddString(t.params, "channel", "alpha", loc_);
+            AddFloat(t.params, "scale", factor, loc_);
+            if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size() &&
+                model_.samplers[size_t(tex.sampler)].wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
+                AddString(t.params, "wrap", "clamp", loc_);
+            name = t.name;
+            desc_.textures.push_back(std::move(t));
+        }
+    }
+    alphaTextures_[material] = name;
+    return name;
+}
+
+// A primitive's shape parameters: cut-outs for MASK and BLEND materials (BLEND's shadows stay
+// off: ConvertMesh gives it "shadowalpha" 0), and the TANGENT attribute when its material has
+// a normal map.
+void GltfConverter::AddSurfaceParams(const tinygltf::Primitive &prim, size_t vertices,
+                                     ParamSet &ps) {
+    if (prim.material < 0) return;
+    const tinygltf::Material &m = model_.materials[size_t(prim.material)];
+    if (m.alphaMode == "MASK" || m.alphaMode == "BLEND") {
+        const bool mask = m.alphaMode == "MASK";
+        std::string tex = AlphaTextureFor(prim.material);
+        double factor = m.pbrMetallicRoughness.baseColorFactor.size() >= 4
+                            ? m.pbrMetallicRoughness.baseColorFactor[3]
+                            : 1.0;
+        if (!tex.empty()) {
+            AddTexture(ps, "alpha", tex, loc_);
+        } else if (mask) {
+            AddFloat(ps, "alpha", factor >= m.alphaCutoff ? 1 : 0, loc_);
+        } else {
+            AddFloat(ps, "alpha", factor, loc_);
+        }
+        AddString(ps, "alphamode", mask ? "mask" : "blend", loc_);
+        if (mask) AddFloat(ps, "alphacutoff", m.alphaCutoff, loc_);
+    }
+    if (m.normalTexture.index < 0) return;
+    auto it = prim.attributes.find("TANGENT");
+    if (it == prim.attributes.end()) return;
+    AccessorView v = View(it->second, "TANGENT");
+    if (v.components != 4 || v.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+        Fail("TANGENT accessor must be VEC4 of floats");
+    if (v.count != vertices) Fail("TANGENT and POSITION accessors differ in count");
+    std::vector<double> t(4 * v.count);
+    for (size_t i = 0; i < v.count; ++i)
+        for (int c = 0; c < 4; ++c) {
+            t[4 * i + size_t(c)] = Component(v, i, c);
+            if (!std::isfinite(t[4 * i + size_t(c)]))
+                Fail("TANGENT accessor contains a value that is not a finite number");
+        }
+    AddFloats(ps, "tangent", t, loc_);
+}
+
+}  // namespace prism::gltf_internal
