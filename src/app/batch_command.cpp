@@ -120,6 +120,19 @@ std::string JsonEscape(const std::string &s) {
 
 }  // namespace
 
+int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds) {
+    WriteReports(a.outDir, jobs, wallSeconds);
+    int failed = 0;
+    for (const Job &j : jobs) failed += j.status == "failed";
+    if (!a.quiet) {
+        std::ifstream s(fs::path(a.outDir) / "summary.txt");
+        std::stringstream ss;
+        ss << s.rdbuf();
+        std::fprintf(stderr, "%s", ss.str().c_str());
+    }
+    return failed;
+}
+
 void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds) {
     std::map<std::string, int> counts;
     double renderSum = 0;
@@ -367,15 +380,7 @@ int RunBatch(const BatchArgs &a) {
         }
     }
     sigaction(SIGINT, &old, nullptr);
-    WriteReports(a.outDir, jobs, SecondsSince(batchStart));
-    int failed = 0;
-    for (const Job &j : jobs) failed += j.status == "failed";
-    if (!a.quiet) {
-        std::ifstream s(fs::path(a.outDir) / "summary.txt");
-        std::stringstream ss;
-        ss << s.rdbuf();
-        std::fprintf(stderr, "%s", ss.str().c_str());
-    }
+    int failed = FinishReports(a, jobs, SecondsSince(batchStart));
     if (g_interrupted) return ExitInterrupted;
     return failed > 0 ? ExitBadInput : ExitOk;
 }

@@ -56,6 +56,9 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args);
 std::vector<Job> PrepareBatch(const BatchArgs &a);
 // Rewrites report.json and summary.txt in a.outDir atomically.
 void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds);
+// The end of a batch: the final reports, the summary on stderr (unless quiet); returns the
+// number of failed scenes.
+int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds);
 // The running executable (/proc/self/exe).
 std::string RunningExecutable();
 // Starts `exe render` for j in a child process (stderr to j.logPath, by default a log beside

@@ -194,15 +194,7 @@ int Coordinate(const BatchArgs &a, std::vector<Job> &jobs) {
             --working;
         }
     }
-    WriteReports(a.outDir, jobs, SecondsSince(batchStart));
-    int failed = 0;
-    for (const Job &j : jobs) failed += j.status == "failed";
-    if (!a.quiet) {
-        std::ifstream s(fs::path(a.outDir) / "summary.txt");
-        std::stringstream ss;
-        ss << s.rdbuf();
-        std::fprintf(stderr, "%s", ss.str().c_str());
-    }
+    int failed = FinishReports(a, jobs, SecondsSince(batchStart));
     return failed > 0 ? ExitBadInput : ExitOk;
 }
 

@@ -25,12 +25,7 @@ namespace {
 using test::RunPrism;
 using test::RunResult;
 
-fs::path TempDir(const std::string &name) {
-    fs::path d = fs::path(::testing::TempDir()) / ("prism_aov_cli_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+fs::path TempDir(const std::string &name) { return test::FreshTempDir("aov_cli", name); }
 
 struct Exr {
     int width = 0, height = 0;

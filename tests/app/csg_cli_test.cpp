@@ -21,12 +21,7 @@ using test::ReadFile;
 using test::RunPrism;
 using test::RunResult;
 
-fs::path TempDir(const std::string &name) {
-    fs::path d = fs::path(::testing::TempDir()) / ("prism_csg_cli_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+fs::path TempDir(const std::string &name) { return test::FreshTempDir("csg_cli", name); }
 
 const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
 

@@ -19,12 +19,7 @@ using test::RunResult;
 
 const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
 
-fs::path TempDir(const std::string &name) {
-    fs::path d = fs::path(::testing::TempDir()) / ("prism_effects_cli_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+fs::path TempDir(const std::string &name) { return test::FreshTempDir("effects_cli", name); }
 
 bool Has(const std::string &out, const std::string &s) { return out.find(s) != std::string::npos; }
 

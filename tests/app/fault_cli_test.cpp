@@ -25,12 +25,7 @@ using test::ReadFile;
 using test::RunPrism;
 using test::RunResult;
 
-fs::path TempDir(const std::string &name) {
-    fs::path d = fs::path(::testing::TempDir()) / ("prism_fault_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+fs::path TempDir(const std::string &name) { return test::FreshTempDir("fault", name); }
 
 const char *const kScene =
     "LookAt 0 0 5  0 0 0  0 1 0\n"

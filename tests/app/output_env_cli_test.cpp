@@ -24,12 +24,7 @@ using test::RunResult;
 
 const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
 
-fs::path TempDir(const std::string &name) {
-    fs::path d = fs::path(::testing::TempDir()) / ("prism_outenv_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+fs::path TempDir(const std::string &name) { return test::FreshTempDir("outenv", name); }
 
 void Write(const fs::path &p, const std::string &text) { std::ofstream(p) << text; }
 

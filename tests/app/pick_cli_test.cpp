@@ -18,12 +18,7 @@ namespace {
 using test::RunPrism;
 using test::RunResult;
 
-fs::path TempDir(const std::string &name) {
-    fs::path d = fs::path(::testing::TempDir()) / ("prism_pick_cli_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+fs::path TempDir(const std::string &name) { return test::FreshTempDir("pick_cli", name); }
 
 // A unit sphere at the origin (Shape on line 6), a mirror sphere beside it (line 9), seen from
 // z = -5 with a 60 degree field of view on a 21x21 image.

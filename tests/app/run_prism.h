@@ -1,6 +1,7 @@
 // Running the prism binary from the CLI tests of tests/app.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -15,6 +16,15 @@ struct RunResult {
     int exitCode = -1;  // -1: killed by a signal
     std::string out, err;
 };
+
+// An empty folder `<gtest temp>/prism_<prefix>_<name>` (removed first if it exists).
+inline std::filesystem::path FreshTempDir(const std::string &prefix, const std::string &name) {
+    std::filesystem::path d =
+        std::filesystem::path(::testing::TempDir()) / ("prism_" + prefix + "_" + name);
+    std::filesystem::remove_all(d);
+    std::filesystem::create_directories(d);
+    return d;
+}
 
 inline std::string ReadFile(const std::filesystem::path &p) {
     std::ifstream in(p, std::ios::binary);
