@@ -69,6 +69,31 @@ struct TempFileGuard {
     }
 };
 
+// Writes the image file `path` atomically: write(tmpName) fills a temporary file beside it,
+// which replaces `path` only once complete and is removed otherwise. Every failure (a missing
+// folder, the writer's std::runtime_error, the rename) is "cannot write image PATH: why".
+template <typename WriteFn>
+void WriteImageAtomically(const std::string &path, WriteFn &&write) {
+    auto fail = [&](const std::string &why) -> std::runtime_error {
+        return std::runtime_error("cannot write image " + Quote(path) + ": " + why);
+    };
+    fs::path target(path);
+    std::error_code dirEc;
+    fs::path dir = target.parent_path();
+    if (!dir.empty() && !fs::is_directory(dir, dirEc))
+        throw fail("directory " + Quote(dir.string()) + " does not exist");
+    TempFileGuard tmp{TempPathFor(target)};
+    try {
+        write(tmp.path.string());
+    } catch (const std::runtime_error &e) {
+        throw fail(e.what());
+    }
+    std::error_code ec;
+    fs::rename(tmp.path, target, ec);
+    if (ec) throw fail(ec.message());
+    tmp.armed = false;
+}
+
 }  // namespace
 
 bool IsWritableImageExtension(const std::string &ext) {
@@ -136,14 +161,7 @@ void WriteImage(const std::string &path, const Image &img) {
         data = bytes.data();
     }
 
-    fs::path target(path);
-    std::error_code dirEc;
-    fs::path dir = target.parent_path();
-    if (!dir.empty() && !fs::is_directory(dir, dirEc))
-        throw fail("directory " + Quote(dir.string()) + " does not exist");
-    TempFileGuard tmp{TempPathFor(target)};
-    std::string tmpName = tmp.path.string();
-    try {
+    WriteImageAtomically(path, [&](const std::string &tmpName) {
         if (ext == ".pfm") {
             // OIIO 2.4 reads PFM but cannot write it; the format is simple enough to write here.
             WritePfm(tmpName, img.width, img.height, nOut, static_cast<const float *>(data));
@@ -162,14 +180,7 @@ void WriteImage(const std::string &path, const Image &img) {
                               sizeof(err)))
                 throw std::runtime_error(err);
         }
-    } catch (const std::runtime_error &e) {
-        throw fail(e.what());
-    }
-
-    std::error_code ec;
-    fs::rename(tmp.path, target, ec);
-    if (ec) throw fail(ec.message());
-    tmp.armed = false;
+    });
 }
 
 void WriteMultiChannelExr(const std::string &path, const Image &img,
@@ -185,21 +196,9 @@ void WriteMultiChannelExr(const std::string &path, const Image &img,
         channels.push_back({img.channels >= 3 ? kNames[c] : (c == 0 ? "Y" : "A"),
                             img.pixels.data() + c, size_t(img.channels)});
     for (const NamedChannel &n : extra) channels.push_back({n.name, n.data, n.xStride});
-    fs::path target(path);
-    std::error_code dirEc;
-    fs::path dir = target.parent_path();
-    if (!dir.empty() && !fs::is_directory(dir, dirEc))
-        throw fail("directory " + Quote(dir.string()) + " does not exist");
-    TempFileGuard tmp{TempPathFor(target)};
-    try {
-        WriteExrChannels(tmp.path.string(), img.width, img.height, channels, attributes);
-    } catch (const std::runtime_error &e) {
-        throw fail(e.what());
-    }
-    std::error_code ec;
-    fs::rename(tmp.path, target, ec);
-    if (ec) throw fail(ec.message());
-    tmp.armed = false;
+    WriteImageAtomically(path, [&](const std::string &tmpName) {
+        WriteExrChannels(tmpName, img.width, img.height, channels, attributes);
+    });
 }
 
 }  // namespace prism
