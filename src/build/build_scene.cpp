@@ -5,6 +5,7 @@
 #include "build/camera_film.h"
 #include "build/lights.h"
 #include "build/materials.h"
+#include "build/media.h"
 #include "build/scene_effects.h"
 #include "build/shapes.h"
 #include "build/textures.h"
@@ -25,6 +26,7 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     BuildIntegratorSettings(ctx);
     BuildTextures(ctx);
     BuildLights(ctx);
+    BuildMedia(ctx);
     MaterialBuilder materials(ctx);  // created on demand, as shapes use them
     BuildShapesAndInstances(ctx, materials);
     FinishEffects(ctx);

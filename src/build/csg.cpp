@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "build/media.h"
 #include "build/shape_factory.h"
 #include "core/memory.h"
 
@@ -55,6 +56,7 @@ struct CsgBuilder : BuildStep {
         }
         if (int(operands.size()) <= leaf) operands.resize(size_t(leaf) + 1);
         operands[size_t(leaf)] = {material, -1, s.directiveIndex, s.type, -1};
+        NoteShapeMedia(ctx, s, &operands[size_t(leaf)]);
         return leaf;
     }
 

@@ -6,6 +6,7 @@
 
 #include "build/csg.h"
 #include "build/lights.h"
+#include "build/media.h"
 #include "build/scene_effects.h"
 #include "build/shape_factory.h"
 #include "build/textures.h"
@@ -155,6 +156,7 @@ struct ShapeBuilder : BuildStep {
         }
         if (int(infos.size()) <= index) infos.resize(size_t(index) + 1);
         infos[size_t(index)] = {material, -1, s.directiveIndex, s.type, -1};
+        NoteShapeMedia(ctx, s, &infos[size_t(index)]);
         const Material &m = scene.materials[size_t(material)];
         accel.SetSurfaceNeeds(index, m.SurfaceNeeds());
         if (m.MayReflectSpecularly()) scene.features.specularReflection = true;

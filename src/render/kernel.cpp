@@ -13,6 +13,8 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
 
 uint32_t KernelMaskFor(const RenderScene &scene) {
     const EffectSet &e = scene.features.effects;
+    // Media: the one general kernel with media compiled in (kernel_media.cpp).
+    if (e.Has(Effect::Media)) return KernelMediaMask;
     uint32_t mask = 0;
     // Recursion (specular or glossy) needs a second bounce.
     const bool recursion = scene.maxDepth > 1;
@@ -35,8 +37,13 @@ uint32_t KernelMaskFor(const RenderScene &scene) {
     return KernelCanonical(mask);
 }
 
+uint32_t KernelAllFor(const RenderScene &scene) {
+    return scene.features.effects.Has(Effect::Media) ? KernelMediaMask : KernelAll;
+}
+
 std::string KernelMaskName(uint32_t mask) {
     if (mask == KernelAll) return "all";
+    if (mask == KernelMediaMask) return "all+media";
     static const char *const names[KernelBits] = {"specular",       "glossy",       "light samples",
                                                   "camera samples", "pass-through", "BSDF"};
     std::string s;
@@ -56,6 +63,7 @@ constexpr std::array<RenderTileFn, sizeof...(M)> MakeTable(std::index_sequence<M
 }  // namespace
 
 RenderTileFn KernelRenderTile(uint32_t mask) {
+    if (mask & KernelMedia) return &RenderTileKernel<KernelMediaMask>;
     static const std::array<RenderTileFn, KernelAll + 1> table =
         MakeTable(std::make_index_sequence<KernelAll + 1>());
     return table[mask & KernelAll];

@@ -9,6 +9,11 @@
 // KernelBits bits are instantiated, compiled in parallel over kernel_*.cpp); textures, CSG and
 // instancing live below the kernel (in materials and in the BVH) and cost nothing where absent
 // without a bit of their own.
+//
+// Participating media are the one exception to "a kernel per mask": scenes with media run one
+// instantiation, KernelAll | KernelMedia (the general kernel with media compiled in; see
+// render/kernel_media.h), so media double no masks and media-free scenes run exactly the
+// kernels they ran before.
 #pragma once
 
 #include <cstdint>
@@ -36,12 +41,20 @@ enum KernelBit : uint32_t {
     // Materials other than Lambertian matte: BSDFs are built and evaluated. Without it (every
     // material Lambertian, so nothing specular or glossy either) f is kd/π.
     KernelBsdf = 1u << 5,
+    // Participating media: rays carry their medium (SampleContext::medium), every segment is
+    // attenuated and ray-marched for single scattering. Only in KernelMediaMask.
+    KernelMedia = 1u << 6,
 };
-inline constexpr int KernelBits = 6;
+inline constexpr int KernelBits = 6;  // the bits of the per-effect masks (not KernelMedia)
 inline constexpr uint32_t KernelAll = (1u << KernelBits) - 1;
+// The one kernel of scenes with media.
+inline constexpr uint32_t KernelMediaMask = KernelAll | KernelMedia;
 
-// The smallest kernel mask that renders `scene` exactly (from scene.features.effects).
+// The smallest kernel mask that renders `scene` exactly (from scene.features.effects);
+// KernelMediaMask for scenes with media.
 uint32_t KernelMaskFor(const RenderScene &scene);
+// The general kernel for `scene` (--effects all): KernelAll, or KernelMediaMask with media.
+uint32_t KernelAllFor(const RenderScene &scene);
 // "specular+light samples", "none" (the diffuse kernel), "all".
 std::string KernelMaskName(uint32_t mask);
 
@@ -54,7 +67,9 @@ class Kernel {
     static constexpr bool CameraSamples = (K & KernelCameraSamples) != 0;
     static constexpr bool PassThrough = (K & KernelPassThrough) != 0;
     static constexpr bool GeneralBsdf = (K & KernelBsdf) != 0;
+    static constexpr bool Media = (K & KernelMedia) != 0;
     static_assert(GeneralBsdf || !(Specular || Glossy), "a Lambertian kernel does not bounce");
+    static_assert(!Media || K == KernelMediaMask, "media run in the general kernel only");
 
     // glossyRays: trace glossy rays (Integrator "distribution"); read only when Glossy.
     Kernel(const RenderScene &scene, bool glossyRays) : scene_(scene), glossyRays_(glossyRays) {}
@@ -90,6 +105,21 @@ class Kernel {
                    bool hasDiffuse, int depth, RayCounters &counters, const SampleContext &sc,
                    RGB &L) const;
 
+    // Media (render/kernel_media.h). The radiance along ray (in sc.medium) whose closest hit
+    // is si (hit false: it escapes): single scattering along each segment plus the
+    // transmittance times what lies beyond, continuing through "none" surfaces (which may
+    // change the medium) up to the first visible surface.
+    RGB LiMedia(Ray ray, bool hit, SurfaceInteraction si, int depth, RayCounters &counters,
+                const SampleContext &sc, bool emitted) const;
+    // Light scattered toward ray.o by the medium along [0, tEnd) of ray, ray-marched toward
+    // the delta lights (pbrt-v2's SingleScatteringIntegrator).
+    RGB InScattered(const Ray &ray, float tEnd, int medium, int depth, RayCounters &counters,
+                    const SampleContext &sc) const;
+    // Transmittance of a shadow ray that starts in `medium`, through "none" surfaces (pbrt-v3's
+    // VisibilityTester::Tr): 0 when a visible surface blocks it.
+    RGB ShadowTransmittance(Ray ray, int medium, bool infinite, RayCounters &counters,
+                            uint64_t seed) const;
+
     const RenderScene &scene_;
     bool glossyRays_;
 };
@@ -102,7 +132,7 @@ struct TileScratch {
 // Renders the pixels tb of one tile with Kernel<mask> into `tile`.
 using RenderTileFn = void (*)(const RenderScene &scene, Bounds2i tb, RayCounters &rc,
                               TileScratch &buf, FilmTile *tile);
-RenderTileFn KernelRenderTile(uint32_t mask);
+RenderTileFn KernelRenderTile(uint32_t mask);  // KernelMedia set: the media kernel
 
 // The instantiated mask that runs `mask`: KernelBsdf is added where the mask bounces (a
 // Lambertian kernel has no specular or glossy code).

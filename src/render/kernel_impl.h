@@ -11,6 +11,7 @@
 #include "render/bsdf.h"
 #include "render/distribution_integrator.h"
 #include "render/kernel.h"
+#include "render/medium.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
@@ -23,6 +24,13 @@ inline constexpr int MaxPassThrough = 256;
 
 // TimePurpose: a pattern of its own, so the time dimension shifts no other.
 enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1, TimePurpose = 0x74696d65 };
+
+// Media (render/kernel_media.h): the purposes of the march offsets and of the random streams
+// of shadow rays through heterogeneous media, and the seed of such a stream for a sample.
+enum MediumPurpose : uint32_t { MediumMarchPurpose = 0x6d617263, MediumShadowPurpose = 0x73686477 };
+inline uint64_t MediumSeed(const SampleContext &sc, uint32_t purpose) {
+    return (uint64_t(PatternSeed(sc.x, sc.y, purpose)) << 32) | sc.sample;
+}
 
 template <uint32_t K>
 RGB Kernel<K>::Escaped(const Ray &ray) const {
@@ -38,13 +46,25 @@ template <uint32_t K>
 RGB Kernel<K>::Li(const Ray &ray, int depth, RayCounters &counters, const SampleContext &sc,
                   bool emitted) const {
     SurfaceInteraction si;
-    if (!scene_.accel->Intersect(ray, &si)) return Escaped(ray);
-    return Shade(ray, si, depth, counters, sc, emitted);
+    if constexpr (Media) {
+        const bool hit = scene_.accel->Intersect(ray, &si);
+        return LiMedia(ray, hit, si, depth, counters, sc, emitted);
+    } else {
+        if (!scene_.accel->Intersect(ray, &si)) return Escaped(ray);
+        return Shade(ray, si, depth, counters, sc, emitted);
+    }
 }
 
 template <uint32_t K>
 RGB Kernel<K>::LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
                         const SampleContext &sc) const {
+    if constexpr (Media) {
+        // Camera rays start in the camera's medium.
+        SampleContext c = sc;
+        c.medium = scene_.cameraMedium;
+        if (hit.shape < 0) return LiMedia(ray, false, SurfaceInteraction{}, 0, counters, c, true);
+        return LiMedia(ray, true, scene_.accel->Interaction(ray, hit), 0, counters, c, true);
+    }
     if (hit.shape < 0) return Escaped(ray);
     return Shade(ray, scene_.accel->Interaction(ray, hit), 0, counters, sc, true);
 }
@@ -166,8 +186,19 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
                 Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene_.offset)
                                          : si.SpawnRayTo(ls.pLight, scene_.offset);
                 counters.shadow++;
-                if (scene_.accel->Occluded(shadow)) continue;
-                Lj += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
+                if constexpr (Media) {
+                    // Through the media and invisible boundaries toward the light.
+                    const int medium = MediumAfter(scene_.Info(si), si, ls.wi, sc.medium);
+                    const RGB tr = ShadowTransmittance(
+                        shadow, medium, ls.infinite, counters,
+                        MediumSeed(sc, uint32_t(MediumShadowPurpose + j * 131 + size_t(k) * 7 +
+                                                size_t(depth) * 7919)));
+                    if (tr.IsBlack()) continue;
+                    Lj += fj * ls.Li * tr * (AbsDot(ls.wi, ns) / ls.pdf);
+                } else {
+                    if (scene_.accel->Occluded(shadow)) continue;
+                    Lj += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
+                }
             }
             L += n == 1 ? Lj : Lj / float(n);
         }
@@ -194,6 +225,7 @@ void Kernel<K>::AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int 
                 counters.cutoff++;
                 return;
             }
+            if constexpr (Media) next.medium = MediumAfter(scene_.Info(si), si, wi, sc.medium);
             kind++;
             L += weight * Li(si.SpawnRay(wi, scene_.offset), depth + 1, counters, next);
         };
@@ -241,6 +273,7 @@ void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, Glossy
             SampleContext next = sc;
             next.beta = sc.beta * weight;
             next.afterGlossy = true;
+            if constexpr (Media) next.medium = MediumAfter(scene_.Info(si), si, wi, sc.medium);
             if (refine) {
                 next.sample = index;
                 next.spp = sc.spp * n;
@@ -346,6 +379,12 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                 tile->AddSample(buf.pFilm[i], buf.L[i]);
             }
 }
+
+}  // namespace prism
+
+#include "render/kernel_media.h"
+
+namespace prism {
 
 // Explicit instantiation of one mask (kernel_*.cpp).
 #define PRISM_INSTANTIATE_KERNEL(M)                                                                \

@@ -15,6 +15,7 @@
 #include "render/effects.h"
 #include "render/light.h"
 #include "render/material.h"
+#include "render/medium.h"
 
 namespace prism {
 
@@ -51,7 +52,18 @@ struct ShapeInfo {
     std::string type;
     int prototype = -1;  // instances: index into RenderScene::prototypes
     int instance = -1;   // instances: index into SceneDescription::instances (pick, AOVs)
+    // MediumInterface (RenderScene::media; -1: vacuum). Equal media are no transition: a ray
+    // crossing the surface keeps its medium (pbrt-v3 GeometricPrimitive).
+    int mediumInside = -1, mediumOutside = -1;
 };
+
+// The medium of a ray leaving the surface of si (of shape s) in direction w, when the ray
+// that reached it was in `current` (pbrt-v3 Interaction::GetMedium).
+inline int MediumAfter(const ShapeInfo &s, const SurfaceInteraction &si, const Vec3f &w,
+                       int current) {
+    if (s.mediumInside == s.mediumOutside) return current;
+    return Dot(w, si.n) > 0 ? s.mediumOutside : s.mediumInside;
+}
 
 struct RenderScene {
     std::unique_ptr<Accel> accel;
@@ -88,6 +100,11 @@ struct RenderScene {
     std::string integratorName;
     IntegratorKind integrator = IntegratorKind::Whitted;
     int glossySamples = DefaultGlossySamples;  // DistributionIntegrator only
+    // Participating media (MakeNamedMedium, in directive order) and the camera's (pbrt-v3: the
+    // outside medium of the MediumInterface current at Camera; -1: none). Rays carry their
+    // medium only when features.effects has Effect::Media (render/kernel.h KernelMedia).
+    std::vector<std::unique_ptr<Medium>> media;
+    int cameraMedium = -1;
     SceneFeatures features;
     // --effects all: render with the general kernel instead of the one specialized for
     // features.effects (render/kernel.h; same image, for comparison).

@@ -81,7 +81,7 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
     std::atomic<int> done{0};
     // The kernel is chosen here, once per render: the one specialized for the scene's effects
     // (render/kernel.h), or the general one for --effects all.
-    const uint32_t kernelMask = scene.allEffects ? KernelAll : KernelMaskFor(scene);
+    const uint32_t kernelMask = scene.allEffects ? KernelAllFor(scene) : KernelMaskFor(scene);
     const RenderTileFn renderTile = KernelRenderTile(kernelMask);
 
     // Progress is reported from a helper thread so worker threads never block on output.
@@ -145,7 +145,7 @@ namespace prism {
 
 FrameTiles::FrameTiles(const RenderScene &scene)
     : scene_(scene),
-      kernelMask_(scene.allEffects ? KernelAll : KernelMaskFor(scene)),
+      kernelMask_(scene.allEffects ? KernelAllFor(scene) : KernelMaskFor(scene)),
       film_(std::make_unique<TiledFilm>(scene.resolution, scene.pixelBounds, scene.filter,
                                         RenderTileSize)) {}
 

@@ -445,7 +445,8 @@ void PbrtParser::ParseDirective(Tokenizer &tok, const Token &dir) {
             break;
         }
         case Directive::MediumInterface: {
-            std::string inside = str("medium name"), outside;
+            // pbrt-v3: one name is both the inside and the outside medium.
+            std::string inside = str("medium name"), outside = inside;
             if (tok.Peek().kind == TokenKind::String) outside = Tokenizer::StringValue(tok.Next());
             t.MediumInterface(inside, outside, loc);
             break;

@@ -91,7 +91,7 @@ class PbrtTarget {
     virtual void ObjectInstance(const std::string &name, const FileLoc &loc) = 0;
     virtual void MakeNamedMedium(const std::string &name, ParsedParameterVector params,
                                  const FileLoc &loc) = 0;
-    // `outside` is empty when the directive names one medium.
+    // One name is both media (pbrt-v3); "" is no medium (vacuum).
     virtual void MediumInterface(const std::string &inside, const std::string &outside,
                                  const FileLoc &loc) = 0;
     virtual void Attribute(const std::string &target, ParsedParameterVector params,

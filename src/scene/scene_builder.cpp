@@ -253,6 +253,10 @@ void SceneBuilder::Camera(const std::string &type, ParsedParameterVector params,
     cam.cameraFromWorld = ctm_;
     cam.motion = Motion();
     cam.specified = true;
+    // pbrt-v3: the camera is in the current outside medium (resolved at the end of the files,
+    // so the medium may be defined after the Camera directive).
+    cameraMedium_ = gs_.mediumOutside;
+    cam.mediumLoc = gs_.mediumLoc;
     // As pbrt-v3 pbrtCamera: "camera" names the camera-to-world frame.
     namedCoordSys_["camera"] = {ctm_.Inverse(), ctmEnd_.Inverse()};
 }
@@ -401,6 +405,9 @@ void SceneBuilder::Shape(const std::string &type, ParsedParameterVector params,
     s.reverseOrientation = gs_.reverseOrientation;
     s.material = gs_.material;
     s.areaLight = gs_.areaLight;
+    s.mediumInside = MediumIndex(gs_.mediumInside, gs_.mediumLoc);
+    s.mediumOutside = MediumIndex(gs_.mediumOutside, gs_.mediumLoc);
+    s.mediumLoc = gs_.mediumLoc;
     if (!csgStack_.empty()) {
         CsgDesc &node = csgStack_.back();
         s.directiveIndex = shapeCount_++;
@@ -479,16 +486,6 @@ void SceneBuilder::CSGEnd(const FileLoc &loc) {
     }
 }
 
-void SceneBuilder::MakeNamedMedium(const std::string &, ParsedParameterVector params,
-                                   const FileLoc &loc) {
-    Params(std::move(params));
-    diag_.Warn(loc, "participating media are not supported");
-}
-
-void SceneBuilder::MediumInterface(const std::string &, const std::string &, const FileLoc &loc) {
-    diag_.Warn(loc, "participating media are not supported");
-}
-
 void SceneBuilder::Attribute(const std::string &, ParsedParameterVector params,
                              const FileLoc &loc) {
     Params(std::move(params));
@@ -496,6 +493,8 @@ void SceneBuilder::Attribute(const std::string &, ParsedParameterVector params,
 }
 
 void SceneBuilder::EndOfFiles() {
+    if (!cameraMedium_.empty())
+        scene_.camera.medium = MediumIndex(cameraMedium_, scene_.camera.mediumLoc);
     if (!csgStack_.empty())
         throw SceneError(csgStack_.back().loc, "CSGBegin without matching CSGEnd");
     if (currentObject_) {

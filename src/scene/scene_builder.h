@@ -88,6 +88,9 @@ class SceneBuilder final : public PbrtTarget {
         int material = -1;
         int areaLight = -1;
         bool reverseOrientation = false;
+        // MediumInterface: the media's names ("" none) and the directive.
+        std::string mediumInside, mediumOutside;
+        FileLoc mediumLoc;
     };
     enum class FrameKind { Attribute, Transform, Object };
     struct Frame {
@@ -123,6 +126,9 @@ class SceneBuilder final : public PbrtTarget {
     void WarnUnclosedFrames();
     // The CTM's end-time transform and times for an entity declared now (empty if static).
     std::optional<TransformMotion> Motion() const;
+    // The index of the medium named `name` ("": -1), or an error at the MediumInterface
+    // directive `loc` that named it (scene_builder_media.cpp).
+    int MediumIndex(const std::string &name, const FileLoc &loc) const;
 
     SceneDescription scene_;
     Diagnostics &diag_;
@@ -143,6 +149,9 @@ class SceneBuilder final : public PbrtTarget {
     std::optional<ObjectDesc> currentObject_;
     std::vector<CsgDesc> csgStack_;  // open CSGBegin nodes, innermost last
     std::unordered_map<std::string, RGB> spdCache_;
+    // Named media are global, as in pbrt-v3 (not scoped by AttributeBegin/End).
+    std::unordered_map<std::string, int> namedMedia_;
+    std::string cameraMedium_;  // the outside medium at Camera, resolved at EndOfFiles
     bool inWorld_ = false, worldEnded_ = false;
     int shapeCount_ = 0;
 };

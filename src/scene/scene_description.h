@@ -35,6 +35,10 @@ struct CameraDesc : SceneEntity {
     Transform cameraFromWorld;              // CTM at the Camera directive (start time)
     std::optional<TransformMotion> motion;  // cameraFromWorld at the end time, if it moves
     bool specified = false;                 // false → reader default (perspective, identity)
+    // The camera's medium (pbrt-v3 CameraMedium: the outside medium of the MediumInterface
+    // current at Camera; index into SceneDescription::media, -1: none) and that directive.
+    int medium = -1;
+    FileLoc mediumLoc;
 };
 
 struct TextureDesc : SceneEntity {
@@ -45,6 +49,13 @@ struct TextureDesc : SceneEntity {
 
 struct MaterialDesc : SceneEntity {
     std::string name;  // for named materials; "" for anonymous Material directives
+};
+
+// MakeNamedMedium: type "homogeneous" or "heterogeneous" (the "type" parameter), with the CTM
+// at the directive (a grid's placement).
+struct MediumDesc : SceneEntity {
+    std::string name;
+    Transform worldFromMedium;
 };
 
 struct LightDesc : SceneEntity {
@@ -63,6 +74,9 @@ struct ShapeDesc : SceneEntity {
     int areaLight = -1;      // index into SceneDescription::areaLights; -1 = not emissive
     int directiveIndex = 0;  // 0-based Shape directive order in the top-level file
     std::string name;        // OBJ object/group name, glTF mesh name ("" for pbrt shapes)
+    // MediumInterface (indices into SceneDescription::media; -1: vacuum) and its directive.
+    int mediumInside = -1, mediumOutside = -1;
+    FileLoc mediumLoc;
 };
 
 // ObjectBegin/ObjectEnd: shapes recorded with the CTM at their declaration.
@@ -128,10 +142,11 @@ struct SceneDescription {
     std::vector<AreaLightDesc> areaLights;
     std::vector<ObjectDesc> objects;
     std::vector<InstanceDesc> instances;
-    std::vector<CsgDesc> csg;  // top-level CSG nodes (nested ones are their children)
-    std::string baseDir;       // directory of the top-level file: relative paths resolve here
-    std::string sourceFile;    // the top-level file
-    std::string format;        // "pbrt", "obj", "gltf", "ply"
+    std::vector<CsgDesc> csg;       // top-level CSG nodes (nested ones are their children)
+    std::vector<MediumDesc> media;  // MakeNamedMedium, in directive order
+    std::string baseDir;            // directory of the top-level file: relative paths resolve here
+    std::string sourceFile;         // the top-level file
+    std::string format;             // "pbrt", "obj", "gltf", "ply"
     std::vector<EmbeddedImage> embeddedImages;
     // Informational notes from the reader about what it supplied or interpreted, e.g. "no
     // camera in file: framed the bounding box" (not warnings: nothing is wrong with the file).

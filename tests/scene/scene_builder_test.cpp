@@ -146,7 +146,8 @@ TEST(PbrtParser, SendsDirectivesToTheTargetWithoutInterpretingThem) {
         "Shape:sphere,quaternion q=4n0s,string s=0n1s@main.pbrt:3",
         "NamedMaterial:nope@main.pbrt:4",
         "ActiveTransform:1@main.pbrt:5",
-        "MediumInterface:a,@main.pbrt:6",
+        // One name is both media, as pbrt-v3's parser reads it (issue 14; it was "a,").
+        "MediumInterface:a,a@main.pbrt:6",
         "Transform:5@main.pbrt:7",
         "EndOfFiles",
     };
