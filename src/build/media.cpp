@@ -92,8 +92,9 @@ std::unique_ptr<Medium> MakeMedium(BuildContext &ctx, const MediumDesc &m) {
     CheckNonNegative(m, "sigma_a", sigmaA);
     CheckNonNegative(m, "sigma_s", sigmaS);
     if (!(scale >= 0) || !std::isfinite(scale))
-        throw SceneError(ParamLoc(m, "scale"), context + ": \"scale\" must be finite and not "
-                                                         "negative");
+        throw SceneError(ParamLoc(m, "scale"), context +
+                                                   ": \"scale\" must be finite and not "
+                                                   "negative");
     if (!(std::abs(g) < 1))
         throw SceneError(ParamLoc(m, "g"), context + ": \"g\" must lie in (-1, 1)");
     sigmaA *= scale;
@@ -123,17 +124,20 @@ std::unique_ptr<Medium> MakeMedium(BuildContext &ctx, const MediumDesc &m) {
             if (!(d >= 0) || !std::isfinite(d))
                 throw SceneError(ParamLoc(m, "density"),
                                  context + ": \"density\" values must be finite and not negative");
-        const Vec3f p0 = ps.GetPoint3("p0", Vec3f(0, 0, 0)), p1 = ps.GetPoint3("p1", Vec3f(1, 1, 1));
+        const Vec3f p0 = ps.GetPoint3("p0", Vec3f(0, 0, 0)),
+                    p1 = ps.GetPoint3("p1", Vec3f(1, 1, 1));
         if (!(p0.x < p1.x && p0.y < p1.y && p0.z < p1.z))
-            throw SceneError(ParamLoc(m, "p1"), context + ": \"p1\" must exceed \"p0\" on every axis");
+            throw SceneError(ParamLoc(m, "p1"),
+                             context + ": \"p1\" must exceed \"p0\" on every axis");
         const RGB sigmaT = sigmaA + sigmaS;
         if (sigmaT.r != sigmaT.g || sigmaT.r != sigmaT.b)
-            ctx.diag.Warn(m.loc, context + ": a heterogeneous medium's extinction sigma_a + "
-                                           "sigma_s is grey; its first (red) channel is used, "
-                                           "as in pbrt-v3");
-        medium = std::make_unique<GridDensityMedium>(
-            sigmaA, sigmaS, g, step, nx, ny, nz, std::move(density), p0, p1,
-            ctx.scene.renderFromWorld * m.worldFromMedium);
+            ctx.diag.Warn(m.loc, context +
+                                     ": a heterogeneous medium's extinction sigma_a + "
+                                     "sigma_s is grey; its first (red) channel is used, "
+                                     "as in pbrt-v3");
+        medium = std::make_unique<GridDensityMedium>(sigmaA, sigmaS, g, step, nx, ny, nz,
+                                                     std::move(density), p0, p1,
+                                                     ctx.scene.renderFromWorld * m.worldFromMedium);
     } else {
         throw SceneError(m.loc, "unknown medium type " + Quote(m.type) +
                                     " (expected \"homogeneous\" or \"heterogeneous\")");
@@ -149,18 +153,20 @@ void BuildMedia(BuildContext &ctx) {
     const CameraDesc &cam = ctx.desc.camera;
     ctx.scene.cameraMedium = cam.medium;
     if (cam.medium >= 0)
-        ctx.scene.features.effects.Enable(
-            Effect::Media,
-            "camera medium " + Quote(ctx.desc.media[size_t(cam.medium)].name) +
-                " (MediumInterface)",
-            cam.mediumLoc);
+        ctx.scene.features.effects.Enable(Effect::Media,
+                                          "camera medium " +
+                                              Quote(ctx.desc.media[size_t(cam.medium)].name) +
+                                              " (MediumInterface)",
+                                          cam.mediumLoc);
 }
 
 void NoteShapeMedia(BuildContext &ctx, const ShapeDesc &s, ShapeInfo *info) {
     info->mediumInside = s.mediumInside;
     info->mediumOutside = s.mediumOutside;
     if (s.mediumInside == s.mediumOutside) return;  // no transition: nothing changes
-    auto name = [&](int i) { return i < 0 ? std::string("\"\"") : Quote(ctx.desc.media[size_t(i)].name); };
+    auto name = [&](int i) {
+        return i < 0 ? std::string("\"\"") : Quote(ctx.desc.media[size_t(i)].name);
+    };
     ctx.scene.features.effects.Enable(
         Effect::Media, "MediumInterface " + name(s.mediumInside) + " " + name(s.mediumOutside),
         s.mediumLoc);

@@ -28,8 +28,8 @@ enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1, TimePurpose = 
 // Media (render/kernel_media.h): the purposes of the march offsets and of the random streams
 // of shadow rays through heterogeneous media, and the seed of such a stream for a sample.
 enum MediumPurpose : uint32_t { MediumMarchPurpose = 0x6d617263, MediumShadowPurpose = 0x73686477 };
-inline uint64_t MediumSeed(const SampleContext &sc, uint32_t purpose) {
-    return (uint64_t(PatternSeed(sc.x, sc.y, purpose)) << 32) | sc.sample;
+inline uint64_t MediumSeed(const SampleContext &sc, uint32_t purpose, uint32_t sampleSeed) {
+    return (uint64_t(PatternSeed(sc.x, sc.y, purpose, sampleSeed)) << 32) | sc.sample;
 }
 
 template <uint32_t K>
@@ -172,7 +172,8 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
                                (glossy == GlossyRays::Environment && !light.IsArea()));
             if (byGlossyRays && !hasDiffuse) continue;
             uint32_t seed =
-                usesSample ? PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919))
+                usesSample ? PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919),
+                                         scene_.sampleSeed)
                            : 0;
             RGB Lj;
             for (int k = 0; k < n; ++k) {
@@ -191,8 +192,10 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
                     const int medium = MediumAfter(scene_.Info(si), si, ls.wi, sc.medium);
                     const RGB tr = ShadowTransmittance(
                         shadow, medium, ls.infinite, counters,
-                        MediumSeed(sc, uint32_t(MediumShadowPurpose + j * 131 + size_t(k) * 7 +
-                                                size_t(depth) * 7919)));
+                        MediumSeed(sc,
+                                   uint32_t(MediumShadowPurpose + j * 131 + size_t(k) * 7 +
+                                            size_t(depth) * 7919),
+                                   scene_.sampleSeed));
                     if (tr.IsBlack()) continue;
                     Lj += fj * ls.Li * tr * (AbsDot(ls.wi, ns) / ls.pdf);
                 } else {
@@ -261,7 +264,7 @@ void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, Glossy
         // A stratified pattern over the pixel's samples × n, per pixel, depth and part.
         const uint32_t seed =
             PatternSeed(sc.x, sc.y, uint32_t(0x6c6f7373u + uint32_t(depth) * 977u + uint32_t(part)),
-                        sc.afterGlossy ? 0x9e3779b9u : 0u);
+                        (sc.afterGlossy ? 0x9e3779b9u : 0u) + scene_.sampleSeed);
         for (uint32_t k = 0; k < n; ++k) {
             const uint32_t index = sc.sample * n + k;
             Vec2f u = CMJSample(index, sc.spp * n, seed);
@@ -304,6 +307,9 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
     // pixel's samples; scenes where nothing moves keep time 0 and draw nothing.
     const bool motion = Kernel<K>::CameraSamples && scene.features.effects.Has(Effect::MotionBlur);
     const uint32_t spp = uint32_t(scene.spp);
+    // One sample per pixel sits at the pixel centre, except in the later passes of a
+    // progressive render (render/progressive.h), whose pattern seeds differ.
+    const bool jitter = spp > 1 || scene.sampleSeed != 0;
     const int w = tb.pMax.x - tb.pMin.x, h = tb.pMax.y - tb.pMin.y;
     const size_t n = size_t(w) * size_t(h) * spp;
     if (buf.L.size() < n) {
@@ -323,14 +329,16 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
             const int ex = std::min(bx + PacketW, tb.pMax.x),
                       ey = std::min(by + PacketH, tb.pMax.y);
             // The packet's pattern seeds, once for all its samples.
-            if (spp > 1 || lens || motion) {
+            if (jitter || lens || motion) {
                 int m = 0;
                 for (int y = by; y < ey; ++y)
                     for (int x = bx; x < ex; ++x, ++m) {
-                        filmSeed[m] = PatternSeed(x, y, FilmPurpose);
+                        filmSeed[m] = PatternSeed(x, y, FilmPurpose, scene.sampleSeed);
                         if constexpr (Kernel<K>::CameraSamples) {
-                            lensSeed[m] = lens ? PatternSeed(x, y, LensPurpose) : 0;
-                            timeSeed[m] = motion ? PatternSeed(x, y, TimePurpose) : 0;
+                            lensSeed[m] =
+                                lens ? PatternSeed(x, y, LensPurpose, scene.sampleSeed) : 0;
+                            timeSeed[m] =
+                                motion ? PatternSeed(x, y, TimePurpose, scene.sampleSeed) : 0;
                         }
                     }
             }
@@ -339,7 +347,7 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                 for (int y = by; y < ey; ++y) {
                     for (int x = bx; x < ex; ++x, ++m) {
                         // One sample: the pixel centre; more: correlated multi-jittered.
-                        Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : cmj.Sample(s, filmSeed[m]);
+                        Vec2f u = jitter ? cmj.Sample(s, filmSeed[m]) : Vec2f(0.5f, 0.5f);
                         Vec2f pFilm(float(x) + u.x, float(y) + u.y);
                         Vec2f uLens(0.5f, 0.5f);
                         float time = 0;

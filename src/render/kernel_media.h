@@ -22,8 +22,8 @@ inline Ray MediumSegment(const Ray &ray, const Vec3f &from, const Vec3f *to) {
     Ray segment = ray;
     segment.o = from;
     const Vec3f end = to ? *to : ray.At(ray.tMax);
-    segment.tMax = ray.tMax < Infinity || to ? Dot(end - from, ray.d) / Dot(ray.d, ray.d)
-                                             : Infinity;
+    segment.tMax =
+        ray.tMax < Infinity || to ? Dot(end - from, ray.d) / Dot(ray.d, ray.d) : Infinity;
     return segment;
 }
 
@@ -45,7 +45,8 @@ RGB Kernel<K>::LiMedia(Ray ray, bool hit, SurfaceInteraction si, int depth, RayC
             const Ray segment = MediumSegment(ray, from, hit ? &si.p : nullptr);
             L += T * InScattered(segment, segment.tMax, medium, depth, counters, sc);
             MediumSampler sampler(
-                MediumSeed(sc, MediumShadowPurpose ^ uint32_t(depth * 977 + pass * 31 + 1)));
+                MediumSeed(sc, MediumShadowPurpose ^ uint32_t(depth * 977 + pass * 31 + 1),
+                           scene_.sampleSeed));
             T *= scene_.media[size_t(medium)]->Tr(segment, sampler);
             if (T.IsBlack()) return L;
         }
@@ -90,10 +91,10 @@ RGB Kernel<K>::InScattered(const Ray &ray, float tEnd, int mediumIndex, int dept
     const int n = int(std::clamp(steps, minSteps, float(MaxMarchSteps)));
     const float dt = (t1 - t0) / float(n);
     // One jittered offset per sample, stratified over the pixel's samples.
-    const float u =
-        CMJSample(sc.sample, sc.spp,
-                  PatternSeed(sc.x, sc.y, MediumMarchPurpose + uint32_t(depth) * 977u))
-            .x;
+    const float u = CMJSample(sc.sample, sc.spp,
+                              PatternSeed(sc.x, sc.y, MediumMarchPurpose + uint32_t(depth) * 977u,
+                                          scene_.sampleSeed))
+                        .x;
     SurfaceInteraction at;
     at.wo = -ray.d / len;
     at.time = ray.time;
@@ -119,11 +120,10 @@ RGB Kernel<K>::InScattered(const Ray &ray, float tEnd, int mediumIndex, int dept
             Ray shadow{at.p, ls.infinite ? ls.wi : ls.pLight - at.p,
                        ls.infinite ? Infinity : 1 - ShadowEpsilon, 0, ray.time};
             counters.shadow++;
-            const uint32_t purpose =
-                MediumShadowPurpose + uint32_t(i) * 0x9e3779b9u + uint32_t(j * 131 + 17) +
-                uint32_t(depth) * 7919u;
+            const uint32_t purpose = MediumShadowPurpose + uint32_t(i) * 0x9e3779b9u +
+                                     uint32_t(j * 131 + 17) + uint32_t(depth) * 7919u;
             const RGB tr = ShadowTransmittance(shadow, mediumIndex, ls.infinite, counters,
-                                               MediumSeed(sc, purpose));
+                                               MediumSeed(sc, purpose, scene_.sampleSeed));
             Ls += T * ss * ls.Li * tr * (phase / ls.pdf);
         }
     }
@@ -147,7 +147,7 @@ RGB Kernel<K>::ShadowTransmittance(Ray ray, int medium, bool infinite, RayCounte
         if (shape && !scene_.materials[size_t(shape->material)].IsPassThrough()) return RGB(0);
         if (medium >= 0) {
             T *= scene_.media[size_t(medium)]->Tr(MediumSegment(ray, from, hit ? &si.p : nullptr),
-                                                 sampler);
+                                                  sampler);
             if (T.IsBlack()) return T;
         }
         if (!hit) return T;

@@ -57,8 +57,7 @@ RGB HomogeneousMedium::Sample(const Ray &ray, MediumSampler &sampler, MediumInte
     const int channel = std::min(int(sampler.Get1D() * 3), 2);
     const float u = sampler.Get1D();
     const float len = Length(ray.d);
-    const float dist =
-        sigmaT_[channel] > 0 ? -std::log(1 - u) / sigmaT_[channel] : MaxDistance;
+    const float dist = sigmaT_[channel] > 0 ? -std::log(1 - u) / sigmaT_[channel] : MaxDistance;
     const float t = std::min(dist / len, ray.tMax);
     *scattered = t < ray.tMax;
     if (*scattered) *mi = {ray.At(t), t};
@@ -86,16 +85,14 @@ RGB HomogeneousMedium::Tau(const Ray &ray, float t0, float t1) const {
 
 // Grid.
 
-GridDensityMedium::GridDensityMedium(const RGB &sigmaA, const RGB &sigmaS, float g,
-                                     float stepSize, int nx, int ny, int nz,
-                                     std::vector<float> density, const Vec3f &p0,
-                                     const Vec3f &p1, const Transform &renderFromMedium)
-    : Medium(sigmaA, sigmaS, g, stepSize), nx_(nx), ny_(ny), nz_(nz),
-      density_(std::move(density)) {
+GridDensityMedium::GridDensityMedium(const RGB &sigmaA, const RGB &sigmaS, float g, float stepSize,
+                                     int nx, int ny, int nz, std::vector<float> density,
+                                     const Vec3f &p0, const Vec3f &p1,
+                                     const Transform &renderFromMedium)
+    : Medium(sigmaA, sigmaS, g, stepSize), nx_(nx), ny_(ny), nz_(nz), density_(std::move(density)) {
     // pbrt-v3: the grid's [0,1]^3 maps to the box [p0, p1] of the medium's space.
     const Transform mediumFromGrid =
-        Translate(Vec3d(p0)) * Scale(double(p1.x) - p0.x, double(p1.y) - p0.y,
-                                     double(p1.z) - p0.z);
+        Translate(Vec3d(p0)) * Scale(double(p1.x) - p0.x, double(p1.y) - p0.y, double(p1.z) - p0.z);
     const Transform renderFromGrid = renderFromMedium * mediumFromGrid;
     gridFromRender_ = renderFromGrid.Inverse();
     voxelSize_ = std::min({Length(renderFromGrid.Vector(Vec3d(1.0 / nx, 0, 0))),

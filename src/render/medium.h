@@ -114,9 +114,9 @@ class HomogeneousMedium final : public Medium {
 class GridDensityMedium final : public Medium {
   public:
     // renderFromMedium: the CTM at MakeNamedMedium (with the render-space translation).
-    GridDensityMedium(const RGB &sigmaA, const RGB &sigmaS, float g, float stepSize, int nx,
-                      int ny, int nz, std::vector<float> density, const Vec3f &p0,
-                      const Vec3f &p1, const Transform &renderFromMedium);
+    GridDensityMedium(const RGB &sigmaA, const RGB &sigmaS, float g, float stepSize, int nx, int ny,
+                      int nz, std::vector<float> density, const Vec3f &p0, const Vec3f &p1,
+                      const Transform &renderFromMedium);
     const char *Name() const override { return "heterogeneous"; }
     RGB Tr(const Ray &ray, MediumSampler &sampler) const override;
     RGB Sample(const Ray &ray, MediumSampler &sampler, MediumInteraction *mi,

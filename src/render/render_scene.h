@@ -85,6 +85,12 @@ struct RenderScene {
     float filmScale = 1;
     float maxSampleLuminance = Infinity;
     int spp = 1;
+    // Mixed into every sample pattern's seed: 0 for a render, the pass's seed for the passes
+    // of a progressive render (render/progressive.h), whose samples must differ.
+    uint32_t sampleSeed = 0;
+    // --stats: the film also sums each pixel's even and odd samples apart, for the noise
+    // estimate (RenderStats::noiseVariance).
+    bool estimateNoise = false;
     int maxDepth = 5;
     // Accuracy knobs (BuildSettings): the ray-weight cutoff (0: every ray) and how spawned rays
     // leave a surface.

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -73,6 +74,7 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
              const volatile int *cancel) {
     auto start = std::chrono::steady_clock::now();
     TiledFilm film(scene.resolution, scene.pixelBounds, scene.filter, RenderTileSize);
+    if (scene.estimateNoise) film.EnableNoiseEstimate();
     int nTiles = film.NumTiles();
     TileMerger merger(film);
     std::atomic<int> nextTile{0};
@@ -135,8 +137,19 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
         stats->firstNonFinitePixel = film.FirstNonFinitePixel();
         stats->cancelled = cancelled;
         stats->kernelMask = kernelMask;
+        stats->noiseVariance = film.NoiseVariance();
+        stats->noisePixels = film.NoisePixels();
     }
     return img;
+}
+
+std::optional<double> RelativeStandardError(const Image &img, const RenderStats &stats) {
+    if (stats.noisePixels == 0) return std::nullopt;
+    double signal = 0;
+    for (float v : img.pixels)
+        if (std::isfinite(v)) signal += double(v) * double(v);
+    if (!(signal > 0)) return std::nullopt;
+    return std::sqrt(stats.noiseVariance / signal);
 }
 
 }  // namespace prism

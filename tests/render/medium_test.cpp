@@ -48,7 +48,8 @@ Rendered RenderText(const std::string &name, const std::string &text, int w = 1,
 }
 
 RGB Pixel(const Image &img, int x = 0, int y = 0) {
-    const float *p = &img.pixels[(size_t(y) * size_t(img.width) + size_t(x)) * size_t(img.channels)];
+    const float *p =
+        &img.pixels[(size_t(y) * size_t(img.width) + size_t(x)) * size_t(img.channels)];
     return {p[0], p[1], p[2]};
 }
 
@@ -199,8 +200,7 @@ TEST(Medium, SingleScatteringMatchesQuadrature) {
         const double dx = -lx, dy = -ly, dz = t - lz;  // from the light to the ray point
         const double d2 = dx * dx + dy * dy + dz * dz, d = std::sqrt(d2);
         const double cosTheta = -dz / d;  // between the light's travel and the way to the eye
-        const double phase =
-            (1 - g * g) / (4 * Pi * std::pow(1 + g * g - 2 * g * cosTheta, 1.5));
+        const double phase = (1 - g * g) / (4 * Pi * std::pow(1 + g * g - 2 * g * cosTheta, 1.5));
         return std::exp(-st * t) * ss * phase * I / d2 * std::exp(-st * d);
     };
     const int n = 400000;
@@ -255,9 +255,9 @@ TEST(Medium, SceneWithoutMediaIsUnchanged) {
         const char *integrator, *golden;
         uint64_t shadow, reflection, passThrough, glossy;
     };
-    for (const Case &c : {Case{"whitted", "nomedia_spot_64x48.exr", 12279, 2872, 1148, 0},
-                          Case{"distribution", "nomedia_spot_distribution_64x48.exr", 16756,
-                               3441, 1410, 5370}}) {
+    for (const Case &c :
+         {Case{"whitted", "nomedia_spot_64x48.exr", 12279, 2872, 1148, 0},
+          Case{"distribution", "nomedia_spot_distribution_64x48.exr", 16756, 3441, 1410, 5370}}) {
         SCOPED_TRACE(c.integrator);
         Diagnostics diag(false);
         SceneDescription desc = LoadScene(Source + "/tests/golden/nomedia_spot.pbrt", diag);
