@@ -181,6 +181,51 @@ TEST(Medium, ConstantDensityGridMatchesHomogeneous) {
     EXPECT_NEAR(t1, 4.f, 1e-5);
 }
 
+// A heterogeneous medium placed by the CTM at MakeNamedMedium, inside an invisible box: camera
+// rays through it by ratio tracking average to the grid's transmittance (density 1 with
+// pbrt-v3's half-voxel falloff at the faces along z: 1 - 1/8 of the unit depth).
+TEST(Medium, HeterogeneousGridPlacedByTheCtm) {
+    const std::string scene =
+        "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\" \"float fov\" [ 1 ]\n"
+        "WorldBegin\nAttributeBegin\nTranslate 0 0 3\n"
+        "MakeNamedMedium \"smoke\" \"string type\" \"heterogeneous\" \"rgb sigma_a\" [ 0.8 "
+        "0.8 0.8 ] \"rgb sigma_s\" [ 0 0 0 ] \"integer nx\" 2 \"integer ny\" 2 \"integer nz\" 2 "
+        "\"float density\" [ 1 1 1 1 1 1 1 1 ] \"point3 p0\" [ -5 -5 0 ] \"point3 p1\" [ 5 5 1 ]\n"
+        "AttributeEnd\nLightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nMaterial \"none\"\n"
+        "MediumInterface \"smoke\" \"\"\n" +
+        Box(-10, -10, 2, 10, 10, 5);
+    Rendered r = RenderText("grid.pbrt", scene, 1, 1, 1024);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings[0].ToString();
+    EXPECT_NEAR(Pixel(r.image).r, std::exp(-0.8 * 0.875), 0.01);
+}
+
+// The graphics state: media are named globally, MediumInterface is scoped by AttributeBegin,
+// one name is both media, and the camera takes the outside medium current at Camera.
+TEST(Medium, GraphicsState) {
+    Diagnostics diag(false);
+    SceneDescription d =
+        LoadScene(WriteTestFile(ScratchDir("medium") / "state.pbrt",
+                                "MakeNamedMedium \"a\" \"string type\" \"homogeneous\"\n"
+                                "MediumInterface \"a\"\nCamera \"perspective\"\nWorldBegin\n"
+                                "AttributeBegin\nTranslate 1 2 3\n"
+                                "MakeNamedMedium \"b\" \"string type\" \"homogeneous\"\n"
+                                "MediumInterface \"b\" \"\"\nShape \"sphere\"\nAttributeEnd\n"
+                                "Shape \"sphere\"\nMediumInterface \"\" \"b\"\nShape \"sphere\"\n"),
+                  diag);
+    ASSERT_EQ(d.media.size(), 2u);
+    EXPECT_EQ(d.media[1].worldFromMedium.Point(Vec3d(0, 0, 0)), Vec3d(1, 2, 3));
+    EXPECT_EQ(d.camera.medium, 0);
+    ASSERT_EQ(d.shapes.size(), 3u);
+    EXPECT_EQ(d.shapes[0].mediumInside, 1);
+    EXPECT_EQ(d.shapes[0].mediumOutside, -1);
+    EXPECT_EQ(d.shapes[0].mediumLoc.line, 8);
+    // After AttributeEnd: the interface before it ("a" on both sides: no transition).
+    EXPECT_EQ(d.shapes[1].mediumInside, 0);
+    EXPECT_EQ(d.shapes[1].mediumOutside, 0);
+    EXPECT_EQ(d.shapes[2].mediumInside, -1);
+    EXPECT_EQ(d.shapes[2].mediumOutside, 1);
+}
+
 // Single scattering from a point light into a camera inside an unbounded homogeneous medium,
 // against ∫ Tr(0,t) σs p(θ) I / d² Tr(t, light) dt by Simpson's rule.
 TEST(Medium, SingleScatteringMatchesQuadrature) {
