@@ -115,10 +115,6 @@ class Kernel {
     // the delta lights (pbrt-v2's SingleScatteringIntegrator).
     RGB InScattered(const Ray &ray, float tEnd, int medium, int depth, RayCounters &counters,
                     const SampleContext &sc) const;
-    // Transmittance of a shadow ray that starts in `medium`, through "none" surfaces (pbrt-v3's
-    // VisibilityTester::Tr): 0 when a visible surface blocks it.
-    RGB ShadowTransmittance(Ray ray, int medium, bool infinite, RayCounters &counters,
-                            uint64_t seed) const;
 
     const RenderScene &scene_;
     bool glossyRays_;

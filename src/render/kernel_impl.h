@@ -12,6 +12,7 @@
 #include "render/distribution_integrator.h"
 #include "render/kernel.h"
 #include "render/medium.h"
+#include "render/medium_tracking.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
@@ -190,12 +191,12 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
                 if constexpr (Media) {
                     // Through the media and invisible boundaries toward the light.
                     const int medium = MediumAfter(scene_.Info(si), si, ls.wi, sc.medium);
-                    const RGB tr = ShadowTransmittance(
-                        shadow, medium, ls.infinite, counters,
-                        MediumSeed(sc,
-                                   uint32_t(MediumShadowPurpose + j * 131 + size_t(k) * 7 +
-                                            size_t(depth) * 7919),
-                                   scene_.sampleSeed));
+                    MediumSampler sampler(MediumSeed(sc,
+                                                     uint32_t(MediumShadowPurpose + j * 131 +
+                                                              size_t(k) * 7 + size_t(depth) * 7919),
+                                                     scene_.sampleSeed));
+                    const RGB tr =
+                        ShadowTransmittance(scene_, shadow, medium, ls.infinite, sampler, counters);
                     if (tr.IsBlack()) continue;
                     Lj += fj * ls.Li * tr * (AbsDot(ls.wi, ns) / ls.pdf);
                 } else {

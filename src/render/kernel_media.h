@@ -12,20 +12,9 @@
 #include <cmath>
 
 #include "render/kernel.h"
+#include "render/medium_tracking.h"
 
 namespace prism {
-
-// The part of ray in a medium that begins at `from` (the previous boundary's hit point rather
-// than the spawned ray's origin, which its offset moves ahead) and ends at `to` (hit) or runs
-// to ray.tMax; the same direction, so its parameter measures distance as ray's does.
-inline Ray MediumSegment(const Ray &ray, const Vec3f &from, const Vec3f *to) {
-    Ray segment = ray;
-    segment.o = from;
-    const Vec3f end = to ? *to : ray.At(ray.tMax);
-    segment.tMax =
-        ray.tMax < Infinity || to ? Dot(end - from, ray.d) / Dot(ray.d, ray.d) : Infinity;
-    return segment;
-}
 
 // A ray march takes at most this many steps per segment (the step grows beyond it), and at
 // least MinMarchSteps when the medium chooses its step (no "stepsize").
@@ -122,41 +111,13 @@ RGB Kernel<K>::InScattered(const Ray &ray, float tEnd, int mediumIndex, int dept
             counters.shadow++;
             const uint32_t purpose = MediumShadowPurpose + uint32_t(i) * 0x9e3779b9u +
                                      uint32_t(j * 131 + 17) + uint32_t(depth) * 7919u;
-            const RGB tr = ShadowTransmittance(shadow, mediumIndex, ls.infinite, counters,
-                                               MediumSeed(sc, purpose, scene_.sampleSeed));
+            MediumSampler sampler(MediumSeed(sc, purpose, scene_.sampleSeed));
+            const RGB tr =
+                ShadowTransmittance(scene_, shadow, mediumIndex, ls.infinite, sampler, counters);
             Ls += T * ss * ls.Li * tr * (phase / ls.pdf);
         }
     }
     return Ls * (dt * len);
-}
-
-template <uint32_t K>
-RGB Kernel<K>::ShadowTransmittance(Ray ray, int medium, bool infinite, RayCounters &counters,
-                                   uint64_t seed) const {
-    MediumSampler sampler(seed);
-    // Most shadow rays cross no surface: one occlusion test, then the medium's transmittance.
-    if (!scene_.accel->Occluded(ray))
-        return medium >= 0 ? scene_.media[size_t(medium)]->Tr(ray, sampler) : RGB(1);
-    const Vec3f target = ray.o + ray.d;  // finite rays run to o + d (SpawnRayTo)
-    RGB T(1);
-    Vec3f from = ray.o;
-    for (int pass = 0;; ++pass) {
-        SurfaceInteraction si;
-        const bool hit = scene_.accel->Intersect(ray, &si);
-        const ShapeInfo *shape = hit ? &scene_.Info(si) : nullptr;
-        if (shape && !scene_.materials[size_t(shape->material)].IsPassThrough()) return RGB(0);
-        if (medium >= 0) {
-            T *= scene_.media[size_t(medium)]->Tr(MediumSegment(ray, from, hit ? &si.p : nullptr),
-                                                  sampler);
-            if (T.IsBlack()) return T;
-        }
-        if (!hit) return T;
-        if (pass >= MaxPassThrough) return RGB(0);
-        medium = MediumAfter(*shape, si, ray.d, medium);
-        from = si.p;
-        counters.passThrough++;
-        ray = infinite ? si.SpawnRay(ray.d, scene_.offset) : si.SpawnRayTo(target, scene_.offset);
-    }
 }
 
 }  // namespace prism
