@@ -113,7 +113,8 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
         // triangles are chosen by area).
         const double pdfArea = radiance_ ? prob / triangleAreas_[size_t(tri)] : 1 / meshArea_;
         pdf = float(pdfArea * dist2 / cosLight);
-        if (radiance_) {
+        // The texture only where the point emits toward si (else Li is 0 below anyway).
+        if (radiance_ && (twoSided_ || Dot(n, -w) > 0)) {
             // Embree's barycentrics of the point: u for vertex 1, v for vertex 2.
             const float eu = float(b1), ev = float(1 - b0 - b1);
             TextureContext tc{mesh_->UVAt(size_t(tri), eu, ev, 0), p,

@@ -48,7 +48,6 @@ int ComponentCount(int type) {
     }
 }
 
-
 }  // namespace
 
 AccessorView GltfConverter::View(int index, const std::string &what) {

@@ -116,16 +116,18 @@ TEST_F(GltfLighting, TexCoord1SelectsTheSecondUvSetInEverySlot) {
     };
     const std::string viaTransform =
         R"(, "extensions": {"KHR_texture_transform": {"texCoord": 1}})";
-    for (const auto &[tc, white] : std::vector<std::pair<std::string, bool>>{
-             {"", true}, {R"(, "texCoord": 0)", true}, {R"(, "texCoord": 1)", false},
-             {viaTransform, false}}) {
+    for (const auto &[tc, white] :
+         std::vector<std::pair<std::string, bool>>{{"", true},
+                                                   {R"(, "texCoord": 0)", true},
+                                                   {R"(, "texCoord": 1)", false},
+                                                   {viaTransform, false}}) {
         SCOPED_TRACE(tc);
         Built b = Build(Write("q.gltf", GltfTwoUvQuad(material(tc))));
         for (const Warning &w : b.warnings) ADD_FAILURE() << w.ToString();
         const float want = white ? 1.f : 0.f;
         SurfaceInteraction si;
-        ASSERT_TRUE(
-            b.scene.accel->Intersect(WorldRay(b.scene, Vec3f(0.1f, 0.5f, 1), Vec3f(0, 0, -1)), &si));
+        ASSERT_TRUE(b.scene.accel->Intersect(
+            WorldRay(b.scene, Vec3f(0.1f, 0.5f, 1), Vec3f(0, 0, -1)), &si));
         const ShapeInfo &info = b.scene.Info(si);
         const Material &m = b.scene.materials[size_t(info.material)];
         const TextureContext ctx{si.uv, si.p, si.uv1};
@@ -159,7 +161,8 @@ WorldBegin
 Material "matte" "rgb Kd" [1 1 1]
 Shape "trianglemesh" "point P" [-5 -5 0 5 -5 0 5 5 0 -5 5 0] "integer indices" [0 1 2 0 2 3]
 AttributeBegin
-)" + light + R"(
+)" + light +
+           R"(
 Material "matte" "rgb Kd" [0 0 0]
 Shape "trianglemesh" "point P" [0 0 1 1 0 1 1 1 1 0 1 1] "integer indices" [0 2 1 0 3 2]
   "float uv" [0 0 1 0 1 1 0 1]
@@ -188,12 +191,13 @@ AreaLightSource "diffuse" "rgb L" [2 2 2] "texture emissionmap" "em" "integer ns
     };
     // Floor radiance = Kd/pi × E, E = L × 4 corner irradiances.
     const double expected = 2 * 4 * CornerIrradiance(0.5, 0.5, 1) / Pi;
-    const double uniform = Mean(RenderFile(Write("u.pbrt", EmitterOverFloor(light("white.exr"))), 4));
+    const double uniform =
+        Mean(RenderFile(Write("u.pbrt", EmitterOverFloor(light("white.exr"))), 4));
     const double half = Mean(RenderFile(Write("h.pbrt", EmitterOverFloor(light("half.exr"))), 4));
-    const double constant = Mean(RenderFile(
-        Write("c.pbrt", EmitterOverFloor(R"(AreaLightSource "diffuse" "rgb L" [2 2 2]
+    const double constant = Mean(
+        RenderFile(Write("c.pbrt", EmitterOverFloor(R"(AreaLightSource "diffuse" "rgb L" [2 2 2]
   "integer nsamples" [64])")),
-        4));
+                   4));
     EXPECT_NEAR(constant, expected, 0.01 * expected);
     EXPECT_NEAR(uniform, expected, 0.01 * expected);
     EXPECT_NEAR(half, 0.5 * expected, 0.01 * expected);
@@ -210,9 +214,9 @@ TEST_F(GltfLighting, GltfEmissiveTextureIsANamedAreaLight) {
     EXPECT_TRUE(light.Textured());
     bool named = false;
     for (const LightShadows &l : b.scene.features.effects.lights)
-        named = named || (l.light.find("emissive texture of material \"panel\"") !=
-                              std::string::npos &&
-                          l.light.find("2 of 2 triangles") != std::string::npos);
+        named =
+            named || (l.light.find("emissive texture of material \"panel\"") != std::string::npos &&
+                      l.light.find("2 of 2 triangles") != std::string::npos);
     EXPECT_TRUE(named);
     EXPECT_TRUE(b.scene.features.effects.Has(Effect::SoftShadows));
     // Only an emissive texture: the studio rig still lights the model (key, fill, environment).
@@ -226,7 +230,8 @@ Camera "perspective" "float fov" [30]
 Film "image" "integer xresolution" [16] "integer yresolution" [16]
 Integrator "whitted"
 WorldBegin
-)" + lights + R"(
+)" + lights +
+           R"(
 Texture "ao" "spectrum" "imagemap" "string filename" "ao.exr"
 Material "gltf" "rgb basecolor" [0.8 0.8 0.8] "float metallic" [0] "float roughness" [0.6]
   "texture occlusionmap" "ao" "float occlusionstrength" [)" +

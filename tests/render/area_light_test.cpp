@@ -2,11 +2,11 @@
 // below a unit square emitter matches the analytic form factor, a half-black texture gives half
 // of it, triangles whose texture is black are never sampled, and PdfArea is the density the
 // samples are drawn with.
+#include "render/area_light.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "render/area_light.h"
 
 namespace prism {
 namespace {
@@ -27,7 +27,7 @@ class StepTexture final : public Texture {
 // The square [0,1]^2 at z = 1, facing down (-z), as two quads split at x = 0.5 (four
 // triangles); uv = (x, y).
 std::unique_ptr<TriangleMesh> Emitter() {
-    std::vector<Vec3f> P = {{0, 0, 1},   {0.5f, 0, 1}, {0.5f, 1, 1}, {0, 1, 1},
+    std::vector<Vec3f> P = {{0, 0, 1},    {0.5f, 0, 1}, {0.5f, 1, 1}, {0, 1, 1},
                             {0.5f, 0, 1}, {1, 0, 1},    {1, 1, 1},    {0.5f, 1, 1}};
     std::vector<Vec2f> uv;
     for (const Vec3f &p : P) uv.emplace_back(p.x, p.y);
