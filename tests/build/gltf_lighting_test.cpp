@@ -178,6 +178,33 @@ double Mean(const Image &img) {
     return s / (img.width * img.height);
 }
 
+TEST_F(GltfLighting, MaskAlphaOnTexCoord1CutsOutBySecondUvSet) {
+    // An RGBA image whose alpha is 1 where x < 4, else 0; MASK reads the base colour's alpha.
+    Image rgba(8, 8, 4);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            for (int c = 0; c < 3; ++c) rgba.At(x, y, c) = 1;
+            rgba.At(x, y, 3) = x < 4 ? 1.f : 0.f;
+        }
+    WriteImage(Path("tex.png"), rgba);
+    for (const auto &[tc, hit] : std::vector<std::pair<std::string, bool>>{
+             {R"(, "texCoord": 0)", true}, {R"(, "texCoord": 1)", false}}) {
+        SCOPED_TRACE(tc);
+        Built b = Build(Write("m.gltf", GltfTwoUvQuad(R"({"pbrMetallicRoughness":
+          {"baseColorTexture": {"index": 0)" + tc + R"(}}, "alphaMode": "MASK"})")));
+        for (const Warning &w : b.warnings) ADD_FAILURE() << w.ToString();
+        // At x = 0.1: set 0 reads alpha 1 (kept), set 1 reads u = 0.9, alpha 0 (cut out).
+        RawHit h;
+        const bool got = b.scene.accel->IntersectRaw(
+                             WorldRay(b.scene, Vec3f(0.1f, 0.5f, 1), Vec3f(0, 0, -1)), &h) &&
+                         h.shape == 0;
+        EXPECT_EQ(got, hit);
+        EXPECT_EQ(
+            b.scene.accel->Occluded(WorldRay(b.scene, Vec3f(0.1f, 0.5f, 1), Vec3f(0, 0, -1), 2.f)),
+            hit);
+    }
+}
+
 TEST_F(GltfLighting, EmissiveTextureLightsAFloorAsTheFormFactorSays) {
     Image white(8, 8, 3);
     for (int y = 0; y < 8; ++y)
