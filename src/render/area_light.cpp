@@ -14,13 +14,14 @@ namespace {
 
 // The mean of the texture over triangle `tri`: its value at the centroids of the m² equal
 // sub-triangles of an m × m barycentric grid.
-RGB TriangleMean(const Texture &t, const TriangleMesh &mesh, size_t tri) {
+RGB TriangleMean(const Texture &t, const TriangleMesh &mesh, size_t tri, int maxSide) {
     auto uvArea = [&](int set) {
         Vec2f a = mesh.UVAt(tri, 0, 0, set), b = mesh.UVAt(tri, 1, 0, set),
               c = mesh.UVAt(tri, 0, 1, set);
         return 0.5 * std::abs(double(b.x - a.x) * (c.y - a.y) - double(b.y - a.y) * (c.x - a.x));
     };
-    const int m = DiffuseAreaLight::TextureMeanSamples(std::max(uvArea(0), uvArea(1)));
+    const int m =
+        std::min(maxSide, DiffuseAreaLight::TextureMeanSamples(std::max(uvArea(0), uvArea(1))));
     const uint32_t *v = mesh.Triangle(tri);
     const Vec3f p0 = mesh.Position(v[0]), p1 = mesh.Position(v[1]), p2 = mesh.Position(v[2]);
     RGB sum;
@@ -51,13 +52,17 @@ DiffuseAreaLight::DiffuseAreaLight(const AnalyticShape *analytic, const Triangle
     if (mesh_) {
         triangleAreas_.resize(mesh_->NumTriangles());
         std::vector<double> weights(triangleAreas_.size());
+        // At most about MaxTextureMeanLookups texture lookups for the whole mesh.
+        const int maxSide = std::clamp(int(std::sqrt(double(MaxTextureMeanLookups) /
+                                                     double(std::max<size_t>(1, weights.size())))),
+                                       1, 32);
         for (size_t i = 0; i < weights.size(); ++i) {
             const uint32_t *v = mesh_->Triangle(i);
             Vec3d p0(mesh_->Position(v[0])), p1(mesh_->Position(v[1])), p2(mesh_->Position(v[2]));
             triangleAreas_[i] = 0.5 * Length(Cross(p1 - p0, p2 - p0));
             weights[i] = triangleAreas_[i];
             if (radiance_ && weights[i] > 0) {
-                const RGB mean = TriangleMean(*radiance_, *mesh_, i) * Lemit_;
+                const RGB mean = TriangleMean(*radiance_, *mesh_, i, maxSide) * Lemit_;
                 weights[i] *= (double(mean.r) + mean.g + mean.b) / 3;
             }
             if (weights[i] > 0) {

@@ -22,6 +22,7 @@ class DiffuseAreaLight final : public Light {
     // to area × the triangle's mean radiance (the texture averaged over a grid of points on
     // the triangle, finer for larger uv footprints: TextureMeanSamples); triangles whose mean
     // is black are never sampled (their light is then seen only by rays that hit them).
+    // The means take at most about MaxTextureMeanLookups texture lookups per light.
     DiffuseAreaLight(const AnalyticShape *analytic, const TriangleMesh *mesh, const RGB &L,
                      bool twoSided, int nSamples, TexturePtr radiance = nullptr);
     const char *Name() const override { return "area"; }
@@ -49,8 +50,10 @@ class DiffuseAreaLight final : public Light {
     int SampledTriangles() const { return sampledTriangles_; }
 
     // Points per triangle side at which the mean radiance of a textured triangle is taken:
-    // about 256 per unit of uv (a 256² grid over a whole texture), at least 1, at most 32.
+    // about 256 per unit of uv (a 256² grid over a whole texture), at least 1, at most 32, and
+    // at most √(MaxTextureMeanLookups / triangles) so a large mesh costs a bounded start-up.
     static int TextureMeanSamples(double uvArea);
+    static constexpr double MaxTextureMeanLookups = 4e6;
 
   private:
     const AnalyticShape *analytic_;
