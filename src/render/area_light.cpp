@@ -6,8 +6,8 @@
 namespace prism {
 
 int DiffuseAreaLight::TextureMeanSamples(double uvArea) {
-    const double side = std::sqrt(2 * std::max(0.0, uvArea)) * 256;
-    return std::isfinite(side) ? std::clamp(int(std::ceil(side)), 1, 32) : 32;
+    const double side = std::sqrt(2 * std::max(0.0, uvArea)) * 2048;
+    return std::isfinite(side) ? std::clamp(int(std::ceil(side)), 1, 256) : 256;
 }
 
 namespace {
@@ -55,7 +55,7 @@ DiffuseAreaLight::DiffuseAreaLight(const AnalyticShape *analytic, const Triangle
         // At most about MaxTextureMeanLookups texture lookups for the whole mesh.
         const int maxSide = std::clamp(int(std::sqrt(double(MaxTextureMeanLookups) /
                                                      double(std::max<size_t>(1, weights.size())))),
-                                       1, 32);
+                                       1, 256);
         for (size_t i = 0; i < weights.size(); ++i) {
             const uint32_t *v = mesh_->Triangle(i);
             Vec3d p0(mesh_->Position(v[0])), p1(mesh_->Position(v[1])), p2(mesh_->Position(v[2]));

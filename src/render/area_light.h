@@ -50,8 +50,9 @@ class DiffuseAreaLight final : public Light {
     int SampledTriangles() const { return sampledTriangles_; }
 
     // Points per triangle side at which the mean radiance of a textured triangle is taken:
-    // about 256 per unit of uv (a 256² grid over a whole texture), at least 1, at most 32, and
-    // at most √(MaxTextureMeanLookups / triangles) so a large mesh costs a bounded start-up.
+    // about 2048 per unit of uv (one per texel of a 2048² texture: DamagedHelmet's emissive
+    // details, a few texels wide, are found), at least 1, at most 256, and at most
+    // √(MaxTextureMeanLookups / triangles) so a large mesh costs a bounded start-up.
     static int TextureMeanSamples(double uvArea);
     static constexpr double MaxTextureMeanLookups = 4e6;
 

@@ -106,10 +106,10 @@ TEST(TexturedAreaLight, HitRadianceReadsTheTextureOnTheFrontOnly) {
 TEST(TexturedAreaLight, MeanSamplesGrowWithTheUvFootprint) {
     EXPECT_EQ(DiffuseAreaLight::TextureMeanSamples(0), 1);
     EXPECT_EQ(DiffuseAreaLight::TextureMeanSamples(1e-7), 1);
-    EXPECT_EQ(DiffuseAreaLight::TextureMeanSamples(0.5), 32);  // capped
+    EXPECT_EQ(DiffuseAreaLight::TextureMeanSamples(0.5), 256);  // capped
     const int mid = DiffuseAreaLight::TextureMeanSamples(1.0 / 15000);
     EXPECT_GT(mid, 1);
-    EXPECT_LT(mid, 32);
+    EXPECT_LT(mid, 256);
 }
 
 }  // namespace
