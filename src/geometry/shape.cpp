@@ -112,7 +112,7 @@ SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f 
         si.dpdu = Vec3f(rfo.Vector(g.dpdu));
         si.dpdv = Vec3f(rfo.Vector(g.dpdv));
     }
-    if (needs & NeedUV) si.uv = Vec2f(float(g.uv.x), float(g.uv.y));
+    if (needs & NeedUV) si.uv = si.uv1 = Vec2f(float(g.uv.x), float(g.uv.y));
     si.wo = Normalize(-rayDir);
     si.t = float(hit.t);
     si.instanceShape = hit.part;  // -1 except for CSG operands

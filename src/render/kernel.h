@@ -100,10 +100,11 @@ class Kernel {
     // The ray-weight cutoff: true when a secondary ray of throughput beta is traced.
     bool AboveCutoff(const RGB &beta) const;
     // Direct lighting through f(wi, byGlossyRays) (a BSDF, or kd/π in Lambertian kernels).
+    // `ambient` scales the environment lights' share (Material::AmbientOcclusion).
     template <class F>
     void AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f, GlossyRays glossy,
                    bool hasDiffuse, int depth, RayCounters &counters, const SampleContext &sc,
-                   RGB &L) const;
+                   RGB &L, float ambient = 1) const;
 
     // Media (render/kernel_media.h). The radiance along ray (in sc.medium) whose closest hit
     // is si (hit false: it escapes): single scattering along each segment plus the

@@ -96,15 +96,15 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
     // Bump and normal maps move the shading normal before anything reads it (one test of a
     // flag per hit for scenes without them: no kernel bit).
     if (mat->PerturbsShading()) mat->PerturbShading(si);
-    TextureContext tc{si.uv, si.p};
+    TextureContext tc{si.uv, si.p, si.uv1};
     const Vec3f &wo = si.wo;
     RGB L;
     // Emission of an area light seen directly or through specular paths.
     if constexpr (LightSamples)
         if (shape->areaLight >= 0 && (!Glossy || emitted))
             L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(shape->areaLight)])
-                     .L(si.n, wo);
-    // Emission a material carries itself (glTF emissive textures): seen by every ray.
+                     .L(si, wo);
+    // Emission a material carries itself ("gltf" emissive in .pbrt files): seen by every ray.
     if (mat->HasEmission()) L += mat->Emitted(tc);
 
     if constexpr (!GeneralBsdf) {
@@ -127,17 +127,24 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
         GlossyRays glossy = GlossyRays::None;
         if constexpr (Glossy)
             if (glossyRays_) glossy = PrepareGlossy(bsdf, depth);
+        // glTF occlusion: scales the environment's light and the indirect paths (1 elsewhere).
+        const float ambient = mat->AmbientOcclusion(tc);
         // Direct lighting through the non-specular lobes.
         if (bsdf.HasNonSpecular()) {
             const bool hasDiffuse = glossy != GlossyRays::None && bsdf.HasDiffuse();
             auto general = [&](const Vec3f &wi, bool byGlossyRays) {
                 return byGlossyRays ? bsdf.fDiffuse(wo, wi) : bsdf.f(wo, wi);
             };
-            AddDirect(si, bsdf.ns, general, glossy, hasDiffuse, depth, counters, sc, L);
+            AddDirect(si, bsdf.ns, general, glossy, hasDiffuse, depth, counters, sc, L, ambient);
         }
-        if constexpr (Specular) AddSpecular(si, bsdf, depth, counters, sc, L);
+        // Indirect paths, summed apart only when occlusion scales them (else straight into L,
+        // in the same order as always).
+        RGB indirect;
+        RGB &Lind = ambient == 1 ? L : indirect;
+        if constexpr (Specular) AddSpecular(si, bsdf, depth, counters, sc, Lind);
         if constexpr (Glossy)
-            if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, L);
+            if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, Lind);
+        if (ambient != 1) L += indirect * ambient;
         return L;
     }
 }
@@ -148,7 +155,7 @@ template <uint32_t K>
 template <class F>
 void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f,
                           GlossyRays glossy, bool hasDiffuse, int depth, RayCounters &counters,
-                          const SampleContext &sc, RGB &L) const {
+                          const SampleContext &sc, RGB &L, float ambient) const {
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
         const Light &light = *scene_.lights[j];
         if constexpr (!LightSamples) {
@@ -204,6 +211,8 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
                     Lj += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
                 }
             }
+            // The environment (sampled, not an area light) is scaled by the ambient occlusion.
+            if (usesSample && !light.IsArea() && ambient != 1) Lj = Lj * ambient;
             L += n == 1 ? Lj : Lj / float(n);
         }
     }
