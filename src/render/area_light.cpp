@@ -66,4 +66,33 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
     return true;
 }
 
+double DiffuseAreaLight::Power(double) const {
+    double area = meshArea_;
+    if (analytic_) {
+        // Uniform area sampling's object-space density, through the area Jacobian at one point
+        // (exact for similarity transforms, an estimate otherwise: it only weighs the choice).
+        Vec3d p, n;
+        double pdf;
+        if (!analytic_->SampleObjectArea(Vec2f(0.5f, 0.5f), &p, &n, &pdf) || !(pdf > 0)) return 0;
+        const Transform &m = analytic_->RenderFromObject();
+        double len = Length(n);
+        double jac =
+            len > 0 ? std::abs(m.Matrix().Determinant3x3()) * Length(m.Normal(n / len)) : 1.0;
+        area = jac / pdf;
+    }
+    return (twoSided_ ? 2 : 1) * Pi * area * Lemit_.Luminance();
+}
+
+float DiffuseAreaLight::PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
+                              const SurfaceInteraction *hit) const {
+    if (!hit) return 0;
+    if (analytic_) return analytic_->Pdf(ref.p, hit->p, hit->n);
+    // SampleLi: a triangle by area, then a uniform point on it: 1 / area over the mesh.
+    Vec3f w = hit->p - ref.p;
+    float dist2 = LengthSquared(w);
+    float cosLight = AbsDot(hit->n, wi);
+    if (!(dist2 > 0) || cosLight == 0 || !(meshArea_ > 0)) return 0;
+    return float(1 / meshArea_ * dist2 / cosLight);
+}
+
 }  // namespace prism

@@ -19,11 +19,14 @@ class DiffuseAreaLight final : public Light {
     const char *Name() const override { return "area"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
     int NumSamples() const override { return nSamples_; }
+    float PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
+                const SurfaceInteraction *hit) const override;
     // Radiance leaving the surface point with normal n in direction w.
     RGB L(const Vec3f &n, const Vec3f &w) const {
         return (twoSided_ || Dot(n, w) > 0) ? Lemit_ : RGB(0);
     }
     bool IsArea() const override { return true; }
+    double Power(double) const override;
 
   private:
     const AnalyticShape *analytic_;
