@@ -8,6 +8,7 @@
 #include "build/scene_effects.h"
 #include "build/shapes.h"
 #include "build/textures.h"
+#include "render/light_sampling.h"
 
 namespace prism {
 
@@ -28,6 +29,7 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     MaterialBuilder materials(ctx);  // created on demand, as shapes use them
     BuildShapesAndInstances(ctx, materials);
     FinishEffects(ctx);
+    ComputeLightPower(scene);  // the path and directlighting integrators' light choice
     scene.allEffects = settings.allEffects;
     if (scene.lights.empty())
         diag.Warn(desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0},
