@@ -280,9 +280,8 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                      "pass-through %llu, glossy %llu; %.2f Mrays/s\n",
                      out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
                      scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
-                     a.precision.c_str(),
-                     scene.integrator == IntegratorKind::Distribution ? "distribution" : "whitted",
-                     s_->parseSeconds, s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,
+                     a.precision.c_str(), scene.integratorName.c_str(), s_->parseSeconds,
+                     s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,
                      (unsigned long long)r.camera, (unsigned long long)r.shadow,
                      (unsigned long long)r.reflection, (unsigned long long)r.refraction,
                      (unsigned long long)r.passThrough, (unsigned long long)r.glossy,
@@ -381,10 +380,10 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "Maximum specular depth (overrides the Integrator)")
         ->check(CLI::Range(0, 1000));
     cmd->add_option("--integrator", args->integrator,
-                    "whitted (pbrt-v3's: no glossy rays) or distribution (Whitted plus glossy "
-                    "reflection and transmission); default: the scene's Integrator (OBJ and glTF: "
-                    "distribution)")
-        ->check(CLI::IsMember({"whitted", "distribution"}));
+                    "whitted (pbrt-v3's: no glossy rays), distribution (Whitted plus glossy "
+                    "reflection and transmission), directlighting or path (pbrt-v3's); default: "
+                    "the scene's Integrator (OBJ and glTF: distribution)")
+        ->check(CLI::IsMember({"whitted", "distribution", "directlighting", "path", "volpath"}));
     cmd->add_option("--glossy-samples", args->glossySamples,
                     "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "
                     "(distribution integrator; overrides \"glossysamples\", default 8)")

@@ -9,6 +9,7 @@
 #include "build/scene_effects.h"
 #include "build/shapes.h"
 #include "build/textures.h"
+#include "render/light_sampling.h"
 
 namespace prism {
 
@@ -29,7 +30,9 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     BuildMedia(ctx);
     MaterialBuilder materials(ctx);  // created on demand, as shapes use them
     BuildShapesAndInstances(ctx, materials);
+    WarnIgnoredMedia(ctx);
     FinishEffects(ctx);
+    ComputeLightPower(scene);  // the path and directlighting integrators' light choice
     scene.allEffects = settings.allEffects;
     if (scene.lights.empty())
         diag.Warn(desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0},

@@ -160,6 +160,19 @@ void BuildMedia(BuildContext &ctx) {
                                           cam.mediumLoc);
 }
 
+void WarnIgnoredMedia(BuildContext &ctx) {
+    const RenderScene &scene = ctx.scene;
+    if (!scene.features.effects.Has(Effect::Media)) return;
+    if (scene.integrator != IntegratorKind::Path &&
+        scene.integrator != IntegratorKind::DirectLighting)
+        return;
+    // pbrt-v3's path and directlighting integrators ignore media too (with a warning).
+    ctx.diag.Warn(ctx.desc.integrator.loc,
+                  "integrator " + Quote(scene.integratorName) +
+                      " ignores participating media (as pbrt-v3's does); \"volpath\" renders "
+                      "them");
+}
+
 void NoteShapeMedia(BuildContext &ctx, const ShapeDesc &s, ShapeInfo *info) {
     info->mediumInside = s.mediumInside;
     info->mediumOutside = s.mediumOutside;

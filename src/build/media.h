@@ -11,6 +11,9 @@ namespace prism {
 // grid whose size is not nx*ny*nz.
 void BuildMedia(BuildContext &ctx);
 
+// Warns when the scene has media but its integrator ("path", "directlighting") ignores them.
+void WarnIgnoredMedia(BuildContext &ctx);
+
 // Copies the shape's MediumInterface into its ShapeInfo and, for a transition (different inside
 // and outside media), turns on Effect::Media with the MediumInterface directive as the reason.
 void NoteShapeMedia(BuildContext &ctx, const ShapeDesc &s, ShapeInfo *info);

@@ -138,4 +138,40 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
     return true;
 }
 
+double DiffuseAreaLight::Power(double) const {
+    if (radiance_) {
+        // Textured: the triangles' area × mean radiance (their sampling weights).
+        double sum = 0;
+        for (int i = 0; i < triangleWeights_.Count(); ++i) sum += triangleWeights_.Func(i);
+        return (twoSided_ ? 2 : 1) * Pi * sum;
+    }
+    double area = meshArea_;
+    if (analytic_) {
+        // Uniform area sampling's object-space density, through the area Jacobian at one point
+        // (exact for similarity transforms, an estimate otherwise: it only weighs the choice).
+        Vec3d p, n;
+        double pdf;
+        if (!analytic_->SampleObjectArea(Vec2f(0.5f, 0.5f), &p, &n, &pdf) || !(pdf > 0)) return 0;
+        const Transform &m = analytic_->RenderFromObject();
+        double len = Length(n);
+        double jac =
+            len > 0 ? std::abs(m.Matrix().Determinant3x3()) * Length(m.Normal(n / len)) : 1.0;
+        area = jac / pdf;
+    }
+    return (twoSided_ ? 2 : 1) * Pi * area * Lemit_.Luminance();
+}
+
+float DiffuseAreaLight::PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
+                              const SurfaceInteraction *hit) const {
+    if (!hit) return 0;
+    if (analytic_) return analytic_->Pdf(ref.p, hit->p, hit->n);
+    // SampleLi: a triangle by area (× mean radiance when textured), then a uniform point on
+    // it: PdfArea, converted to solid angle.
+    Vec3f w = hit->p - ref.p;
+    float dist2 = LengthSquared(w);
+    float cosLight = AbsDot(hit->n, wi);
+    if (!(dist2 > 0) || cosLight == 0) return 0;
+    return float(PdfArea(hit->prim) * dist2 / cosLight);
+}
+
 }  // namespace prism

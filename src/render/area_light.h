@@ -28,6 +28,8 @@ class DiffuseAreaLight final : public Light {
     const char *Name() const override { return "area"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
     int NumSamples() const override { return nSamples_; }
+    float PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
+                const SurfaceInteraction *hit) const override;
     // Radiance leaving the surface point with normal n in direction w (the constant L; for a
     // textured light use the overload below).
     RGB L(const Vec3f &n, const Vec3f &w) const {
@@ -55,6 +57,7 @@ class DiffuseAreaLight final : public Light {
     // √(MaxTextureMeanLookups / triangles) so a large mesh costs a bounded start-up.
     static int TextureMeanSamples(double uvArea);
     static constexpr double MaxTextureMeanLookups = 4e6;
+    double Power(double) const override;
 
   private:
     const AnalyticShape *analytic_;

@@ -28,7 +28,8 @@ enum class Effect : uint32_t {
     BumpMapping,         // a material's "bumpmap" (render/bump.cpp)
     NormalMapping,       // a material's tangent-space normal map
     Alpha,               // cut-outs: textured "alpha"/"shadowalpha", glTF MASK/BLEND, OBJ map_d
-    Media,               // participating media: a MediumInterface on a shape or the camera
+    IndirectIllumination,  // light bouncing off every surface (Integrator "path")
+    Media,                 // participating media: a MediumInterface on a shape or the camera
     Count
 };
 

@@ -16,7 +16,10 @@
 #include <thread>
 #include <vector>
 
+#include "render/direct_integrator.h"
 #include "render/kernel.h"
+#include "render/path_integrator.h"
+#include "render/volpath_integrator.h"
 
 namespace prism {
 
@@ -68,6 +71,21 @@ class TileMerger {
     std::vector<FilmTile *> free_;
 };
 
+// The tile function of the scene's integrator: the path and directlighting integrators, or the
+// Whitted/distribution kernel specialized for `mask`.
+RenderTileFn TileFunction(const RenderScene &scene, uint32_t mask) {
+    switch (scene.integrator) {
+        case IntegratorKind::Path:
+            return &RenderTilePath;
+        case IntegratorKind::VolPath:
+            return &RenderTileVolPath;
+        case IntegratorKind::DirectLighting:
+            return &RenderTileDirect;
+        default:
+            return KernelRenderTile(mask);
+    }
+}
+
 }  // namespace
 
 Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &progress,
@@ -84,7 +102,7 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
     // The kernel is chosen here, once per render: the one specialized for the scene's effects
     // (render/kernel.h), or the general one for --effects all.
     const uint32_t kernelMask = scene.allEffects ? KernelAllFor(scene) : KernelMaskFor(scene);
-    const RenderTileFn renderTile = KernelRenderTile(kernelMask);
+    const RenderTileFn renderTile = TileFunction(scene, kernelMask);
 
     // Progress is reported from a helper thread so worker threads never block on output.
     std::mutex mutex;
@@ -169,7 +187,7 @@ int FrameTiles::NumTiles() const { return film_->NumTiles(); }
 void FrameTiles::RenderTiles(int begin, int end, std::vector<FilmTile> *tiles,
                              RayCounters *rays) const {
     tiles->resize(size_t(end - begin));
-    const RenderTileFn renderTile = KernelRenderTile(kernelMask_);
+    const RenderTileFn renderTile = TileFunction(scene_, kernelMask_);
     tbb::enumerable_thread_specific<RayCounters> counters;
     tbb::enumerable_thread_specific<TileScratch> scratch;
     tbb::parallel_for(tbb::blocked_range<int>(begin, end, 1),

@@ -1,0 +1,141 @@
+// The volumetric path tracer (Integrator "volpath", render/volpath_integrator.h): a furnace of
+// scattering media that absorb nothing keeps the environment's radiance, "volpath" without
+// media is "path" exactly, and single scattering at maxdepth 1 agrees with the Whitted kernel's
+// ray march.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "build/build_scene.h"
+#include "render/renderer.h"
+#include "scene/load_scene.h"
+#include "test_util.h"
+
+namespace prism {
+namespace {
+
+using test::ScratchDir;
+using test::WriteTestFile;
+
+struct Rendered {
+    Image image;
+    RenderStats stats;
+};
+
+Rendered RenderText(const std::string &name, const std::string &text, int res, int spp,
+                    const std::string &integrator = "") {
+    Diagnostics diag(false);
+    SceneDescription desc = LoadScene(WriteTestFile(ScratchDir("volpath") / name, text), diag);
+    BuildSettings s;
+    s.resolution = Vec2i(res, res);
+    s.spp = spp;
+    s.integrator = integrator;
+    RenderScene scene = BuildRenderScene(desc, s, diag);
+    Rendered r;
+    r.image = Render(scene, &r.stats);
+    return r;
+}
+
+double MeanChannel(const Image &img, int c) {
+    double s = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) s += img.pixels[img.PixelOffset(x, y) + size_t(c)];
+    return s / (double(img.width) * img.height);
+}
+
+// A sphere of scattering medium (albedo 1, forward-scattering) behind an invisible boundary,
+// seen from outside and from inside, under a uniform environment of radiance 1: every path
+// ends in the environment with its weight intact, so every pixel converges to 1.
+TEST(VolPath, FurnaceOfAlbedoOneKeepsTheEnvironment) {
+    for (const char *camera : {"LookAt 0 0 -4  0 0 0  0 1 0", "LookAt 0 0 0.2  0 0 1  0 1 0"}) {
+        SCOPED_TRACE(camera);
+        std::ostringstream s;
+        s << "MakeNamedMedium \"cloud\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [ 0 0 0 ] "
+             "\"rgb sigma_s\" [ 2 2 2 ] \"float g\" 0.5\n"
+          << (std::string(camera).find("-4") == std::string::npos ? "MediumInterface \"\" \"cloud\"\n"
+                                                                  : "")
+          << camera << "\nCamera \"perspective\" \"float fov\" [ 30 ]\n"
+          << "Integrator \"volpath\" \"integer maxdepth\" [ 1000 ]\nWorldBegin\n"
+          << "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n"
+          << "AttributeBegin\nMaterial \"none\"\nMediumInterface \"cloud\" \"\"\n"
+          << "Shape \"sphere\" \"float radius\" [ 1 ]\nAttributeEnd\n";
+        Rendered r = RenderText("furnace.pbrt", s.str(), 8, 256);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(MeanChannel(r.image, c), 1.0, 0.02);
+        for (float v : r.image.pixels) EXPECT_NEAR(v, 1.f, 0.2f);
+        EXPECT_GT(r.stats.rays.reflection, 0u);  // paths scattered in the medium
+    }
+}
+
+// Absorption halves nothing it should not: with albedo 1/2 the furnace is darker than 1.
+TEST(VolPath, FurnaceWithAbsorptionIsDarker) {
+    const std::string scene =
+        "MakeNamedMedium \"cloud\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [ 1 1 1 ] "
+        "\"rgb sigma_s\" [ 1 1 1 ]\nLookAt 0 0 -4  0 0 0  0 1 0\n"
+        "Camera \"perspective\" \"float fov\" [ 10 ]\n"
+        "Integrator \"volpath\" \"integer maxdepth\" [ 1000 ]\nWorldBegin\n"
+        "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nMaterial \"none\"\n"
+        "MediumInterface \"cloud\" \"\"\nShape \"sphere\" \"float radius\" [ 1 ]\n";
+    Rendered r = RenderText("absorbing.pbrt", scene, 4, 256);
+    const double m = MeanChannel(r.image, 1);
+    EXPECT_LT(m, 0.8);
+    EXPECT_GT(m, std::exp(-4.0));  // more than the unscattered light alone
+}
+
+std::string Room(const std::string &integrator) {
+    return integrator +
+           "\nLookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" [50]\n"
+           "WorldBegin\n"
+           "LightSource \"point\" \"point from\" [1.5 2 -1] \"rgb I\" [2 2 2]\n"
+           "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\n"
+           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+           "  \"point P\" [-0.5 2.5 -0.5  0.5 2.5 -0.5  0.5 2.5 0.5  -0.5 2.5 0.5]\n"
+           "AttributeEnd\n"
+           "Material \"matte\" \"rgb Kd\" [0.6 0.5 0.4]\n"
+           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+           "  \"point P\" [-3 0 -3  3 0 -3  3 0 3  -3 0 3]\n"
+           "Material \"glass\"\nAttributeBegin\nTranslate 0.8 0.4 0\n"
+           "Shape \"sphere\" \"float radius\" [0.4]\nAttributeEnd\n"
+           "Material \"plastic\" \"rgb Kd\" [0.3 0.6 0.3] \"float roughness\" [0.1]\n"
+           "AttributeBegin\nTranslate -0.6 0.6 0\nShape \"sphere\" \"float radius\" [0.6]\n"
+           "AttributeEnd\n";
+}
+
+// Without media, volpath traces the same paths with the same samples as path: the same image
+// bits and the same rays.
+TEST(VolPath, WithoutMediaIsPath) {
+    Rendered path = RenderText("path.pbrt", Room("Integrator \"path\""), 24, 16);
+    Rendered vol = RenderText("vol.pbrt", Room("Integrator \"volpath\""), 24, 16);
+    ASSERT_EQ(path.image.pixels.size(), vol.image.pixels.size());
+    EXPECT_EQ(path.image.pixels, vol.image.pixels);
+    EXPECT_EQ(path.stats.rays.shadow, vol.stats.rays.shadow);
+    EXPECT_EQ(path.stats.rays.reflection, vol.stats.rays.reflection);
+    EXPECT_EQ(path.stats.rays.refraction, vol.stats.rays.refraction);
+}
+
+// At maxdepth 1 volpath's medium paths are single scattering from the lights: against the
+// Whitted kernel's ray march of the same homogeneous fog lit by a point light, in the mean.
+TEST(VolPath, SingleScatteringAgreesWithTheRayMarch) {
+    auto scene = [](const std::string &integrator) {
+        return "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [ 0.05 "
+               "0.05 0.05 ] \"rgb sigma_s\" [ 0.2 0.2 0.2 ] \"float g\" 0.3\n"
+               "MediumInterface \"\" \"fog\"\nLookAt 0 1 -4  0 0.5 0  0 1 0\n"
+               "Camera \"perspective\" \"float fov\" [ 50 ]\n" +
+               integrator +
+               "\nWorldBegin\nLightSource \"point\" \"point from\" [ 0.5 2 0 ] \"rgb I\" "
+               "[ 5 5 5 ]\nMaterial \"matte\" \"rgb Kd\" [ 0.5 0.5 0.5 ]\n"
+               "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+               "  \"point P\" [-3 0 -3  3 0 -3  3 0 3  -3 0 3]\n"
+               "AttributeBegin\nMaterial \"none\"\nMediumInterface \"fog\" \"\"\n"
+               "Shape \"sphere\" \"float radius\" [ 6 ]\nAttributeEnd\n";
+    };
+    Rendered march =
+        RenderText("march.pbrt", scene("Integrator \"whitted\" \"integer maxdepth\" [ 1 ]"), 8, 16);
+    Rendered vol =
+        RenderText("vol1.pbrt", scene("Integrator \"volpath\" \"integer maxdepth\" [ 1 ]"), 8, 1024);
+    EXPECT_NEAR(MeanChannel(vol.image, 1), MeanChannel(march.image, 1),
+                0.03 * MeanChannel(march.image, 1));
+}
+
+}  // namespace
+}  // namespace prism
