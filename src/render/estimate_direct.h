@@ -7,9 +7,9 @@
 #pragma once
 
 #include "render/area_light.h"
-#include "render/light_sampling.h"
 #include "render/bsdf.h"
 #include "render/light.h"
+#include "render/light_sampling.h"
 #include "render/medium.h"
 #include "render/medium_tracking.h"
 #include "render/render_scene.h"
@@ -111,8 +111,8 @@ RGB EstimateDirectWith(const RenderScene &scene, const SurfaceInteraction &si,
     bool found;
     if constexpr (Visibility::Media) {
         RGB tr(1);
-        found = IntersectTr(scene, ray, vis.Toward(si, bs.wi), true, vis.sampler, counters, &hit,
-                            &tr);
+        found =
+            IntersectTr(scene, ray, vis.Toward(si, bs.wi), true, vis.sampler, counters, &hit, &tr);
         if (tr.IsBlack()) return Ld;
         weight = weight * tr;
     } else {
@@ -144,9 +144,8 @@ RGB EstimateDirectWith(const RenderScene &scene, const SurfaceInteraction &si,
 // by its probability.
 template <class Scatter, class Visibility>
 RGB SampleOneLightWith(const RenderScene &scene, const LightChooser &chooser,
-                       const SurfaceInteraction &si, const Scatter &scatter,
-                       const PixelSamples &ps, int bounce, RayCounters &counters,
-                       const Visibility &vis) {
+                       const SurfaceInteraction &si, const Scatter &scatter, const PixelSamples &ps,
+                       int bounce, RayCounters &counters, const Visibility &vis) {
     float prob = 0;
     const int j = chooser.Choose(ps.Get1D(VertexDim(bounce, DimLightChoice)), &prob);
     if (j < 0 || !(prob > 0)) return RGB(0);

@@ -53,8 +53,9 @@ TEST(VolPath, FurnaceOfAlbedoOneKeepsTheEnvironment) {
         std::ostringstream s;
         s << "MakeNamedMedium \"cloud\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [ 0 0 0 ] "
              "\"rgb sigma_s\" [ 2 2 2 ] \"float g\" 0.5\n"
-          << (std::string(camera).find("-4") == std::string::npos ? "MediumInterface \"\" \"cloud\"\n"
-                                                                  : "")
+          << (std::string(camera).find("-4") == std::string::npos
+                  ? "MediumInterface \"\" \"cloud\"\n"
+                  : "")
           << camera << "\nCamera \"perspective\" \"float fov\" [ 30 ]\n"
           << "Integrator \"volpath\" \"integer maxdepth\" [ 1000 ]\nWorldBegin\n"
           << "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n"
@@ -65,6 +66,27 @@ TEST(VolPath, FurnaceOfAlbedoOneKeepsTheEnvironment) {
         for (float v : r.image.pixels) EXPECT_NEAR(v, 1.f, 0.2f);
         EXPECT_GT(r.stats.rays.reflection, 0u);  // paths scattered in the medium
     }
+}
+
+// The same furnace with a heterogeneous medium (delta tracking through a varying density grid
+// filling an invisible box).
+TEST(VolPath, FurnaceOfHeterogeneousMedium) {
+    const std::string scene =
+        "MakeNamedMedium \"smoke\" \"string type\" \"heterogeneous\" \"rgb sigma_a\" [ 0 0 0 ] "
+        "\"rgb sigma_s\" [ 3 3 3 ] \"float g\" -0.3 \"integer nx\" 2 \"integer ny\" 2 "
+        "\"integer nz\" 2 \"float density\" [ 0.1 1 0.5 2 0 1.5 0.7 0.2 ] \"point3 p0\" "
+        "[ -1 -1 -1 ] \"point3 p1\" [ 1 1 1 ]\nLookAt 0.3 0.5 -4  0 0 0  0 1 0\n"
+        "Camera \"perspective\" \"float fov\" [ 35 ]\n"
+        "Integrator \"volpath\" \"integer maxdepth\" [ 1000 ]\nWorldBegin\n"
+        "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nMaterial \"none\"\n"
+        "MediumInterface \"smoke\" \"\"\n"
+        "Shape \"trianglemesh\" \"integer indices\" [ 0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 "
+        "3 7 6 3 6 2 0 4 7 0 7 3 1 2 6 1 6 5 ]\n  \"point3 P\" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 "
+        "-1 "
+        " -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]\n";
+    Rendered r = RenderText("smoke.pbrt", scene, 8, 256);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(MeanChannel(r.image, c), 1.0, 0.02);
+    EXPECT_GT(r.stats.rays.reflection, 0u);
 }
 
 // Absorption halves nothing it should not: with albedo 1/2 the furnace is darker than 1.
@@ -131,8 +153,8 @@ TEST(VolPath, SingleScatteringAgreesWithTheRayMarch) {
     };
     Rendered march =
         RenderText("march.pbrt", scene("Integrator \"whitted\" \"integer maxdepth\" [ 1 ]"), 8, 16);
-    Rendered vol =
-        RenderText("vol1.pbrt", scene("Integrator \"volpath\" \"integer maxdepth\" [ 1 ]"), 8, 1024);
+    Rendered vol = RenderText("vol1.pbrt",
+                              scene("Integrator \"volpath\" \"integer maxdepth\" [ 1 ]"), 8, 1024);
     EXPECT_NEAR(MeanChannel(vol.image, 1), MeanChannel(march.image, 1),
                 0.03 * MeanChannel(march.image, 1));
 }
