@@ -15,8 +15,7 @@ namespace {
 constexpr int MaxPassThroughSurfaces = 256;
 }  // namespace
 
-RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps,
-                       RayCounters &counters) const {
+RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps, RayCounters &counters) const {
     RGB L, beta(1);
     Ray ray = cameraRay;
     bool specularBounce = false;
@@ -32,9 +31,9 @@ RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps,
             if (!found) {
                 for (const auto &light : scene_.lights) L += beta * light->Le(ray);
             } else if (info->areaLight >= 0) {
-                L += beta * static_cast<const DiffuseAreaLight &>(
-                                *scene_.lights[size_t(info->areaLight)])
-                                .L(si.n, si.wo);
+                L += beta *
+                     static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(info->areaLight)])
+                         .L(si.n, si.wo);
             }
         }
         if (!found || bounces >= scene_.maxDepth) break;
@@ -84,8 +83,10 @@ RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps,
 void RenderTilePath(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &,
                     FilmTile *tile) {
     const PathIntegrator integrator(scene);
-    RenderTileSamples(scene, tb, rc, tile, [&](const Ray &ray, const PixelSamples &ps,
-                                               RayCounters &c) { return integrator.Li(ray, ps, c); });
+    RenderTileSamples(scene, tb, rc, tile,
+                      [&](const Ray &ray, const PixelSamples &ps, RayCounters &c) {
+                          return integrator.Li(ray, ps, c);
+                      });
 }
 
 }  // namespace prism

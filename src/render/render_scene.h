@@ -15,6 +15,7 @@
 #include "render/effects.h"
 #include "render/light.h"
 #include "render/material.h"
+#include "render/sampler.h"
 
 namespace prism {
 
@@ -82,9 +83,10 @@ struct RenderScene {
     float filmScale = 1;
     float maxSampleLuminance = Infinity;
     int spp = 1;
-    // Sampler "random" under the path and directlighting integrators: independent uniform
-    // samples instead of stratified patterns (render/light_sampling.h PixelSamples).
-    bool independentSamples = false;
+    // The samples of the path and directlighting integrators (render/sampler.h): pbrt-v3's
+    // (0,2)-sequence for "02sequence" and "lowdiscrepancy", independent for "random",
+    // stratified patterns otherwise. The Whitted kernel draws its own stratified patterns.
+    SamplePattern samplePattern = SamplePattern::Stratified;
     int maxDepth = 5;
     // Accuracy knobs (BuildSettings): the ray-weight cutoff (0: every ray) and how spawned rays
     // leave a surface.

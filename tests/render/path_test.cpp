@@ -68,8 +68,8 @@ std::string Furnace(float albedo, int maxDepth, float rrThreshold, int spp) {
            "Camera \"perspective\" \"float fov\" [90]\nWorldBegin\n"
            "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1] \"bool twosided\" true\n"
            "Material \"matte\" \"rgb Kd\" [" +
-           std::to_string(albedo) + " " + std::to_string(albedo) + " " +
-           std::to_string(albedo) + "]\nShape \"sphere\" \"float radius\" [3]\nAttributeEnd\n";
+           std::to_string(albedo) + " " + std::to_string(albedo) + " " + std::to_string(albedo) +
+           "]\nShape \"sphere\" \"float radius\" [3]\nAttributeEnd\n";
 }
 
 TEST(PathIntegrator, FurnaceIsTheGeometricSeries) {
@@ -119,7 +119,8 @@ BSDF Frame() {
     return b;
 }
 
-// Every kind of lobe Prism's materials build: Sample_f's density is Pdf's, and the mean of
+// Every kind of lobe Prism's materials build (matte, plastic, rough glass, translucent,
+// substrate, glTF): Sample_f's density is Pdf's, and the mean of
 // f |cos| / pdf is the albedo ∫ f |cos| dω, integrated numerically.
 TEST(PathIntegrator, BsdfSamplingMatchesFAndPdf) {
     std::vector<BSDF> bsdfs;
@@ -160,6 +161,21 @@ TEST(PathIntegrator, BsdfSamplingMatchesFAndPdf) {
         m.blendRd = RGB(0.5f);
         m.blendRs = RGB(0.1f);
         m.alphaX = m.alphaY = 0.25f;
+        bsdfs.push_back(b);
+    }
+    {  // glTF metallic-roughness: Fresnel-mixed diffuse, GGX specular, thin transmission, coat
+        BSDF b = Frame();
+        BxDFLobes &l = b.AddPart();
+        l.gltfDiffuse = true;
+        l.kd = RGB(0.5f);
+        l.dielectricF0 = RGB(0.04f);
+        l.dielectricF90 = RGB(1);
+        l.ks = RGB(1);
+        l.glossyFresnel.kind = FresnelKind::Schlick;
+        l.glossyFresnel.f0 = RGB(0.04f);
+        l.alphaX = l.alphaY = 0.3f;
+        l.thinTransmit = RGB(0.5f);
+        l.coat = 0.5f;
         bsdfs.push_back(b);
     }
     const Vec3f wo = Normalize(Vec3f(0.4f, -0.2f, 0.8f));
@@ -219,8 +235,7 @@ TEST(PathIntegrator, DeltaLobesAreChosenByFresnel) {
 TEST(PathIntegrator, SpherePdfMatchesItsSampling) {
     // The solid-angle density of a sampled point, recomputed from the point (what MIS uses for
     // a BSDF-sampled ray that hits the light), outside (cone sampling) and inside (area).
-    auto sphere = std::make_unique<Sphere>(Translate(Vec3d(0, 0, 5)), false, 1.0, -1.0,
-                                           1.0, 360.0);
+    auto sphere = std::make_unique<Sphere>(Translate(Vec3d(0, 0, 5)), false, 1.0, -1.0, 1.0, 360.0);
     for (Vec3f ref : {Vec3f(0, 0, 0), Vec3f(0.2f, 0.1f, 5.3f)}) {
         for (int i = 0; i < 64; ++i) {
             ShapeSample ss;
