@@ -36,12 +36,13 @@ struct PixelSamples {
     int x = 0, y = 0;
     uint32_t sample = 0, spp = 1;
     SamplePattern pattern = SamplePattern::Stratified;
+    uint32_t passSeed = 0;  // RenderScene::sampleSeed: differs between progressive passes
 
     Vec2f Get2D(uint32_t dim) const { return Get2D(dim, 0, 1); }
     // Sample k of n of this camera sample (strategy "all": n light samples stratified over
     // spp × n).
     Vec2f Get2D(uint32_t dim, uint32_t k, uint32_t n) const {
-        const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim);
+        const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim, passSeed);
         const uint32_t i = sample * n + k;
         switch (pattern) {
             case SamplePattern::Independent:
@@ -54,7 +55,7 @@ struct PixelSamples {
         }
     }
     float Get1D(uint32_t dim) const {
-        const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim);
+        const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim, passSeed);
         if (pattern == SamplePattern::Independent) return HashFloat(sample, seed);
         const uint32_t stratum = PermuteIndex(sample, spp, seed);
         if (pattern == SamplePattern::ZeroTwo) return Sample02(stratum, seed * 0x68bc21ebu, 0).x;
