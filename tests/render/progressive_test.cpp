@@ -30,12 +30,13 @@ std::string SoftScene() {
         "Translate 0 0.6 0\nShape \"sphere\" \"float radius\" 0.6\nWorldEnd\n");
 }
 
-RenderScene Build(int spp, bool noise = false) {
+RenderScene Build(int spp, bool noise = false, const std::string &integrator = "") {
     Diagnostics diag(false);
     SceneDescription desc = LoadScene(SoftScene(), diag);
     BuildSettings s;
     s.resolution = Vec2i(40, 30);
     s.spp = spp;
+    s.integrator = integrator;
     RenderScene scene = BuildRenderScene(desc, s, diag);
     scene.estimateNoise = noise;
     return scene;
@@ -100,6 +101,15 @@ TEST(Progressive, PassesAverageToAConvergingImage) {
     double eTwo = RelRmse(Render(two, nullptr), Reference());
     EXPECT_LT(eProg, 0.35 * eTwo);
     EXPECT_LT(eProg, 1.5 * ePlain);
+}
+
+// The path integrator's sample streams take the pass seed too: its passes converge.
+TEST(Progressive, PathIntegratorPassesDrawNewSamples) {
+    RenderScene ref = Build(256, false, "path"), two = Build(2, false, "path");
+    RenderScene scene = Build(1, false, "path");
+    Image reference = Render(ref, nullptr);
+    Image img = RenderProgressive(scene, {1e9, 32}, nullptr);
+    EXPECT_LT(RelRmse(img, reference), 0.4 * RelRmse(Render(two, nullptr), reference));
 }
 
 TEST(Progressive, StopsWhenTheTimeRunsOut) {
