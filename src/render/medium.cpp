@@ -57,7 +57,9 @@ RGB HomogeneousMedium::Sample(const Ray &ray, MediumSampler &sampler, MediumInte
     const int channel = std::min(int(sampler.Get1D() * 3), 2);
     const float u = sampler.Get1D();
     const float len = Length(ray.d);
-    const float dist = sigmaT_[channel] > 0 ? -std::log(1 - u) / sigmaT_[channel] : MaxDistance;
+    // A channel that does not interact never scatters (an infinite distance, even when the ray
+    // itself is unbounded).
+    const float dist = sigmaT_[channel] > 0 ? -std::log(1 - u) / sigmaT_[channel] : Infinity;
     const float t = std::min(dist / len, ray.tMax);
     *scattered = t < ray.tMax;
     if (*scattered) *mi = {ray.At(t), t};

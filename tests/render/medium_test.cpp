@@ -79,6 +79,28 @@ TEST(Medium, HomogeneousTransmittanceIsExponential) {
     ExpectRel(tr.r, std::exp(-0.3 * d), 1e-6, "r");
     ExpectRel(tr.g, std::exp(-0.5 * d), 1e-6, "g");
     EXPECT_EQ(tr.b, 1.f);  // σt = 0 transmits everything
+    // Sampling: a channel with σt = 0 never scatters, even along an unbounded ray; the others
+    // always do there.
+    {
+        HomogeneousMedium blue(RGB(0, 0, 0), RGB(0.5f, 0.5f, 0), 0.f, 0.f);
+        Ray unbounded{Vec3f(0, 0, 0), Vec3f(1, 0, 0), Infinity};
+        int passed = 0;
+        for (int i = 0; i < 3000; ++i) {
+            MediumSampler s(uint64_t(i) + 99);
+            MediumInteraction mi;
+            bool scattered;
+            const RGB w = blue.Sample(unbounded, s, &mi, &scattered);
+            EXPECT_TRUE(w.IsFinite());
+            if (!scattered) {
+                ++passed;
+                EXPECT_EQ(w.r, 0.f);  // red and green never get through
+                EXPECT_GT(w.b, 0.f);  // blue always does
+            } else {
+                EXPECT_LT(mi.t, Infinity);
+            }
+        }
+        EXPECT_NEAR(passed / 3000.0, 1.0 / 3, 0.03);  // when the blue channel is chosen
+    }
     ray.tMax = Infinity;
     EXPECT_EQ(m.Tr(ray, sampler).r, 0.f);
     EXPECT_EQ(m.Tr(ray, sampler).b, 1.f);  // even infinitely far (no 0 · ∞)
