@@ -28,6 +28,8 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     MaterialBuilder materials(ctx);  // created on demand, as shapes use them
     BuildShapesAndInstances(ctx, materials);
     FinishEffects(ctx);
+    // Rays carry differentials only where a texture filters over their footprint.
+    for (const Material &m : scene.materials) scene.differentials |= m.UsesDifferentials();
     scene.allEffects = settings.allEffects;
     if (scene.lights.empty())
         diag.Warn(desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0},

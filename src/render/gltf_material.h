@@ -56,6 +56,7 @@ class UVTransformTexture final : public Texture {
     UVTransformTexture(TexturePtr child, Vec2f offset, float rotation, Vec2f scale)
         : child_(std::move(child)), offset_(offset), rotation_(rotation), scale_(scale) {}
     RGB Evaluate(const TextureContext &c) const override;
+    bool UsesDifferentials() const override { return child_->UsesDifferentials(); }
     // The transformed coordinates (Prism's convention), for tests.
     Vec2f Map(Vec2f uv) const;
 
