@@ -183,7 +183,8 @@ RGB MIPMap::EWALevel(int level, Vec2f st, Vec2f dst0, Vec2f dst1) const {
             const float ss = float(is) - s;
             const float r2 = A * ss * ss + B * ss * tt + C * tt * tt;
             if (r2 < 1) {
-                const float weight = lut[size_t(std::min(int(r2 * WeightLUTSize), WeightLUTSize - 1))];
+                const float weight =
+                    lut[size_t(std::min(int(r2 * WeightLUTSize), WeightLUTSize - 1))];
                 sum += Texel(level, is, it) * weight;
                 sumWts += weight;
             }

@@ -52,8 +52,10 @@ TEST(RayDifferentials, CameraMatchesFiniteDifferences) {
                 const float h = 0.01f;
                 for (int axis = 0; axis < 2; ++axis) {
                     Vec2f e = axis == 0 ? Vec2f(h, 0) : Vec2f(0, h);
-                    Ray a = cam.GenerateRay(pFilm + e, uLens), b = cam.GenerateRay(pFilm - e, uLens);
-                    Vec3f dO = (a.o - b.o) * (scale / (2 * h)), dD = (a.d - b.d) * (scale / (2 * h));
+                    Ray a = cam.GenerateRay(pFilm + e, uLens),
+                        b = cam.GenerateRay(pFilm - e, uLens);
+                    Vec3f dO = (a.o - b.o) * (scale / (2 * h)),
+                          dD = (a.d - b.d) * (scale / (2 * h));
                     const Vec3f &o = axis == 0 ? rd.rxOrigin : rd.ryOrigin;
                     const Vec3f &d = axis == 0 ? rd.rxDirection : rd.ryDirection;
                     EXPECT_LT(Dist(o - r.o, dO), 2e-4 * scale) << kind << " axis " << axis;
@@ -174,16 +176,14 @@ TEST(Checkerboard, ClosedFormIsTheBoxFilteredAverage) {
     std::uniform_real_distribution<float> pos(-5, 5), width(0.05f, 3);
     for (int k = 0; k < 40; ++k) {
         float s = pos(rng), t = pos(rng), ds = width(rng), dt = width(rng);
-        EXPECT_NEAR(CheckerboardTexture::OddFraction(s, t, ds, dt), NumericOdd(s, t, ds, dt),
-                    4e-3)
+        EXPECT_NEAR(CheckerboardTexture::OddFraction(s, t, ds, dt), NumericOdd(s, t, ds, dt), 4e-3)
             << s << " " << t << " " << ds << " " << dt;
     }
     // Through the texture: tex1 = 0, tex2 = 1 gives the odd fraction of the footprint's box
     // (half a differential to either side).
     auto zero = std::make_shared<ConstantTexture>(RGB(0));
     auto one = std::make_shared<ConstantTexture>(RGB(1));
-    CheckerboardTexture aa(TextureMapping{}, zero, one, 2,
-                           CheckerboardTexture::AAMode::ClosedForm);
+    CheckerboardTexture aa(TextureMapping{}, zero, one, 2, CheckerboardTexture::AAMode::ClosedForm);
     CheckerboardTexture none(TextureMapping{}, zero, one, 2, CheckerboardTexture::AAMode::None);
     TextureContext tc{{2.3f, -1.6f}, {}};
     tc.dudx = 1.2f;
@@ -280,8 +280,8 @@ TEST(ImageTextureFilter, OneTexelPerPixelHeadOnIsUnchanged) {
     // The quad fills the image; each pixel centre is a texel centre.
     double m = 0;
     for (int y = 0; y < res; ++y)
-        for (int x = 0; x < res; ++x) m = std::max(m, double(std::abs(point.At(x, y, 0) -
-                                                                  img->At(x, y, 0))));
+        for (int x = 0; x < res; ++x)
+            m = std::max(m, double(std::abs(point.At(x, y, 0) - img->At(x, y, 0))));
     EXPECT_LT(m, 1e-3);
     EXPECT_LT(MaxDiff(bilinear, point), 1e-3);
     EXPECT_LT(MaxDiff(trilinear, point), 1e-3);
