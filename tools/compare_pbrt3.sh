@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Renders the scenes of ../shared/pbrt3-reference with Prism (the exact scene files pbrt-v3
 # rendered) and compares box-filtered images: both are downsampled by FACTOR (default 4) and
-# compared with oiiotool --diff (RMSE, PSNR, max error). Side-by-side PNGs go to OUTDIR.
+# compared with oiiotool --diff (RMSE, PSNR, max error) and by their relative L1 error
+# (mean |a - b| / mean |b| over the RGB channels, from oiiotool --absdiff and --printstats).
+# Side-by-side PNGs go to OUTDIR. ONLY="cornell-path cornell-direct" renders just those scenes.
 # Usage: tools/compare_pbrt3.sh [OUTDIR] [FACTOR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,12 +18,18 @@ trap 'rm -rf "$WORK"' EXIT
 cp "$REF"/*.pbrt "$WORK/"
 # The texture the spheres scene needs sits with the original scene.
 cp -r "$SCENES/pbrt-spheres-differentials-texfilt/textures" "$WORK/"
-echo "| scene | Prism render (s) | RMSE | PSNR (dB) | max abs error | mean of reference |"
-echo "|---|---|---|---|---|---|"
+echo "| scene | Prism render (s) | RMSE | PSNR (dB) | max abs error | mean of reference | rel L1 |"
+echo "|---|---|---|---|---|---|---|"
+# The mean over R, G and B of oiiotool --printstats' "Stats Avg".
+avg3() {
+    sed -n 's/.*Stats Avg: \([0-9.e+-]*\) \([0-9.e+-]*\) \([0-9.e+-]*\).*/\1 \2 \3/p' |
+        awk '{printf "%.6g", ($1+$2+$3)/3}'
+}
 for f in "$WORK"/*.pbrt; do
     name="$(basename "$f" .pbrt)"
     ref="$REF/$name.exr"
     [ -f "$ref" ] || continue
+    if [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]]; then continue; fi
     out=$("$PRISM" render "$f" -o "$WORK/$name.exr" --no-progress 2>&1)
     secs=$(echo "$out" | grep -o 'render [0-9.]*s' | head -1 | sed 's/render \(.*\)s/\1/')
     w=$(oiiotool --info "$ref" | sed -n 's/.* \([0-9]*\) x *\([0-9]*\),.*/\1/p')
@@ -33,8 +41,12 @@ for f in "$WORK"/*.pbrt; do
     rmse=$(echo "$diff" | sed -n 's/.*RMS error = \([0-9.e+-]*\).*/\1/p')
     psnr=$(echo "$diff" | sed -n 's/.*Peak SNR = \([0-9.e+-]*\).*/\1/p')
     maxe=$(echo "$diff" | sed -n 's/.*Max error *= \([0-9.e+-]*\).*/\1/p')
-    mean=$(oiiotool "$WORK/b.exr" --printstats 2>&1 | sed -n 's/.*Stats Avg: \([0-9.e+-]*\) \([0-9.e+-]*\) \([0-9.e+-]*\).*/\1 \2 \3/p' | awk '{printf "%.4f", ($1+$2+$3)/3}')
-    echo "| $name | $secs | $rmse | $psnr | $maxe | $mean |"
+    meanb=$(oiiotool "$WORK/b.exr" --printstats 2>&1 | avg3)
+    mean=$(awk -v m="$meanb" 'BEGIN{printf "%.4f", m}')
+    l1=$(oiiotool "$WORK/a.exr" --ch R,G,B "$WORK/b.exr" --ch R,G,B --absdiff --printstats 2>&1 |
+        avg3)
+    rel=$(awk -v d="$l1" -v m="$meanb" 'BEGIN{printf "%.2f%%", 100 * d / m}')
+    echo "| $name | $secs | $rmse | $psnr | $maxe | $mean | $rel |"
     oiiotool "$WORK/$name.exr" --colorconvert linear sRGB -d uint8 -o "$WORK/p.png"
     oiiotool "$ref" --colorconvert linear sRGB -d uint8 -o "$WORK/r.png"
     oiiotool "$WORK/p.png" "$WORK/r.png" --mosaic 2x1 --resize 50% -o "$OUT/$name-prism-vs-pbrt3.png"

@@ -47,11 +47,12 @@ std::vector<Aov> ChooseAovs(const std::string &aovOption, const RenderScene &sce
                   " gets the beauty alone");
         return {};
     }
-    if (scene.integrator == IntegratorKind::Distribution && AovsNeedWhitted(aovs)) {
+    if (scene.integrator != IntegratorKind::Whitted && AovsNeedWhitted(aovs)) {
         if (list != "all")
             throw UsageError(
                 "the direct and indirect AOVs need Integrator \"whitted\" (this "
-                "render uses \"distribution\"; try --integrator whitted)");
+                "render uses " +
+                Quote(scene.integratorName) + "; try --integrator whitted)");
         aovs.erase(std::remove_if(aovs.begin(), aovs.end(),
                                   [](Aov a) { return a == Aov::Direct || a == Aov::Indirect; }),
                    aovs.end());

@@ -215,7 +215,8 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
                                {"--tonemap", &a.toneMap},
                                {"--env", &a.env},
                                {"--env-rotate", &a.envRotate},
-                               {"--env-mode", &a.envMode}})
+                               {"--env-mode", &a.envMode},
+                               {"--time-limit", &a.timeLimit}})
         if (!value->empty()) {
             args.push_back(flag);
             args.push_back(*value);
@@ -422,6 +423,10 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args) {
         ->check(CLI::Number);
     cmd->add_option("--env-mode", args->envMode, "replace (default) or add")
         ->check(CLI::IsMember({"replace", "add"}));
+    cmd->add_option("--time-limit", args->timeLimit,
+                    "Seconds per scene: each renders in progressive passes until its time runs "
+                    "out (or --spp is reached), as prism render --time-limit")
+        ->check(CLI::Range(1e-3, 1e9));
     cmd->add_flag("-q,--quiet", args->quiet, "No progress lines");
 }
 

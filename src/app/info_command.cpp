@@ -39,7 +39,7 @@ void PrintEffects(const RenderScene &scene) {
         if (e.Has(eff))
             std::printf("  %s: on (%s)\n", EffectName(eff), e.reasons[i].c_str());
         else if ((eff == Effect::GlossyReflection || eff == Effect::GlossyTransmission) &&
-                 scene.integrator != IntegratorKind::Distribution)
+                 scene.integrator == IntegratorKind::Whitted)
             std::printf("  %s: off (Integrator \"%s\" traces no glossy rays)\n", EffectName(eff),
                         scene.integratorName.c_str());
         else
@@ -164,7 +164,7 @@ int RunInfo(const InfoArgs &a) {
     std::printf("film:       %dx%d\n",
                 desc.film.params.GetInt("xresolution", PbrtDefaultXResolution),
                 desc.film.params.GetInt("yresolution", PbrtDefaultYResolution));
-    std::printf("integrator: %s\n", desc.integrator.type.c_str());
+    std::printf("integrator: %s (%s)\n", built.integratorName.c_str(), built.integratorWhy.c_str());
     PrintEffects(built);
     std::vector<Warning> w = diag.Warnings();
     std::printf("warnings:   %zu\n", w.size());

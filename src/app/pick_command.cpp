@@ -157,7 +157,7 @@ struct Picker {
         std::string next;
         if (depth < maxBounces && depth + 1 < scene.maxDepth) {
             const Material &mat = scene.materials[size_t(info.material)];
-            BSDF bsdf = mat.GetBSDF(si, TextureContext{si.uv, si.p});
+            BSDF bsdf = mat.GetBSDF(si, TextureContext{si.uv, si.p, si.uv1});
             for (int part = 0; part < bsdf.NumParts(); ++part) {
                 Vec3f wi;
                 RGB weight;

@@ -19,6 +19,7 @@
 #include "core/file_io.h"
 #include "image/image_io.h"
 #include "render/kernel.h"
+#include "render/progressive.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "study/target_error.h"
@@ -45,6 +46,10 @@ OutputTransform ChooseOutputTransform(const RenderArgs &a, const RenderScene &sc
 void CheckTargetErrorArgs(const RenderArgs &a) {
     if (a.verify && a.targetError <= 0) throw UsageError("--verify needs --target-error");
     if (a.targetError <= 0) return;
+    if (a.timeLimit > 0)
+        throw UsageError(
+            "--target-error and --time-limit both choose the samples per pixel; "
+            "give one of them");
     for (auto [given, name] : {std::pair{a.sppGiven, "--spp"}, std::pair{a.cutoffGiven, "--cutoff"},
                                std::pair{a.lightSamplesGiven, "--light-samples"}})
         if (given)
@@ -129,6 +134,7 @@ struct RenderJob::State {
     std::string out;
     std::vector<Aov> aovs;  // empty: no AOV pass
     std::chrono::steady_clock::time_point start;
+    const std::chrono::steady_clock::time_point created = std::chrono::steady_clock::now();
     int lastQuarter = 0;
 
     State(const RenderArgs &args, bool writer) : a(args), diag(writer && !args.quiet) {}
@@ -194,6 +200,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     }
     auto t1 = std::chrono::steady_clock::now();
     s_->scene.emplace(BuildRenderScene(desc, opts, diag));
+    s_->scene->estimateNoise = a.stats;
     const RenderScene &scene = *s_->scene;
     // Scene setup: meshes read (PLY), textures decoded, materials and lights built.
     s_->setupSeconds = SecondsSince(t1) - scene.buildSeconds;
@@ -213,6 +220,17 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
 RenderJob::~RenderJob() = default;
 
 const RenderScene &RenderJob::Scene() const { return *s_->scene; }
+
+Image RenderJob::RenderImage(RenderStats *stats, const ProgressFn &progress,
+                             const volatile int *cancel) {
+    const RenderArgs &a = s_->a;
+    if (a.timeLimit <= 0) return Render(*s_->scene, stats, progress, cancel);
+    TimeLimit limit;
+    limit.seconds = a.timeLimit - SecondsSince(s_->created);
+    // --spp caps the passes; without it they go on until the time runs out.
+    limit.maxSpp = a.sppGiven ? s_->scene->spp : MaxProgressiveSpp;
+    return RenderProgressive(*s_->scene, limit, stats, progress, cancel);
+}
 const std::string &RenderJob::Output() const { return s_->out; }
 
 ProgressFn RenderJob::Progress() {
@@ -263,9 +281,8 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                      "pass-through %llu, glossy %llu; %.2f Mrays/s\n",
                      out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
                      scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
-                     a.precision.c_str(),
-                     scene.integrator == IntegratorKind::Distribution ? "distribution" : "whitted",
-                     s_->parseSeconds, s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,
+                     a.precision.c_str(), scene.integratorName.c_str(), s_->parseSeconds,
+                     s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,
                      (unsigned long long)r.camera, (unsigned long long)r.shadow,
                      (unsigned long long)r.reflection, (unsigned long long)r.refraction,
                      (unsigned long long)r.passThrough, (unsigned long long)r.glossy,
@@ -295,6 +312,22 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                 on += std::string(on.empty() ? "" : ", ") + EffectName(Effect(e));
         std::fprintf(stderr, "effects: %s; kernel: %s\n", on.empty() ? "none" : on.c_str(),
                      KernelMaskName(stats.kernelMask).c_str());
+        if (!stats.passSpp.empty()) {
+            std::string passes;
+            for (int n : stats.passSpp) passes += (passes.empty() ? "" : "+") + std::to_string(n);
+            std::fprintf(stderr, "time limit %gs: %zu passes (%s = %d spp)\n", a.timeLimit,
+                         stats.passSpp.size(), passes.c_str(), scene.spp);
+        }
+        if (a.stats) {
+            std::optional<double> rse = RelativeStandardError(img, stats);
+            if (rse)
+                std::fprintf(stderr,
+                             "noise: relative standard error %.4g (estimated from the even and "
+                             "odd samples of %llu pixels)\n",
+                             *rse, (unsigned long long)stats.noisePixels);
+            else
+                std::fprintf(stderr, "noise: no estimate (it needs at least 2 spp)\n");
+        }
         if (stats.nonFiniteSamples > 0)
             std::fprintf(stderr,
                          "warning: %llu NaN/Inf samples were written as 0 (first at pixel %d,%d)\n",
@@ -321,7 +354,7 @@ int RunRender(const RenderArgs &a) {
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, &old);
     sigaction(SIGTERM, &sa, nullptr);
-    Image img = Render(job.Scene(), &stats, progress, &g_cancel);
+    Image img = job.RenderImage(&stats, progress, &g_cancel);
     if (stats.cancelled || g_cancel) {
         std::fprintf(stderr, "interrupted: no image written\n");
         return ExitInterrupted;
@@ -348,10 +381,10 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "Maximum specular depth (overrides the Integrator)")
         ->check(CLI::Range(0, 1000));
     cmd->add_option("--integrator", args->integrator,
-                    "whitted (pbrt-v3's: no glossy rays) or distribution (Whitted plus glossy "
-                    "reflection and transmission); default: the scene's Integrator (OBJ and glTF: "
-                    "distribution)")
-        ->check(CLI::IsMember({"whitted", "distribution"}));
+                    "whitted (pbrt-v3's: no glossy rays), distribution (Whitted plus glossy "
+                    "reflection and transmission), directlighting or path (pbrt-v3's); default: "
+                    "the scene's Integrator (OBJ and glTF: distribution)")
+        ->check(CLI::IsMember({"whitted", "distribution", "directlighting", "path"}));
     cmd->add_option("--glossy-samples", args->glossySamples,
                     "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "
                     "(distribution integrator; overrides \"glossysamples\", default 8)")
@@ -410,6 +443,14 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "Choose spp, cutoff and light samples by a pilot study to reach this "
                     "relative RMSE against a reference (docs/ACCURACY.md)")
         ->check(CLI::Range(1e-6, 1e6));
+    cmd->add_option("--time-limit", args->timeLimit,
+                    "Render in progressive passes until S seconds have passed since the start "
+                    "(loading included), or --spp samples are reached if given; a started pass "
+                    "finishes, so the image is always complete")
+        ->check(CLI::Range(1e-3, 1e9));
+    cmd->add_flag("--stats", args->stats,
+                  "Also print the image's noise: its relative standard error, estimated from "
+                  "each pixel's even and odd samples");
     cmd->add_flag("--verify", args->verify,
                   "With --target-error: render a reference too and report the error reached");
     CLI::Option *exposure =

@@ -44,6 +44,9 @@ struct RenderArgs {
     double envRotate = 0;
     bool envRotateGiven = false;
     std::string aov;  // --aov LIST|all (render/aov.h); empty: the Film's "aovs"
+    // --time-limit (render/progressive.h): 0 when not given; counted from the start of the job.
+    double timeLimit = 0;
+    bool stats = false;  // --stats: the noise estimate (relative standard error)
 };
 
 // Registers the render options on `cmd` (its positional "scene" included). Call the returned
@@ -63,6 +66,9 @@ class RenderJob {
     RenderJob &operator=(const RenderJob &) = delete;
 
     const RenderScene &Scene() const;
+    // Renders the image: Render(), or with --time-limit RenderProgressive with the time left
+    // since the job started.
+    Image RenderImage(RenderStats *stats, const ProgressFn &progress, const volatile int *cancel);
     const std::string &Output() const;
     // The progress display (empty with --quiet or --no-progress); its clock starts here.
     ProgressFn Progress();

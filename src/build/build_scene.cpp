@@ -8,6 +8,7 @@
 #include "build/scene_effects.h"
 #include "build/shapes.h"
 #include "build/textures.h"
+#include "render/light_sampling.h"
 
 namespace prism {
 
@@ -28,6 +29,7 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     MaterialBuilder materials(ctx);  // created on demand, as shapes use them
     BuildShapesAndInstances(ctx, materials);
     FinishEffects(ctx);
+    ComputeLightPower(scene);  // the path and directlighting integrators' light choice
     // Rays carry differentials only where a texture filters over their footprint.
     for (const Material &m : scene.materials) scene.differentials |= m.UsesDifferentials();
     scene.allEffects = settings.allEffects;

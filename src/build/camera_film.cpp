@@ -185,8 +185,16 @@ void BuildSampler(BuildContext &ctx) {
     }
     // Prism draws its own stratified (correlated multi-jittered) samples whatever the file
     // names; only the sample count is read. The default (no Sampler directive) is not named.
+    // The path and directlighting integrators draw "random" samples as pbrt's RandomSampler
+    // does (independent uniform numbers; render/light_sampling.h PixelSamples).
     const std::string context = "sampler " + Quote(desc.sampler.type);
-    if (desc.sampler.type != "stratified" && desc.sampler.loc.Valid())
+    const std::string integrator =
+        settings.integrator.empty() ? desc.integrator.type : settings.integrator;
+    const bool pathLike =
+        integrator == "directlighting" ||
+        (integrator == "path" && (!settings.integrator.empty() || desc.integrator.loc.Valid()));
+    scene.independentSamples = pathLike && desc.sampler.type == "random";
+    if (desc.sampler.type != "stratified" && desc.sampler.loc.Valid() && !scene.independentSamples)
         diag.Warn(desc.sampler.loc, context + " is replaced by Prism's stratified sampler");
     WarnIgnoredRest(sp, diag, context, "Prism's stratified sampler reads only the sample count");
     if (settings.spp > 0) spp = settings.spp;
@@ -245,7 +253,18 @@ void BuildIntegratorSettings(BuildContext &ctx) {
     // --integrator replaces the scene's choice (its parameters still apply).
     const std::string type =
         settings.integrator.empty() ? desc.integrator.type : settings.integrator;
-    scene.integratorName = type;
+    // A pbrt scene without an Integrator directive keeps rendering with Whitted (pbrt's default
+    // would be "path"); OBJ and glTF scenes name "distribution" themselves.
+    const bool named = !settings.integrator.empty() || desc.integrator.loc.Valid();
+    scene.integratorName = named || type != "path" ? type : "whitted";
+    if (!settings.integrator.empty())
+        scene.integratorWhy = "--integrator " + settings.integrator;
+    else if (desc.integrator.loc.Valid())
+        scene.integratorWhy = "Integrator " + Quote(type) + " at " + desc.integrator.loc.ToString();
+    else if (type != "path")
+        scene.integratorWhy = "default of the scene's format";
+    else
+        scene.integratorWhy = "default: the scene names no Integrator";
     int maxDepth = ip.GetInt("maxdepth", 5);
     if (type == "distribution") {
         // Prism's extension: Whitted plus glossy rays (docs/FORMAT.md).
@@ -259,9 +278,57 @@ void BuildIntegratorSettings(BuildContext &ctx) {
         scene.glossySamples = n;
         WarnIgnoredRest(ip, diag, "integrator \"distribution\"",
                         "Prism's distribution integrator reads only maxdepth and glossysamples");
+    } else if (type == "directlighting") {
+        scene.integrator = IntegratorKind::DirectLighting;
+        const std::string strategy = ip.GetString("strategy", "all");
+        if (strategy != "all" && strategy != "one") {
+            // pbrt-v3: "Strategy \"...\" for direct lighting unknown. Using \"all\"."
+            const Param *p = ip.Find("strategy");
+            diag.Warn(p ? p->loc : desc.integrator.loc,
+                      "strategy " + Quote(strategy) + " is unknown; using \"all\"");
+        }
+        scene.directAllLights = strategy != "one";
+        scene.lightChoice = LightChoice::Uniform;  // pbrt-v3: "one" picks lights uniformly
+        WarnIgnoredRest(ip, diag, "integrator \"directlighting\"",
+                        "Prism's directlighting integrator reads maxdepth and strategy");
+    } else if (type == "path" && named) {
+        scene.integrator = IntegratorKind::Path;
+        scene.rrThreshold = ip.GetFloat("rrthreshold", 1.f);
+        if (!(scene.rrThreshold >= 0))
+            throw SceneError(desc.integrator.loc, "rrthreshold must be a number >= 0");
+        const std::string lss = ip.GetString("lightsamplestrategy", "spatial");
+        const Param *p = ip.Find("lightsamplestrategy");
+        if (lss == "uniform") {
+            scene.lightChoice = LightChoice::Uniform;
+        } else if (lss == "power") {
+            scene.lightChoice = LightChoice::Power;
+        } else {
+            // pbrt-v3's default "spatial" (a distribution per voxel from the lights'
+            // contributions there) stands in as one scene-wide mixture, half by power and half
+            // uniform (docs/PATH.md); an unknown name is "spatial", as in pbrt-v3.
+            scene.lightChoice = LightChoice::Spatial;
+            if (p && lss == "spatial")
+                diag.Warn(p->loc,
+                          "lightsamplestrategy \"spatial\" is rendered with one light "
+                          "distribution for the whole scene (half by power, half "
+                          "uniform)");
+            else if (p)
+                diag.Warn(p->loc,
+                          "lightsamplestrategy " + Quote(lss) + " is unknown; using \"spatial\"");
+        }
+        // The one effect of the path integrator that no material or light turns on.
+        if (!settings.integrator.empty())
+            scene.features.effects.Enable(Effect::IndirectIllumination, "--integrator path");
+        else
+            scene.features.effects.Enable(Effect::IndirectIllumination, "Integrator \"path\"",
+                                          desc.integrator.loc);
+        WarnIgnoredRest(ip, diag, "integrator \"path\"",
+                        "Prism's path integrator reads maxdepth, rrthreshold and "
+                        "lightsamplestrategy");
     } else {
         scene.integrator = IntegratorKind::Whitted;
         // Only an Integrator the file names is worth a warning (pbrt's default is "path").
+        // pbrt's default is "path"; a scene without an Integrator renders as before, with Whitted.
         if (type != "whitted" && desc.integrator.loc.Valid())
             diag.Warn(desc.integrator.loc,
                       "integrator " + Quote(type) + " is rendered with Whitted (maxdepth " +

@@ -86,11 +86,45 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
                              "\" shapes are not supported; the shape does not emit");
         return nullptr;
     }
-    scene.lights.push_back(
-        std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L, twoSided, n));
-    scene.shapes[size_t(shape)].areaLight = int(scene.lights.size()) - 1;
+    // Prism extension: "texture emissionmap" (with "emissionmaptexcoord"/"emissionmaptransform",
+    // WithTexCoordParams), a textured radiance L × emissionmap(uv) on triangle meshes. The
+    // glTF reader writes it for emissive textures.
+    TexturePtr radiance;
+    if (ps.Has("emissionmap")) {
+        radiance = WithTexCoordParams(TextureParam(ctx, ps, "emissionmap", false, RGB(1)), nullptr,
+                                      ps, "emissionmap");
+        if (analytic) {
+            diag.Warn(ps.Find("emissionmap")->loc,
+                      "\"emissionmap\" is read on triangle meshes only; \"" + s.type +
+                          "\" emits its constant \"L\"");
+            radiance = nullptr;
+        } else if (radiance->IsConstant()) {
+            L = L * static_cast<const ConstantTexture &>(*radiance).Value();
+            radiance = nullptr;
+        }
+    }
+    auto light = std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L, twoSided,
+                                                    n, radiance);
+    const DiffuseAreaLight &al = *light;
+    scene.lights.push_back(std::move(light));
+    ShapeInfo &info = scene.shapes[size_t(shape)];
+    info.areaLight = int(scene.lights.size()) - 1;
     scene.features.areaLights = true;
-    NoteLightEffects(ctx, "AreaLightSource " + Quote(a.type), a.loc);
+    std::string why = "AreaLightSource " + Quote(a.type);
+    if (al.Textured()) {
+        // The hit's uv is read for the emitted radiance.
+        scene.accel->SetSurfaceNeeds(
+            shape, scene.materials[size_t(info.material)].SurfaceNeeds() | NeedUV);
+        const std::string material =
+            s.material >= 0 && size_t(s.material) < desc.materials.size()
+                ? " of material " + Quote(desc.materials[size_t(s.material)].name)
+                : std::string();
+        const size_t triangles = scene.accel->Mesh(shape)->NumTriangles();
+        why = "emissive texture" + material + " (a textured area light; " +
+              std::to_string(al.SampledTriangles()) + " of " + std::to_string(triangles) +
+              " triangles emit and are sampled)";
+    }
+    NoteLightEffects(ctx, why, a.loc);
     return &a;
 }
 

@@ -125,7 +125,8 @@ void MaterialBuilder::Roughness(Material &mat, MaterialParams &mp, float def) {
 
 // pbrt-v3 "bumpmap" (v4 "displacement"): a float texture; a tangent-space normal map, as
 // pbrt-v4's "string normalmap" (an image file, read linearly) or a Prism "texture normalmap",
-// with the Prism extension "float normalscale" (glTF's normalTexture.scale; default 1).
+// with the Prism extension "float normalscale" (glTF's normalTexture.scale; default 1) and
+// "normalmaptexcoord" / "normalmaptransform" (WithTexCoordParams).
 void MaterialBuilder::ShadingPerturbation(Material &mat, MaterialParams &mp,
                                           const MaterialDesc &m) {
     for (const char *n : {"bumpmap", "displacement"})
@@ -145,6 +146,9 @@ void MaterialBuilder::ShadingPerturbation(Material &mat, MaterialParams &mp,
         } else {
             mat.normalMap = mp.RGBTex("normalmap", RGB(0.5f, 0.5f, 1.f));
         }
+        mat.normalMap = WithTexCoordParams(mat.normalMap, mp.shape, mp.mat, "normalmap");
+        if (mp.Has("normalmaptexcoord"))
+            mat.normalMapUVSet = mp.Src("normalmaptexcoord").GetInt("normalmaptexcoord", 0);
         mat.normalScale = mp.Src("normalscale").GetFloat("normalscale", 1.f);
     }
 }
@@ -327,23 +331,14 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
 
 // Prism's "gltf" material (written by the glTF reader, usable in .pbrt files): the glTF 2.0
 // metallic-roughness model (render/gltf_material.h). Maps are named textures; "<map>transform"
-// is KHR_texture_transform as [offset.u offset.v rotation scale.u scale.v].
+// is KHR_texture_transform as [offset.u offset.v rotation scale.u scale.v], "<map>texcoord" 1
+// reads the mesh's second uv set (WithTexCoordParams).
 void MaterialBuilder::MakeGltfMaterial(Material &mat, MaterialParams &mp) {
     mat.kind = Material::Kind::Gltf;
     GltfMaterialParams &g = mat.gltf;
     auto map = [&](const char *name) -> TexturePtr {
         if (!mp.Has(name)) return nullptr;
-        TexturePtr t = mp.RGBTex(name, RGB(1));
-        const std::string tn = std::string(name) + "transform";
-        if (mp.Has(tn)) {
-            std::vector<float> v = mp.Src(tn).GetFloats(tn);
-            if (v.size() != 5) {
-                const Param *p = mp.Src(tn).Find(tn);
-                throw SceneError(p->loc, "\"" + tn + "\" must have 5 values");
-            }
-            t = std::make_shared<UVTransformTexture>(t, Vec2f(v[0], v[1]), v[2], Vec2f(v[3], v[4]));
-        }
-        return t;
+        return WithTexCoordParams(mp.RGBTex(name, RGB(1)), mp.shape, mp.mat, name);
     };
     const RGB baseFactor = mp.Rgb("basecolor", RGB(1));
     if (TexturePtr t = map("basecolormap"))

@@ -89,9 +89,10 @@ std::string MaterialWhy(const SceneDescription &desc, const ShapeDesc &s, FileLo
 void NoteMaterialEffects(BuildContext &ctx, const Material &m, const std::string &why,
                          const FileLoc &loc) {
     EffectSet &e = ctx.scene.features.effects;
-    const bool distribution = ctx.scene.integrator == IntegratorKind::Distribution;
-    // The distribution integrator turns rough glass into glossy lobes; Whitted follows its
-    // delta lobes (pbrt-v3's "whitted"): it is specular there.
+    // The distribution, directlighting and path integrators turn rough glass into glossy lobes
+    // and sample glossy lobes; Whitted follows rough glass's delta lobes (pbrt-v3's
+    // "whitted"): it is specular there.
+    const bool distribution = ctx.scene.integrator != IntegratorKind::Whitted;
     bool roughGlassOnly = false;
     if (distribution && m.kind == Material::Kind::Glass) {
         const ConstantTexture *cu = AsConstant(m.uRoughness), *cv = AsConstant(m.vRoughness);
@@ -124,7 +125,8 @@ void FinishEffects(BuildContext &ctx) {
     RenderScene &scene = ctx.scene;
     EffectSet &e = scene.features.effects;
     const bool bounces = e.Has(Effect::SpecularReflection) || e.Has(Effect::Refraction) ||
-                         e.Has(Effect::GlossyReflection) || e.Has(Effect::GlossyTransmission);
+                         e.Has(Effect::GlossyReflection) || e.Has(Effect::GlossyTransmission) ||
+                         e.Has(Effect::IndirectIllumination);
     e.maxUsefulDepth = bounces ? std::max(scene.maxDepth, 1) : 1;
 }
 

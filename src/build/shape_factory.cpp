@@ -81,6 +81,16 @@ ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromO
     // these float copies are at most half of it) are freed when this returns.
     g.mesh =
         MakeMesh(s, renderFromObject, P, indices, N, uv, budget, ArrayBytes(P, indices, N, uv));
+    // Prism extension (glTF TEXCOORD_1): "point2 uv1", a second texture coordinate set.
+    if (ps.Has("uv1")) {
+        std::vector<Vec2f> uv1 = ps.GetPoint2s("uv1");
+        ChargeMesh(budget, s, uv1.size() * sizeof(Vec2f), 0);
+        try {
+            g.mesh->SetUV1(std::move(uv1));
+        } catch (const std::invalid_argument &e) {
+            throw SceneError(ParamLoc(s, "uv1"), std::string(s.type) + ": " + e.what());
+        }
+    }
     // Prism extension (glTF TANGENT): "float tangent", xyz and the bitangent sign per vertex.
     if (ps.Has("tangent")) {
         try {

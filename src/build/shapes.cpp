@@ -60,8 +60,11 @@ struct ShapeBuilder : BuildStep {
     // shadow rays (pbrt-v3 cuts out only where alpha is exactly 0); a texture becomes a
     // cut-out test on each hit (geometry/alpha.h). "shadowalpha" defaults to "alpha". Prism
     // extensions, written by the glTF and OBJ readers: "string alphamode" "mask" (kept where
-    // alpha >= "float alphacutoff", default 0.5) or "blend" (stochastic: kept where alpha
-    // exceeds a hash of the ray; used for camera rays, shadows keep the cutoff).
+    // alpha >= "float alphacutoff", default 0.5) or "blend" (stochastic transparency: a hit is
+    // kept where alpha exceeds a hash of the ray and the primitive, for camera, secondary and
+    // shadow rays alike, so a surface of alpha a passes 1 - a of them and its shadow darkens
+    // by a on average); "alphatexcoord" / "alphatransform" (WithTexCoordParams) for a glTF
+    // base colour on TEXCOORD_1 or with KHR_texture_transform.
     unsigned VisibilityMask(const ShapeDesc &s, ShapeAlpha *cutouts) {
         const ParamSet &ps = s.params;
         float alpha = 1, shadowAlpha = 1;
@@ -91,21 +94,32 @@ struct ShapeBuilder : BuildStep {
             throw SceneError(ps.Find("alphamode")->loc,
                              "\"alphamode\" must be \"mask\" or \"blend\", not " + Quote(mode));
         const float cutoff = ps.GetFloat("alphacutoff", 0.5f);
-        // A constant alpha between 0 and 1 is a stochastic cut-out in "blend" mode.
-        if (mode == "blend" && !alphaTex && alpha > 0 && alpha < 1) {
-            alphaTex = Constant(RGB(alpha));
-            scene.features.effects.Enable(Effect::Alpha, "\"alphamode\" \"blend\"",
-                                          ps.Find("alphamode")->loc);
+        // A constant alpha between 0 and 1 is stochastic transparency in "blend" mode, for
+        // camera and shadow rays.
+        if (mode == "blend") {
+            bool partial = false;
+            if (!alphaTex && alpha > 0 && alpha < 1)
+                alphaTex = Constant(RGB(alpha)), partial = true;
+            if (!shadowTex && shadowAlpha > 0 && shadowAlpha < 1)
+                shadowTex = Constant(RGB(shadowAlpha)), partial = true;
+            if (partial)
+                scene.features.effects.Enable(Effect::Alpha, "\"alphamode\" \"blend\"",
+                                              ps.Find("alphamode")->loc);
         }
-        auto test = [&](const TexturePtr &t, bool stochastic) {
+        // The uv set the test passes (the mesh's "uv1" for "alphatexcoord" 1); the texture
+        // then reads it as uv (and as uv1, so a TexCoord1Texture reads the same).
+        const int uvSet = ps.GetInt("alphatexcoord", 0);
+        auto test = [&](TexturePtr t) {
+            t = WithTexCoordParams(t, nullptr, ps, "alpha");
             auto a = std::make_shared<AlphaTest>();
-            a->alpha = [t](const Vec2f &uv, const Vec3f &p) { return t->Evaluate({uv, p}).r; };
+            a->alpha = [t](const Vec2f &uv, const Vec3f &p) { return t->Evaluate({uv, p, uv}).r; };
             if (mode == "mask") a->cutoff = cutoff;
-            a->stochastic = stochastic && mode == "blend";
+            a->stochastic = mode == "blend";
+            a->uvSet = uvSet == 1 ? 1 : 0;
             return a;
         };
-        if (alphaTex) cutouts->camera = test(alphaTex, true);
-        if (shadowTex) cutouts->shadow = test(shadowTex, false);
+        if (alphaTex) cutouts->camera = test(alphaTex);
+        if (shadowTex) cutouts->shadow = test(shadowTex);
         unsigned mask = AllRays;
         if (alpha == 0 && !alphaTex) mask &= ~CameraRays;
         if (shadowAlpha == 0 && !shadowTex) mask &= ~ShadowRays;
@@ -142,7 +156,7 @@ struct ShapeBuilder : BuildStep {
         int material = materials.MaterialForShape(s);
         // Normal maps read tangents: the mesh's own ("tangent"), else generated ones.
         if (geom.mesh && scene.materials[size_t(material)].normalMap && !geom.mesh->HasTangents())
-            geom.mesh->GenerateTangents();
+            geom.mesh->GenerateTangents(scene.materials[size_t(material)].normalMapUVSet);
         s.params.ReportUnused(diag, "shape " + Quote(s.type));
         int index;
         if (geom.mesh) {

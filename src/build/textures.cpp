@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/memory.h"
+#include "render/gltf_material.h"
 #include "render/mipmap.h"
 
 namespace prism {
@@ -324,6 +325,28 @@ std::shared_ptr<const Image> LoadSceneImage(BuildContext &ctx, const SceneEntity
                                             const std::string &file, ReadImageOptions::Encoding enc,
                                             const char *param) {
     return TextureBuilder(ctx).LoadImage(entity, file, enc, param);
+}
+
+TexturePtr WithTexCoordParams(TexturePtr t, const ParamSet *primary, const ParamSet &fallback,
+                              const std::string &name) {
+    auto src = [&](const std::string &n) -> const ParamSet & {
+        return primary && primary->Has(n) ? *primary : fallback;
+    };
+    const std::string tn = name + "transform", cn = name + "texcoord";
+    if (src(tn).Has(tn)) {
+        std::vector<float> v = src(tn).GetFloats(tn);
+        if (v.size() != 5)
+            throw SceneError(src(tn).Find(tn)->loc, "\"" + tn + "\" must have 5 values");
+        t = std::make_shared<UVTransformTexture>(t, Vec2f(v[0], v[1]), v[2], Vec2f(v[3], v[4]));
+    }
+    if (src(cn).Has(cn)) {
+        const int set = src(cn).GetInt(cn, 0);
+        if (set != 0 && set != 1)
+            throw SceneError(src(cn).Find(cn)->loc,
+                             "\"" + cn + "\" must be 0 or 1, not " + std::to_string(set));
+        if (set == 1) t = std::make_shared<TexCoord1Texture>(t);
+    }
+    return t;
 }
 
 }  // namespace prism

@@ -126,7 +126,7 @@ void MeshAlphaFilter(const RTCFilterFunctionNArguments *args) {
         Vec3f o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
         Vec3f d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
         const unsigned prim = RTCHitN_primID(hit, N, i);
-        Vec2f uv = ma->mesh->UVAt(prim, RTCHitN_u(hit, N, i), RTCHitN_v(hit, N, i));
+        Vec2f uv = ma->mesh->UVAt(prim, RTCHitN_u(hit, N, i), RTCHitN_v(hit, N, i), test->uvSet);
         Vec3f p = o + d * RTCRayN_tfar(ray, N, i);
         if (!test->Keeps(uv, p, o, d, prim)) args->valid[i] = 0;
     }

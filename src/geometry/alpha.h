@@ -24,6 +24,9 @@ struct AlphaTest {
     // depend on threads).
     bool stochastic = false;
     float cutoff = 0;
+    // The texture coordinate set the alpha reads (meshes: TriangleMesh::UVAt; 1 for a glTF
+    // base colour on TEXCOORD_1).
+    int uvSet = 0;
 
     bool Keeps(const Vec2f &uv, const Vec3f &p, const Vec3f &o, const Vec3f &d,
                uint32_t prim) const {

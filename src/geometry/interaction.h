@@ -22,6 +22,7 @@ struct SurfaceInteraction {
     Vec3f ns;                // unit shading normal, in n's hemisphere
     Vec3f dpdu, dpdv;        // zero unless NeedDpdu
     Vec2f uv;                // zero unless NeedUV
+    Vec2f uv1;               // second texture coordinate set (meshes' "uv1"; else uv), as uv
     Vec3f wo;                // unit direction back along the incoming ray
     float t = 0;             // ray parameter in units of the incoming ray's direction
     int shape = -1;          // index of the shape in the render scene

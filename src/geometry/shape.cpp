@@ -86,6 +86,25 @@ bool AnalyticShape::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
     return std::isfinite(ss->pdf) && ss->pdf > 0;
 }
 
+float AnalyticShape::Pdf(const Vec3f &ref, const Vec3f &p, const Vec3f &n) const {
+    // Uniform area sampling: the object-space density (one value for the whole surface)
+    // through the area Jacobian at p's normal, then to solid angle at ref.
+    Vec3d pObj, nObj;
+    double pdfObj;
+    if (!SampleObjectArea(Vec2f(0.5f, 0.5f), &pObj, &nObj, &pdfObj) || !(pdfObj > 0)) return 0;
+    Vec3d nO = renderFromObject_.Inverse().Normal(Vec3d(n));
+    double lenO = Length(nO);
+    if (!(lenO > 0)) return 0;
+    double jac = std::abs(renderFromObject_.Matrix().Determinant3x3()) *
+                 Length(renderFromObject_.Normal(nO / lenO));
+    Vec3d w = Vec3d(p) - Vec3d(ref);
+    double dist2 = LengthSquared(w);
+    double cosLight = std::abs(Dot(Vec3d(n), w)) / std::sqrt(dist2);
+    if (!(dist2 > 0) || cosLight == 0) return 0;
+    double pdf = pdfObj / jac * dist2 / cosLight;
+    return std::isfinite(pdf) ? float(pdf) : 0.f;
+}
+
 SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir,
                                               unsigned needs, float time) const {
     SurfaceInteraction si;
@@ -112,7 +131,7 @@ SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f 
         si.dpdu = Vec3f(rfo.Vector(g.dpdu));
         si.dpdv = Vec3f(rfo.Vector(g.dpdv));
     }
-    if (needs & NeedUV) si.uv = Vec2f(float(g.uv.x), float(g.uv.y));
+    if (needs & NeedUV) si.uv = si.uv1 = Vec2f(float(g.uv.x), float(g.uv.y));
     si.wo = Normalize(-rayDir);
     si.t = float(hit.t);
     si.instanceShape = hit.part;  // -1 except for CSG operands

@@ -105,6 +105,9 @@ class AnalyticShape {
     // Samples a point for direct lighting of `ref`, with the solid-angle density. The default
     // converts object-space area sampling through the transform's exact area Jacobian.
     virtual bool Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const;
+    // The solid-angle density with which Sample(ref, ...) gives the surface point p (unit
+    // normal n, render space), e.g. a point a ray from ref hit: multiple importance sampling.
+    virtual float Pdf(const Vec3f &ref, const Vec3f &p, const Vec3f &n) const;
     bool CanSample() const {
         Vec3d p, n;
         double pdf;

@@ -74,6 +74,18 @@ bool Sphere::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
     return std::isfinite(ss->pdf) && ss->pdf > 0;
 }
 
+float Sphere::Pdf(const Vec3f &ref, const Vec3f &p, const Vec3f &n) const {
+    if (partial_ || !similarity_) return AnalyticShape::Pdf(ref, p, n);
+    Vec3d c = renderFromObject_.Point(Vec3d(0, 0, 0));
+    double rW = radius_ * Length(renderFromObject_.Vector(Vec3d(1, 0, 0)));
+    double dc2 = LengthSquared(c - Vec3d(ref));
+    if (dc2 <= rW * rW * (1 + 1e-6)) return AnalyticShape::Pdf(ref, p, n);  // inside
+    // Sample's uniform cone: the density is the same for every direction inside it.
+    double sinThetaMax2 = rW * rW / dc2;
+    double oneMinusCosMax = sinThetaMax2 / (1 + SafeSqrt(1 - sinThetaMax2));
+    return float(1 / (2 * Pi * oneMinusCosMax));
+}
+
 Bounds3d Sphere::ObjectBounds() const {
     return Bounds3d(Vec3d(-radius_, -radius_, zMin_), Vec3d(radius_, radius_, zMax_));
 }

@@ -21,6 +21,7 @@ class Sphere final : public AnalyticShapeT<Sphere> {
     // Full spheres under similarity transforms sample the cone they subtend (pbrt-v3
     // Sphere::Sample), which wastes no samples on the far side; others sample by area.
     bool Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const override;
+    float Pdf(const Vec3f &ref, const Vec3f &p, const Vec3f &n) const override;
 
     template <typename Real>
     bool IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real tSlack,

@@ -178,7 +178,10 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
         uv1 = uv_[vi[1]];
         uv2 = uv_[vi[2]];
     }
-    if (needs & NeedUV) si.uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
+    if (needs & NeedUV) {
+        si.uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
+        si.uv1 = uv1_.empty() ? si.uv : uv1_[vi[0]] * b0 + uv1_[vi[1]] * b1 + uv1_[vi[2]] * b2;
+    }
 
     Vec3f n = UnitNormal(p0, p1, p2, flipNormals_);
     if (n == Vec3f(0, 0, 0)) n = Normalize(-rayDir);  // degenerate: never NaN
@@ -258,15 +261,24 @@ void TriangleMesh::FinishTangents(const std::vector<float> &signs) {
     }
 }
 
-void TriangleMesh::GenerateTangents() {
+void TriangleMesh::SetUV1(std::vector<Vec2f> uv1) {
+    if (!uv1.empty() && uv1.size() != NumVertices())
+        throw std::invalid_argument("\"uv1\" has " + std::to_string(uv1.size()) +
+                                    " entries but there are " + std::to_string(NumVertices()) +
+                                    " vertices");
+    uv1_ = std::move(uv1);
+}
+
+void TriangleMesh::GenerateTangents(int uvSet) {
+    const std::vector<Vec2f> &uvs = uvSet == 1 && !uv1_.empty() ? uv1_ : uv_;
     const size_t nv = NumVertices();
     std::vector<Vec3f> T(nv, Vec3f(0, 0, 0)), B(nv, Vec3f(0, 0, 0)), N(nv, Vec3f(0, 0, 0));
     for (size_t f = 0; f < NumTriangles(); ++f) {
         const uint32_t *v = Triangle(f);
         Vec3f p[3] = {Position(v[0]), Position(v[1]), Position(v[2])};
         Vec2f uv[3] = {Vec2f(0, 0), Vec2f(1, 0), Vec2f(1, 1)};
-        if (!uv_.empty())
-            for (int k = 0; k < 3; ++k) uv[k] = uv_[v[k]];
+        if (!uvs.empty())
+            for (int k = 0; k < 3; ++k) uv[k] = uvs[v[k]];
         Vec3f e1 = p[1] - p[0], e2 = p[2] - p[0];
         Vec3f fn = Cross(e1, e2);
         if (!(LengthSquared(fn) > 0)) continue;

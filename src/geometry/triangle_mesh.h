@@ -31,7 +31,8 @@ class TriangleMesh {
                (normals ? vertices * sizeof(Vec3f) : 0) + (uv ? vertices * sizeof(Vec2f) : 0);
     }
     uint64_t MemoryBytes() const {
-        return Bytes(NumVertices(), indices_.size(), HasNormals(), HasUV());
+        return Bytes(NumVertices(), indices_.size(), HasNormals(), HasUV()) +
+               uv1_.size() * sizeof(Vec2f);
     }
 
     size_t NumTriangles() const { return indices_.size() / 3; }
@@ -66,20 +67,28 @@ class TriangleMesh {
     // vertex); GenerateTangents averages each triangle's dp/du (from its uv) over the triangles
     // around a vertex, weighted by the corner's angle (as MikkTSpace does), made orthogonal to the
     // vertex normal, with the sign of dp/dv's side.
+    // `uvSet` 1: from the second texture coordinate set (a normal map that reads TEXCOORD_1).
     void SetTangents(const Transform &renderFromObject, const std::vector<float> &xyzw);
-    void GenerateTangents();
+    void GenerateTangents(int uvSet = 0);
     bool HasTangents() const { return !tangents_.empty(); }
     bool HasNormals() const { return !normals_.empty(); }
     bool HasUV() const { return !uv_.empty(); }
+    // A second texture coordinate set (glTF TEXCOORD_1, the Prism parameter "uv1"), one per
+    // vertex; Interaction gives it as SurfaceInteraction::uv1 (uv where the mesh has none).
+    // Throws std::invalid_argument when the count differs from the vertices'.
+    void SetUV1(std::vector<Vec2f> uv1);
+    bool HasUV1() const { return !uv1_.empty(); }
     bool FlipNormals() const { return flipNormals_; }
     Bounds3f RenderBounds() const;
 
     // The uv at Embree barycentrics (u, v) of triangle `prim` (pbrt's (0,0), (1,0), (1,1)
     // without uv), for cut-out tests.
-    Vec2f UVAt(size_t prim, float u, float v) const {
-        if (uv_.empty()) return {u + v, v};
+    // `uvSet` 1 reads the second set (uv1), or the first where the mesh has none.
+    Vec2f UVAt(size_t prim, float u, float v, int uvSet = 0) const {
+        const std::vector<Vec2f> &set = uvSet == 1 && !uv1_.empty() ? uv1_ : uv_;
+        if (set.empty()) return {u + v, v};
         const uint32_t *vi = Triangle(prim);
-        return uv_[vi[0]] * (1 - u - v) + uv_[vi[1]] * u + uv_[vi[2]] * v;
+        return set[vi[0]] * (1 - u - v) + set[vi[1]] * u + set[vi[2]] * v;
     }
     // Geometric normal as the trace command defines it: (p1-p0) x (p2-p0), flipped by
     // ReverseOrientation XOR handedness; unit length; zero for degenerate triangles.
@@ -101,6 +110,7 @@ class TriangleMesh {
     std::vector<uint32_t> indices_;
     std::vector<Vec3f> normals_;
     std::vector<Vec2f> uv_;
+    std::vector<Vec2f> uv1_;       // second texture coordinate set (may be empty)
     std::vector<Vec3f> tangents_;  // render space, unit (or zero)
     std::vector<Vec3f> bitangents_;
     // Bitangents from tangents_, the vertex normals (or the angle-weighted face normals) and

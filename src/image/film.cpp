@@ -120,6 +120,7 @@ void FilmTile::AddSample(Vec2f pFilm, const RGB &L) {
             {int(std::floor(ClampCoord(pFilm.x))), int(std::floor(ClampCoord(pFilm.y)))});
         v = RGB(0.f);
     }
+    if (noise_) AddNoiseSample(pFilm, v);
     if (kernel_.kind == Filter::Kind::Box && kernel_.radius[0] == 0.5f &&
         kernel_.radius[1] == 0.5f) {
         // pbrt's default box (radius 1/2): the one pixel x with x <= p < x + 1, x = floor(p),
@@ -171,6 +172,38 @@ void FilmTile::AddSample(Vec2f pFilm, const RGB &L) {
     }
 }
 
+void FilmTile::AddNoiseSample(Vec2f pFilm, const RGB &v) {
+    double cx = ClampCoord(pFilm.x), cy = ClampCoord(pFilm.y);
+    int x = int(std::floor(cx)), y = int(std::floor(cy));
+    if (x < bounds_.pMin.x || x >= bounds_.pMax.x || y < bounds_.pMin.y || y >= bounds_.pMax.y)
+        return;
+    NoiseHalves &h =
+        halves_[size_t(y - bounds_.pMin.y) * size_t(bounds_.Width()) + size_t(x - bounds_.pMin.x)];
+    // Samples arrive in their order within a pixel: even ones to a, odd ones to b.
+    const bool even = ((h.na + h.nb) & 1u) == 0;
+    double *sum = even ? h.a : h.b;
+    sum[0] += double(v.r);
+    sum[1] += double(v.g);
+    sum[2] += double(v.b);
+    ++(even ? h.na : h.nb);
+}
+
+double FilmTile::NoiseVariance(uint64_t *pixels) const {
+    double var = 0;
+    uint64_t n = 0;
+    for (const NoiseHalves &h : halves_) {
+        if (h.na == 0 || h.nb == 0) continue;
+        const double na = h.na, nb = h.nb, k = na * nb / ((na + nb) * (na + nb));
+        for (int c = 0; c < 3; ++c) {
+            double d = h.a[c] / na - h.b[c] / nb;
+            var += d * d * k;
+        }
+        ++n;
+    }
+    if (pixels) *pixels = n;
+    return var;
+}
+
 Film::Film(Vec2i fullResolution, Bounds2i cropPixels, Filter filter)
     : Film(fullResolution, cropPixels, filter, true) {}
 
@@ -205,12 +238,17 @@ FilmTile Film::MakeTile(const Bounds2i &tilePixels) const {
     return FilmTile(TileFootprint(tilePixels), kernel_);
 }
 
-void Film::ResetTile(const Bounds2i &tilePixels, FilmTile *tile) const {
+void Film::ResetTile(const Bounds2i &tilePixels, FilmTile *tile, bool noise) const {
     tile->bounds_ = TileFootprint(tilePixels);
     tile->kernel_ = kernel_;
     tile->nonFinite_ = NonFiniteRecord();
     // assign() keeps the capacity: after the first tiles no allocation.
     tile->pixels_.assign(size_t(tile->bounds_.Area()), FilmPixel());
+    tile->noise_ = noise;
+    if (noise)
+        tile->halves_.assign(size_t(tile->bounds_.Area()), NoiseHalves());
+    else
+        tile->halves_.clear();
 }
 
 void Film::MergeTile(const FilmTile &tile) {
@@ -311,6 +349,11 @@ void TiledFilm::MergeNext(const FilmTile *tile) {
     OpenRowsBelow(f.pMax.y);
     if (!tile) return;
     nonFinite_.Merge(tile->nonFinite_);
+    if (noise_) {
+        uint64_t n = 0;
+        noiseVariance_ += tile->NoiseVariance(&n);
+        noisePixels_ += n;
+    }
     const Bounds2i &tb = tile->bounds_;
     if (tb.Empty()) return;
     const Bounds2i &pb = film_.cropPixels_;

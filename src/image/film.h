@@ -53,6 +53,13 @@ struct FilmPixel {
     double r = 0, g = 0, b = 0, weight = 0;
 };
 
+// A pixel's samples split in two halves by their order (even and odd), each with its own
+// unfiltered sum: the noise estimate of --stats (FilmTile::NoiseVariance).
+struct NoiseHalves {
+    double a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
+    uint32_t na = 0, nb = 0;
+};
+
 // Record of samples with NaN/Inf radiance; the reported pixel is the smallest in (y, x) order
 // so that it does not depend on the order in which tiles finish.
 struct NonFiniteRecord {
@@ -84,7 +91,16 @@ class FilmTile {
     std::span<const FilmPixel> Sums() const { return pixels_; }
     void SetNonFinite(const NonFiniteRecord &r) { nonFinite_ = r; }
 
+    // With the noise estimate on (Film::ResetTile): the estimated variance of the box-filtered
+    // mean of each pixel that has samples in both halves, summed over those pixels and the
+    // three channels: sum (mean_a - mean_b)^2 na nb / (na + nb)^2, which is unbiased for
+    // independent samples and errs high for stratified ones (the halves are anti-correlated).
+    // Samples count for the pixel that contains them (their home pixel).
+    double NoiseVariance(uint64_t *pixels = nullptr) const;
+
   private:
+    void AddNoiseSample(Vec2f pFilm, const RGB &v);
+
     friend class Film;
     friend class TiledFilm;
     FilmTile(const Bounds2i &bounds, const FilterKernel &kernel);
@@ -93,6 +109,8 @@ class FilmTile {
     FilterKernel kernel_;
     std::vector<FilmPixel> pixels_;
     NonFiniteRecord nonFinite_;
+    bool noise_ = false;
+    std::vector<NoiseHalves> halves_;  // over bounds_, when noise_
 };
 
 class Film {
@@ -111,8 +129,9 @@ class Film {
     // A tile covering every crop pixel that samples with pFilm in [pMin, pMax] (closed, so a
     // sample rounded up onto the far edge still fits) of tilePixels can reach.
     FilmTile MakeTile(const Bounds2i &tilePixels) const;
-    // The same tile in `tile`, reusing its buffer (no allocation once it is large enough).
-    void ResetTile(const Bounds2i &tilePixels, FilmTile *tile) const;
+    // The same tile in `tile`, reusing its buffer (no allocation once it is large enough);
+    // noise: the tile also keeps the noise halves (FilmTile::NoiseVariance).
+    void ResetTile(const Bounds2i &tilePixels, FilmTile *tile, bool noise = false) const;
     // The crop pixels MakeTile(tilePixels) accumulates into.
     Bounds2i TileFootprint(const Bounds2i &tilePixels) const;
 
@@ -152,7 +171,11 @@ class TiledFilm {
     int NumTiles() const { return nx_ * ny_; }
     Bounds2i TilePixels(int t) const;
     // Reuses `tile`'s buffer for tile t.
-    void ResetTile(int t, FilmTile *tile) const { film_.ResetTile(TilePixels(t), tile); }
+    void ResetTile(int t, FilmTile *tile) const { film_.ResetTile(TilePixels(t), tile, noise_); }
+    // Tiles keep the noise halves, and merged tiles add their NoiseVariance.
+    void EnableNoiseEstimate() { noise_ = true; }
+    double NoiseVariance() const { return noiseVariance_; }
+    uint64_t NoisePixels() const { return noisePixels_; }
 
     // Merges the next tile in order; nullptr for a tile that was not rendered (cancelled).
     void MergeNext(const FilmTile *tile);
@@ -176,6 +199,9 @@ class TiledFilm {
     int finalY_ = 0, openY_ = 0;  // crop rows: [finalY_, openY_) are live in the ring
     Image image_;
     NonFiniteRecord nonFinite_;
+    bool noise_ = false;
+    double noiseVariance_ = 0;
+    uint64_t noisePixels_ = 0;
 };
 
 }  // namespace prism

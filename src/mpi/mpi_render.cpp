@@ -201,6 +201,12 @@ int RunMpiRender(const RenderArgs &a) {
                     "prism-mpi render does not take --target-error: run prism "
                     "render --target-error on a small machine and pass the spp, "
                     "cutoff and light samples it prints");
+            // Each rank would run out of time after a different number of passes, and the
+            // noise halves are not sent with the tiles.
+            if (a.timeLimit > 0 || a.stats)
+                throw UsageError(std::string("prism-mpi render does not take ") +
+                                 (a.timeLimit > 0 ? "--time-limit" : "--stats") +
+                                 ": give --spp (prism render takes both)");
             job = std::make_unique<RenderJob>(a, rank == 0);
             return ExitOk;
         },

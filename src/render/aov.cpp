@@ -255,7 +255,7 @@ std::vector<AovLayer> RenderAovs(const RenderScene &scene, const std::vector<Aov
                     SurfaceInteraction si;
                     if (albedo && firstHit(ray, &si)) {
                         const Material &m = scene.materials[size_t(scene.Info(si).material)];
-                        BSDF bsdf = m.GetBSDF(si, TextureContext{si.uv, si.p});
+                        BSDF bsdf = m.GetBSDF(si, TextureContext{si.uv, si.p, si.uv1});
                         for (int part = 0; part < bsdf.NumParts(); ++part)
                             albedoSum += bsdf.Weight(part) * bsdf.Part(part).kd;
                     }

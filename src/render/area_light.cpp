@@ -1,31 +1,92 @@
 #include "render/area_light.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace prism {
 
+int DiffuseAreaLight::TextureMeanSamples(double uvArea) {
+    const double side = std::sqrt(2 * std::max(0.0, uvArea)) * 2048;
+    return std::isfinite(side) ? std::clamp(int(std::ceil(side)), 1, 256) : 256;
+}
+
+namespace {
+
+// The mean of the texture over triangle `tri`: its value at the centroids of the m² equal
+// sub-triangles of an m × m barycentric grid.
+RGB TriangleMean(const Texture &t, const TriangleMesh &mesh, size_t tri, int maxSide) {
+    auto uvArea = [&](int set) {
+        Vec2f a = mesh.UVAt(tri, 0, 0, set), b = mesh.UVAt(tri, 1, 0, set),
+              c = mesh.UVAt(tri, 0, 1, set);
+        return 0.5 * std::abs(double(b.x - a.x) * (c.y - a.y) - double(b.y - a.y) * (c.x - a.x));
+    };
+    const int m =
+        std::min(maxSide, DiffuseAreaLight::TextureMeanSamples(std::max(uvArea(0), uvArea(1))));
+    const uint32_t *v = mesh.Triangle(tri);
+    const Vec3f p0 = mesh.Position(v[0]), p1 = mesh.Position(v[1]), p2 = mesh.Position(v[2]);
+    RGB sum;
+    auto at = [&](double b1, double b2) {
+        const float u = float(b1), w = float(b2);
+        TextureContext tc{mesh.UVAt(tri, u, w, 0), p0 * (1 - u - w) + p1 * u + p2 * w,
+                          mesh.UVAt(tri, u, w, 1)};
+        sum += t.Evaluate(tc).Clamped(0.f);
+    };
+    for (int i = 0; i < m; ++i)
+        for (int j = 0; i + j < m; ++j) {
+            at((i + 1 / 3.0) / m, (j + 1 / 3.0) / m);                     // upward
+            if (i + j < m - 1) at((i + 2 / 3.0) / m, (j + 2 / 3.0) / m);  // downward
+        }
+    return sum / float(m * m);
+}
+
+}  // namespace
+
 DiffuseAreaLight::DiffuseAreaLight(const AnalyticShape *analytic, const TriangleMesh *mesh,
-                                   const RGB &L, bool twoSided, int nSamples)
+                                   const RGB &L, bool twoSided, int nSamples, TexturePtr radiance)
     : analytic_(analytic),
       mesh_(mesh),
       Lemit_(L),
       twoSided_(twoSided),
-      nSamples_(std::max(1, nSamples)) {
+      nSamples_(std::max(1, nSamples)),
+      radiance_(mesh ? std::move(radiance) : nullptr) {
     if (mesh_) {
-        std::vector<double> areas(mesh_->NumTriangles());
-        for (size_t i = 0; i < areas.size(); ++i) {
+        triangleAreas_.resize(mesh_->NumTriangles());
+        std::vector<double> weights(triangleAreas_.size());
+        // At most about MaxTextureMeanLookups texture lookups for the whole mesh.
+        const int maxSide = std::clamp(int(std::sqrt(double(MaxTextureMeanLookups) /
+                                                     double(std::max<size_t>(1, weights.size())))),
+                                       1, 256);
+        for (size_t i = 0; i < weights.size(); ++i) {
             const uint32_t *v = mesh_->Triangle(i);
             Vec3d p0(mesh_->Position(v[0])), p1(mesh_->Position(v[1])), p2(mesh_->Position(v[2]));
-            areas[i] = 0.5 * Length(Cross(p1 - p0, p2 - p0));
-            meshArea_ += areas[i];
+            triangleAreas_[i] = 0.5 * Length(Cross(p1 - p0, p2 - p0));
+            weights[i] = triangleAreas_[i];
+            if (radiance_ && weights[i] > 0) {
+                const RGB mean = TriangleMean(*radiance_, *mesh_, i, maxSide) * Lemit_;
+                weights[i] *= (double(mean.r) + mean.g + mean.b) / 3;
+            }
+            if (weights[i] > 0) {
+                meshArea_ += triangleAreas_[i];
+                sampledTriangles_++;
+            }
         }
-        triangleAreas_ = Distribution1D(std::move(areas));
+        triangleWeights_ = Distribution1D(std::move(weights));
+        if (!(triangleWeights_.Integral() > 0)) meshArea_ = 0;  // nothing to sample
     }
+}
+
+double DiffuseAreaLight::PdfArea(int prim) const {
+    if (!mesh_ || !(meshArea_ > 0) || prim < 0 || prim >= triangleWeights_.Count()) return 0;
+    const double area = triangleAreas_[size_t(prim)];
+    if (!radiance_) return area > 0 ? 1 / meshArea_ : 0;
+    const double prob = triangleWeights_.Cdf(prim + 1) - triangleWeights_.Cdf(prim);
+    return area > 0 && prob > 0 ? prob / area : 0;
 }
 
 bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const {
     Vec3f p, n;
     float pdf;
+    RGB Le = Lemit_;
     if (analytic_) {
         ShapeSample ss;
         if (!analytic_->Sample(si.p, u, &ss)) return false;
@@ -34,13 +95,13 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
         pdf = ss.pdf;
     } else {
         if (!(meshArea_ > 0)) return false;
-        // Choose a triangle by area, reusing u.x, then a uniform point on it.
+        // Choose a triangle by weight (area, × mean radiance when textured), reusing u.x, then
+        // a uniform point on it.
         double prob;
-        int tri = triangleAreas_.SampleDiscrete(u.x, &prob);
+        int tri = triangleWeights_.SampleDiscrete(u.x, &prob);
+        if (!(prob > 0)) return false;
         // Remap u.x within the chosen triangle's CDF interval to keep stratification.
-        double uxr = prob > 0
-                         ? Clamp((u.x - triangleAreas_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1)
-                         : 0.5;
+        double uxr = Clamp((u.x - triangleWeights_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1);
         double su0 = std::sqrt(uxr);
         double b0 = 1 - su0, b1 = u.y * su0;
         const uint32_t *v = mesh_->Triangle(size_t(tri));
@@ -53,17 +114,64 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
         float dist2 = LengthSquared(w);
         float cosLight = AbsDot(n, w) / std::sqrt(dist2);
         if (!(dist2 > 0) || cosLight == 0) return false;
-        pdf = float(1 / meshArea_ * dist2 / cosLight);
+        // Density per unit area: prob / area of the triangle (1 / area of the mesh when the
+        // triangles are chosen by area).
+        const double pdfArea = radiance_ ? prob / triangleAreas_[size_t(tri)] : 1 / meshArea_;
+        pdf = float(pdfArea * dist2 / cosLight);
+        // The texture only where the point emits toward si (else Li is 0 below anyway).
+        if (radiance_ && (twoSided_ || Dot(n, -w) > 0)) {
+            // Embree's barycentrics of the point: u for vertex 1, v for vertex 2.
+            const float eu = float(b1), ev = float(1 - b0 - b1);
+            TextureContext tc{mesh_->UVAt(size_t(tri), eu, ev, 0), p,
+                              mesh_->UVAt(size_t(tri), eu, ev, 1)};
+            Le = Lemit_ * radiance_->Evaluate(tc).Clamped(0.f);
+        }
     }
     Vec3f w = p - si.p;
     float dist = Length(w);
     if (!(dist > 0) || !(pdf > 0) || !std::isfinite(pdf)) return false;
     ls->wi = w / dist;
-    ls->Li = L(n, -ls->wi);
+    ls->Li = (twoSided_ || Dot(n, -ls->wi) > 0) ? Le : RGB(0);
     ls->pLight = p;
     ls->infinite = false;
     ls->pdf = pdf;
     return true;
+}
+
+double DiffuseAreaLight::Power(double) const {
+    if (radiance_) {
+        // Textured: the triangles' area × mean radiance (their sampling weights).
+        double sum = 0;
+        for (int i = 0; i < triangleWeights_.Count(); ++i) sum += triangleWeights_.Func(i);
+        return (twoSided_ ? 2 : 1) * Pi * sum;
+    }
+    double area = meshArea_;
+    if (analytic_) {
+        // Uniform area sampling's object-space density, through the area Jacobian at one point
+        // (exact for similarity transforms, an estimate otherwise: it only weighs the choice).
+        Vec3d p, n;
+        double pdf;
+        if (!analytic_->SampleObjectArea(Vec2f(0.5f, 0.5f), &p, &n, &pdf) || !(pdf > 0)) return 0;
+        const Transform &m = analytic_->RenderFromObject();
+        double len = Length(n);
+        double jac =
+            len > 0 ? std::abs(m.Matrix().Determinant3x3()) * Length(m.Normal(n / len)) : 1.0;
+        area = jac / pdf;
+    }
+    return (twoSided_ ? 2 : 1) * Pi * area * Lemit_.Luminance();
+}
+
+float DiffuseAreaLight::PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
+                              const SurfaceInteraction *hit) const {
+    if (!hit) return 0;
+    if (analytic_) return analytic_->Pdf(ref.p, hit->p, hit->n);
+    // SampleLi: a triangle by area (× mean radiance when textured), then a uniform point on
+    // it: PdfArea, converted to solid angle.
+    Vec3f w = hit->p - ref.p;
+    float dist2 = LengthSquared(w);
+    float cosLight = AbsDot(hit->n, wi);
+    if (!(dist2 > 0) || cosLight == 0) return 0;
+    return float(PdfArea(hit->prim) * dist2 / cosLight);
 }
 
 }  // namespace prism

@@ -1,5 +1,7 @@
 // Area lights, sampled with stratified shadow rays (distribution ray tracing): pbrt-v3's
-// "diffuse" AreaLightSource on spheres, disks, cylinders and triangle meshes.
+// "diffuse" AreaLightSource on spheres, disks, cylinders and triangle meshes, and on meshes a
+// textured radiance L(uv) = L × texture(uv) (glTF emissive textures: emissiveFactor ×
+// emissiveStrength × emissiveTexture).
 #pragma once
 
 #include <memory>
@@ -8,22 +10,54 @@
 #include "geometry/triangle_mesh.h"
 #include "render/distribution.h"
 #include "render/light.h"
+#include "render/texture.h"
 
 namespace prism {
 
 class DiffuseAreaLight final : public Light {
   public:
     // Exactly one of analytic/mesh is set; both outlive the light (owned by the Accel).
+    // `radiance` (meshes only; null: constant L): the emitted radiance is L × radiance at the
+    // point's uv (TextureContext uv, p, uv1). Mesh points are sampled by triangle in proportion
+    // to area × the triangle's mean radiance (the texture averaged over a grid of points on
+    // the triangle, finer for larger uv footprints: TextureMeanSamples); triangles whose mean
+    // is black are never sampled (their light is then seen only by rays that hit them).
+    // The means take at most about MaxTextureMeanLookups texture lookups per light.
     DiffuseAreaLight(const AnalyticShape *analytic, const TriangleMesh *mesh, const RGB &L,
-                     bool twoSided, int nSamples);
+                     bool twoSided, int nSamples, TexturePtr radiance = nullptr);
     const char *Name() const override { return "area"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
     int NumSamples() const override { return nSamples_; }
-    // Radiance leaving the surface point with normal n in direction w.
+    float PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
+                const SurfaceInteraction *hit) const override;
+    // Radiance leaving the surface point with normal n in direction w (the constant L; for a
+    // textured light use the overload below).
     RGB L(const Vec3f &n, const Vec3f &w) const {
         return (twoSided_ || Dot(n, w) > 0) ? Lemit_ : RGB(0);
     }
+    // Radiance leaving a hit on the light's shape in direction w (pbrt-v3's
+    // AreaLight::L(intr, w)): L × the texture at the hit's uv (the hit needs NeedUV).
+    RGB L(const SurfaceInteraction &si, const Vec3f &w) const {
+        if (!(twoSided_ || Dot(si.n, w) > 0)) return RGB(0);
+        return radiance_ ? Lemit_ * radiance_->Evaluate({si.uv, si.p, si.uv1}).Clamped(0.f)
+                         : Lemit_;
+    }
     bool IsArea() const override { return true; }
+    bool Textured() const { return radiance_ != nullptr; }
+    // Meshes: the density (per unit area) with which SampleLi picks points of triangle `prim`
+    // (0 for a triangle never sampled), for integrators that weigh light samples against
+    // BSDF samples; analytic shapes: 0 (their Sample gives its own pdf).
+    double PdfArea(int prim) const;
+    // Meshes: the triangles SampleLi can pick (a textured light skips the black ones).
+    int SampledTriangles() const { return sampledTriangles_; }
+
+    // Points per triangle side at which the mean radiance of a textured triangle is taken:
+    // about 2048 per unit of uv (one per texel of a 2048² texture: DamagedHelmet's emissive
+    // details, a few texels wide, are found), at least 1, at most 256, and at most
+    // √(MaxTextureMeanLookups / triangles) so a large mesh costs a bounded start-up.
+    static int TextureMeanSamples(double uvArea);
+    static constexpr double MaxTextureMeanLookups = 4e6;
+    double Power(double) const override;
 
   private:
     const AnalyticShape *analytic_;
@@ -31,8 +65,11 @@ class DiffuseAreaLight final : public Light {
     RGB Lemit_;
     bool twoSided_;
     int nSamples_;
-    Distribution1D triangleAreas_;
+    TexturePtr radiance_;
+    Distribution1D triangleWeights_;  // area (× mean radiance when textured)
+    std::vector<double> triangleAreas_;
     double meshArea_ = 0;
+    int sampledTriangles_ = 0;
 };
 
 }  // namespace prism

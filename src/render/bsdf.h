@@ -84,6 +84,17 @@ struct BxDFLobes {
     RGB f(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
 };
 
+// One direction sampled from a whole BSDF (BSDF::Sample_f: path and directlighting).
+struct BSDFSample {
+    Vec3f wi;       // world direction, away from the surface
+    RGB f;          // f(wo, wi) (non-delta: every non-delta lobe; delta: the lobe's f)
+    float pdf = 0;  // its density (delta lobes: the probability of choosing the lobe)
+    RGB weight;     // f |cos θi| / pdf
+    bool specular = false;
+    bool transmission = false;
+    float eta = 1;  // delta transmission: the relative index crossed (pbrt's etaScale)
+};
+
 // A surface's scattering at one hit: a shading frame and up to MaxParts weighted sets of lobes.
 // Most materials fill one part; mix materials (and uber's opacity) add more. f and the delta
 // lobes are linear in the parts, which is how pbrt-v3's MixMaterial scales its BxDFs.
@@ -156,6 +167,15 @@ struct BSDF {
     // nothing (e.g. TIR).
     bool SampleSpecularReflection(int part, const Vec3f &woWorld, Vec3f *wi, RGB *weight) const;
     bool SampleSpecularTransmission(int part, const Vec3f &woWorld, Vec3f *wi, RGB *weight) const;
+
+    // Importance sampling of every lobe of every part (render/bsdf_sampling.cpp): a lobe is
+    // chosen with uc in proportion to its albedo estimate, then sampled with u (cosine-weighted
+    // for the diffuse lobes, visible normals for the glossy ones as SampleGlossy, the delta
+    // direction for delta lobes). For a non-delta choice, f and pdf cover every non-delta lobe
+    // (pbrt-v3 BSDF::Sample_f). withSpecular false: delta lobes are never chosen.
+    bool Sample_f(const Vec3f &woWorld, Vec2f u, float uc, bool withSpecular, BSDFSample *s) const;
+    // The density with which Sample_f(withSpecular false) gives wi (multiple importance sampling).
+    float Pdf(const Vec3f &woWorld, const Vec3f &wiWorld) const;
 
   private:
     int n_ = 0;

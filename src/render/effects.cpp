@@ -34,6 +34,8 @@ const char *EffectName(Effect e) {
             return "normal mapping";
         case Effect::Alpha:
             return "alpha";
+        case Effect::IndirectIllumination:
+            return "indirect illumination";
         case Effect::Count:
             break;
     }

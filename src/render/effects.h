@@ -28,6 +28,7 @@ enum class Effect : uint32_t {
     BumpMapping,         // a material's "bumpmap" (render/bump.cpp)
     NormalMapping,       // a material's tangent-space normal map
     Alpha,               // cut-outs: textured "alpha"/"shadowalpha", glTF MASK/BLEND, OBJ map_d
+    IndirectIllumination,  // light bouncing off every surface (Integrator "path")
     Count
 };
 

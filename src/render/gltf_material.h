@@ -67,4 +67,22 @@ class UVTransformTexture final : public Texture {
     Vec2f scale_;
 };
 
+// glTF textureInfo.texCoord 1: the child reads the second texture coordinate set
+// (TextureContext::uv1, a mesh's "uv1") as its uv. KHR_texture_transform wraps inside it, so
+// the transform applies to the set it selects.
+class TexCoord1Texture final : public Texture {
+  public:
+    explicit TexCoord1Texture(TexturePtr child) : child_(std::move(child)) {}
+    RGB Evaluate(const TextureContext &c) const override {
+        TextureContext t = c;
+        t.uv = c.uv1;
+        // The footprint is set 0's (solved from its dp/du, dp/dv): set 1 is read unfiltered.
+        t.dudx = t.dvdx = t.dudy = t.dvdy = 0;
+        return child_->Evaluate(t);
+    }
+
+  private:
+    TexturePtr child_;
+};
+
 }  // namespace prism

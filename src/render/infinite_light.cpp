@@ -24,6 +24,15 @@ InfiniteLight::InfiniteLight(const Transform &renderFromLight, const RGB &L,
                     double(map_->GetRGB(x, y).Luminance()) * sinTheta;
         }
         distribution_ = Distribution2D(f, w, h);
+        double sum = 0, wsum = 0;
+        for (int y = 0; y < h; ++y) {
+            double sinTheta = std::sin(Pi * (y + 0.5) / h);
+            for (int x = 0; x < w; ++x) sum += f[size_t(y) * size_t(w) + size_t(x)];
+            wsum += sinTheta * w;
+        }
+        averageLuminance_ = wsum > 0 ? sum / wsum * L_.Luminance() : 0;
+    } else {
+        averageLuminance_ = L_.Luminance();
     }
 }
 
@@ -77,6 +86,21 @@ bool InfiniteLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample 
     ls->infinite = true;
     ls->pdf = pdf;
     return true;
+}
+
+float InfiniteLight::PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
+                           const SurfaceInteraction *) const {
+    if (!map_) {
+        // SampleLi's cosine-weighted hemisphere about the shading normal on the viewer's side.
+        float c = Dot(FaceForward(ref.ns, ref.wo), wi);
+        return c > 0 ? c * float(InvPi) : 0.f;
+    }
+    Vec3d wl = Normalize(renderFromLight_.Inverse().Vector(Vec3d(wi)));
+    double theta = SafeACos(wl.z), phi = std::atan2(wl.y, wl.x);
+    if (phi < 0) phi += 2 * Pi;
+    double sinTheta = std::sin(theta);
+    if (sinTheta == 0) return 0;
+    return float(distribution_.Pdf(Vec2d(phi / (2 * Pi), theta / Pi)) / (2 * Pi * Pi * sinTheta));
 }
 
 }  // namespace prism

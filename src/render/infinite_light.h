@@ -20,6 +20,9 @@ class InfiniteLight final : public Light {
     const char *Name() const override { return "infinite"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
     RGB Le(const Ray &ray) const override;
+    double Power(double r) const override { return Pi * r * r * averageLuminance_; }
+    float PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
+                const SurfaceInteraction *hit) const override;
     int NumSamples() const override { return nSamples_; }
 
   private:
@@ -29,6 +32,7 @@ class InfiniteLight final : public Light {
     std::shared_ptr<const Image> map_;
     Distribution2D distribution_;
     int nSamples_;
+    double averageLuminance_ = 0;  // over the sphere of directions
 };
 
 }  // namespace prism

@@ -88,10 +88,11 @@ class Kernel {
     // The ray-weight cutoff: true when a secondary ray of throughput beta is traced.
     bool AboveCutoff(const RGB &beta) const;
     // Direct lighting through f(wi, byGlossyRays) (a BSDF, or kd/π in Lambertian kernels).
+    // `ambient` scales the environment lights' share (Material::AmbientOcclusion).
     template <class F>
     void AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f, GlossyRays glossy,
                    bool hasDiffuse, int depth, RayCounters &counters, const SampleContext &sc,
-                   RGB &L) const;
+                   RGB &L, float ambient = 1) const;
 
     const RenderScene &scene_;
     bool glossyRays_;

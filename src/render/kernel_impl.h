@@ -79,7 +79,7 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
     // Bump and normal maps move the shading normal before anything reads it (one test of a
     // flag per hit for scenes without them: no kernel bit).
     if (mat->PerturbsShading()) mat->PerturbShading(si);
-    TextureContext tc{si.uv, si.p};
+    TextureContext tc{si.uv, si.p, si.uv1};
     // The footprint, where the ray carries differentials (only in scenes whose textures
     // filter: RenderScene::differentials); specular bounces pass it on.
     if (diff) ComputeDifferentials(si, *diff, &tc);
@@ -89,8 +89,8 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
     if constexpr (LightSamples)
         if (shape->areaLight >= 0 && (!Glossy || emitted))
             L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(shape->areaLight)])
-                     .L(si.n, wo);
-    // Emission a material carries itself (glTF emissive textures): seen by every ray.
+                     .L(si, wo);
+    // Emission a material carries itself ("gltf" emissive in .pbrt files): seen by every ray.
     if (mat->HasEmission()) L += mat->Emitted(tc);
 
     if constexpr (!GeneralBsdf) {
@@ -113,17 +113,24 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
         GlossyRays glossy = GlossyRays::None;
         if constexpr (Glossy)
             if (glossyRays_) glossy = PrepareGlossy(bsdf, depth);
+        // glTF occlusion: scales the environment's light and the indirect paths (1 elsewhere).
+        const float ambient = mat->AmbientOcclusion(tc);
         // Direct lighting through the non-specular lobes.
         if (bsdf.HasNonSpecular()) {
             const bool hasDiffuse = glossy != GlossyRays::None && bsdf.HasDiffuse();
             auto general = [&](const Vec3f &wi, bool byGlossyRays) {
                 return byGlossyRays ? bsdf.fDiffuse(wo, wi) : bsdf.f(wo, wi);
             };
-            AddDirect(si, bsdf.ns, general, glossy, hasDiffuse, depth, counters, sc, L);
+            AddDirect(si, bsdf.ns, general, glossy, hasDiffuse, depth, counters, sc, L, ambient);
         }
-        if constexpr (Specular) AddSpecular(si, tc, diff, bsdf, depth, counters, sc, L);
+        // Indirect paths, summed apart only when occlusion scales them (else straight into L,
+        // in the same order as always).
+        RGB indirect;
+        RGB &Lind = ambient == 1 ? L : indirect;
+        if constexpr (Specular) AddSpecular(si, tc, diff, bsdf, depth, counters, sc, Lind);
         if constexpr (Glossy)
-            if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, L);
+            if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, Lind);
+        if (ambient != 1) L += indirect * ambient;
         return L;
     }
 }
@@ -134,7 +141,7 @@ template <uint32_t K>
 template <class F>
 void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f,
                           GlossyRays glossy, bool hasDiffuse, int depth, RayCounters &counters,
-                          const SampleContext &sc, RGB &L) const {
+                          const SampleContext &sc, RGB &L, float ambient) const {
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
         const Light &light = *scene_.lights[j];
         if constexpr (!LightSamples) {
@@ -159,7 +166,8 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
                                (glossy == GlossyRays::Environment && !light.IsArea()));
             if (byGlossyRays && !hasDiffuse) continue;
             uint32_t seed =
-                usesSample ? PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919))
+                usesSample ? PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919),
+                                         scene_.sampleSeed)
                            : 0;
             RGB Lj;
             for (int k = 0; k < n; ++k) {
@@ -176,6 +184,8 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
                 if (scene_.accel->Occluded(shadow)) continue;
                 Lj += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
             }
+            // The environment (sampled, not an area light) is scaled by the ambient occlusion.
+            if (usesSample && !light.IsArea() && ambient != 1) Lj = Lj * ambient;
             L += n == 1 ? Lj : Lj / float(n);
         }
     }
@@ -248,7 +258,7 @@ void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, Glossy
         // A stratified pattern over the pixel's samples × n, per pixel, depth and part.
         const uint32_t seed =
             PatternSeed(sc.x, sc.y, uint32_t(0x6c6f7373u + uint32_t(depth) * 977u + uint32_t(part)),
-                        sc.afterGlossy ? 0x9e3779b9u : 0u);
+                        (sc.afterGlossy ? 0x9e3779b9u : 0u) + scene_.sampleSeed);
         for (uint32_t k = 0; k < n; ++k) {
             const uint32_t index = sc.sample * n + k;
             Vec2f u = CMJSample(index, sc.spp * n, seed);
@@ -294,6 +304,9 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
     // Ray differentials for filtered textures (pbrt-v3: scaled by max(1/8, 1/sqrt(spp))).
     const bool differentials = scene.differentials;
     const float diffScale = std::max(.125f, 1 / std::sqrt(float(spp)));
+    // One sample per pixel sits at the pixel centre, except in the later passes of a
+    // progressive render (render/progressive.h), whose pattern seeds differ.
+    const bool jitter = spp > 1 || scene.sampleSeed != 0;
     const int w = tb.pMax.x - tb.pMin.x, h = tb.pMax.y - tb.pMin.y;
     const size_t n = size_t(w) * size_t(h) * spp;
     if (buf.L.size() < n) {
@@ -314,14 +327,16 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
             const int ex = std::min(bx + PacketW, tb.pMax.x),
                       ey = std::min(by + PacketH, tb.pMax.y);
             // The packet's pattern seeds, once for all its samples.
-            if (spp > 1 || lens || motion) {
+            if (jitter || lens || motion) {
                 int m = 0;
                 for (int y = by; y < ey; ++y)
                     for (int x = bx; x < ex; ++x, ++m) {
-                        filmSeed[m] = PatternSeed(x, y, FilmPurpose);
+                        filmSeed[m] = PatternSeed(x, y, FilmPurpose, scene.sampleSeed);
                         if constexpr (Kernel<K>::CameraSamples) {
-                            lensSeed[m] = lens ? PatternSeed(x, y, LensPurpose) : 0;
-                            timeSeed[m] = motion ? PatternSeed(x, y, TimePurpose) : 0;
+                            lensSeed[m] =
+                                lens ? PatternSeed(x, y, LensPurpose, scene.sampleSeed) : 0;
+                            timeSeed[m] =
+                                motion ? PatternSeed(x, y, TimePurpose, scene.sampleSeed) : 0;
                         }
                     }
             }
@@ -330,7 +345,7 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                 for (int y = by; y < ey; ++y) {
                     for (int x = bx; x < ex; ++x, ++m) {
                         // One sample: the pixel centre; more: correlated multi-jittered.
-                        Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : cmj.Sample(s, filmSeed[m]);
+                        Vec2f u = jitter ? cmj.Sample(s, filmSeed[m]) : Vec2f(0.5f, 0.5f);
                         Vec2f pFilm(float(x) + u.x, float(y) + u.y);
                         Vec2f uLens(0.5f, 0.5f);
                         float time = 0;

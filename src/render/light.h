@@ -30,6 +30,19 @@ class Light {
     virtual bool IsArea() const { return false; }
     // False for delta lights, whose SampleLi ignores u: the integrator then skips computing it.
     virtual bool UsesSample() const { return true; }
+    // Point, spot and distant lights: no ray can hit them (no multiple importance sampling).
+    bool IsDelta() const { return !UsesSample(); }
+    // The solid-angle density with which SampleLi(ref, ...) gives direction wi (multiple
+    // importance sampling of the path and directlighting integrators); `hit` is where a ray
+    // along wi met this light's surface (area lights), null for an escaping ray. 0 for delta
+    // lights.
+    virtual float PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
+                        const SurfaceInteraction *hit) const {
+        return 0;
+    }
+    // The emitted power's luminance (pbrt-v3 Light::Power().y()), for choosing lights in
+    // proportion to it; sceneRadius bounds the scene (distant and infinite lights).
+    virtual double Power(double sceneRadius) const = 0;
 };
 
 class PointLight final : public Light {
@@ -38,6 +51,7 @@ class PointLight final : public Light {
     const char *Name() const override { return "point"; }
     bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
+    double Power(double) const override { return 4 * Pi * I_.Luminance(); }
 
   private:
     Vec3f pos_;
@@ -52,6 +66,9 @@ class SpotLight final : public Light {
     bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
     float Falloff(const Vec3f &wFromLight) const;
+    double Power(double) const override {
+        return 2 * Pi * I_.Luminance() * (1 - 0.5 * (cosFalloffStart_ + cosTotalWidth_));
+    }
 
   private:
     Vec3f pos_, dir_;
@@ -66,6 +83,7 @@ class DistantLight final : public Light {
     const char *Name() const override { return "distant"; }
     bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
+    double Power(double r) const override { return Pi * r * r * L_.Luminance(); }
 
   private:
     Vec3f w_;

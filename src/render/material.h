@@ -3,6 +3,7 @@
 // turns a material into a BSDF value; docs/MATERIALS.md says what each one does.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,15 +45,28 @@ class Material {
     // Gltf: the glTF parameters.
     GltfMaterialParams gltf;
 
-    // Radiance the surface emits itself (glTF emissive textures, which are no area lights):
-    // seen by camera rays and by the rays that Whitted and glossy recursion trace.
+    // Radiance the surface emits itself (a "gltf" material's "emissive"/"emissivemap" in a
+    // .pbrt file; the glTF reader turns emission into area lights instead): seen by camera
+    // rays and by the rays that Whitted and glossy recursion trace, but not light-sampled.
     bool HasEmission() const { return kind == Kind::Gltf && gltf.emissive != nullptr; }
     RGB Emitted(const TextureContext &tc) const { return gltf.emissive->Evaluate(tc).Clamped(0.f); }
+    // glTF occlusionTexture: the factor 1 + strength × (occlusion.r - 1) by which the light
+    // that reaches the hit from the environment (infinite lights: an --env map, the studio
+    // rig's uniform environment) and along indirect paths (specular and glossy rays, and a
+    // path integrator's bounces) is scaled, as the glTF sample viewer scales its image-based
+    // light; 1 for every other material. Direct light from point, spot, distant and area
+    // lights is not scaled: Prism traces their shadows. docs/MATERIALS.md.
+    float AmbientOcclusion(const TextureContext &tc) const {
+        if (kind != Kind::Gltf || !gltf.occlusion) return 1;
+        const float ao = std::clamp(gltf.occlusion->Evaluate(tc).r, 0.f, 1.f);
+        return 1 + gltf.occlusionStrength * (ao - 1);
+    }
     // Shading-normal perturbation (render/bump.cpp), applied to the hit before it is shaded:
     // pbrt-v3's "bumpmap" (a float displacement texture), or a tangent-space normal map (glTF
     // normalTexture, OBJ norm, pbrt-v4 "normalmap") whose x and y are scaled by normalScale.
     TexturePtr bump, normalMap;
     float normalScale = 1;
+    int normalMapUVSet = 0;  // the uv set the normal map reads (tangents are made from it)
     bool PerturbsShading() const { return bump || normalMap; }
     // Moves si.ns (and dpdu/dpdv) as the bump or normal map says; needs uv and dpdu/dpdv.
     void PerturbShading(SurfaceInteraction &si) const;

@@ -36,9 +36,18 @@ struct SceneFeatures {
 
 // The integrator a render runs (the renderer dispatches on it once per render).
 enum class IntegratorKind {
-    Whitted,       // pbrt-v3's "whitted" (also what every other pbrt integrator renders as)
-    Distribution,  // Prism's "distribution": Whitted plus glossy rays
+    Whitted,         // pbrt-v3's "whitted" (also what every other pbrt integrator renders as)
+    Distribution,    // Prism's "distribution": Whitted plus glossy rays
+    DirectLighting,  // pbrt-v3's "directlighting" (render/direct_integrator.h)
+    Path,            // pbrt-v3's "path" (render/path_integrator.h)
 };
+
+// How the path and directlighting integrators choose the light of a one-light direct-lighting
+// sample (render/light_sampling.h): uniformly, in proportion to the lights' power, or (the
+// stand-in for pbrt-v3's "spatial", the path default, which weighs lights by their
+// contribution per region of the scene) half by power and half uniformly, so a dim light that
+// lights what the camera sees is never starved.
+enum class LightChoice { Uniform, Power, Spatial };
 
 // Glossy rays per glossy lobe at the first glossy bounce of a path (1 deeper down), unless the
 // Integrator's "glossysamples" or --glossy-samples says otherwise.
@@ -73,6 +82,15 @@ struct RenderScene {
     float filmScale = 1;
     float maxSampleLuminance = Infinity;
     int spp = 1;
+    // Mixed into every sample pattern's seed: 0 for a render, the pass's seed for the passes
+    // of a progressive render (render/progressive.h), whose samples must differ.
+    uint32_t sampleSeed = 0;
+    // --stats: the film also sums each pixel's even and odd samples apart, for the noise
+    // estimate (RenderStats::noiseVariance).
+    bool estimateNoise = false;
+    // Sampler "random" under the path and directlighting integrators: independent uniform
+    // samples instead of stratified patterns (render/light_sampling.h PixelSamples).
+    bool independentSamples = false;
     int maxDepth = 5;
     // Accuracy knobs (BuildSettings): the ray-weight cutoff (0: every ray) and how spawned rays
     // leave a surface.
@@ -85,9 +103,17 @@ struct RenderScene {
     std::optional<ToneMap> filmToneMap;
     // Film "aovs" (Prism extension, render/aov.h): "" or a checked AOV list ("all", "Z,N").
     std::string filmAovs;
-    std::string integratorName;
+    std::string integratorName;  // the integrator that runs ("whitted", "path", ...)
+    std::string integratorWhy;   // why: "Integrator \"path\" at f.pbrt:3", "--integrator path"
     IntegratorKind integrator = IntegratorKind::Whitted;
     int glossySamples = DefaultGlossySamples;  // DistributionIntegrator only
+    // directlighting "strategy": true "all" (every light, its own sample count), false "one".
+    bool directAllLights = true;
+    float rrThreshold = 1;  // path "rrthreshold": Russian roulette below this throughput
+    LightChoice lightChoice = LightChoice::Spatial;  // path "lightsamplestrategy"
+    // Each light's power (luminance), for LightChoice::Power: filled by the build
+    // (render/light_sampling.h ComputeLightPower); empty: lights are chosen uniformly.
+    std::vector<double> lightPower;
     SceneFeatures features;
     // Some material filters a texture over the ray's footprint (Material::UsesDifferentials):
     // camera rays carry ray differentials (render/differentials.h), specular bounces keep them.

@@ -9,13 +9,16 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
 
+#include "render/direct_integrator.h"
 #include "render/kernel.h"
+#include "render/path_integrator.h"
 
 namespace prism {
 
@@ -67,12 +70,26 @@ class TileMerger {
     std::vector<FilmTile *> free_;
 };
 
+// The tile function of the scene's integrator: the path and directlighting integrators, or the
+// Whitted/distribution kernel specialized for `mask`.
+RenderTileFn TileFunction(const RenderScene &scene, uint32_t mask) {
+    switch (scene.integrator) {
+        case IntegratorKind::Path:
+            return &RenderTilePath;
+        case IntegratorKind::DirectLighting:
+            return &RenderTileDirect;
+        default:
+            return KernelRenderTile(mask);
+    }
+}
+
 }  // namespace
 
 Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &progress,
              const volatile int *cancel) {
     auto start = std::chrono::steady_clock::now();
     TiledFilm film(scene.resolution, scene.pixelBounds, scene.filter, RenderTileSize);
+    if (scene.estimateNoise) film.EnableNoiseEstimate();
     int nTiles = film.NumTiles();
     TileMerger merger(film);
     std::atomic<int> nextTile{0};
@@ -82,7 +99,7 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
     // The kernel is chosen here, once per render: the one specialized for the scene's effects
     // (render/kernel.h), or the general one for --effects all.
     const uint32_t kernelMask = scene.allEffects ? KernelAll : KernelMaskFor(scene);
-    const RenderTileFn renderTile = KernelRenderTile(kernelMask);
+    const RenderTileFn renderTile = TileFunction(scene, kernelMask);
 
     // Progress is reported from a helper thread so worker threads never block on output.
     std::mutex mutex;
@@ -135,8 +152,19 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
         stats->firstNonFinitePixel = film.FirstNonFinitePixel();
         stats->cancelled = cancelled;
         stats->kernelMask = kernelMask;
+        stats->noiseVariance = film.NoiseVariance();
+        stats->noisePixels = film.NoisePixels();
     }
     return img;
+}
+
+std::optional<double> RelativeStandardError(const Image &img, const RenderStats &stats) {
+    if (stats.noisePixels == 0) return std::nullopt;
+    double signal = 0;
+    for (float v : img.pixels)
+        if (std::isfinite(v)) signal += double(v) * double(v);
+    if (!(signal > 0)) return std::nullopt;
+    return std::sqrt(stats.noiseVariance / signal);
 }
 
 }  // namespace prism
@@ -156,7 +184,7 @@ int FrameTiles::NumTiles() const { return film_->NumTiles(); }
 void FrameTiles::RenderTiles(int begin, int end, std::vector<FilmTile> *tiles,
                              RayCounters *rays) const {
     tiles->resize(size_t(end - begin));
-    const RenderTileFn renderTile = KernelRenderTile(kernelMask_);
+    const RenderTileFn renderTile = TileFunction(scene_, kernelMask_);
     tbb::enumerable_thread_specific<RayCounters> counters;
     tbb::enumerable_thread_specific<TileScratch> scratch;
     tbb::parallel_for(tbb::blocked_range<int>(begin, end, 1),

@@ -4,6 +4,8 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "image/image.h"
 #include "render/render_scene.h"
@@ -25,7 +27,19 @@ struct RenderStats {
     std::optional<Vec2i> firstNonFinitePixel;
     bool cancelled = false;   // the cancel flag was raised: the image is incomplete
     uint32_t kernelMask = 0;  // the kernel that ran (render/kernel.h KernelMaskName)
+    // With scene.estimateNoise: the estimated variance of the image, summed over its pixels
+    // and channels (image/film.h FilmTile::NoiseVariance), and how many pixels it covers.
+    double noiseVariance = 0;
+    uint64_t noisePixels = 0;
+    // Progressive renders (render/progressive.h): the samples per pixel of each pass.
+    std::vector<int> passSpp;
 };
+
+// The relative standard error of `img` estimated from stats' noise variance:
+// sqrt(noise variance / sum of the squared pixel values), the quantity --target-error and
+// `prism study` call relative RMSE, predicted against the converged image. nullopt when no
+// pixel has samples in both halves (1 spp) or the image is black.
+std::optional<double> RelativeStandardError(const Image &img, const RenderStats &stats);
 
 // Called with the fraction done (0..1), from a single thread.
 using ProgressFn = std::function<void(double fraction)>;

@@ -17,7 +17,8 @@ struct Image;
 
 struct TextureContext {
     Vec2f uv;
-    Vec3f p;  // render-space hit point (for 3-D textures and non-uv mappings)
+    Vec3f p;    // render-space hit point (for 3-D textures and non-uv mappings)
+    Vec2f uv1;  // the second texture coordinate set (SurfaceInteraction::uv1; glTF TEXCOORD_1)
     // The footprint of the pixel sample (pbrt-v3 ComputeDifferentials, render/differentials.h):
     // how p and (u, v) change from one pixel to the next. All zero where the ray carries no
     // differentials; filtered lookups then read the finest level, bilinearly.

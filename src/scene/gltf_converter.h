@@ -40,7 +40,7 @@ class GltfConverter {
   private:
     AccessorView View(int accessorIndex, const std::string &what);
     std::vector<Vec3f> ReadVec3(int accessor, const std::string &what);
-    std::vector<Vec2f> ReadTexcoords(int accessor);
+    std::vector<Vec2f> ReadTexcoords(int accessor, const std::string &name = "TEXCOORD_0");
     std::vector<int> ReadIndices(int accessor, size_t vertexCount);
 
     void Traverse(int node, const Matrix4 &parent, std::vector<int> &path);
@@ -51,6 +51,12 @@ class GltfConverter {
     std::string TextureFor(int textureIndex, bool linear);
     bool AddMap(ParamSet &ps, const std::string &param, int textureIndex, int texCoord,
                 const tinygltf::ExtensionMap &ext, bool linear);
+    // The texture coordinate set a textureInfo reads (KHR_texture_transform's texCoord wins);
+    // sets other than 0 and 1 are warned about and read as 0. Notes set 1 for `material`.
+    int TexCoordOf(int texCoord, const tinygltf::ExtensionMap &ext, int material);
+    // "<param>texcoord" 1 and "<param>transform" (KHR_texture_transform) for one texture map.
+    void AddTexCoordParams(ParamSet &ps, const std::string &param, int texCoord,
+                           const tinygltf::ExtensionMap &ext, int material);
     std::string ImageFilename(int imageIndex);
     // gltf_surface.cpp: normalTexture on a material; alphaMode and TANGENT on a primitive.
     void AddNormalMap(const tinygltf::Material &m, ParamSet &materialParams);
@@ -69,6 +75,9 @@ class GltfConverter {
     std::map<int, std::string> alphaTextures_;  // material → its alpha texture ("" if none)
     std::set<int> warnedModes_;
     int warnedTexCoord_ = 0;
+    int currentMaterial_ = -1;               // the material ConvertMaterials is converting
+    std::set<int> materialsUsingTexCoord1_;  // their primitives read TEXCOORD_1 ("uv1")
+    bool warnedMissingTexCoord1_ = false;
     bool haveCamera_ = false;
 };
 

@@ -135,19 +135,22 @@ std::vector<double> ExtNumbers(const tinygltf::ExtensionMap &ext, const char *ex
 
 }  // namespace
 
-// A texture map of a "gltf" material: "<param>" names the imagemap, "<param>transform" holds
-// KHR_texture_transform. False when the texture has no usable image.
-bool GltfConverter::AddMap(ParamSet &ps, const std::string &param, int textureIndex, int texCoord,
-                           const tinygltf::ExtensionMap &ext, bool linear) {
-    if (textureIndex < 0) return false;
-    std::string tex = TextureFor(textureIndex, linear);
-    if (tex.empty()) return false;
-    AddTexture(ps, param, tex, loc_);
+int GltfConverter::TexCoordOf(int texCoord, const tinygltf::ExtensionMap &ext, int material) {
+    texCoord = int(ExtNumber(ext, "KHR_texture_transform", "texCoord", texCoord));
+    if (texCoord != 0 && texCoord != 1) {
+        if (warnedTexCoord_++ == 0)
+            diag_.Warn(loc_, "texture coordinate set " + std::to_string(texCoord) +
+                                 " is read as TEXCOORD_0 (Prism reads sets 0 and 1)");
+        return 0;
+    }
+    if (texCoord == 1 && material >= 0) materialsUsingTexCoord1_.insert(material);
+    return texCoord;
+}
+
+void GltfConverter::AddTexCoordParams(ParamSet &ps, const std::string &param, int texCoord,
+                                      const tinygltf::ExtensionMap &ext, int material) {
     const char *tt = "KHR_texture_transform";
-    texCoord = int(ExtNumber(ext, tt, "texCoord", texCoord));
-    if (texCoord != 0 && warnedTexCoord_++ == 0)
-        diag_.Warn(loc_, "texture coordinate set " + std::to_string(texCoord) +
-                             " is read as TEXCOORD_0 (only one set reaches the renderer)");
+    if (TexCoordOf(texCoord, ext, material) == 1) AddInts(ps, param + "texcoord", {1}, loc_);
     if (ext.count(tt)) {
         std::vector<double> off = ExtNumbers(ext, tt, "offset", {0, 0});
         std::vector<double> sc = ExtNumbers(ext, tt, "scale", {1, 1});
@@ -156,20 +159,33 @@ bool GltfConverter::AddMap(ParamSet &ps, const std::string &param, int textureIn
         p.numbers = {off[0], off[1], rot, sc[0], sc[1]};
         ps.Add(std::move(p));
     }
+}
+
+// A texture map of a "gltf" material: "<param>" names the imagemap, "<param>texcoord" 1 reads
+// TEXCOORD_1, "<param>transform" holds KHR_texture_transform. False when the texture has no
+// usable image.
+bool GltfConverter::AddMap(ParamSet &ps, const std::string &param, int textureIndex, int texCoord,
+                           const tinygltf::ExtensionMap &ext, bool linear) {
+    if (textureIndex < 0) return false;
+    std::string tex = TextureFor(textureIndex, linear);
+    if (tex.empty()) return false;
+    AddTexture(ps, param, tex, loc_);
+    AddTexCoordParams(ps, param, texCoord, ext, currentMaterial_);
     return true;
 }
 
 // Metallic-roughness → Prism's "gltf" material (render/gltf_material.h), which evaluates the
 // specification's BRDF with KHR_materials_ior, _specular, _transmission, _clearcoat; the
-// texture maps (baseColor sRGB, metallicRoughness and occlusion linear, emissive sRGB) with
-// KHR_texture_transform. Emission: emissiveFactor × KHR_materials_emissive_strength becomes a
-// "diffuse" area light on every shape with the material (light samples reach it); with an
-// emissiveTexture the material emits texture × factor × strength itself, seen by camera and
-// recursive rays but not light-sampled (docs/MATERIALS.md).
+// texture maps (baseColor sRGB, metallicRoughness and occlusion linear) with their texture
+// coordinate set and KHR_texture_transform. Emission (emissiveFactor × emissiveTexture ×
+// KHR_materials_emissive_strength) becomes a "diffuse" area light on every shape with the
+// material, textured ("emissionmap") when there is an emissiveTexture: light samples reach it
+// and every ray that hits it sees it (docs/MATERIALS.md).
 void GltfConverter::ConvertMaterials() {
     for (size_t mi = 0; mi < model_.materials.size(); ++mi) {
         const tinygltf::Material &m = model_.materials[mi];
         const auto &pbr = m.pbrMetallicRoughness;
+        currentMaterial_ = int(mi);
         MaterialDesc md;
         md.name = m.name.empty() ? "material " + std::to_string(mi) : m.name;
         md.loc = loc_;
@@ -210,21 +226,20 @@ void GltfConverter::ConvertMaterials() {
         double strength =
             ExtNumber(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1);
         if (e[0] > 0 || e[1] > 0 || e[2] > 0) {
-            if (AddMap(ps, "emissivemap", m.emissiveTexture.index, m.emissiveTexture.texCoord,
-                       m.emissiveTexture.extensions, false)) {
-                AddRGB(ps, "emissive", e[0] * strength, e[1] * strength, e[2] * strength, loc_);
-            } else {
-                // Constant emission: an area light (the material itself emits nothing).
-                AreaLightDesc al;
-                al.type = "diffuse";
-                al.loc = loc_;
-                AddRGB(al.params, "L", e[0] * strength, e[1] * strength, e[2] * strength, loc_);
-                // OBJ/glTF carry no sample count: 16 stratified shadow rays give clean soft
-                // shadows.
-                AddInts(al.params, "nsamples", {16}, loc_);
-                light = int(desc_.areaLights.size());
-                desc_.areaLights.push_back(std::move(al));
-            }
+            // An area light on every shape with the material: L = factor × strength, times the
+            // emissive texture ("emissionmap", with its texture coordinate set and transform)
+            // when there is one. Light samples reach it; camera and recursive rays see it.
+            AreaLightDesc al;
+            al.type = "diffuse";
+            al.loc = loc_;
+            AddRGB(al.params, "L", e[0] * strength, e[1] * strength, e[2] * strength, loc_);
+            AddMap(al.params, "emissionmap", m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                   m.emissiveTexture.extensions, false);
+            // OBJ/glTF carry no sample count: 16 stratified shadow rays give clean soft
+            // shadows.
+            AddInts(al.params, "nsamples", {16}, loc_);
+            light = int(desc_.areaLights.size());
+            desc_.areaLights.push_back(std::move(al));
         }
         AddNormalMap(m, md.params);
         desc_.materials.push_back(std::move(md));

@@ -1,7 +1,8 @@
 // glTF surface detail beyond the BRDF: normalTexture (a tangent-space normal map, with the
-// primitive's TANGENT attribute when it has one) and alphaMode MASK / BLEND (cut-outs from the
-// base colour's alpha), as the pbrt-style parameters build/ reads ("normalmap", "normalscale",
-// "tangent", "alpha", "alphamode", "alphacutoff").
+// primitive's TANGENT attribute when it has one) and alphaMode MASK / BLEND (cut-outs and
+// stochastic transparency from the base colour's alpha), as the pbrt-style parameters build/
+// reads ("normalmap", "normalscale", "tangent", "alpha", "alphamode", "alphacutoff", and
+// "<map>texcoord" / "<map>transform" for TEXCOORD_1 and KHR_texture_transform).
 #include <cmath>
 
 #include "scene/gltf_converter.h"
@@ -11,22 +12,19 @@ namespace prism::gltf_internal {
 
 using namespace reader;
 
-// normalTexture → "string normalmap" (the image, read linearly) and "float normalscale".
-// Only texture coordinate set 0 is read.
+// normalTexture → "string normalmap" (the image, read linearly), "float normalscale", and
+// "normalmaptexcoord" / "normalmaptransform" for its texture coordinate set and
+// KHR_texture_transform.
 void GltfConverter::AddNormalMap(const tinygltf::Material &m, ParamSet &ps) {
     const tinygltf::NormalTextureInfo &nt = m.normalTexture;
     if (nt.index < 0 || size_t(nt.index) >= model_.textures.size()) return;
     const tinygltf::Texture &tex = model_.textures[size_t(nt.index)];
     if (tex.source < 0 || size_t(tex.source) >= model_.images.size()) return;
-    if (nt.texCoord != 0) {
-        diag_.Warn(loc_, "material \"" + m.name + "\": normalTexture reads TEXCOORD_" +
-                             std::to_string(nt.texCoord) + ", which is not read; ignored");
-        return;
-    }
     std::string file = ImageFilename(tex.source);
     if (file.empty()) return;
     AddString(ps, "normalmap", file, loc_);
     AddFloat(ps, "normalscale", nt.scale, loc_);
+    AddTexCoordParams(ps, "normalmap", nt.texCoord, nt.extensions, currentMaterial_);
 }
 
 // The base colour's alpha for a MASK or BLEND material: baseColorFactor's alpha times the
@@ -65,9 +63,9 @@ std::string GltfConverter::AlphaTextureFor(int material) {
     return name;
 }
 
-// A primitive's shape parameters: cut-outs for MASK and BLEND materials (BLEND's shadows stay
-// off: ConvertMesh gives it "shadowalpha" 0), and the TANGENT attribute when its material has
-// a normal map.
+// A primitive's shape parameters: cut-outs for MASK and stochastic transparency for BLEND
+// materials (for camera and shadow rays; AddMesh turns blended emitters' shadows off), and
+// the TANGENT attribute when its material has a normal map.
 void GltfConverter::AddSurfaceParams(const tinygltf::Primitive &prim, size_t vertices,
                                      ParamSet &ps) {
     if (prim.material < 0) return;
@@ -80,6 +78,8 @@ void GltfConverter::AddSurfaceParams(const tinygltf::Primitive &prim, size_t ver
                             : 1.0;
         if (!tex.empty()) {
             AddTexture(ps, "alpha", tex, loc_);
+            const auto &bt = m.pbrMetallicRoughness.baseColorTexture;
+            AddTexCoordParams(ps, "alpha", bt.texCoord, bt.extensions, prim.material);
         } else if (mask) {
             AddFloat(ps, "alpha", factor >= m.alphaCutoff ? 1 : 0, loc_);
         } else {

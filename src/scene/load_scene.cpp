@@ -52,8 +52,13 @@ Vec3d NearestAxis(const Vec3d &v, const Vec3d &exclude) {
 
 bool HasEmitters(const SceneDescription &desc) {
     if (!desc.lights.empty()) return true;
+    // Emissive textures (glTF emissiveTexture: panels, screens, decals) light their
+    // surroundings but do not light a model: only untextured emitters (a Cornell box's lamp)
+    // count, so a model that has only emissive textures still gets the studio rig.
     for (const ShapeDesc &s : desc.shapes)
-        if (s.areaLight >= 0) return true;
+        if (s.areaLight >= 0 && size_t(s.areaLight) < desc.areaLights.size() &&
+            !desc.areaLights[size_t(s.areaLight)].params.Has("emissionmap"))
+            return true;
     return false;
 }
 

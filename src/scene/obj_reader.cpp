@@ -34,13 +34,21 @@ std::string NormalizeTexturePath(std::string p) {
 }
 
 // MTL illumination models → pbrt-v3 materials:
-//   illum 4/6/7 or dissolve d < 1     → "glass"  (index Ni, 1.5 when Ni <= 1; Kt = Tf if set)
+//   illum 4/6/7                       → "glass"  (index Ni, 1.5 when Ni <= 1; Kt = Tf if set)
 //   illum 5, or illum 3 with Ks != 0  → "mirror" (Kr = Ks)
 //   Ks != 0                           → "plastic" (Kd, Ks, alpha = sqrt(2 / (Ns + 2)), the
 //                                        Blinn-Phong-to-Beckmann conversion; remaproughness false)
 //   otherwise                         → "matte" (Kd)
 // map_Kd becomes an "imagemap" texture that replaces Kd. Tf alone does not make glass:
-// many exporters write "Tf 1 1 1" to mean "no filter".
+// many exporters write "Tf 1 1 1" to mean "no filter". Neither does a dissolve d < 1 (or Tr):
+// exporters write it for see-through surfaces (decals, leaves, windows drawn as blended
+// polygons), so it is transparency (AddObjAlpha), not refraction; only the illumination
+// models that ask for refraction (4, 6, 7) make glass. Ni alone says nothing (Blender writes
+// Ni 1.45 for every material).
+bool IsObjGlass(const tinyobj::material_t &m) {
+    return m.illum == 4 || m.illum == 6 || m.illum == 7;
+}
+
 MaterialDesc ConvertMaterial(const tinyobj::material_t &m, const FileLoc &loc,
                              SceneDescription &desc) {
     MaterialDesc md;
@@ -62,7 +70,7 @@ MaterialDesc ConvertMaterial(const tinyobj::material_t &m, const FileLoc &loc,
             AddRGB(ps, "Kd", m.diffuse[0], m.diffuse[1], m.diffuse[2], loc);
         }
     };
-    if (illum == 4 || illum == 6 || illum == 7 || m.dissolve < 1) {
+    if (IsObjGlass(m)) {
         md.type = "glass";
         AddFloat(ps, "index", m.ior > 1 ? m.ior : 1.5, loc);
         AddRGB(ps, "Kr", 1, 1, 1, loc);
@@ -104,10 +112,18 @@ MaterialDesc ConvertMaterial(const tinyobj::material_t &m, const FileLoc &loc,
 }
 
 // map_d: a cut-out from the image's alpha channel (its luminance when it has none), kept where
-// it is at least 0.5 (as glTF's MASK); for every shape of the material.
+// it is at least 0.5 (as glTF's MASK); for every shape of the material. Without map_d, a
+// dissolve d < 1 on a material that is not glass is stochastic transparency of alpha d (as
+// glTF's BLEND: camera and shadow rays pass with probability 1 - d).
 void AddObjAlpha(const tinyobj::material_t &m, const FileLoc &loc, SceneDescription &desc,
                  ParamSet &shapeParams) {
-    if (m.alpha_texname.empty()) return;
+    if (m.alpha_texname.empty()) {
+        if (m.dissolve < 1 && !IsObjGlass(m)) {
+            AddFloat(shapeParams, "alpha", std::max(0.0, double(m.dissolve)), loc);
+            AddString(shapeParams, "alphamode", "blend", loc);
+        }
+        return;
+    }
     const std::string name = "obj:" + m.name + ":map_d";
     bool have = false;
     for (const TextureDesc &t : desc.textures) have = have || t.name == name;
@@ -373,6 +389,16 @@ SceneDescription ReadObjFile(const std::string &path, Diagnostics &diag, MemoryB
     std::vector<int> areaLightOf;
     for (const tinyobj::material_t &m : materials) {
         desc.materials.push_back(ConvertMaterial(m, fileLoc, desc));
+        // A coloured Tf beside d < 1 reads like a filter for glass; say what is made instead.
+        const bool colouredTf =
+            NonZero(m.transmittance) &&
+            !(m.transmittance[0] == 1 && m.transmittance[1] == 1 && m.transmittance[2] == 1);
+        if (m.dissolve < 1 && !IsObjGlass(m) && m.alpha_texname.empty() && colouredTf)
+            diag.Warn(fileLoc, "material " + Quote(m.name) + ": \"d " +
+                                   (std::ostringstream() << m.dissolve).str() +
+                                   "\" is read as transparency (a see-through surface), not "
+                                   "refraction, so its Tf filter colour is ignored; illum 4, 6 "
+                                   "or 7 makes it glass with Kt = Tf");
         int light = -1;
         if (NonZero(m.emission)) {
             AreaLightDesc al;

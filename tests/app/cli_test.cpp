@@ -82,7 +82,10 @@ TEST(Cli, IntegratorAndGlossySamplesOptions) {
     // Whitted names the rough glass it renders smooth; the distribution integrator does not.
     EXPECT_NE(w.err.find("rough glass"), std::string::npos) << w.err;
     EXPECT_EQ(d.err.find("rough glass"), std::string::npos) << d.err;
-    EXPECT_NE(RunPrism(scene + "--integrator path -o p.png", dir).exitCode, 0);
+    RunResult p = RunPrism(scene + "--integrator path -o p.png", dir);
+    ASSERT_EQ(p.exitCode, 0) << p.err;
+    EXPECT_NE(p.err.find("path integrator"), std::string::npos) << p.err;
+    EXPECT_NE(RunPrism(scene + "--integrator bdpt -o p.png", dir).exitCode, 0);
     EXPECT_NE(RunPrism(scene + "--glossy-samples 0 -o p.png", dir).exitCode, 0);
 }
 

@@ -62,7 +62,7 @@ CSGEnd
             ASSERT_TRUE(scene.accel->Intersect(ray, &si));
             const Material &m = scene.materials[size_t(scene.Info(si).material)];
             ASSERT_TRUE(m.MayTransmit());
-            BSDF bsdf = m.GetBSDF(si, TextureContext{si.uv, si.p});
+            BSDF bsdf = m.GetBSDF(si, TextureContext{si.uv, si.p, si.uv1});
             Vec3f wi;
             RGB weight;
             bool refracted = false;

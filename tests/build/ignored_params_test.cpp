@@ -127,15 +127,29 @@ TEST(IgnoredParams, IntegratorParametersOtherThanMaxdepth) {
     ExpectOneWarning(w, file, text, "\"pixelbounds\"", "\"integer pixelbounds\"");
     EXPECT_EQ(w.size(), 1u);
 
+    // An integrator Prism does not have renders with Whitted; its parameters are named.
     text = std::string(
-               "Integrator \"path\" \"integer maxdepth\" 3 \"float rrthreshold\" 0.5\n"
+               "Integrator \"bdpt\" \"integer maxdepth\" 3 \"bool visualizestrategies\" true\n"
                "    \"string lightsamplestrategy\" \"spatial\"\n") +
            World + "Shape \"sphere\"\n";
-    w = BuildWarnings("integrator_path", text, &file);
+    w = BuildWarnings("integrator_bdpt", text, &file);
     ExpectOneWarning(w, file, text, "is rendered with Whitted", "Integrator");
-    ExpectOneWarning(w, file, text, "\"rrthreshold\"", "\"float rrthreshold\"");
+    ExpectOneWarning(w, file, text, "\"visualizestrategies\"", "\"bool visualizestrategies\"");
     ExpectOneWarning(w, file, text, "\"lightsamplestrategy\"", "\"string lightsamplestrategy\"");
     EXPECT_EQ(w.size(), 3u);
+
+    // The path integrator reads rrthreshold and lightsamplestrategy; "spatial" is named for
+    // its stand-in, pixelbounds as ignored.
+    text =
+        std::string(
+            "Integrator \"path\" \"integer maxdepth\" 3 \"float rrthreshold\" 0.5\n"
+            "    \"string lightsamplestrategy\" \"spatial\" \"integer pixelbounds\" [0 4 0 4]\n") +
+        World + "Shape \"sphere\"\n";
+    w = BuildWarnings("integrator_path", text, &file);
+    ExpectOneWarning(w, file, text, "one light distribution for the whole scene",
+                     "\"string lightsamplestrategy\"");
+    ExpectOneWarning(w, file, text, "\"pixelbounds\"", "\"integer pixelbounds\"");
+    EXPECT_EQ(w.size(), 2u);
 }
 
 TEST(IgnoredParams, TriangleMeshTangentsAndFaceIndices) {

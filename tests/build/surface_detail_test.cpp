@@ -288,11 +288,11 @@ TEST_F(SurfaceDetail, GltfMaskAndBlend) {
     EXPECT_EQ(cut.camera, 0);
     Through cutoff = count("m3.gltf", base + R"(0.6]}, "alphaMode": "MASK", "alphaCutoff": 0.7})");
     EXPECT_EQ(cutoff.camera, 0);
-    // BLEND: stochastic transparency of the camera rays, about alpha of them hit; shadows
-    // stay off for blended materials.
+    // BLEND: stochastic transparency of camera and shadow rays, about alpha of them hit (issue
+    // 13: blended materials cast stochastic shadows; before, they cast none).
     Through blend = count("b.gltf", base + R"(0.5]}, "alphaMode": "BLEND"})");
     EXPECT_NEAR(double(blend.camera) / blend.total, 0.5, 0.05);
-    EXPECT_EQ(blend.shadow, 0);
+    EXPECT_NEAR(double(blend.shadow) / blend.total, 0.5, 0.05);
     Through again = count("b2.gltf", base + R"(0.5]}, "alphaMode": "BLEND"})");
     EXPECT_EQ(again.camera, blend.camera);  // deterministic
     // OPAQUE ignores the alpha.

@@ -403,5 +403,63 @@ TEST(Film, MaxRadiusSplatsStayInBounds) {
     for (float v : film.ToImage().pixels) EXPECT_EQ(v, 1.f);
 }
 
+// --stats' noise halves (FilmTile::NoiseVariance): a pixel's samples alternate between the
+// halves in their order, and the variance of the mean is (mean_a - mean_b)^2 na nb / (na+nb)^2.
+TEST(FilmNoise, HalvesGiveTheVarianceOfTheMean) {
+    Film film({2, 1}, Full(2, 1), MakeBoxFilter());
+    FilmTile tile;
+    film.ResetTile(Full(2, 1), &tile, true);
+    // Pixel 0: 1, 3 (halves 1 and 3): (1 - 3)^2 / 4 = 1 per channel.
+    tile.AddSample({0.5f, 0.5f}, RGB(1.f));
+    tile.AddSample({0.25f, 0.75f}, RGB(3.f));
+    // Pixel 1: 1, 3, 5 (halves {1, 5} and {3}): equal means, 0.
+    tile.AddSample({1.5f, 0.5f}, RGB(1.f));
+    tile.AddSample({1.5f, 0.5f}, RGB(3.f));
+    tile.AddSample({1.5f, 0.5f}, RGB(5.f));
+    uint64_t pixels = 0;
+    EXPECT_DOUBLE_EQ(tile.NoiseVariance(&pixels), 3.0);
+    EXPECT_EQ(pixels, 2u);
+    // Without the estimate the tile keeps no halves.
+    film.ResetTile(Full(2, 1), &tile);
+    tile.AddSample({0.5f, 0.5f}, RGB(1.f));
+    tile.AddSample({0.5f, 0.5f}, RGB(3.f));
+    EXPECT_EQ(tile.NoiseVariance(&pixels), 0.0);
+    EXPECT_EQ(pixels, 0u);
+}
+
+// For independent samples of variance s^2 the estimate is unbiased for s^2 / n per pixel and
+// channel, and a pixel with one sample has none.
+TEST(FilmNoise, UnbiasedForIndependentSamples) {
+    const int w = 64, h = 64, n = 8;
+    TiledFilm film({w, h}, Full(w, h), MakeBoxFilter(), 16);
+    film.EnableNoiseEstimate();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    std::vector<FilmTile> tiles(size_t(film.NumTiles()));
+    for (int t = 0; t < film.NumTiles(); ++t) {
+        film.ResetTile(t, &tiles[size_t(t)]);
+        Bounds2i b = film.TilePixels(t);
+        for (int y = b.pMin.y; y < b.pMax.y; ++y)
+            for (int x = b.pMin.x; x < b.pMax.x; ++x)
+                for (int s = 0; s < n; ++s)
+                    tiles[size_t(t)].AddSample({x + u(rng), y + u(rng)},
+                                               RGB(u(rng), u(rng), u(rng)));
+        film.MergeNext(&tiles[size_t(t)]);
+    }
+    film.Finish();
+    EXPECT_EQ(film.NoisePixels(), uint64_t(w * h));
+    const double expected = double(w * h) * 3 * (1.0 / 12) / n;
+    EXPECT_NEAR(film.NoiseVariance() / expected, 1.0, 0.05);
+
+    TiledFilm one({4, 4}, Full(4, 4), MakeBoxFilter(), 16);
+    one.EnableNoiseEstimate();
+    FilmTile t1;
+    one.ResetTile(0, &t1);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) t1.AddSample({x + 0.5f, y + 0.5f}, RGB(u(rng)));
+    one.MergeNext(&t1);
+    EXPECT_EQ(one.NoisePixels(), 0u);
+}
+
 }  // namespace
 }  // namespace prism

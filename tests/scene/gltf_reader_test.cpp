@@ -354,9 +354,20 @@ TEST(GltfReader, MaterialExtensionsAndTextureTransform) {
     EXPECT_NEAR(ps.GetFloat("clearcoat", 0), 0.8, 1e-6);
     EXPECT_NEAR(ps.GetFloat("clearcoatroughness", 0), 0.1, 1e-6);
     EXPECT_NEAR(ps.GetFloat("occlusionstrength", 0), 0.7, 1e-6);
-    // Textured emission is the material's (factor × strength), not an area light.
-    EXPECT_FLOAT_EQ(ps.GetRGB("emissive", RGB(0)).b, 1.f);
-    EXPECT_FALSE(ps.GetTexture("emissivemap").empty());
+    // Textured emission is a textured area light (factor × strength × "emissionmap") on the
+    // material's shapes; the material itself emits nothing.
+    EXPECT_FALSE(ps.Has("emissive"));
+    EXPECT_FALSE(ps.Has("emissivemap"));
+    int lit = 0;
+    for (const ShapeDesc &s : d.shapes)
+        if (s.material == 4) {
+            ASSERT_GE(s.areaLight, 0);
+            const ParamSet &al = d.areaLights[size_t(s.areaLight)].params;
+            EXPECT_FLOAT_EQ(al.GetRGB("L", RGB(0)).b, 1.f);
+            EXPECT_FALSE(al.GetTexture("emissionmap").empty());
+            ++lit;
+        }
+    EXPECT_GT(lit, 0);
     // metallicRoughness is data: its imagemap is read without the sRGB curve.
     const TextureDesc *mr = FindTexture(d, ps.GetTexture("metallicroughnessmap"));
     ASSERT_TRUE(mr);
@@ -364,7 +375,9 @@ TEST(GltfReader, MaterialExtensionsAndTextureTransform) {
     const TextureDesc *bc = FindTexture(d, d.materials[0].params.GetTexture("basecolormap"));
     ASSERT_TRUE(bc);
     EXPECT_FALSE(bc->params.Has("gamma"));  // sRGB
-    ASSERT_EQ(d.areaLights.size(), 1u);     // only the untextured "lamp"
+    // The untextured "lamp" and the textured emission of "embedded" (issue 13: emissive
+    // textures are area lights too).
+    ASSERT_EQ(d.areaLights.size(), 2u);
 }
 
 TEST(GltfReader, MalformedFilesAreSceneErrors) {

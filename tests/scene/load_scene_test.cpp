@@ -340,8 +340,15 @@ TEST(SharedSceneDetails, SpiderTexturesAndDamagedHelmetImages) {
     ASSERT_EQ(h.materials.size(), 1u);
     // The glTF metallic-roughness material with its four material maps and the normal map.
     EXPECT_EQ(h.materials[0].type, "gltf");
-    for (const char *map : {"basecolormap", "metallicroughnessmap", "emissivemap", "occlusionmap"})
+    for (const char *map : {"basecolormap", "metallicroughnessmap", "occlusionmap"})
         EXPECT_FALSE(h.materials[0].params.GetTexture(map).empty()) << map;
+    // The emissive texture makes the helmet's shapes a textured area light (and, being only
+    // an emissive texture, leaves the studio rig on).
+    ASSERT_FALSE(h.shapes.empty());
+    ASSERT_GE(h.shapes[0].areaLight, 0);
+    EXPECT_FALSE(
+        h.areaLights[size_t(h.shapes[0].areaLight)].params.GetTexture("emissionmap").empty());
+    EXPECT_EQ(h.lights.size(), 3u);
     // Base colour, metallic-roughness, emissive, occlusion and normal-map images.
     EXPECT_EQ(h.embeddedImages.size(), 5u);
     EXPECT_FALSE(h.materials[0].params.GetString("normalmap", "").empty());

@@ -121,9 +121,16 @@ TEST(ObjReader, MaterialMapping) {
     EXPECT_NEAR(m->params.GetFloat("index", 0), 1.33, 1e-6);
     EXPECT_TRUE(Near(m->params.GetRGB("Kt", RGB(0)), 0.9f, 1, 0.9f));
 
+    // A dissolve d < 1 without a refracting illumination model is transparency, not glass
+    // (issue 13: exporters write d for see-through surfaces); the shapes carry it as alpha.
     m = FindMaterial(d, "faded");
-    EXPECT_EQ(m->type, "glass");
-    EXPECT_NEAR(m->params.GetFloat("index", 0), 1.5, 1e-6);  // Ni absent → 1.5
+    EXPECT_EQ(m->type, "matte");
+    int fadedIndex = int(m - d.materials.data());
+    for (const ShapeDesc &s : d.shapes)
+        if (s.material == fadedIndex) {
+            EXPECT_NEAR(s.params.GetFloat("alpha", 1), 0.5, 1e-6);
+            EXPECT_EQ(s.params.GetString("alphamode", ""), "blend");
+        }
 
     EXPECT_EQ(FindMaterial(d, "tinted_tf_only")->type, "matte");  // "Tf 1 1 1" is no filter
 

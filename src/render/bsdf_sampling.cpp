@@ -1,0 +1,197 @@
+// BSDF::Sample_f and BSDF::Pdf: importance sampling of a whole BSDF for the path and
+// directlighting integrators. The lobes are those of bsdf.cpp; the glossy directions are
+// SampleGlossy's (shared with the distribution integrator), so only their density is added here.
+#include <algorithm>
+#include <cmath>
+
+#include "render/bsdf.h"
+#include "render/microfacet.h"
+
+namespace prism {
+
+namespace {
+
+enum class Lobe { Diffuse, DiffuseTransmit, Glossy, SpecularReflect, SpecularTransmit };
+
+struct Choice {
+    int part;
+    Lobe lobe;
+    float weight;
+};
+
+// At most five lobes per part.
+struct Choices {
+    Choice c[BSDF::MaxParts * 5];
+    int n = 0;
+    float total = 0;
+    void Add(int part, Lobe lobe, float w) {
+        if (!(w > 0)) return;
+        c[n++] = {part, lobe, w};
+        total += w;
+    }
+};
+
+// The lobes of `b` with their choice weights (albedo estimates) for the direction wo (local).
+void Collect(const BSDF &b, const Vec3f &wo, bool withSpecular, Choices *ch) {
+    for (int i = 0; i < b.NumParts(); ++i) {
+        const RGB &w = b.Weight(i);
+        if (w.IsBlack()) continue;
+        const BxDFLobes &l = b.Part(i);
+        if (l.fresnelBlend) {
+            // pbrt-v3 FresnelBlend::Sample_f: half the samples diffuse, half glossy.
+            const float a = std::max(w.Average(), 1e-4f);
+            ch->Add(i, Lobe::Diffuse, a);
+            ch->Add(i, Lobe::Glossy, a);
+        } else {
+            if (!l.kd.IsBlack()) ch->Add(i, Lobe::Diffuse, (w * l.kd).Average());
+            if (l.HasGlossy())
+                ch->Add(i, Lobe::Glossy, (w * (l.ks + l.ksTransmit + l.thinTransmit)).Average());
+        }
+        if (!l.kdTransmit.IsBlack()) ch->Add(i, Lobe::DiffuseTransmit, (w * l.kdTransmit).Average());
+        if (!withSpecular) continue;
+        // Delta reflection against transmission in proportion to the Fresnel term at wo.
+        const float F = l.specularFresnel.kind == FresnelKind::Dielectric
+                            ? FrDielectric(wo.z, 1.f, l.eta)
+                            : l.specularFresnel.Evaluate(wo.z).Average();
+        if (!l.kr.IsBlack()) ch->Add(i, Lobe::SpecularReflect, (w * l.kr).Average() * F);
+        if (!l.kt.IsBlack())
+            ch->Add(i, Lobe::SpecularTransmit,
+                    (w * l.kt).Average() * (l.specularFresnel.kind == FresnelKind::Dielectric &&
+                                                    l.eta != 1
+                                                ? 1 - F
+                                                : 1.f));
+    }
+}
+
+// The density with which SampleGlossy draws wi (local) for one part: the visible-normal density
+// of the half vector, with the reflection / transmission choice SampleGlossy makes.
+float GlossyPdf(const BxDFLobes &l, const Vec3f &wo, const Vec3f &wi) {
+    const float side = wo.z > 0 ? 1.f : -1.f;
+    const Vec3f woUp(wo.x, wo.y, wo.z * side);
+    Vec3f wiUp(wi.x, wi.y, wi.z * side);
+    const bool hasT = !l.ksTransmit.IsBlack(), hasThin = !l.thinTransmit.IsBlack();
+    const bool transmit = wiUp.z < 0;
+    const float eta = side > 0 ? l.glossyEta : 1 / l.glossyEta;
+    Vec3f wh;
+    if (!transmit || hasThin) {
+        if (transmit) wiUp.z = -wiUp.z;  // thin-walled: the mirrored reflection
+        wh = woUp + wiUp;
+    } else if (hasT) {
+        wh = woUp + wiUp * eta;
+    } else {
+        return 0;
+    }
+    if (wh.x == 0 && wh.y == 0 && wh.z == 0) return 0;
+    wh = Normalize(wh);
+    if (wh.z < 0) wh = -wh;
+    const float cosOH = Dot(woUp, wh);
+    if (!(cosOH > 0)) return 0;
+    float pR = 1;
+    if (hasT) {
+        float F = FrDielectric(cosOH * side, 1.f, l.glossyEta);
+        float wR = (l.ks.IsBlack() ? 0.f : l.ks.Luminance() * F);
+        float wT = l.ksTransmit.Luminance() * (1 - F);
+        if (!(wR + wT > 0)) return 0;
+        pR = wR / (wR + wT);
+    } else if (hasThin) {
+        float wR = l.ks.IsBlack() ? 0.f : (l.ks * l.glossyFresnel.Evaluate(cosOH)).Luminance();
+        float wT = l.thinTransmit.Luminance() *
+                   (1 - FrSchlick(cosOH, l.dielectricF0, l.dielectricF90).MaxComponent());
+        if (!(wR + wT > 0)) return 0;
+        pR = wR / (wR + wT);
+    }
+    const float pdfWh = TrowbridgeReitzVisiblePdf(woUp, wh, l.alphaX, l.alphaY);
+    if (!transmit || hasThin) return (transmit ? 1 - pR : pR) * pdfWh / (4 * cosOH);
+    if (pR >= 1 || Dot(wiUp, wh) >= 0) return 0;
+    const float denom = cosOH + eta * Dot(wiUp, wh);
+    if (denom == 0) return 0;
+    return (1 - pR) * pdfWh * std::abs(eta * eta * Dot(wiUp, wh)) / (denom * denom);
+}
+
+// The density of one non-delta lobe (local directions).
+float LobePdf(const BxDFLobes &l, Lobe lobe, const Vec3f &wo, const Vec3f &wi) {
+    switch (lobe) {
+        case Lobe::Diffuse:
+            return wo.z * wi.z > 0 ? std::abs(wi.z) * float(InvPi) : 0.f;
+        case Lobe::DiffuseTransmit:
+            return wo.z * wi.z < 0 ? std::abs(wi.z) * float(InvPi) : 0.f;
+        case Lobe::Glossy:
+            return l.HasGlossy() ? GlossyPdf(l, wo, wi) : 0.f;
+        default:
+            return 0;
+    }
+}
+
+float MixturePdf(const BSDF &b, const Choices &ch, const Vec3f &wo, const Vec3f &wi) {
+    float pdf = 0, total = 0;
+    for (int k = 0; k < ch.n; ++k) {
+        const Choice &c = ch.c[k];
+        if (c.lobe == Lobe::SpecularReflect || c.lobe == Lobe::SpecularTransmit) continue;
+        total += c.weight;
+        pdf += c.weight * LobePdf(b.Part(c.part), c.lobe, wo, wi);
+    }
+    return total > 0 ? pdf / ch.total : 0.f;
+}
+
+}  // namespace
+
+float BSDF::Pdf(const Vec3f &woW, const Vec3f &wiW) const {
+    const Vec3f wo = ToLocal(woW), wi = ToLocal(wiW);
+    if (wo.z == 0) return 0;
+    Choices ch;
+    Collect(*this, wo, false, &ch);
+    return MixturePdf(*this, ch, wo, wi);
+}
+
+bool BSDF::Sample_f(const Vec3f &woW, Vec2f u, float uc, bool withSpecular, BSDFSample *s) const {
+    const Vec3f wo = ToLocal(woW);
+    if (wo.z == 0) return false;
+    Choices ch;
+    Collect(*this, wo, withSpecular, &ch);
+    if (ch.n == 0) return false;
+    // The lobe: uc against the running sum of the weights.
+    float target = std::min(uc, 0x1.fffffep-1f) * ch.total, sum = 0;
+    int k = 0;
+    while (k + 1 < ch.n && sum + ch.c[k].weight <= target) sum += ch.c[k++].weight;
+    const Choice &c = ch.c[k];
+    const float pChoice = c.weight / ch.total;
+    const BxDFLobes &l = parts_[c.part];
+    *s = BSDFSample();
+    if (c.lobe == Lobe::SpecularReflect || c.lobe == Lobe::SpecularTransmit) {
+        RGB w;
+        const bool ok = c.lobe == Lobe::SpecularReflect
+                            ? SampleSpecularReflection(c.part, woW, &s->wi, &w)
+                            : SampleSpecularTransmission(c.part, woW, &s->wi, &w);
+        if (!ok) return false;
+        s->specular = true;
+        s->transmission = c.lobe == Lobe::SpecularTransmit;
+        s->pdf = pChoice;
+        s->weight = w / pChoice;
+        const float cosI = AbsDot(s->wi, ns);
+        s->f = cosI > 0 ? w / cosI : RGB(0);
+        if (s->transmission && l.eta != 1) s->eta = wo.z > 0 ? l.eta : 1 / l.eta;
+        return !s->weight.IsBlack() && s->weight.IsFinite();
+    }
+    Vec3f wi;
+    if (c.lobe == Lobe::Glossy) {
+        RGB unused;
+        // uc again, rescaled within the chosen lobe's share, for SampleGlossy's own choice.
+        const float ucLobe = std::min((target - sum) / c.weight, 0x1.fffffep-1f);
+        if (!SampleGlossy(c.part, woW, u, ucLobe, &s->wi, &unused)) return false;
+        wi = ToLocal(s->wi);
+    } else {
+        // Cosine-weighted (Malley's method) on wo's side, or the other side for transmission.
+        const float r = std::sqrt(u.x), phi = 2 * float(Pi) * u.y;
+        wi = Vec3f(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.f, 1 - u.x)));
+        if ((wo.z < 0) != (c.lobe == Lobe::DiffuseTransmit)) wi.z = -wi.z;
+        s->wi = FromLocal(wi);
+    }
+    s->pdf = MixturePdf(*this, ch, wo, wi);
+    if (!(s->pdf > 0) || !std::isfinite(s->pdf)) return false;
+    s->f = f(woW, s->wi);
+    s->transmission = wo.z * wi.z < 0;
+    s->weight = s->f * (AbsDot(s->wi, ns) / s->pdf);
+    return !s->weight.IsBlack() && s->weight.IsFinite();
+}
+
+}  // namespace prism

@@ -1,0 +1,108 @@
+// Direct lighting with multiple importance sampling, shared by the path and directlighting
+// integrators (pbrt-v3 integrator.cpp: UniformSampleAllLights, UniformSampleOneLight,
+// EstimateDirect), and the per-dimension sample stream they draw from.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/color.h"
+#include "geometry/interaction.h"
+#include "render/sampler.h"
+
+namespace prism {
+
+struct BSDF;
+struct RenderScene;
+struct RayCounters;
+class Light;
+
+// The power heuristic with exponent 2 (Veach): the weight of a sample drawn nf times from the
+// density fPdf against ng times from gPdf.
+inline float PowerHeuristic(int nf, float fPdf, int ng, float gPdf) {
+    const float f = float(nf) * fPdf, g = float(ng) * gPdf;
+    if (std::isinf(f * f)) return 1;
+    return f * f + g * g > 0 ? (f * f) / (f * f + g * g) : 0.f;
+}
+
+// Samples of one camera sample, a pure function of (pixel, sample index, dimension), so images
+// do not depend on the thread count or tile order. Each dimension is its own correlated
+// multi-jittered pattern over the pixel's spp samples (render/sampler.h), seeded per pixel and
+// dimension: pbrt's "stratified" sampler padded per dimension, which stands in for pbrt's
+// low-discrepancy samplers (docs/PATH.md shows it converges as fast).
+struct PixelSamples {
+    int x = 0, y = 0;
+    uint32_t sample = 0, spp = 1;
+    // Sampler "random": independent uniform numbers (a hash of pixel, sample and dimension).
+    bool independent = false;
+
+    Vec2f Get2D(uint32_t dim) const { return Get2D(dim, 0, 1); }
+    // Sample k of n of this camera sample (strategy "all": n light samples stratified over
+    // spp × n).
+    Vec2f Get2D(uint32_t dim, uint32_t k, uint32_t n) const {
+        const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim);
+        if (independent)
+            return {HashFloat(sample * n + k, seed), HashFloat(sample * n + k, seed ^ 0x9e3779b9u)};
+        return CMJSample(sample * n + k, spp * n, seed);
+    }
+    float Get1D(uint32_t dim) const {
+        const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim);
+        if (independent) return HashFloat(sample, seed);
+        const uint32_t stratum = PermuteIndex(sample, spp, seed);
+        const float u = (float(stratum) + HashFloat(sample, seed * 0x68bc21ebu)) / float(spp);
+        return std::min(u, 0x1.fffffep-1f);
+    }
+};
+
+// The dimensions one path vertex draws (16 per bounce from PathDimBase).
+enum PathDim : uint32_t {
+    PathDimBase = 16,
+    PathDimsPerBounce = 16,
+    DimLightChoice = 0,  // 1-D
+    DimLight = 1,        // 2-D: the point on the light
+    DimScatter = 2,      // 2-D: the BSDF sample of direct lighting
+    DimScatterLobe = 3,  // 1-D: its lobe
+    DimBsdf = 4,         // 2-D: the BSDF sample that continues the path
+    DimBsdfLobe = 5,     // 1-D: its lobe
+    DimRoulette = 6,     // 1-D: Russian roulette
+};
+inline uint32_t VertexDim(int bounce, uint32_t d) {
+    return PathDimBase + uint32_t(bounce) * PathDimsPerBounce + d;
+}
+
+// Fills scene.lightPower (each light's power, for LightChoice::Power) once the lights and
+// shapes are built.
+void ComputeLightPower(RenderScene &scene);
+
+// Chooses a light for a one-light direct-lighting sample (uniformly, or by power).
+class LightChooser {
+  public:
+    explicit LightChooser(const RenderScene &scene);
+    // The light index for u in [0,1) and its probability; -1 when there are no lights.
+    int Choose(float u, float *prob) const;
+
+  private:
+    std::vector<double> cdf_;  // empty: uniform
+    int n_ = 0;
+};
+
+// pbrt-v3 EstimateDirect: one light sample (weighted against the BSDF's density by the power
+// heuristic) plus, for lights that rays can hit, one BSDF sample (weighted against the light's
+// density). f is the BSDF's non-delta lobes (its delta lobes carry no direct light).
+RGB EstimateDirect(const RenderScene &scene, const SurfaceInteraction &si, const BSDF &bsdf,
+                   int lightIndex, Vec2f uLight, Vec2f uScatter, float uLobe,
+                   RayCounters &counters);
+
+// pbrt-v3 UniformSampleOneLight: one light, chosen by `chooser`, divided by its probability.
+RGB SampleOneLight(const RenderScene &scene, const LightChooser &chooser,
+                   const SurfaceInteraction &si, const BSDF &bsdf, const PixelSamples &ps,
+                   int bounce, RayCounters &counters);
+
+// pbrt-v3 UniformSampleAllLights: every light with its own sample count ("nsamples"), the
+// samples stratified over the pixel's samples × that count.
+RGB SampleAllLights(const RenderScene &scene, const SurfaceInteraction &si, const BSDF &bsdf,
+                    const PixelSamples &ps, int depth, RayCounters &counters);
+
+}  // namespace prism

@@ -1,0 +1,91 @@
+#include "render/path_integrator.h"
+
+#include <algorithm>
+
+#include "render/area_light.h"
+#include "render/bsdf.h"
+#include "render/kernel.h"
+#include "render/render_scene.h"
+#include "render/sample_tile.h"
+
+namespace prism {
+
+namespace {
+// Consecutive "none" surfaces a path may cross without a bounce (as the Whitted kernel).
+constexpr int MaxPassThroughSurfaces = 256;
+}  // namespace
+
+RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps,
+                       RayCounters &counters) const {
+    RGB L, beta(1);
+    Ray ray = cameraRay;
+    bool specularBounce = false;
+    float etaScale = 1;  // radiance scaling by refraction, undone for Russian roulette
+    int passes = 0;
+    for (int bounces = 0;; ++bounces) {
+        // Intersect.
+        SurfaceInteraction si;
+        const bool found = scene_.accel->Intersect(ray, &si);
+        const ShapeInfo *info = found ? &scene_.Info(si) : nullptr;
+        // Emission that no light sample covered: seen by the camera, or after a delta bounce.
+        if (bounces == 0 || specularBounce) {
+            if (!found) {
+                for (const auto &light : scene_.lights) L += beta * light->Le(ray);
+            } else if (info->areaLight >= 0) {
+                L += beta * static_cast<const DiffuseAreaLight &>(
+                                *scene_.lights[size_t(info->areaLight)])
+                                .L(si, si.wo);
+            }
+        }
+        if (!found || bounces >= scene_.maxDepth) break;
+        const Material &mat = scene_.materials[size_t(info->material)];
+        if (mat.IsPassThrough()) {
+            // pbrt: a surface without a BSDF continues the ray without counting a bounce.
+            if (++passes > MaxPassThroughSurfaces) break;
+            ray = si.SpawnRay(ray.d, scene_.offset);
+            counters.passThrough++;
+            --bounces;
+            continue;
+        }
+        passes = 0;
+        if (mat.PerturbsShading()) mat.PerturbShading(si);
+        const TextureContext tc{si.uv, si.p};
+        // Emission a material carries itself (glTF emissive textures; no light samples it).
+        if (mat.HasEmission()) L += beta * mat.Emitted(tc);
+        BSDF bsdf = mat.GetBSDF(si, tc);
+        bsdf.MakeRoughSpecularGlossy();  // pbrt-v3: rough glass is a microfacet BSDF
+        // Direct lighting: one light, light and BSDF samples weighted by MIS.
+        if (bsdf.HasNonSpecular())
+            L += beta * SampleOneLight(scene_, chooser_, si, bsdf, ps, bounces, counters);
+        // Sample the BSDF for the next direction.
+        BSDFSample bs;
+        if (!bsdf.Sample_f(si.wo, ps.Get2D(VertexDim(bounces, DimBsdf)),
+                           ps.Get1D(VertexDim(bounces, DimBsdfLobe)), true, &bs))
+            break;
+        beta *= bs.weight;
+        specularBounce = bs.specular;
+        if (bs.specular && bs.transmission) etaScale *= bs.eta * bs.eta;
+        ray = si.SpawnRay(bs.wi, scene_.offset);
+        if (bs.transmission)
+            counters.refraction++;
+        else
+            counters.reflection++;
+        // Russian roulette (pbrt-v3: after the third bounce, below rrthreshold).
+        const RGB rrBeta = beta * etaScale;
+        if (rrBeta.MaxComponent() < scene_.rrThreshold && bounces > 3) {
+            const float q = std::max(0.05f, 1 - rrBeta.MaxComponent());
+            if (ps.Get1D(VertexDim(bounces, DimRoulette)) < q) break;
+            beta = beta / (1 - q);
+        }
+    }
+    return L;
+}
+
+void RenderTilePath(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &,
+                    FilmTile *tile) {
+    const PathIntegrator integrator(scene);
+    RenderTileSamples(scene, tb, rc, tile, [&](const Ray &ray, const PixelSamples &ps,
+                                               RayCounters &c) { return integrator.Li(ray, ps, c); });
+}
+
+}  // namespace prism

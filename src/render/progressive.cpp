@@ -1,0 +1,95 @@
+#include "render/progressive.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+namespace prism {
+
+int NextPassSpp(int done, int maxSpp, double secondsLeft, double secondsPerSpp) {
+    const int budget = maxSpp - done;
+    if (budget <= 0) return 0;
+    if (done == 0) return std::min(budget, 2);
+    double fits = secondsPerSpp > 0 ? 0.9 * secondsLeft / secondsPerSpp : double(budget);
+    int n = int(std::min({fits, double(std::max(done, 2)), double(budget)}));
+    if (n >= 2 || (n == 1 && budget == 1)) return n;
+    return 0;
+}
+
+Image RenderProgressive(RenderScene &scene, const TimeLimit &limit, RenderStats *stats,
+                        const ProgressFn &progress, const volatile int *cancel) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    RenderStats total;
+    std::vector<double> sum;  // sum over passes of spp * pass image
+    Image img;
+    int done = 0;
+    // Per pass: its samples and its noise variance (negative: the pass had no estimate).
+    std::vector<std::pair<int, double>> noise;
+    for (uint32_t pass = 0;; ++pass) {
+        const int spp =
+            NextPassSpp(done, limit.maxSpp, limit.seconds - elapsed(),
+                        done > 0 ? total.renderSeconds / double(done) : 0.0);
+        if (spp == 0) break;
+        scene.spp = spp;
+        // Pass 0 keeps seed 0: a budget of one pass renders what a plain render would.
+        scene.sampleSeed = pass * 0x9E3779B9u;
+        ProgressFn passProgress;
+        if (progress) {
+            passProgress = [&, spp](double f) {
+                double bySamples = (double(done) + f * spp) / double(limit.maxSpp);
+                double byTime = limit.seconds > 0 ? elapsed() / limit.seconds : 1.0;
+                progress(std::min(0.99, std::max(bySamples, byTime)));
+            };
+        }
+        RenderStats ps;
+        Image pi = Render(scene, &ps, passProgress, cancel);
+        total.rays += ps.rays;
+        total.renderSeconds += ps.renderSeconds;
+        total.nonFiniteSamples += ps.nonFiniteSamples;
+        if (ps.firstNonFinitePixel &&
+            (!total.firstNonFinitePixel ||
+             std::pair(ps.firstNonFinitePixel->y, ps.firstNonFinitePixel->x) <
+                 std::pair(total.firstNonFinitePixel->y, total.firstNonFinitePixel->x)))
+            total.firstNonFinitePixel = ps.firstNonFinitePixel;
+        total.kernelMask = ps.kernelMask;
+        if (ps.cancelled) {
+            total.cancelled = true;
+            break;
+        }
+        if (sum.empty()) {
+            sum.assign(pi.pixels.size(), 0.0);
+            img = pi;
+        }
+        for (size_t i = 0; i < sum.size(); ++i) sum[i] += double(spp) * double(pi.pixels[i]);
+        noise.emplace_back(spp, ps.noisePixels > 0 ? ps.noiseVariance : -1.0);
+        total.noisePixels = std::max(total.noisePixels, ps.noisePixels);
+        total.passSpp.push_back(spp);
+        done += spp;
+    }
+    if (done > 0)
+        for (size_t i = 0; i < sum.size(); ++i) img.pixels[i] = float(sum[i] / double(done));
+    // The average of independent passes: variance sum over passes of (spp_k / N)^2 var_k. A
+    // pass without an estimate of its own (1 spp) takes the per-sample variance the other
+    // passes show (var_k spp_k, weighted by spp_k), divided by its spp.
+    double perSample = 0, weight = 0;
+    for (auto [n, v] : noise)
+        if (v >= 0) perSample += v * n * n, weight += n;
+    if (weight > 0) perSample /= weight;
+    double var = 0;
+    for (auto [n, v] : noise) {
+        double vk = v >= 0 ? v : perSample / n;
+        var += (double(n) / done) * (double(n) / done) * vk;
+    }
+    total.noiseVariance = weight > 0 ? var : 0;
+    if (weight == 0) total.noisePixels = 0;
+    scene.spp = std::max(done, 1);
+    scene.sampleSeed = 0;
+    if (progress && !total.cancelled) progress(1.0);
+    if (stats) *stats = total;
+    return img;
+}
+
+}  // namespace prism
