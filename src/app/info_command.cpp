@@ -49,7 +49,11 @@ void PrintEffects(const RenderScene &scene) {
         std::printf("  shadows of %s: %d shadow ray%s per shading point\n", l.light.c_str(),
                     l.shadowRays, l.shadowRays == 1 ? "" : "s");
     std::printf("max useful depth: %d (maxdepth %d)\n", e.maxUsefulDepth, scene.maxDepth);
-    std::printf("kernel:     %s\n", KernelMaskName(KernelMaskFor(scene)).c_str());
+    if (scene.integrator == IntegratorKind::Whitted ||
+        scene.integrator == IntegratorKind::Distribution)
+        std::printf("kernel:     %s\n", KernelMaskName(KernelMaskFor(scene)).c_str());
+    else  // the path and directlighting integrators run their own loop
+        std::printf("kernel:     none (%s integrator)\n", scene.integratorName.c_str());
 }
 
 int RunInfo(const InfoArgs &a) {

@@ -310,8 +310,13 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
         for (size_t e = 0; e < size_t(Effect::Count); ++e)
             if (scene.features.effects.Has(Effect(e)))
                 on += std::string(on.empty() ? "" : ", ") + EffectName(Effect(e));
+        // The path and directlighting integrators run their own loop, not the kernel.
+        const bool kernel = scene.integrator == IntegratorKind::Whitted ||
+                            scene.integrator == IntegratorKind::Distribution;
+        const std::string kernelName = kernel ? KernelMaskName(stats.kernelMask)
+                                              : "none (" + scene.integratorName + " integrator)";
         std::fprintf(stderr, "effects: %s; kernel: %s\n", on.empty() ? "none" : on.c_str(),
-                     KernelMaskName(stats.kernelMask).c_str());
+                     kernelName.c_str());
         if (!stats.passSpp.empty()) {
             std::string passes;
             for (int n : stats.passSpp) passes += (passes.empty() ? "" : "+") + std::to_string(n);

@@ -185,16 +185,21 @@ void BuildSampler(BuildContext &ctx) {
     }
     // Prism draws its own stratified (correlated multi-jittered) samples whatever the file
     // names; only the sample count is read. The default (no Sampler directive) is not named.
-    // The path and directlighting integrators draw "random" samples as pbrt's RandomSampler
-    // does (independent uniform numbers; render/light_sampling.h PixelSamples).
+    // The path and directlighting integrators draw "02sequence"/"lowdiscrepancy" and "random"
+    // samples as pbrt-v3 does (render/sampler.h SamplePattern).
     const std::string context = "sampler " + Quote(desc.sampler.type);
     const std::string integrator =
         settings.integrator.empty() ? desc.integrator.type : settings.integrator;
     const bool pathLike =
         integrator == "directlighting" ||
         (integrator == "path" && (!settings.integrator.empty() || desc.integrator.loc.Valid()));
-    scene.independentSamples = pathLike && desc.sampler.type == "random";
-    if (desc.sampler.type != "stratified" && desc.sampler.loc.Valid() && !scene.independentSamples)
+    const std::string &st = desc.sampler.type;
+    if (pathLike && st == "random")
+        scene.samplePattern = SamplePattern::Independent;
+    else if (pathLike && (st == "02sequence" || st == "lowdiscrepancy"))
+        scene.samplePattern = SamplePattern::ZeroTwo;
+    if (st != "stratified" && desc.sampler.loc.Valid() &&
+        scene.samplePattern == SamplePattern::Stratified)
         diag.Warn(desc.sampler.loc, context + " is replaced by Prism's stratified sampler");
     WarnIgnoredRest(sp, diag, context, "Prism's stratified sampler reads only the sample count");
     if (settings.spp > 0) spp = settings.spp;

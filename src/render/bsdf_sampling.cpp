@@ -47,7 +47,8 @@ void Collect(const BSDF &b, const Vec3f &wo, bool withSpecular, Choices *ch) {
             if (l.HasGlossy())
                 ch->Add(i, Lobe::Glossy, (w * (l.ks + l.ksTransmit + l.thinTransmit)).Average());
         }
-        if (!l.kdTransmit.IsBlack()) ch->Add(i, Lobe::DiffuseTransmit, (w * l.kdTransmit).Average());
+        if (!l.kdTransmit.IsBlack())
+            ch->Add(i, Lobe::DiffuseTransmit, (w * l.kdTransmit).Average());
         if (!withSpecular) continue;
         // Delta reflection against transmission in proportion to the Fresnel term at wo.
         const float F = l.specularFresnel.kind == FresnelKind::Dielectric
@@ -56,10 +57,9 @@ void Collect(const BSDF &b, const Vec3f &wo, bool withSpecular, Choices *ch) {
         if (!l.kr.IsBlack()) ch->Add(i, Lobe::SpecularReflect, (w * l.kr).Average() * F);
         if (!l.kt.IsBlack())
             ch->Add(i, Lobe::SpecularTransmit,
-                    (w * l.kt).Average() * (l.specularFresnel.kind == FresnelKind::Dielectric &&
-                                                    l.eta != 1
-                                                ? 1 - F
-                                                : 1.f));
+                    (w * l.kt).Average() *
+                        (l.specularFresnel.kind == FresnelKind::Dielectric && l.eta != 1 ? 1 - F
+                                                                                         : 1.f));
     }
 }
 

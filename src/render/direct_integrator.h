@@ -18,8 +18,7 @@ struct TileScratch;
 
 class DirectLightingIntegrator {
   public:
-    explicit DirectLightingIntegrator(const RenderScene &scene)
-        : scene_(scene), chooser_(scene) {}
+    explicit DirectLightingIntegrator(const RenderScene &scene) : scene_(scene), chooser_(scene) {}
     // Radiance along a ray; depth counts delta bounces (camera rays are depth 0).
     RGB Li(const Ray &ray, const PixelSamples &ps, int depth, RayCounters &counters) const;
 

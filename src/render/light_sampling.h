@@ -35,22 +35,29 @@ inline float PowerHeuristic(int nf, float fPdf, int ng, float gPdf) {
 struct PixelSamples {
     int x = 0, y = 0;
     uint32_t sample = 0, spp = 1;
-    // Sampler "random": independent uniform numbers (a hash of pixel, sample and dimension).
-    bool independent = false;
+    SamplePattern pattern = SamplePattern::Stratified;
 
     Vec2f Get2D(uint32_t dim) const { return Get2D(dim, 0, 1); }
     // Sample k of n of this camera sample (strategy "all": n light samples stratified over
     // spp × n).
     Vec2f Get2D(uint32_t dim, uint32_t k, uint32_t n) const {
         const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim);
-        if (independent)
-            return {HashFloat(sample * n + k, seed), HashFloat(sample * n + k, seed ^ 0x9e3779b9u)};
-        return CMJSample(sample * n + k, spp * n, seed);
+        const uint32_t i = sample * n + k;
+        switch (pattern) {
+            case SamplePattern::Independent:
+                return {HashFloat(i, seed), HashFloat(i, seed ^ 0x9e3779b9u)};
+            case SamplePattern::ZeroTwo:
+                return Sample02(PermuteIndex(i, spp * n, seed), seed * 0x68bc21ebu,
+                                seed * 0x02e5be93u);
+            default:
+                return CMJSample(i, spp * n, seed);
+        }
     }
     float Get1D(uint32_t dim) const {
         const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim);
-        if (independent) return HashFloat(sample, seed);
+        if (pattern == SamplePattern::Independent) return HashFloat(sample, seed);
         const uint32_t stratum = PermuteIndex(sample, spp, seed);
+        if (pattern == SamplePattern::ZeroTwo) return Sample02(stratum, seed * 0x68bc21ebu, 0).x;
         const float u = (float(stratum) + HashFloat(sample, seed * 0x68bc21ebu)) / float(spp);
         return std::min(u, 0x1.fffffep-1f);
     }

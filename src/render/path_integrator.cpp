@@ -15,8 +15,7 @@ namespace {
 constexpr int MaxPassThroughSurfaces = 256;
 }  // namespace
 
-RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps,
-                       RayCounters &counters) const {
+RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps, RayCounters &counters) const {
     RGB L, beta(1);
     Ray ray = cameraRay;
     bool specularBounce = false;
@@ -84,8 +83,10 @@ RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps,
 void RenderTilePath(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &,
                     FilmTile *tile) {
     const PathIntegrator integrator(scene);
-    RenderTileSamples(scene, tb, rc, tile, [&](const Ray &ray, const PixelSamples &ps,
-                                               RayCounters &c) { return integrator.Li(ray, ps, c); });
+    RenderTileSamples(scene, tb, rc, tile,
+                      [&](const Ray &ray, const PixelSamples &ps, RayCounters &c) {
+                          return integrator.Li(ray, ps, c);
+                      });
 }
 
 }  // namespace prism

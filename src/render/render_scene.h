@@ -15,6 +15,7 @@
 #include "render/effects.h"
 #include "render/light.h"
 #include "render/material.h"
+#include "render/sampler.h"
 
 namespace prism {
 
@@ -88,9 +89,10 @@ struct RenderScene {
     // --stats: the film also sums each pixel's even and odd samples apart, for the noise
     // estimate (RenderStats::noiseVariance).
     bool estimateNoise = false;
-    // Sampler "random" under the path and directlighting integrators: independent uniform
-    // samples instead of stratified patterns (render/light_sampling.h PixelSamples).
-    bool independentSamples = false;
+    // The samples of the path and directlighting integrators (render/sampler.h): pbrt-v3's
+    // (0,2)-sequence for "02sequence" and "lowdiscrepancy", independent for "random",
+    // stratified patterns otherwise. The Whitted kernel draws its own stratified patterns.
+    SamplePattern samplePattern = SamplePattern::Stratified;
     int maxDepth = 5;
     // Accuracy knobs (BuildSettings): the ray-weight cutoff (0: every ray) and how spawned rays
     // leave a surface.

@@ -40,7 +40,7 @@ void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, F
                 const float time = motion ? cmj.Sample(s, timeSeed).x : 0.f;
                 const Ray ray = scene.camera->GenerateRay(pFilm, uLens, time);
                 rc.camera++;
-                const PixelSamples ps{x, y, s, spp, scene.independentSamples};
+                const PixelSamples ps{x, y, s, spp, scene.samplePattern};
                 RGB L = li(ray, ps, rc) * scene.filmScale;
                 if (scene.maxSampleLuminance < Infinity && L.IsFinite()) {
                     const float lum = L.Luminance();

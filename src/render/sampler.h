@@ -161,6 +161,29 @@ class CMJPattern {
     float invN_, invM_;
 };
 
+// The samples the path and directlighting integrators draw per dimension
+// (render/light_sampling.h PixelSamples): Stratified, a correlated multi-jittered pattern per
+// dimension (the stand-in for pbrt's "sobol" and "halton"); ZeroTwo, pbrt-v3's
+// ZeroTwoSequenceSampler ("02sequence", "lowdiscrepancy": a scrambled (0,2)-sequence per
+// dimension, its samples shuffled across the pixel); Independent, pbrt's RandomSampler.
+enum class SamplePattern : uint8_t { Stratified, ZeroTwo, Independent };
+
+// pbrt-v3's scrambled (0,2)-sequence point n: van der Corput in x, Sobol's second dimension in
+// y, each XORed with a scramble (lowdiscrepancy.h Sample02).
+inline Vec2f Sample02(uint32_t n, uint32_t scrambleX, uint32_t scrambleY) {
+    uint32_t r = n;
+    r = (r << 16) | (r >> 16);
+    r = ((r & 0x00ff00ffu) << 8) | ((r & 0xff00ff00u) >> 8);
+    r = ((r & 0x0f0f0f0fu) << 4) | ((r & 0xf0f0f0f0u) >> 4);
+    r = ((r & 0x33333333u) << 2) | ((r & 0xccccccccu) >> 2);
+    r = ((r & 0x55555555u) << 1) | ((r & 0xaaaaaaaau) >> 1);
+    uint32_t y = scrambleY;
+    for (uint32_t v = 1u << 31; n != 0; n >>= 1, v ^= v >> 1)
+        if (n & 1) y ^= v;
+    return {std::min(float(r ^ scrambleX) * 0x1p-32f, 0x1.fffffep-1f),
+            std::min(float(y) * 0x1p-32f, 0x1.fffffep-1f)};
+}
+
 // Pattern seed for a pixel and a purpose (film position, light k, ...).
 inline uint32_t PatternSeed(int x, int y, uint32_t purpose, uint32_t seed = 0) {
     uint64_t h = (uint64_t(uint32_t(x)) * 0x9E3779B1u) ^ (uint64_t(uint32_t(y)) << 32);

@@ -222,6 +222,20 @@ TEST(Cli, InfoDescribesScene) {
     EXPECT_NE(r.out.find("warn.pbrt:4:1: warning: sampler \"halton\" is replaced"),
               std::string::npos)
         << r.out;
+    // Which integrator runs, and why: the default, the scene's line, or --integrator.
+    EXPECT_NE(r.out.find("integrator: whitted (default: the scene names no Integrator)"),
+              std::string::npos)
+        << r.out;
+    std::ofstream(dir / "path.pbrt") << "Integrator \"path\"\n" << SphereScene(8, 8, 4);
+    r = RunPrism("info path.pbrt", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("integrator: path (Integrator \"path\" at path.pbrt:1:1)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("indirect illumination: on (Integrator \"path\" at path.pbrt:1:1)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("kernel:     none (path integrator)"), std::string::npos) << r.out;
 }
 
 TEST(Cli, TraceReportsHitsMissesAndLimits) {

@@ -12,6 +12,7 @@
 #include "build/build_scene.h"
 #include "geometry/sphere.h"
 #include "render/bsdf.h"
+#include "render/infinite_light.h"
 #include "render/light_sampling.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
@@ -68,8 +69,8 @@ std::string Furnace(float albedo, int maxDepth, float rrThreshold, int spp) {
            "Camera \"perspective\" \"float fov\" [90]\nWorldBegin\n"
            "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1] \"bool twosided\" true\n"
            "Material \"matte\" \"rgb Kd\" [" +
-           std::to_string(albedo) + " " + std::to_string(albedo) + " " +
-           std::to_string(albedo) + "]\nShape \"sphere\" \"float radius\" [3]\nAttributeEnd\n";
+           std::to_string(albedo) + " " + std::to_string(albedo) + " " + std::to_string(albedo) +
+           "]\nShape \"sphere\" \"float radius\" [3]\nAttributeEnd\n";
 }
 
 TEST(PathIntegrator, FurnaceIsTheGeometricSeries) {
@@ -119,7 +120,8 @@ BSDF Frame() {
     return b;
 }
 
-// Every kind of lobe Prism's materials build: Sample_f's density is Pdf's, and the mean of
+// Every kind of lobe Prism's materials build (matte, plastic, rough glass, translucent,
+// substrate, glTF): Sample_f's density is Pdf's, and the mean of
 // f |cos| / pdf is the albedo ∫ f |cos| dω, integrated numerically.
 TEST(PathIntegrator, BsdfSamplingMatchesFAndPdf) {
     std::vector<BSDF> bsdfs;
@@ -160,6 +162,21 @@ TEST(PathIntegrator, BsdfSamplingMatchesFAndPdf) {
         m.blendRd = RGB(0.5f);
         m.blendRs = RGB(0.1f);
         m.alphaX = m.alphaY = 0.25f;
+        bsdfs.push_back(b);
+    }
+    {  // glTF metallic-roughness: Fresnel-mixed diffuse, GGX specular, thin transmission, coat
+        BSDF b = Frame();
+        BxDFLobes &l = b.AddPart();
+        l.gltfDiffuse = true;
+        l.kd = RGB(0.5f);
+        l.dielectricF0 = RGB(0.04f);
+        l.dielectricF90 = RGB(1);
+        l.ks = RGB(1);
+        l.glossyFresnel.kind = FresnelKind::Schlick;
+        l.glossyFresnel.f0 = RGB(0.04f);
+        l.alphaX = l.alphaY = 0.3f;
+        l.thinTransmit = RGB(0.5f);
+        l.coat = 0.5f;
         bsdfs.push_back(b);
     }
     const Vec3f wo = Normalize(Vec3f(0.4f, -0.2f, 0.8f));
@@ -219,8 +236,7 @@ TEST(PathIntegrator, DeltaLobesAreChosenByFresnel) {
 TEST(PathIntegrator, SpherePdfMatchesItsSampling) {
     // The solid-angle density of a sampled point, recomputed from the point (what MIS uses for
     // a BSDF-sampled ray that hits the light), outside (cone sampling) and inside (area).
-    auto sphere = std::make_unique<Sphere>(Translate(Vec3d(0, 0, 5)), false, 1.0, -1.0,
-                                           1.0, 360.0);
+    auto sphere = std::make_unique<Sphere>(Translate(Vec3d(0, 0, 5)), false, 1.0, -1.0, 1.0, 360.0);
     for (Vec3f ref : {Vec3f(0, 0, 0), Vec3f(0.2f, 0.1f, 5.3f)}) {
         for (int i = 0; i < 64; ++i) {
             ShapeSample ss;
@@ -229,6 +245,42 @@ TEST(PathIntegrator, SpherePdfMatchesItsSampling) {
             EXPECT_NEAR(sphere->Pdf(ref, ss.p, ss.n), ss.pdf, 1e-3f * ss.pdf);
         }
     }
+}
+
+TEST(PathIntegrator, InfiniteLightPdfMatchesItsSampling) {
+    // An environment map with a bright spot: SampleLi's density is PdfLi's for the same
+    // direction (what MIS weighs an escaping BSDF-sampled ray with).
+    auto map = std::make_shared<Image>(16, 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int c = 0; c < 3; ++c) map->At(x, y, c) = (x == 3 && y == 2) ? 50.f : 0.5f + x;
+    InfiniteLight light(Transform(), RGB(1), map, 1);
+    SurfaceInteraction si;
+    si.n = si.ns = Vec3f(0, 0, 1);
+    si.wo = Vec3f(0, 0, 1);
+    int n = 0;
+    for (int i = 0; i < 256; ++i) {
+        LightSample ls;
+        Vec2f u(HashFloat(uint32_t(i), 5), HashFloat(uint32_t(i), 6));
+        if (!light.SampleLi(si, u, &ls)) continue;
+        ++n;
+        EXPECT_NEAR(light.PdfLi(si, ls.wi, nullptr), ls.pdf, 2e-3f * ls.pdf) << i;
+    }
+    EXPECT_GT(n, 200);
+}
+
+TEST(PathIntegrator, DiffuseSphereUnderUniformSky) {
+    // A convex diffuse sphere of albedo a under a uniform sky L sees the whole sky from every
+    // point: at maxdepth 1 its radiance is a L (light and BSDF samples both exact here).
+    const std::string scene =
+        "Film \"image\" \"integer xresolution\" [8] \"integer yresolution\" [8]\n"
+        "Sampler \"stratified\" \"integer xsamples\" [2] \"integer ysamples\" [2]\n"
+        "Integrator \"path\" \"integer maxdepth\" [1]\n"
+        "LookAt 0 0 -10  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [2]\nWorldBegin\n"
+        "LightSource \"infinite\" \"rgb L\" [2 2 2]\n"
+        "Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\nShape \"sphere\" \"float radius\" [1]\n";
+    RGB m = Mean(RenderText("sky", scene));
+    EXPECT_NEAR(m.g, 1.0, 2e-3);
 }
 
 // A diffuse room: floor, back wall, a sphere, a quad light and a point light.
