@@ -5,6 +5,9 @@
 // the thread count.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "image/film.h"
 #include "render/camera.h"
 #include "render/light_sampling.h"
@@ -24,6 +27,8 @@ void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, F
     const bool lens = scene.features.lens;
     const bool motion = scene.features.effects.Has(Effect::MotionBlur);
     const CMJPattern cmj(spp);
+    // Ray differentials for filtered textures (as the kernel's tile loop).
+    const float diffScale = std::max(.125f, 1 / std::sqrt(float(spp)));
     for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
         for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
             const uint32_t filmSeed = PatternSeed(x, y, FilmPurpose);
@@ -40,7 +45,12 @@ void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, F
                 const float time = motion ? cmj.Sample(s, timeSeed).x : 0.f;
                 const Ray ray = scene.camera->GenerateRay(pFilm, uLens, time);
                 rc.camera++;
-                const PixelSamples ps{x, y, s, spp, scene.samplePattern};
+                PixelSamples ps{x, y, s, spp, scene.samplePattern};
+                RayDifferential rd;
+                if (scene.differentials) {
+                    rd = scene.camera->GenerateDifferential(ray, pFilm, uLens, time, diffScale);
+                    ps.diff = &rd;
+                }
                 RGB L = li(ray, ps, rc) * scene.filmScale;
                 if (scene.maxSampleLuminance < Infinity && L.IsFinite()) {
                     const float lum = L.Luminance();

@@ -249,13 +249,14 @@ std::string HeadOnScene(const std::string &file, int res, const std::string &fil
 }
 
 Image RenderText(const std::string &name, const std::string &text, int spp = 0,
-                 const std::string &textureFilter = "") {
+                 const std::string &textureFilter = "", const std::string &integrator = "") {
     std::string path = WriteTestFile(ScratchDir("texfilt") / name, text);
     Diagnostics diag(false);
     SceneDescription desc = LoadScene(path, diag);
     BuildSettings s;
     s.spp = spp;
     s.textureFilter = textureFilter;
+    s.integrator = integrator;
     RenderScene scene = BuildRenderScene(desc, s, diag);
     return Render(scene, nullptr);
 }
@@ -338,6 +339,13 @@ TEST(ImageTextureFilter, GrazingPlaneAtOneSampleIsCloseToTheSupersampledReferenc
                 eE, eT);
     EXPECT_LT(eE, 0.5 * eU);
     EXPECT_LT(eT, 0.6 * eU);
+    // The path and directlighting integrators filter the camera rays' first hits too (the
+    // plane under a distant light and no sky: the same radiance as Whitted's).
+    for (const char *integrator : {"path", "directlighting"}) {
+        Image pU = RenderText("g.pbrt", scene, 1, "none", integrator);
+        Image pE = RenderText("g.pbrt", scene, 1, "", integrator);
+        EXPECT_LT(Rmse(pE, ref), 0.5 * Rmse(pU, ref)) << integrator;
+    }
 }
 
 }  // namespace
