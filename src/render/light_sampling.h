@@ -36,6 +36,7 @@ struct PixelSamples {
     int x = 0, y = 0;
     uint32_t sample = 0, spp = 1;
     SamplePattern pattern = SamplePattern::Stratified;
+    uint32_t passSeed = 0;  // RenderScene::sampleSeed: differs between progressive passes
     // The camera ray's differentials where a texture filters (RenderScene::differentials),
     // else null; read at the first hit only (pbrt-v3's path tracer drops them after it).
     const RayDifferential *diff = nullptr;
@@ -44,7 +45,7 @@ struct PixelSamples {
     // Sample k of n of this camera sample (strategy "all": n light samples stratified over
     // spp × n).
     Vec2f Get2D(uint32_t dim, uint32_t k, uint32_t n) const {
-        const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim);
+        const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim, passSeed);
         const uint32_t i = sample * n + k;
         switch (pattern) {
             case SamplePattern::Independent:
@@ -57,7 +58,7 @@ struct PixelSamples {
         }
     }
     float Get1D(uint32_t dim) const {
-        const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim);
+        const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim, passSeed);
         if (pattern == SamplePattern::Independent) return HashFloat(sample, seed);
         const uint32_t stratum = PermuteIndex(sample, spp, seed);
         if (pattern == SamplePattern::ZeroTwo) return Sample02(stratum, seed * 0x68bc21ebu, 0).x;

@@ -32,9 +32,9 @@ RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps, RayCounters
             if (!found) {
                 for (const auto &light : scene_.lights) L += beta * light->Le(ray);
             } else if (info->areaLight >= 0) {
-                L += beta * static_cast<const DiffuseAreaLight &>(
-                                *scene_.lights[size_t(info->areaLight)])
-                                .L(si, si.wo);
+                L += beta *
+                     static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(info->areaLight)])
+                         .L(si, si.wo);
             }
         }
         if (!found || bounces >= scene_.maxDepth) break;

@@ -29,9 +29,8 @@ Image RenderProgressive(RenderScene &scene, const TimeLimit &limit, RenderStats 
     // Per pass: its samples and its noise variance (negative: the pass had no estimate).
     std::vector<std::pair<int, double>> noise;
     for (uint32_t pass = 0;; ++pass) {
-        const int spp =
-            NextPassSpp(done, limit.maxSpp, limit.seconds - elapsed(),
-                        done > 0 ? total.renderSeconds / double(done) : 0.0);
+        const int spp = NextPassSpp(done, limit.maxSpp, limit.seconds - elapsed(),
+                                    done > 0 ? total.renderSeconds / double(done) : 0.0);
         if (spp == 0) break;
         scene.spp = spp;
         // Pass 0 keeps seed 0: a budget of one pass renders what a plain render would.

@@ -27,15 +27,18 @@ void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, F
     const bool lens = scene.features.lens;
     const bool motion = scene.features.effects.Has(Effect::MotionBlur);
     const CMJPattern cmj(spp);
+    // One sample per pixel sits at the pixel centre, except in the later passes of a
+    // progressive render, whose seeds differ (as in the kernel).
+    const bool jitter = spp > 1 || scene.sampleSeed != 0;
     // Ray differentials for filtered textures (as the kernel's tile loop).
     const float diffScale = std::max(.125f, 1 / std::sqrt(float(spp)));
     for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
         for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
-            const uint32_t filmSeed = PatternSeed(x, y, FilmPurpose);
-            const uint32_t lensSeed = lens ? PatternSeed(x, y, LensPurpose) : 0;
-            const uint32_t timeSeed = motion ? PatternSeed(x, y, TimePurpose) : 0;
+            const uint32_t filmSeed = PatternSeed(x, y, FilmPurpose, scene.sampleSeed);
+            const uint32_t lensSeed = lens ? PatternSeed(x, y, LensPurpose, scene.sampleSeed) : 0;
+            const uint32_t timeSeed = motion ? PatternSeed(x, y, TimePurpose, scene.sampleSeed) : 0;
             for (uint32_t s = 0; s < spp; ++s) {
-                const Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : cmj.Sample(s, filmSeed);
+                const Vec2f u = jitter ? cmj.Sample(s, filmSeed) : Vec2f(0.5f, 0.5f);
                 const Vec2f pFilm(float(x) + u.x, float(y) + u.y);
                 Vec2f uLens(0.5f, 0.5f);
                 if (lens) {
@@ -45,7 +48,7 @@ void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, F
                 const float time = motion ? cmj.Sample(s, timeSeed).x : 0.f;
                 const Ray ray = scene.camera->GenerateRay(pFilm, uLens, time);
                 rc.camera++;
-                PixelSamples ps{x, y, s, spp, scene.samplePattern};
+                PixelSamples ps{x, y, s, spp, scene.samplePattern, scene.sampleSeed};
                 RayDifferential rd;
                 if (scene.differentials) {
                     rd = scene.camera->GenerateDifferential(ray, pFilm, uLens, time, diffScale);

@@ -19,13 +19,14 @@ using test::RunResult;
 
 // A sphere under an area light: soft shadows, so samples differ.
 void WriteScene(const fs::path &p) {
-    std::ofstream(p) << "LookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
-                        "Film \"image\" \"integer xresolution\" 32 \"integer yresolution\" 24\n"
-                        "WorldBegin\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [5 5 5]\n"
-                        "Translate 0 3 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
-                        "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
-                        "  \"point3 P\" [-9 0 -9  9 0 -9  9 0 9  -9 0 9]\n"
-                        "Translate 0 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nWorldEnd\n";
+    std::ofstream(p)
+        << "LookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
+           "Film \"image\" \"integer xresolution\" 32 \"integer yresolution\" 24\n"
+           "WorldBegin\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [5 5 5]\n"
+           "Translate 0 3 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+           "  \"point3 P\" [-9 0 -9  9 0 -9  9 0 9  -9 0 9]\n"
+           "Translate 0 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nWorldEnd\n";
 }
 
 TEST(TimeLimitCli, RendersPassesAndPrintsTheNoise) {
@@ -40,8 +41,7 @@ TEST(TimeLimitCli, RendersPassesAndPrintsTheNoise) {
     // With --spp the passes stop at that many samples.
     r = RunPrism("render s.pbrt -o t.exr --no-progress --time-limit 100 --spp 8", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("time limit 100s: 3 passes (2+2+4 = 8 spp)"), std::string::npos)
-        << r.err;
+    EXPECT_NE(r.err.find("time limit 100s: 3 passes (2+2+4 = 8 spp)"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("noise:"), std::string::npos) << "no --stats, no noise line";
 
     // --stats alone: the estimate of a plain render; 1 spp has none.

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <optional>
 
@@ -30,12 +30,13 @@ std::string SoftScene() {
         "Translate 0 0.6 0\nShape \"sphere\" \"float radius\" 0.6\nWorldEnd\n");
 }
 
-RenderScene Build(int spp, bool noise = false) {
+RenderScene Build(int spp, bool noise = false, const std::string &integrator = "") {
     Diagnostics diag(false);
     SceneDescription desc = LoadScene(SoftScene(), diag);
     BuildSettings s;
     s.resolution = Vec2i(40, 30);
     s.spp = spp;
+    s.integrator = integrator;
     RenderScene scene = BuildRenderScene(desc, s, diag);
     scene.estimateNoise = noise;
     return scene;
@@ -64,12 +65,12 @@ TEST(NextPassSpp, PassesDoubleTheTotalWithinTimeAndBudget) {
     EXPECT_EQ(NextPassSpp(0, 1, 10, 0), 1);
     EXPECT_EQ(NextPassSpp(2, 100, 10, 0.01), 2);
     EXPECT_EQ(NextPassSpp(8, 100, 10, 0.01), 8);
-    EXPECT_EQ(NextPassSpp(64, 100, 10, 0.01), 36);   // the budget left
-    EXPECT_EQ(NextPassSpp(64, 1000, 1, 0.1), 9);     // 0.9 s left at 0.1 s per spp
-    EXPECT_EQ(NextPassSpp(4, 1000, 0.15, 0.1), 0);   // one sample fits, but not two
-    EXPECT_EQ(NextPassSpp(99, 100, 0.15, 0.1), 1);   // ... unless it ends the budget
-    EXPECT_EQ(NextPassSpp(100, 100, 1e9, 0.1), 0);   // budget spent
-    EXPECT_EQ(NextPassSpp(4, 1000, -1, 0.1), 0);     // time up
+    EXPECT_EQ(NextPassSpp(64, 100, 10, 0.01), 36);  // the budget left
+    EXPECT_EQ(NextPassSpp(64, 1000, 1, 0.1), 9);    // 0.9 s left at 0.1 s per spp
+    EXPECT_EQ(NextPassSpp(4, 1000, 0.15, 0.1), 0);  // one sample fits, but not two
+    EXPECT_EQ(NextPassSpp(99, 100, 0.15, 0.1), 1);  // ... unless it ends the budget
+    EXPECT_EQ(NextPassSpp(100, 100, 1e9, 0.1), 0);  // budget spent
+    EXPECT_EQ(NextPassSpp(4, 1000, -1, 0.1), 0);    // time up
 }
 
 TEST(Progressive, OnePassIsThePlainRender) {
@@ -78,9 +79,9 @@ TEST(Progressive, OnePassIsThePlainRender) {
     Image plain = Render(a, nullptr);
     Image prog = RenderProgressive(b, {1e9, 2}, &st);
     ASSERT_EQ(st.passSpp, std::vector<int>{2});
-    EXPECT_EQ(std::memcmp(plain.pixels.data(), prog.pixels.data(),
-                          plain.pixels.size() * sizeof(float)),
-              0);
+    EXPECT_EQ(
+        std::memcmp(plain.pixels.data(), prog.pixels.data(), plain.pixels.size() * sizeof(float)),
+        0);
     EXPECT_EQ(b.spp, 2);
     EXPECT_EQ(b.sampleSeed, 0u);
 }
@@ -100,6 +101,15 @@ TEST(Progressive, PassesAverageToAConvergingImage) {
     double eTwo = RelRmse(Render(two, nullptr), Reference());
     EXPECT_LT(eProg, 0.35 * eTwo);
     EXPECT_LT(eProg, 1.5 * ePlain);
+}
+
+// The path integrator's sample streams take the pass seed too: its passes converge.
+TEST(Progressive, PathIntegratorPassesDrawNewSamples) {
+    RenderScene ref = Build(256, false, "path"), two = Build(2, false, "path");
+    RenderScene scene = Build(1, false, "path");
+    Image reference = Render(ref, nullptr);
+    Image img = RenderProgressive(scene, {1e9, 32}, nullptr);
+    EXPECT_LT(RelRmse(img, reference), 0.4 * RelRmse(Render(two, nullptr), reference));
 }
 
 TEST(Progressive, StopsWhenTheTimeRunsOut) {
@@ -150,8 +160,7 @@ TEST(NoiseEstimate, PredictsTheRelativeErrorAgainstAReference) {
 TEST(NoiseEstimate, LeavesTheImageAlone) {
     RenderScene a = Build(4, true), b = Build(4, false);
     Image ia = Render(a, nullptr), ib = Render(b, nullptr);
-    EXPECT_EQ(std::memcmp(ia.pixels.data(), ib.pixels.data(), ia.pixels.size() * sizeof(float)),
-              0);
+    EXPECT_EQ(std::memcmp(ia.pixels.data(), ib.pixels.data(), ia.pixels.size() * sizeof(float)), 0);
 }
 
 }  // namespace
