@@ -135,6 +135,21 @@ int RunInfo(const InfoArgs &a) {
     std::printf("instances:  %zu of %zu objects\n", desc.instances.size(), desc.objects.size());
     std::printf("materials:  %zu (%s)\n", desc.materials.size(), Counts(materials).c_str());
     std::printf("textures:   %zu (%s)\n", desc.textures.size(), Counts(textures).c_str());
+    // How textures filter (docs/TEXTURES.md): imagemap "filter" (or v3's "trilinear"; EWA by
+    // default), 2-D checkerboard "aamode" (closedform by default).
+    std::map<std::string, int> filters;
+    for (const TextureDesc &t : desc.textures) {
+        if (t.type == "imagemap") {
+            std::string f = t.params.GetString("filter", "");
+            if (f.empty()) f = t.params.GetBool("trilinear", false) ? "trilinear" : "ewa";
+            filters["imagemap " + f]++;
+        } else if (t.type == "checkerboard" && t.params.GetInt("dimension", 2) == 2) {
+            filters["checkerboard " + t.params.GetString("aamode", "closedform")]++;
+        }
+    }
+    if (!filters.empty())
+        std::printf("filtering:  %s; ray differentials %s\n", Counts(filters).c_str(),
+                    built.differentials ? "on" : "off");
     std::printf("lights:     %zu (%s); %d emissive shapes\n", desc.lights.size(),
                 Counts(lights).c_str(), areaShapes);
     if (!bounds.IsEmpty())

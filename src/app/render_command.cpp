@@ -166,6 +166,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     opts.lightSamples = a.lightSamples;
     opts.integrator = a.integrator;
     opts.glossySamples = a.glossySamples;
+    opts.textureFilter = a.textureFilter;
     opts.rayCutoff = a.cutoff;
     opts.offset = ParseOffset(a.offset, a.offsetEpsilon);
     opts.robust = a.robust;
@@ -393,6 +394,11 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "
                     "(distribution integrator; overrides \"glossysamples\", default 8)")
         ->check(CLI::Range(1, 1024));
+    cmd->add_option("--texture-filter", args->textureFilter,
+                    "Image-texture lookups for every imagemap: ewa, trilinear, bilinear (finest "
+                    "level), point, or none (bilinear, and checkerboards point-sampled: no "
+                    "footprint filtering); default: each texture's \"filter\" (EWA)")
+        ->check(CLI::IsMember({"none", "point", "bilinear", "trilinear", "ewa"}));
     cmd->add_option("--crop", args->crop,
                     "Crop window x0,x1,y0,y1 in [0,1] (like Film \"cropwindow\")");
     cmd->add_option("--precision", args->precision, "Arithmetic of the analytic intersectors")

@@ -33,6 +33,8 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     WarnIgnoredMedia(ctx);
     FinishEffects(ctx);
     ComputeLightPower(scene);  // the path and directlighting integrators' light choice
+    // Rays carry differentials only where a texture filters over their footprint.
+    for (const Material &m : scene.materials) scene.differentials |= m.UsesDifferentials();
     scene.allEffects = settings.allEffects;
     if (scene.lights.empty())
         diag.Warn(desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0},

@@ -42,6 +42,9 @@ struct BuildSettings {
     int lightSamples = 0;                      // 0: each area/infinite light's own nsamples
     std::string integrator;                    // "whitted" or "distribution"; "": the scene's
     int glossySamples = 0;                     // 0: the Integrator's "glossysamples"
+    // Image-texture lookups: "point", "bilinear", "trilinear" or "ewa" for every imagemap
+    // (--texture-filter); "": each texture's own "filter" (pbrt-v3's default, EWA).
+    std::string textureFilter;
     // How to build.
     Precision precision = Precision::Double;
     // Accuracy knobs (`prism study`, docs/ACCURACY.md). Defaults are Prism's normal choices.

@@ -6,6 +6,7 @@
 
 #include "core/memory.h"
 #include "render/gltf_material.h"
+#include "render/mipmap.h"
 
 namespace prism {
 
@@ -94,6 +95,31 @@ struct TextureBuilder : BuildStep {
         return img;
     }
 
+    // An imagemap's lookup: --texture-filter, else pbrt's "filter" (pbrt-v4's names), else
+    // pbrt-v3's "trilinear" bool (false: EWA, pbrt-v3's default).
+    TextureFilter Filter(const ParamSet &ps) {
+        auto parse = [](const std::string &n, TextureFilter *f) {
+            for (TextureFilter c : {TextureFilter::Point, TextureFilter::Bilinear,
+                                    TextureFilter::Trilinear, TextureFilter::EWA})
+                if (n == TextureFilterName(c)) {
+                    *f = c;
+                    return true;
+                }
+            return false;
+        };
+        TextureFilter f =
+            ps.GetBool("trilinear", false) ? TextureFilter::Trilinear : TextureFilter::EWA;
+        std::string name = ps.GetString("filter", "");
+        if (!name.empty() && !parse(name, &f))
+            diag.Warn(ps.Find("filter")->loc, "unknown texture filter " + Quote(name) +
+                                                  " (point, bilinear, trilinear or ewa); using " +
+                                                  TextureFilterName(f));
+        // "none": lookups as before filtering existed (bilinear at the finest level).
+        if (settings.textureFilter == "none") return TextureFilter::Bilinear;
+        if (!settings.textureFilter.empty()) parse(settings.textureFilter, &f);
+        return f;
+    }
+
     // [textures helper region] bilerp, uv, dots, fbm, wrinkled, windy and marble (pbrt-v3
     // names and defaults); nullptr (after a warning) for the float variants pbrt-v3 lacks.
     TexturePtr MakeProceduralTexture(const TextureDesc &t) {
@@ -168,14 +194,20 @@ struct TextureBuilder : BuildStep {
             int dim = ps.GetInt("dimension", 2);
             if (dim != 2 && dim != 3)
                 throw SceneError(t.loc, "checkerboard dimension must be 2 or 3");
-            // pbrt-v3's default "closedform" filtering is not simulated: the texture is
-            // point-sampled and antialiased by the pixel samples, as with "none".
-            if (ps.GetString("aamode", "none") != "none")
-                WarnIgnored(
-                    ps, {"aamode"}, diag, "checkerboard texture",
-                    "closed-form antialiasing is not simulated; the texture is point-sampled");
+            // pbrt-v3's "aamode": "closedform" (the default) box-filters the 2-D board over
+            // the ray's footprint; "none" point-samples. 3-D boards are point-sampled.
+            auto aa = CheckerboardTexture::AAMode::ClosedForm;
+            std::string aamode = ps.GetString("aamode", "closedform");
+            if (aamode == "none")
+                aa = CheckerboardTexture::AAMode::None;
+            else if (aamode != "closedform")
+                diag.Warn(ps.Find("aamode")->loc, "unknown checkerboard aamode " + Quote(aamode) +
+                                                      "; using \"closedform\"");
+            // --texture-filter none or point: no footprint filtering anywhere.
+            if (settings.textureFilter == "none" || settings.textureFilter == "point")
+                aa = CheckerboardTexture::AAMode::None;
             return std::make_shared<CheckerboardTexture>(Mapping(t), TexParam(ps, "tex1", f, one),
-                                                         TexParam(ps, "tex2", f, zero), dim);
+                                                         TexParam(ps, "tex2", f, zero), dim, aa);
         }
         if (t.type == "imagemap") {
             std::string file = ps.GetString("filename", "");
@@ -202,10 +234,12 @@ struct TextureBuilder : BuildStep {
             else if (!encoding.empty())
                 WarnIgnored(ps, {"encoding"}, diag, "imagemap texture",
                             "only \"sRGB\" and \"linear\" are read");
-            // Lookups are bilinear, without MIP maps; pbrt-v4's filter "bilinear" is that.
-            if (ps.GetString("filter", "bilinear") == "bilinear") ps.MarkUsed("filter");
-            WarnIgnored(ps, {"filter", "trilinear", "maxanisotropy"}, diag, "imagemap texture",
-                        "Prism looks textures up bilinearly, without MIP maps");
+            const TextureFilter filter = Filter(ps);
+            float maxAniso = ps.GetFloat("maxanisotropy", 8.f);
+            if (!(maxAniso >= 1)) {
+                diag.Warn(ps.Find("maxanisotropy")->loc, "maxanisotropy below 1; using 1");
+                maxAniso = 1;
+            }
             auto img = LoadImage(t, file, enc, "filename");
             // Prism extension for cut-outs (glTF baseColor alpha, OBJ map_d): a float texture
             // of the image's "alpha" channel (1 without one), or "alphaorluminance".
@@ -236,8 +270,23 @@ struct TextureBuilder : BuildStep {
                         lum->SetRGB(x, y, RGB(img->GetRGB(x, y).Luminance()));
                 img = lum;
             }
+            std::shared_ptr<const MIPMap> mip;
+            if (filter == TextureFilter::Trilinear || filter == TextureFilter::EWA) {
+                auto &cached = ctx.mipCache[{img.get(), int(wrap)}];
+                if (!cached) {
+                    const Param *fp = ps.Find("filename");
+                    const FileLoc &loc = fp ? fp->loc : t.loc;
+                    // The levels above the image take a third of it (in RGB floats).
+                    budget.Check(size_t(img->width) * size_t(img->height) * sizeof(RGB) / 3 + 64,
+                                 "MIP map of texture " + Quote(file), loc);
+                    cached = std::make_shared<MIPMap>(img, wrap);
+                    budget.Charge(cached->Bytes(), "MIP map of texture " + Quote(file), loc);
+                }
+                mip = cached;
+            }
             return std::make_shared<ImageTexture>(Mapping(t), img, wrap, ps.GetFloat("scale", 1.f),
-                                                  ps.GetBool("invert", false));
+                                                  ps.GetBool("invert", false), filter, mip,
+                                                  maxAniso);
         }
         for (const char *c : {"bilerp", "uv", "dots", "fbm", "wrinkled", "windy", "marble"})
             if (t.type == c) return MakeProceduralTexture(t);

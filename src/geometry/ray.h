@@ -26,6 +26,20 @@ struct Ray {
     Vec3f At(float t) const { return o + d * t; }
 };
 
+// pbrt-v3's ray differentials: the rays through the neighbouring pixels (one to the right,
+// one down), offset and direction, carried beside a ray only where a texture filters
+// (RenderScene::differentials). Scale moves them toward the ray (pbrt-v3 ScaleDifferentials:
+// with n samples per pixel the footprint of one sample is 1/sqrt(n) of a pixel).
+struct RayDifferential {
+    Vec3f rxOrigin, ryOrigin, rxDirection, ryDirection;
+    void Scale(const Vec3f &o, const Vec3f &d, float s) {
+        rxOrigin = o + (rxOrigin - o) * s;
+        ryOrigin = o + (ryOrigin - o) * s;
+        rxDirection = d + (rxDirection - d) * s;
+        ryDirection = d + (ryDirection - d) * s;
+    }
+};
+
 inline Vec3f OffsetRayOrigin(const Vec3f &p, const Vec3f &pError, const Vec3f &n, const Vec3f &w) {
     float d = Dot(Abs(n), pError);
     Vec3f offset = n * d;

@@ -105,4 +105,13 @@ Ray Camera::GenerateRay(Vec2f pFilm, Vec2f uLens, float time) const {
     return ray;
 }
 
+RayDifferential Camera::GenerateDifferential(const Ray &ray, Vec2f pFilm, Vec2f uLens, float time,
+                                             float scale) const {
+    const Ray rx = GenerateRay(pFilm + Vec2f(1, 0), uLens, time);
+    const Ray ry = GenerateRay(pFilm + Vec2f(0, 1), uLens, time);
+    RayDifferential rd{rx.o, ry.o, rx.d, ry.d};
+    rd.Scale(ray.o, ray.d, scale);
+    return rd;
+}
+
 }  // namespace prism

@@ -26,6 +26,12 @@ class Camera {
     // pFilm: continuous raster position; uLens in [0,1)^2 (used only with a lens); time: the
     // ray's time as a fraction of the shutter (Ray::time; it moves only a moving camera).
     Ray GenerateRay(Vec2f pFilm, Vec2f uLens, float time = 0) const;
+    // pbrt-v3 GenerateRayDifferential for `ray` = GenerateRay(pFilm, uLens, time): the rays
+    // through pFilm + (1, 0) and pFilm + (0, 1) with the same lens sample and time (for every
+    // camera type this is what pbrt-v3 computes), scaled toward `ray` by `scale` (pbrt-v3
+    // ScaleDifferentials with max(1/8, 1/sqrt(spp))).
+    RayDifferential GenerateDifferential(const Ray &ray, Vec2f pFilm, Vec2f uLens, float time,
+                                         float scale) const;
     // Motion blur: renderFromCamera over the shutter (times as fractions of it; its value at 0
     // the transform the camera was made with).
     void SetMotion(const AnimatedTransform &renderFromCamera);

@@ -2,6 +2,7 @@
 
 #include "render/area_light.h"
 #include "render/bsdf.h"
+#include "render/differentials.h"
 #include "render/kernel.h"
 #include "render/render_scene.h"
 #include "render/sample_tile.h"
@@ -35,7 +36,9 @@ RGB DirectLightingIntegrator::Li(const Ray &rayIn, const PixelSamples &ps, int d
         L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(info->areaLight)])
                  .L(si, si.wo);
     if (mat.PerturbsShading()) mat.PerturbShading(si);
-    const TextureContext tc{si.uv, si.p};
+    TextureContext tc{si.uv, si.p, si.uv1};
+    // The camera ray's footprint at its first hit (not behind pass-through surfaces).
+    if (depth == 0 && ps.diff && ray.o == rayIn.o) ComputeDifferentials(si, *ps.diff, &tc);
     if (mat.HasEmission()) L += mat.Emitted(tc);
     BSDF bsdf = mat.GetBSDF(si, tc);
     bsdf.MakeRoughSpecularGlossy();  // pbrt-v3: rough glass is a microfacet BSDF

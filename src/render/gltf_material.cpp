@@ -82,6 +82,16 @@ Vec2f UVTransformTexture::Map(Vec2f uv) const {
 RGB UVTransformTexture::Evaluate(const TextureContext &c) const {
     TextureContext t = c;
     t.uv = Map(c.uv);
+    // The footprint through the linear part of the map (v runs the other way in glTF's
+    // coordinates, and back).
+    const float co = std::cos(rotation_), si = std::sin(rotation_);
+    auto lin = [&](float du, float dv, float *du2, float *dv2) {
+        const float su = scale_.x * du, sv = -scale_.y * dv;
+        *du2 = co * su + si * sv;
+        *dv2 = -(-si * su + co * sv);
+    };
+    lin(c.dudx, c.dvdx, &t.dudx, &t.dvdx);
+    lin(c.dudy, c.dvdy, &t.dudy, &t.dvdy);
     return child_->Evaluate(t);
 }
 

@@ -56,6 +56,7 @@ class UVTransformTexture final : public Texture {
     UVTransformTexture(TexturePtr child, Vec2f offset, float rotation, Vec2f scale)
         : child_(std::move(child)), offset_(offset), rotation_(rotation), scale_(scale) {}
     RGB Evaluate(const TextureContext &c) const override;
+    bool UsesDifferentials() const override { return child_->UsesDifferentials(); }
     // The transformed coordinates (Prism's convention), for tests.
     Vec2f Map(Vec2f uv) const;
 
@@ -75,6 +76,8 @@ class TexCoord1Texture final : public Texture {
     RGB Evaluate(const TextureContext &c) const override {
         TextureContext t = c;
         t.uv = c.uv1;
+        // The footprint is set 0's (solved from its dp/du, dp/dv): set 1 is read unfiltered.
+        t.dudx = t.dvdx = t.dudy = t.dvdy = 0;
         return child_->Evaluate(t);
     }
 

@@ -27,6 +27,7 @@
 namespace prism {
 
 struct BSDF;
+struct TextureContext;
 struct RenderScene;
 class FilmTile;
 enum class GlossyRays;
@@ -89,7 +90,9 @@ class Kernel {
     RGB Shade(const Ray &ray, SurfaceInteraction si, int depth, RayCounters &counters,
               const SampleContext &sc, bool emitted) const;
     // Adds the specular reflection and transmission of every BSDF part to L.
-    void AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
+    // tc holds the hit's footprint where the ray carries differentials (diff not null).
+    void AddSpecular(const SurfaceInteraction &si, const TextureContext &tc,
+                     const RayDifferential *diff, const BSDF &bsdf, int depth,
                      RayCounters &counters, const SampleContext &sc, RGB &L) const;
     // Turns rough glass glossy; says how glossy rays are traced from this hit.
     GlossyRays PrepareGlossy(BSDF &bsdf, int depth) const;

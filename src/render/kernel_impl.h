@@ -4,11 +4,13 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "image/film.h"
 #include "render/area_light.h"
 #include "render/bsdf.h"
+#include "render/differentials.h"
 #include "render/distribution_integrator.h"
 #include "render/kernel.h"
 #include "render/medium.h"
@@ -80,10 +82,12 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
                      const SampleContext &sc, bool emitted) const {
     const ShapeInfo *shape = &scene_.Info(si);
     const Material *mat = &scene_.materials[size_t(shape->material)];
+    const RayDifferential *diff = sc.diff;
     if constexpr (PassThrough) {
         Ray ray = rayIn;
         for (int pass = 0; mat->IsPassThrough(); ++pass) {
             if (pass >= MaxPassThrough) return RGB(0);
+            diff = nullptr;  // as pbrt-v3: the continued ray has no differentials
             // pbrt: a surface without a BSDF continues the ray without counting a bounce.
             ray = si.SpawnRay(ray.d, scene_.offset);
             counters.passThrough++;
@@ -97,6 +101,9 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
     // flag per hit for scenes without them: no kernel bit).
     if (mat->PerturbsShading()) mat->PerturbShading(si);
     TextureContext tc{si.uv, si.p, si.uv1};
+    // The footprint, where the ray carries differentials (only in scenes whose textures
+    // filter: RenderScene::differentials); specular bounces pass it on.
+    if (diff) ComputeDifferentials(si, *diff, &tc);
     const Vec3f &wo = si.wo;
     RGB L;
     // Emission of an area light seen directly or through specular paths.
@@ -141,7 +148,7 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
         // in the same order as always).
         RGB indirect;
         RGB &Lind = ambient == 1 ? L : indirect;
-        if constexpr (Specular) AddSpecular(si, bsdf, depth, counters, sc, Lind);
+        if constexpr (Specular) AddSpecular(si, tc, diff, bsdf, depth, counters, sc, Lind);
         if constexpr (Glossy)
             if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, Lind);
         if (ambient != 1) L += indirect * ambient;
@@ -219,7 +226,8 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
 }
 
 template <uint32_t K>
-void Kernel<K>::AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int depth,
+void Kernel<K>::AddSpecular(const SurfaceInteraction &si, const TextureContext &tc,
+                            const RayDifferential *diff, const BSDF &bsdf, int depth,
                             RayCounters &counters, const SampleContext &sc, RGB &L) const {
     const Vec3f &wo = si.wo;
     // Specular recursion, for the delta lobes of every BSDF part (mix materials have several).
@@ -231,7 +239,9 @@ void Kernel<K>::AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int 
         // throughput (max RGB component, times the Film's scale) exceeds the cutoff, as if it
         // brought back radiance 1 (pbrt-style ray weights; the pixel filter's share of the
         // sample is ignored). Cutoff 0 traces every ray, exactly as without the cutoff.
-        auto trace = [&](uint64_t &kind) {
+        // The reflected or refracted ray's differentials (pbrt-v3 SpecularReflect/Transmit);
+        // eta 0: reflection.
+        auto trace = [&](uint64_t &kind, float eta) {
             SampleContext next = sc;
             next.beta = sc.beta * weight;
             if (!AboveCutoff(next.beta)) {
@@ -240,11 +250,20 @@ void Kernel<K>::AddSpecular(const SurfaceInteraction &si, const BSDF &bsdf, int 
             }
             if constexpr (Media) next.medium = MediumAfter(scene_.Info(si), si, wi, sc.medium);
             kind++;
+            RayDifferential rd;
+            next.diff = nullptr;
+            if (diff) {
+                rd = eta == 0 ? ReflectDifferential(si, tc, *diff, bsdf.ns, wi)
+                              : RefractDifferential(si, tc, *diff, bsdf.ns, wi, eta);
+                next.diff = &rd;
+            }
             L += weight * Li(si.SpawnRay(wi, scene_.offset), depth + 1, counters, next);
         };
         for (int part = 0; part < bsdf.NumParts(); ++part) {
-            if (bsdf.SampleSpecularReflection(part, wo, &wi, &weight)) trace(counters.reflection);
-            if (bsdf.SampleSpecularTransmission(part, wo, &wi, &weight)) trace(counters.refraction);
+            if (bsdf.SampleSpecularReflection(part, wo, &wi, &weight))
+                trace(counters.reflection, 0.f);
+            if (bsdf.SampleSpecularTransmission(part, wo, &wi, &weight))
+                trace(counters.refraction, bsdf.Part(part).eta);
         }
     }
 }
@@ -286,6 +305,7 @@ void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, Glossy
             SampleContext next = sc;
             next.beta = sc.beta * weight;
             next.afterGlossy = true;
+            next.diff = nullptr;  // glossy rays filter nothing (pbrt-v3 drops them too)
             if constexpr (Media) next.medium = MediumAfter(scene_.Info(si), si, wi, sc.medium);
             if (refine) {
                 next.sample = index;
@@ -317,6 +337,9 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
     // pixel's samples; scenes where nothing moves keep time 0 and draw nothing.
     const bool motion = Kernel<K>::CameraSamples && scene.features.effects.Has(Effect::MotionBlur);
     const uint32_t spp = uint32_t(scene.spp);
+    // Ray differentials for filtered textures (pbrt-v3: scaled by max(1/8, 1/sqrt(spp))).
+    const bool differentials = scene.differentials;
+    const float diffScale = std::max(.125f, 1 / std::sqrt(float(spp)));
     // One sample per pixel sits at the pixel centre, except in the later passes of a
     // progressive render (render/progressive.h), whose pattern seeds differ.
     const bool jitter = spp > 1 || scene.sampleSeed != 0;
@@ -330,6 +353,7 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
         return (size_t(y - tb.pMin.y) * size_t(w) + size_t(x - tb.pMin.x)) * spp + s;
     };
     Ray rays[16];
+    RayDifferential diffs[16];
     RawHit hits[16];
     size_t slot[16];
     uint32_t filmSeed[16], lensSeed[16], timeSeed[16];
@@ -371,6 +395,9 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                         if constexpr (Kernel<K>::CameraSamples)
                             if (motion) time = cmj.Sample(s, timeSeed[m]).x;
                         rays[m] = scene.camera->GenerateRay(pFilm, uLens, time);
+                        if (differentials)
+                            diffs[m] = scene.camera->GenerateDifferential(rays[m], pFilm, uLens,
+                                                                          time, diffScale);
                         slot[m] = index(x, y, s);
                         buf.pFilm[slot[m]] = pFilm;
                     }
@@ -380,6 +407,7 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                 rc.camera += uint64_t(m);
                 for (int i = 0; i < m; ++i) {
                     SampleContext sc{bx + i % (ex - bx), by + i / (ex - bx), s, spp};
+                    if (differentials) sc.diff = &diffs[i];
                     RGB L = kernel.LiCamera(rays[i], hits[i], rc, sc) * scene.filmScale;
                     if (scene.maxSampleLuminance < Infinity && L.IsFinite()) {
                         float lum = L.Luminance();

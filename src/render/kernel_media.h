@@ -29,6 +29,7 @@ RGB Kernel<K>::LiMedia(Ray ray, bool hit, SurfaceInteraction si, int depth, RayC
     int medium = sc.medium;
     RGB L, T(1);
     Vec3f from = ray.o;
+    bool crossed = false;
     for (int pass = 0;; ++pass) {
         if (medium >= 0) {
             const Ray segment = MediumSegment(ray, from, hit ? &si.p : nullptr);
@@ -47,11 +48,14 @@ RGB Kernel<K>::LiMedia(Ray ray, bool hit, SurfaceInteraction si, int depth, RayC
         medium = MediumAfter(shape, si, ray.d, medium);
         ray = si.SpawnRay(ray.d, scene_.offset);
         from = si.p;
+        crossed = true;
         counters.passThrough++;
         hit = scene_.accel->Intersect(ray, &si);
     }
     SampleContext next = sc;
     next.medium = medium;
+    // As the kernel's pass-through loop: a ray continued through a surface has no differentials.
+    if (crossed) next.diff = nullptr;
     return L + T * Shade(ray, si, depth, counters, next, emitted);
 }
 

@@ -37,6 +37,9 @@ struct PixelSamples {
     uint32_t sample = 0, spp = 1;
     SamplePattern pattern = SamplePattern::Stratified;
     uint32_t passSeed = 0;  // RenderScene::sampleSeed: differs between progressive passes
+    // The camera ray's differentials where a texture filters (RenderScene::differentials),
+    // else null; read at the first hit only (pbrt-v3's path tracer drops them after it).
+    const RayDifferential *diff = nullptr;
 
     Vec2f Get2D(uint32_t dim) const { return Get2D(dim, 0, 1); }
     // Sample k of n of this camera sample (strategy "all": n light samples stratified over

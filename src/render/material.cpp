@@ -108,7 +108,21 @@ bool MaybeAnisotropic(const TexturePtr &u, const TexturePtr &v) {
 
 unsigned Material::SurfaceNeeds() const {
     if (kind == Kind::None) return NeedNone;
-    return LobeNeeds() | (PerturbsShading() ? unsigned(NeedAll) : unsigned(NeedNone));
+    // Filtered textures read the (u, v) footprint, solved from dpdu and dpdv.
+    const bool all = PerturbsShading() || TexturesUseDifferentials();
+    return LobeNeeds() | (all ? unsigned(NeedAll) : unsigned(NeedNone));
+}
+
+bool Material::TexturesUseDifferentials() const {
+    if (kind == Kind::None) return false;
+    if (kind == Kind::Mix)
+        return mix1->TexturesUseDifferentials() || mix2->TexturesUseDifferentials() ||
+               (amount && amount->UsesDifferentials());
+    for (const TexturePtr *t : {&Kd, &Ks, &Kr, &Kt, &sigma, &roughness, &uRoughness, &vRoughness,
+                                &index, &opacity, &reflect, &transmit, &amount, &gltf.baseColor,
+                                &gltf.metallicRoughness, &gltf.emissive, &gltf.occlusion})
+        if (*t && (*t)->UsesDifferentials()) return true;
+    return false;
 }
 
 unsigned Material::LobeNeeds() const {
@@ -163,6 +177,7 @@ BSDF Material::GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) c
 }
 
 void Material::Prepare() {
+    differentials_ = TexturesUseDifferentials();
     fixed_ = false;
     fixedParts_.clear();
     if (kind == Kind::None || (LobeNeeds() & NeedUV)) return;

@@ -86,6 +86,11 @@ class Material {
     // The surface data a hit on this material reads (SurfaceNeeds), decided from its textures:
     // uv when any texture is not constant, dpdu when a glossy lobe may be anisotropic.
     unsigned SurfaceNeeds() const;
+    // Whether a texture of the material filters over the ray's footprint (Texture::
+    // UsesDifferentials), so hits on it compute TextureContext's derivatives. UsesDifferentials
+    // is the value Prepare cached.
+    bool TexturesUseDifferentials() const;
+    bool UsesDifferentials() const { return differentials_; }
     BSDF GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) const;
     // Adds this material's lobes to `bsdf`, scaled by `weight` (used by mix).
     void AddParts(BSDF &bsdf, const TextureContext &tc, const RGB &weight) const;
@@ -103,6 +108,7 @@ class Material {
     };
     std::vector<FixedPart> fixedParts_;
     bool fixed_ = false;
+    bool differentials_ = false;
 };
 
 }  // namespace prism

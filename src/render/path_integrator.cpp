@@ -4,6 +4,7 @@
 
 #include "render/area_light.h"
 #include "render/bsdf.h"
+#include "render/differentials.h"
 #include "render/kernel.h"
 #include "render/render_scene.h"
 #include "render/sample_tile.h"
@@ -48,7 +49,11 @@ RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps, RayCounters
         }
         passes = 0;
         if (mat.PerturbsShading()) mat.PerturbShading(si);
-        const TextureContext tc{si.uv, si.p};
+        TextureContext tc{si.uv, si.p, si.uv1};
+        // The first hit's footprint (not behind pass-through surfaces: their continued rays
+        // carry no differentials, as in the Whitted kernel).
+        if (bounces == 0 && ps.diff && ray.o == cameraRay.o)
+            ComputeDifferentials(si, *ps.diff, &tc);
         // Emission a material carries itself (glTF emissive textures; no light samples it).
         if (mat.HasEmission()) L += beta * mat.Emitted(tc);
         BSDF bsdf = mat.GetBSDF(si, tc);

@@ -135,6 +135,9 @@ struct RenderScene {
     std::vector<std::unique_ptr<Medium>> media;
     int cameraMedium = -1;
     SceneFeatures features;
+    // Some material filters a texture over the ray's footprint (Material::UsesDifferentials):
+    // camera rays carry ray differentials (render/differentials.h), specular bounces keep them.
+    bool differentials = false;
     // --effects all: render with the general kernel instead of the one specialized for
     // features.effects (render/kernel.h; same image, for comparison).
     bool allEffects = false;

@@ -5,6 +5,9 @@
 // the thread count.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "image/film.h"
 #include "render/camera.h"
 #include "render/light_sampling.h"
@@ -27,6 +30,8 @@ void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, F
     // One sample per pixel sits at the pixel centre, except in the later passes of a
     // progressive render, whose seeds differ (as in the kernel).
     const bool jitter = spp > 1 || scene.sampleSeed != 0;
+    // Ray differentials for filtered textures (as the kernel's tile loop).
+    const float diffScale = std::max(.125f, 1 / std::sqrt(float(spp)));
     for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
         for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
             const uint32_t filmSeed = PatternSeed(x, y, FilmPurpose, scene.sampleSeed);
@@ -43,7 +48,12 @@ void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, F
                 const float time = motion ? cmj.Sample(s, timeSeed).x : 0.f;
                 const Ray ray = scene.camera->GenerateRay(pFilm, uLens, time);
                 rc.camera++;
-                const PixelSamples ps{x, y, s, spp, scene.samplePattern, scene.sampleSeed};
+                PixelSamples ps{x, y, s, spp, scene.samplePattern, scene.sampleSeed};
+                RayDifferential rd;
+                if (scene.differentials) {
+                    rd = scene.camera->GenerateDifferential(ray, pFilm, uLens, time, diffScale);
+                    ps.diff = &rd;
+                }
                 RGB L = li(ray, ps, rc) * scene.filmScale;
                 if (scene.maxSampleLuminance < Infinity && L.IsFinite()) {
                     const float lum = L.Luminance();

@@ -19,6 +19,11 @@ struct TextureContext {
     Vec2f uv;
     Vec3f p;    // render-space hit point (for 3-D textures and non-uv mappings)
     Vec2f uv1;  // the second texture coordinate set (SurfaceInteraction::uv1; glTF TEXCOORD_1)
+    // The footprint of the pixel sample (pbrt-v3 ComputeDifferentials, render/differentials.h):
+    // how p and (u, v) change from one pixel to the next. All zero where the ray carries no
+    // differentials; filtered lookups then read the finest level, bilinearly.
+    Vec3f dpdx{}, dpdy{};
+    float dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
 };
 
 class Texture {
@@ -26,6 +31,9 @@ class Texture {
     virtual ~Texture() = default;
     virtual RGB Evaluate(const TextureContext &ctx) const = 0;
     virtual bool IsConstant() const { return false; }
+    // Whether Evaluate reads the footprint (filtered image lookups, closed-form checkerboard),
+    // itself or through a texture it reads: only then do rays carry differentials.
+    virtual bool UsesDifferentials() const { return false; }
 };
 using TexturePtr = std::shared_ptr<const Texture>;
 
@@ -46,6 +54,8 @@ struct TextureMapping {
     Vec3f v1{1, 0, 0}, v2{0, 1, 0};
     Transform textureFromRender;
     Vec2f Map(const TextureContext &ctx) const;
+    // The same with the footprint in (s, t) (pbrt-v3 TextureMapping2D::Map with dstdx, dstdy).
+    Vec2f Map(const TextureContext &ctx, Vec2f *dstdx, Vec2f *dstdy) const;
 };
 
 // 3-D textures read the hit point in texture space: the inverse of the CTM at the Texture
@@ -61,6 +71,9 @@ class ScaleTexture final : public Texture {
     RGB Evaluate(const TextureContext &c) const override {
         return a_->Evaluate(c) * b_->Evaluate(c);
     }
+    bool UsesDifferentials() const override {
+        return a_->UsesDifferentials() || b_->UsesDifferentials();
+    }
 
   private:
     TexturePtr a_, b_;
@@ -74,31 +87,62 @@ class MixTexture final : public Texture {
         float t = amount_->Evaluate(c).r;
         return a_->Evaluate(c) * (1 - t) + b_->Evaluate(c) * t;
     }
+    bool UsesDifferentials() const override {
+        return a_->UsesDifferentials() || b_->UsesDifferentials() || amount_->UsesDifferentials();
+    }
 
   private:
     TexturePtr a_, b_, amount_;
 };
 
+// pbrt-v3 Checkerboard2DTexture / Checkerboard3DTexture. 2-D boards antialias with "aamode":
+// ClosedForm (pbrt-v3's default) averages the two textures over the box the footprint spans
+// (closed form of the box-filtered checkerboard); None point-samples.
 class CheckerboardTexture final : public Texture {
   public:
-    CheckerboardTexture(TextureMapping mapping, TexturePtr tex1, TexturePtr tex2, int dimension)
-        : mapping_(mapping), tex1_(std::move(tex1)), tex2_(std::move(tex2)), dim_(dimension) {}
+    enum class AAMode { None, ClosedForm };
+    CheckerboardTexture(TextureMapping mapping, TexturePtr tex1, TexturePtr tex2, int dimension,
+                        AAMode aa = AAMode::None)
+        : mapping_(mapping),
+          tex1_(std::move(tex1)),
+          tex2_(std::move(tex2)),
+          dim_(dimension),
+          aa_(dimension == 2 ? aa : AAMode::None) {}
     RGB Evaluate(const TextureContext &c) const override;
+    bool UsesDifferentials() const override {
+        return aa_ == AAMode::ClosedForm || tex1_->UsesDifferentials() ||
+               tex2_->UsesDifferentials();
+    }
+    // The fraction of tex2 (the odd squares) over [s0, s1] x [t0, t1] around (s, t), ds and dt
+    // the half-widths (pbrt-v3's closed form; exposed for the tests).
+    static float OddFraction(float s, float t, float ds, float dt);
 
   private:
     TextureMapping mapping_;
     TexturePtr tex1_, tex2_;
     int dim_;
+    AAMode aa_;
 };
 
 enum class WrapMode { Repeat, Black, Clamp };
+class MIPMap;
 
-// Bilinear lookup in a linear-RGB image; t = 0 is the bottom row (pbrt flips images in y).
+// How an image texture is looked up (pbrt's imagemap "filter"): Point (nearest texel of the
+// finest level), Bilinear (finest level), Trilinear (pbrt-v3 MIPMap::Lookup with the isotropic
+// width) and EWA (pbrt-v3's elliptically weighted average over two levels, the default).
+enum class TextureFilter { Point, Bilinear, Trilinear, EWA };
+const char *TextureFilterName(TextureFilter f);
+
+// A lookup in a linear-RGB image; t = 0 is the bottom row (pbrt flips images in y). Trilinear
+// and EWA read the MIP pyramid `mip` (render/mipmap.h) built from the image.
 class ImageTexture final : public Texture {
   public:
     ImageTexture(TextureMapping mapping, std::shared_ptr<const Image> image, WrapMode wrap,
-                 float scale, bool invert);
+                 float scale, bool invert, TextureFilter filter = TextureFilter::Bilinear,
+                 std::shared_ptr<const MIPMap> mip = nullptr, float maxAnisotropy = 8);
     RGB Evaluate(const TextureContext &c) const override;
+    bool UsesDifferentials() const override { return mip_ != nullptr; }
+    TextureFilter Filter() const { return filter_; }
 
   private:
     RGB Texel(int x, int y) const;
@@ -107,6 +151,9 @@ class ImageTexture final : public Texture {
     WrapMode wrap_;
     float scale_;
     bool invert_;
+    TextureFilter filter_;
+    std::shared_ptr<const MIPMap> mip_;
+    float maxAnisotropy_;
 };
 
 // pbrt-v3 BilerpTexture: bilinear interpolation of four corner values over (s, t), which is
@@ -139,6 +186,9 @@ class DotsTexture final : public Texture {
     DotsTexture(TextureMapping mapping, TexturePtr inside, TexturePtr outside)
         : mapping_(mapping), inside_(std::move(inside)), outside_(std::move(outside)) {}
     RGB Evaluate(const TextureContext &c) const override;
+    bool UsesDifferentials() const override {
+        return inside_->UsesDifferentials() || outside_->UsesDifferentials();
+    }
 
   private:
     TextureMapping mapping_;

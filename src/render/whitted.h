@@ -48,7 +48,9 @@ struct SampleContext {
     uint32_t sample = 0, spp = 1;
     RGB beta = RGB(1);         // product of the specular weights from the camera to this ray
     bool afterGlossy = false;  // a glossy bounce lies between the camera and this ray
-    int medium = -1;           // the medium the ray starts in (RenderScene::media; -1: none)
+    // The ray's differentials (RenderScene::differentials), or null: unfiltered lookups.
+    const RayDifferential *diff = nullptr;
+    int medium = -1;  // the medium the ray starts in (RenderScene::media; -1: none)
 };
 
 // The Whitted integrator as a value (tests, `prism trace`): the general kernel (render/kernel.h)

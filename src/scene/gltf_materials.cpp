@@ -96,6 +96,14 @@ std::string GltfConverter::TextureFor(int textureIndex, bool linear) {
                     model_.samplers[size_t(tex.sampler)].wrapS ==
                         TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
                     AddString(t.params, "wrap", "clamp", loc_);
+                // Pixel-art samplers (magFilter and minFilter NEAREST) look texels up
+                // unfiltered; every other texture is EWA-filtered (docs/TEXTURES.md).
+                if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size() &&
+                    model_.samplers[size_t(tex.sampler)].magFilter ==
+                        TINYGLTF_TEXTURE_FILTER_NEAREST &&
+                    model_.samplers[size_t(tex.sampler)].minFilter ==
+                        TINYGLTF_TEXTURE_FILTER_NEAREST)
+                    AddString(t.params, "filter", "point", loc_);
                 name = t.name;
                 desc_.textures.push_back(std::move(t));
             }

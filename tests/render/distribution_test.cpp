@@ -354,12 +354,14 @@ TEST(DistributionIntegrator, WhittedTracesNoGlossyRays) {
 }
 
 // Whitted renders of glossy materials are exactly what they were before the distribution
-// integrator existed: the golden image was rendered by the commit before it (4 spp).
+// integrator existed: the golden image was rendered by the commit before it (4 spp). Its
+// checkerboard was point-sampled then: texture filtering (--texture-filter none) stays off.
 TEST(DistributionIntegrator, WhittedRenderOfGlossySceneIsUnchanged) {
     Diagnostics diag(false);
     SceneDescription desc = LoadScene(Source + "/scenes/glossy.pbrt", diag);
     BuildSettings opts;
     opts.integrator = "whitted";
+    opts.textureFilter = "none";
     opts.resolution = {48, 30};
     RenderScene scene = BuildRenderScene(desc, opts, diag);
     RenderStats stats;

@@ -110,7 +110,8 @@ const char *kGltf = R"({
     {"name": "embedded", "pbrMetallicRoughness": {"baseColorTexture": {"index": 1},
       "metallicFactor": 0}}
   ],
-  "textures": [{"source": 0}, {"source": 1}],
+  "textures": [{"source": 0}, {"source": 1, "sampler": 0}],
+  "samplers": [{"magFilter": 9728, "minFilter": 9728}],
   "images": [{"uri": "gltft%20tex.png"}, {"uri": "data:image/png;base64,IMAGE64"}],
   "buffers": [{"uri": "BUFFERURI", "byteLength": 140}],
   "bufferViews": [
@@ -295,6 +296,10 @@ TEST(GltfReader, Materials) {
     ASSERT_TRUE(emb);
     EXPECT_EQ(emb->type, "imagemap");
     EXPECT_EQ(emb->params.GetString("filename", ""), "embedded:0");
+    // Its sampler is NEAREST for both filters: point lookups; the other texture keeps the
+    // default (EWA).
+    EXPECT_EQ(emb->params.GetString("filter", ""), "point");
+    EXPECT_EQ(image->params.GetString("filter", "default"), "default");
     EXPECT_EQ(EmbeddedImageIndex("embedded:0"), 0);
     EXPECT_EQ(EmbeddedImageIndex("embedded:12"), 12);
     EXPECT_EQ(EmbeddedImageIndex("textures/a.png"), -1);
