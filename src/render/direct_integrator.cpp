@@ -68,11 +68,7 @@ RGB DirectLightingIntegrator::Li(const Ray &rayIn, const PixelSamples &ps, int d
 
 void RenderTileDirect(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &,
                       FilmTile *tile) {
-    const DirectLightingIntegrator integrator(scene);
-    RenderTileSamples(scene, tb, rc, tile,
-                      [&](const Ray &ray, const PixelSamples &ps, RayCounters &c) {
-                          return integrator.Li(ray, ps, 0, c);
-                      });
+    RenderTileWith<DirectLightingIntegrator>(scene, tb, rc, tile);
 }
 
 }  // namespace prism

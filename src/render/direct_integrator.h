@@ -21,6 +21,10 @@ class DirectLightingIntegrator {
     explicit DirectLightingIntegrator(const RenderScene &scene) : scene_(scene), chooser_(scene) {}
     // Radiance along a ray; depth counts delta bounces (camera rays are depth 0).
     RGB Li(const Ray &ray, const PixelSamples &ps, int depth, RayCounters &counters) const;
+    // A camera ray's radiance (depth 0).
+    RGB Li(const Ray &ray, const PixelSamples &ps, RayCounters &counters) const {
+        return Li(ray, ps, 0, counters);
+    }
 
   private:
     const RenderScene &scene_;

@@ -83,6 +83,20 @@ inline uint32_t VertexDim(int bounce, uint32_t d) {
     return PathDimBase + uint32_t(bounce) * PathDimsPerBounce + d;
 }
 
+// pbrt-v3's Russian roulette: after the third bounce, a path whose throughput (with the
+// refraction scaling etaScale undone) is below `threshold` ends with probability
+// max(0.05, 1 - throughput), or goes on with beta divided by the survival probability.
+// Returns false when the path ends.
+inline bool SurvivesRoulette(RGB &beta, float etaScale, float threshold, int bounces,
+                             const PixelSamples &ps) {
+    const float b = (beta * etaScale).MaxComponent();
+    if (!(b < threshold) || bounces <= 3) return true;
+    const float q = std::max(0.05f, 1 - b);
+    if (ps.Get1D(VertexDim(bounces, DimRoulette)) < q) return false;
+    beta = beta / (1 - q);
+    return true;
+}
+
 // Fills scene.lightPower (each light's power, for LightChoice::Power) once the lights and
 // shapes are built.
 void ComputeLightPower(RenderScene &scene);

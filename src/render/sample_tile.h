@@ -65,4 +65,15 @@ void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, F
     }
 }
 
+// The tile loop of an integrator constructed from the scene whose Li(ray, samples, counters)
+// gives a camera ray's radiance.
+template <class Integrator>
+void RenderTileWith(const RenderScene &scene, Bounds2i tb, RayCounters &rc, FilmTile *tile) {
+    const Integrator integrator(scene);
+    RenderTileSamples(scene, tb, rc, tile,
+                      [&](const Ray &ray, const PixelSamples &ps, RayCounters &c) {
+                          return integrator.Li(ray, ps, c);
+                      });
+}
+
 }  // namespace prism

@@ -113,23 +113,14 @@ RGB VolPathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps,
                 counters.reflection++;
         }
         // Russian roulette (pbrt-v3: after the third bounce, below rrthreshold).
-        const RGB rrBeta = beta * etaScale;
-        if (rrBeta.MaxComponent() < scene_.rrThreshold && bounces > 3) {
-            const float q = std::max(0.05f, 1 - rrBeta.MaxComponent());
-            if (ps.Get1D(VertexDim(bounces, DimRoulette)) < q) break;
-            beta = beta / (1 - q);
-        }
+        if (!SurvivesRoulette(beta, etaScale, scene_.rrThreshold, bounces, ps)) break;
     }
     return L;
 }
 
 void RenderTileVolPath(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &,
                        FilmTile *tile) {
-    const VolPathIntegrator integrator(scene);
-    RenderTileSamples(scene, tb, rc, tile,
-                      [&](const Ray &ray, const PixelSamples &ps, RayCounters &c) {
-                          return integrator.Li(ray, ps, c);
-                      });
+    RenderTileWith<VolPathIntegrator>(scene, tb, rc, tile);
 }
 
 }  // namespace prism
