@@ -411,8 +411,9 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args) {
     cmd->add_option("--effects", args->effects,
                     "Kernel for every scene: \"scene\" (specialized) or \"all\" (general)")
         ->check(CLI::IsMember({"scene", "all"}));
-    cmd->add_option("--exposure", args->exposure, "Exposure in EV for every scene (2^EV)")
-        ->check(CLI::Range(-64.0, 64.0));
+    cmd->add_option("--exposure", args->exposure,
+                    "Exposure in EV for every scene (2^EV), or auto (as prism render)")
+        ->check(CheckExposureText);
     cmd->add_option("--tonemap", args->toneMap,
                     "Tone map of PNG outputs: none, neutral, aces or filmic (default: per scene "
                     "format, as prism render)")

@@ -17,6 +17,7 @@
 #include "core/file_io.h"
 #include "core/memory.h"
 #include "image/image_io.h"
+#include "image/tonemap.h"
 #include "scene/scene_description.h"
 
 namespace prism {
@@ -278,6 +279,12 @@ std::string ShellQuote(const std::string &s) {
     std::string q = "'";
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
+}
+
+std::string CheckExposureText(const std::string &text) {
+    float ev;
+    bool isAuto;
+    return ParseExposure(text, &ev, &isAuto) ? "" : "must be auto or a number of EV in [-64, 64]";
 }
 
 }  // namespace prism

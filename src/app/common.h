@@ -20,6 +20,10 @@ class Option;
 
 namespace prism {
 
+// The check of an --exposure value (render and batch): "" when it is "auto" or a number of EV
+// in [-64, 64], else the message.
+std::string CheckExposureText(const std::string &text);
+
 struct SceneEntity;
 
 // Runs a command, turning exceptions into messages and exit statuses: SceneError and

@@ -29,11 +29,19 @@ namespace prism {
 
 namespace {
 
-// The output transform: the command line's, else the Film's, else the format's default.
+// The output transform: the command line's, else the Film's, else the format's default. The
+// exposure of an OBJ, glTF or PLY scene lit by its own lights (not the studio rig or --env)
+// written to an 8-bit format defaults to auto: their emitters come in arbitrary units.
 OutputTransform ChooseOutputTransform(const RenderArgs &a, const RenderScene &scene,
-                                      const SceneDescription &desc) {
+                                      const SceneDescription &desc, bool linearOut,
+                                      const Image &img) {
     OutputTransform t;
     t.exposure = a.exposureGiven ? a.exposure : scene.filmExposure;
+    if (a.exposureGiven)
+        t.autoExposure = a.exposureAuto;
+    else if (scene.filmExposure == 0)
+        t.autoExposure = !linearOut && desc.format != "pbrt" && !desc.studioRig && a.env.empty();
+    ResolveAutoExposure(t, img);
     if (!a.toneMap.empty())
         ParseToneMap(a.toneMap, &t.toneMap);  // checked by CLI11
     else
@@ -243,9 +251,10 @@ ProgressFn RenderJob::Progress() {
 }
 
 void RenderJob::Write(const Image &img) {
-    const OutputTransform outTransform = ChooseOutputTransform(s_->a, *s_->scene, s_->desc);
     const std::string &out = s_->out;
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
+    const OutputTransform outTransform =
+        ChooseOutputTransform(s_->a, *s_->scene, s_->desc, linearOut, img);
     if (!s_->aovs.empty()) {
         // A separate pass after the beauty, so renders without AOVs run none of it.
         Image toWrite = img;
@@ -266,8 +275,8 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
     const SceneDescription &desc = s_->desc;
     const BuildSettings &opts = s_->opts;
     const std::string &out = s_->out;
-    const OutputTransform outTransform = ChooseOutputTransform(a, scene, desc);
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
+    const OutputTransform outTransform = ChooseOutputTransform(a, scene, desc, linearOut, img);
     if (s_->target && a.verify) {
         TargetVerification v = VerifyTarget(desc, opts, *s_->target, img, s_->diag);
         std::fprintf(stderr, "%s\n", DescribeVerification(*s_->target, v).c_str());
@@ -303,8 +312,8 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
         }
         if (outTransform.exposure != 0 || outTransform.toneMap != ToneMap::None ||
             !a.toneMap.empty())
-            std::fprintf(stderr, "output: exposure %+g EV, tone map %s\n",
-                         double(outTransform.exposure),
+            std::fprintf(stderr, "output: exposure %+g EV%s, tone map %s\n",
+                         double(outTransform.exposure), outTransform.autoExposure ? " (auto)" : "",
                          linearOut ? "none (linear output)" : ToneMapName(outTransform.toneMap));
         std::string on;
         for (size_t e = 0; e < size_t(Effect::Count); ++e)
@@ -459,10 +468,12 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
     cmd->add_flag("--verify", args->verify,
                   "With --target-error: render a reference too and report the error reached");
     CLI::Option *exposure =
-        cmd->add_option("--exposure", args->exposure,
-                        "Exposure in EV: every output is scaled by 2^EV (default: the Film's "
-                        "\"exposure\", else 0)")
-            ->check(CLI::Range(-64.0, 64.0));
+        cmd->add_option("--exposure", args->exposureText,
+                        "Exposure in EV: every output is scaled by 2^EV; auto: the EV that maps "
+                        "the image's log-average luminance to 0.18 (default: the Film's "
+                        "\"exposure\", else auto for 8-bit outputs of OBJ, glTF and PLY scenes "
+                        "lit by their own lights, else 0)")
+            ->check(CheckExposureText);
     cmd->add_option("--tonemap", args->toneMap,
                     "Tone map of 8-bit outputs (PNG, JPEG, ...): none (clamp), neutral (Khronos "
                     "PBR Neutral), aces (Hill's ACES fit) or filmic (Hable); default: the Film's "
@@ -485,6 +496,8 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "direct, indirect, variance (default: the Film's \"aovs\")");
     return [args, spp, cutoff, lightSamples, exposure, envRotate] {
         args->exposureGiven = exposure->count() > 0;
+        if (args->exposureGiven)  // checked by CheckExposureText
+            ParseExposure(args->exposureText, &args->exposure, &args->exposureAuto);
         args->envRotateGiven = envRotate->count() > 0;
         args->sppGiven = spp->count() > 0;
         args->cutoffGiven = cutoff->count() > 0;

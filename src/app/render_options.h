@@ -37,7 +37,8 @@ struct RenderArgs {
     // Output (docs: README "Exposure and tone mapping"): empty / not given → the Film's, else
     // the scene format's default.
     float exposure = 0;
-    bool exposureGiven = false;
+    bool exposureGiven = false, exposureAuto = false;  // --exposure auto
+    std::string exposureText;                          // as given
     std::string toneMap;
     // --env (README "Lighting"): empty when not given.
     std::string env, envMode;

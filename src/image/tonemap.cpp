@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace prism {
 
@@ -127,6 +128,42 @@ void ApplyOutputTransform(Image &img, const OutputTransform &t, bool linearOutpu
             p[0] = m.r;
         }
     }
+}
+
+float AutoExposureEV(const Image &img) {
+    const size_t n = size_t(img.width) * size_t(img.height);
+    if (n == 0 || img.channels < 1) return 0;
+    double sumLog = 0;
+    size_t lit = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const float *p = &img.pixels[i * size_t(img.channels)];
+        const float y = img.channels >= 3 ? RGB(p[0], p[1], p[2]).Luminance() : p[0];
+        // Black pixels (an empty background: nothing to expose) and NaN/Inf are left out.
+        if (!(y > 0) || !std::isfinite(y)) continue;
+        ++lit;
+        sumLog += std::log(1e-4 + double(y));
+    }
+    if (lit == 0) return 0;
+    const double logAverage = std::exp(sumLog / double(lit));
+    return float(std::clamp(std::log2(0.18 / logAverage), -20.0, 20.0));
+}
+
+void ResolveAutoExposure(OutputTransform &t, const Image &img) {
+    if (t.autoExposure) t.exposure = AutoExposureEV(img);
+}
+
+bool ParseExposure(const std::string &text, float *ev, bool *isAuto) {
+    if (text == "auto") {
+        *isAuto = true;
+        *ev = 0;
+        return true;
+    }
+    char *end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !(v >= -64 && v <= 64)) return false;
+    *isAuto = false;
+    *ev = float(v);
+    return true;
 }
 
 }  // namespace prism

@@ -33,7 +33,18 @@ RGB ApplyToneMap(ToneMap op, const RGB &c);
 struct OutputTransform {
     float exposure = 0;  // EV: pixels are scaled by 2^exposure
     ToneMap toneMap = ToneMap::None;
+    // Exposure "auto": `exposure` is chosen from the image (ResolveAutoExposure).
+    bool autoExposure = false;
 };
+
+// The exposure that maps the image's log-average luminance (Reinhard et al. 2002: exp of the
+// mean of log(1e-4 + Y) over the pixels that are not black, so an empty background does not
+// count) to middle grey 0.18, in EV, within [-20, 20]; 0 for an empty or black image.
+float AutoExposureEV(const Image &img);
+// With t.autoExposure, sets t.exposure to AutoExposureEV(img) (and leaves it alone otherwise).
+void ResolveAutoExposure(OutputTransform &t, const Image &img);
+// "auto" or a number of EV in [-64, 64]; false for anything else.
+bool ParseExposure(const std::string &text, float *ev, bool *isAuto);
 
 // Applies `t` in place: the exposure to every colour channel (never to alpha); the tone map too
 // unless `linearOutput` (float formats keep linear radiance). Exposure 0 with None changes

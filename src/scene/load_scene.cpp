@@ -174,6 +174,7 @@ void FrameDefaultCamera(SceneDescription &desc, const Bounds3f &bounds) {
 }
 
 void AddStudioRig(SceneDescription &desc) {
+    desc.studioRig = true;
     FileLoc loc{desc.sourceFile};
     // Camera space has +x to the image's right, +y up and +z ahead for every camera Prism
     // builds (see FrameDefaultCamera and the glTF reader).

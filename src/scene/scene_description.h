@@ -147,6 +147,7 @@ struct SceneDescription {
     std::string baseDir;            // directory of the top-level file: relative paths resolve here
     std::string sourceFile;         // the top-level file
     std::string format;             // "pbrt", "obj", "gltf", "ply"
+    bool studioRig = false;         // the lights are Prism's studio rig (AddStudioRig)
     std::vector<EmbeddedImage> embeddedImages;
     // Informational notes from the reader about what it supplied or interpreted, e.g. "no
     // camera in file: framed the bounding box" (not warnings: nothing is wrong with the file).

@@ -117,6 +117,54 @@ TEST(OutputCli, DefaultToneMapFollowsTheSceneFormat) {
     EXPECT_NE(r.err.find("tone map neutral"), std::string::npos) << r.err;
 }
 
+// An OBJ lit by an emitter of its own comes in arbitrary units: its 8-bit output is exposed
+// automatically (the log-average luminance of the lit pixels to 0.18); EXR stays linear unless
+// --exposure auto is asked for; a pbrt scene and a scene under the studio rig are not touched.
+TEST(OutputCli, AutoExposureForObjEmitters) {
+    fs::path dir = TempDir("autoexposure");
+    Write(dir / "lamp.mtl",
+          "newmtl lamp\nKd 0 0 0\nKe 0.02 0.02 0.02\nnewmtl white\nKd 0.8 0.8 0.8\n");
+    Write(dir / "lamp.obj", "mtllib lamp.mtl\nusemtl white\n" + ObjSphere() +
+                                "usemtl lamp\nv -1 2 -1\nv 1 2 -1\nv 1 2 1\nv -1 2 1\n"
+                                "f -4 -3 -2 -1\n");
+    auto render = [&](const std::string &extra, const std::string &out) {
+        RunResult r = RunPrism(
+            "render lamp.obj --res 32x24 --spp 2 --no-progress -o " + out + " " + extra, dir);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return r.err;
+    };
+    std::string err = render("", "auto.png");
+    EXPECT_NE(err.find("EV (auto)"), std::string::npos) << err;
+    render("--exposure 0", "zero.png");
+    ReadImageOptions ro;
+    ro.encoding = ReadImageOptions::Encoding::Linear;
+    Image a = ReadImage((dir / "auto.png").string(), ro);
+    Image z = ReadImage((dir / "zero.png").string(), ro);
+    EXPECT_GT(MeanLuminance(a, 0, 32, 0, 24), 4 * MeanLuminance(z, 0, 32, 0, 24));
+    // EXR: linear by default, auto only when asked.
+    render("", "lin.exr");
+    render("--exposure 0", "lin0.exr");
+    render("--exposure auto", "auto.exr");
+    Image l = ReadImage((dir / "lin.exr").string()), l0 = ReadImage((dir / "lin0.exr").string());
+    Image ae = ReadImage((dir / "auto.exr").string());
+    EXPECT_EQ(l.pixels, l0.pixels);
+    const float scale = std::exp2(AutoExposureEV(l));
+    ASSERT_EQ(ae.pixels.size(), l.pixels.size());
+    for (size_t i = 0; i < l.pixels.size(); i += 97)
+        EXPECT_FLOAT_EQ(ae.pixels[i], l.pixels[i] * scale);
+    // The studio rig (no emitter) and pbrt scenes keep exposure 0.
+    Write(dir / "plain.obj", ObjSphere());
+    RunResult r = RunPrism("render plain.obj --res 16x12 --spp 1 --no-progress -o p.png", dir);
+    EXPECT_EQ(r.err.find("(auto)"), std::string::npos) << r.err;
+    r = RunPrism("render '" + Source + "/scenes/whitted.pbrt' --res 16x12 --no-progress -o w.png",
+                 dir);
+    EXPECT_EQ(r.err.find("(auto)"), std::string::npos) << r.err;
+    // A bad value is a usage error.
+    r = RunPrism("render lamp.obj --exposure bright -o x.png", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("must be auto or a number of EV"), std::string::npos) << r.err;
+}
+
 // A uniform environment of radiance L over a white Lambertian sphere (its own light replaced):
 // every pixel, sphere or background, is L; in the PNG, the operator applied to L.
 TEST(OutputCli, FurnaceUnderAUniformEnvironment) {

@@ -164,5 +164,42 @@ TEST(OutputTransform, ToneMapsDisplayOutputsAfterExposure) {
     EXPECT_NEAR(gray.pixels[0], NeutralSpec({2, 2, 2})[0], 2e-6);
 }
 
+TEST(AutoExposure, MapsTheLogAverageOfLitPixelsToMiddleGrey) {
+    Image img(4, 2, 3);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) img.SetRGB(x, y, RGB(0.045f));
+    const float ev = float(std::log2(0.18 / (0.045 + 1e-4)));
+    EXPECT_NEAR(AutoExposureEV(img), ev, 1e-5);
+    // Black pixels (an empty background) and NaN do not count.
+    img.SetRGB(0, 0, RGB(0.f));
+    img.SetRGB(1, 0, RGB(std::nanf("")));
+    EXPECT_NEAR(AutoExposureEV(img), ev, 1e-5);
+    // The geometric mean: 0.01 and 1 average as 0.1 (up to the 1e-4 of Reinhard's formula).
+    Image two(2, 1, 3);
+    two.SetRGB(0, 0, RGB(0.01f));
+    two.SetRGB(1, 0, RGB(1.f));
+    EXPECT_NEAR(AutoExposureEV(two), std::log2(0.18 / std::sqrt(0.0101 * 1.0001)), 1e-5);
+    EXPECT_EQ(AutoExposureEV(Image(3, 3, 3)), 0.f);  // all black
+    // Clamped to [-20, 20].
+    two.SetRGB(0, 0, RGB(1e-30f));
+    two.SetRGB(1, 0, RGB(1e-30f));
+    EXPECT_EQ(AutoExposureEV(two), float(std::log2(0.18 / 1e-4)));
+    Image bright(1, 1, 3);
+    bright.SetRGB(0, 0, RGB(1e12f));
+    EXPECT_EQ(AutoExposureEV(bright), -20.f);
+}
+
+TEST(AutoExposure, ParseExposure) {
+    float ev = 7;
+    bool isAuto = true;
+    EXPECT_TRUE(ParseExposure("-1.5", &ev, &isAuto));
+    EXPECT_EQ(ev, -1.5f);
+    EXPECT_FALSE(isAuto);
+    EXPECT_TRUE(ParseExposure("auto", &ev, &isAuto));
+    EXPECT_TRUE(isAuto);
+    for (const char *bad : {"", "65", "-64.5", "1x", "Auto", "nan"})
+        EXPECT_FALSE(ParseExposure(bad, &ev, &isAuto)) << bad;
+}
+
 }  // namespace
 }  // namespace prism
