@@ -104,4 +104,22 @@ RGB SampleAllLights(const RenderScene &scene, const SurfaceInteraction &si, cons
     return L;
 }
 
+bool SampleNextDirection(const BSDF &bsdf, const Vec3f &wo, const PixelSamples &ps, int bounces,
+                         RGB &beta, bool &specularBounce, float &etaScale, Vec3f *wi,
+                         RayCounters &counters) {
+    BSDFSample bs;
+    if (!bsdf.Sample_f(wo, ps.Get2D(VertexDim(bounces, DimBsdf)),
+                       ps.Get1D(VertexDim(bounces, DimBsdfLobe)), true, &bs))
+        return false;
+    beta *= bs.weight;
+    specularBounce = bs.specular;
+    if (bs.specular && bs.transmission) etaScale *= bs.eta * bs.eta;
+    *wi = bs.wi;
+    if (bs.transmission)
+        counters.refraction++;
+    else
+        counters.reflection++;
+    return true;
+}
+
 }  // namespace prism

@@ -97,6 +97,14 @@ inline bool SurvivesRoulette(RGB &beta, float etaScale, float threshold, int bou
     return true;
 }
 
+// The path's next direction, sampled from the BSDF (pbrt-v3 PathIntegrator): beta takes the
+// sample's weight, specularBounce and etaScale (the refraction scaling Russian roulette undoes)
+// follow it, and the ray is counted as a reflection or a refraction. False when the BSDF gives
+// no sample: the path ends.
+bool SampleNextDirection(const BSDF &bsdf, const Vec3f &wo, const PixelSamples &ps, int bounces,
+                         RGB &beta, bool &specularBounce, float &etaScale, Vec3f *wi,
+                         RayCounters &counters);
+
 // Fills scene.lightPower (each light's power, for LightChoice::Power) once the lights and
 // shapes are built.
 void ComputeLightPower(RenderScene &scene);

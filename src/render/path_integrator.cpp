@@ -62,18 +62,11 @@ RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps, RayCounters
         if (bsdf.HasNonSpecular())
             L += beta * SampleOneLight(scene_, chooser_, si, bsdf, ps, bounces, counters);
         // Sample the BSDF for the next direction.
-        BSDFSample bs;
-        if (!bsdf.Sample_f(si.wo, ps.Get2D(VertexDim(bounces, DimBsdf)),
-                           ps.Get1D(VertexDim(bounces, DimBsdfLobe)), true, &bs))
+        Vec3f wi;
+        if (!SampleNextDirection(bsdf, si.wo, ps, bounces, beta, specularBounce, etaScale, &wi,
+                                 counters))
             break;
-        beta *= bs.weight;
-        specularBounce = bs.specular;
-        if (bs.specular && bs.transmission) etaScale *= bs.eta * bs.eta;
-        ray = si.SpawnRay(bs.wi, scene_.offset);
-        if (bs.transmission)
-            counters.refraction++;
-        else
-            counters.reflection++;
+        ray = si.SpawnRay(wi, scene_.offset);
         // Russian roulette (pbrt-v3: after the third bounce, below rrthreshold).
         if (!SurvivesRoulette(beta, etaScale, scene_.rrThreshold, bounces, ps)) break;
     }

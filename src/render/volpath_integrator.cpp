@@ -97,20 +97,13 @@ RGB VolPathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps,
                 L += beta * SampleOneLightWith(scene_, chooser_, si, BsdfScatter{bsdf}, ps, bounces,
                                                counters,
                                                MediaVisibility{scene_, info, medium, sampler});
-            BSDFSample bs;
-            if (!bsdf.Sample_f(si.wo, ps.Get2D(VertexDim(bounces, DimBsdf)),
-                               ps.Get1D(VertexDim(bounces, DimBsdfLobe)), true, &bs))
+            Vec3f wi;
+            if (!SampleNextDirection(bsdf, si.wo, ps, bounces, beta, specularBounce, etaScale, &wi,
+                                     counters))
                 break;
-            beta *= bs.weight;
-            specularBounce = bs.specular;
-            if (bs.specular && bs.transmission) etaScale *= bs.eta * bs.eta;
-            medium = MediumAfter(*info, si, bs.wi, medium);
-            ray = si.SpawnRay(bs.wi, scene_.offset);
+            medium = MediumAfter(*info, si, wi, medium);
+            ray = si.SpawnRay(wi, scene_.offset);
             from = si.p;
-            if (bs.transmission)
-                counters.refraction++;
-            else
-                counters.reflection++;
         }
         // Russian roulette (pbrt-v3: after the third bounce, below rrthreshold).
         if (!SurvivesRoulette(beta, etaScale, scene_.rrThreshold, bounces, ps)) break;
