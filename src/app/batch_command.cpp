@@ -216,7 +216,9 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
                                {"--env", &a.env},
                                {"--env-rotate", &a.envRotate},
                                {"--env-mode", &a.envMode},
-                               {"--time-limit", &a.timeLimit}})
+                               {"--time-limit", &a.timeLimit},
+                               {"--integrator", &a.integrator},
+                               {"--texture-filter", &a.textureFilter}})
         if (!value->empty()) {
             args.push_back(flag);
             args.push_back(*value);
@@ -424,6 +426,14 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args) {
         ->check(CLI::Number);
     cmd->add_option("--env-mode", args->envMode, "replace (default) or add")
         ->check(CLI::IsMember({"replace", "add"}));
+    cmd->add_option("--integrator", args->integrator,
+                    "Integrator for every scene: whitted, distribution, directlighting, path or "
+                    "volpath (as prism render; default: each scene's)")
+        ->check(CLI::IsMember({"whitted", "distribution", "directlighting", "path", "volpath"}));
+    cmd->add_option("--texture-filter", args->textureFilter,
+                    "Image-texture lookups for every scene: ewa, trilinear, bilinear, point or "
+                    "none (as prism render)")
+        ->check(CLI::IsMember({"none", "point", "bilinear", "trilinear", "ewa"}));
     cmd->add_option("--time-limit", args->timeLimit,
                     "Seconds per scene: each renders in progressive passes until its time runs "
                     "out (or --spp is reached), as prism render --time-limit")

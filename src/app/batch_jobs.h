@@ -28,7 +28,7 @@ struct BatchArgs {
     bool force = false, quiet = false;
     ConfineOption confine;  // --confine [DIR]: each scene confined to DIR or its own folder
     // Passed on to every `prism render` (empty: not given).
-    std::string exposure, toneMap, env, envRotate, envMode, timeLimit;
+    std::string exposure, toneMap, env, envRotate, envMode, timeLimit, integrator, textureFilter;
 };
 
 struct Job {

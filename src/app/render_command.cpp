@@ -396,8 +396,8 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
         ->check(CLI::Range(0, 1000));
     cmd->add_option("--integrator", args->integrator,
                     "whitted (pbrt-v3's: no glossy rays), distribution (Whitted plus glossy "
-                    "reflection and transmission), directlighting or path (pbrt-v3's); default: "
-                    "the scene's Integrator (OBJ and glTF: distribution)")
+                    "reflection and transmission), directlighting, path or volpath (pbrt-v3's); "
+                    "default: the scene's Integrator (OBJ and glTF: distribution)")
         ->check(CLI::IsMember({"whitted", "distribution", "directlighting", "path", "volpath"}));
     cmd->add_option("--glossy-samples", args->glossySamples,
                     "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "

@@ -70,7 +70,8 @@ TEST(TimeLimitCli, BatchPassesTheLimitToEachScene) {
     fs::create_directories(dir / "in");
     WriteScene(dir / "in/a.pbrt");
     WriteScene(dir / "in/b.pbrt");
-    RunResult r = RunPrism("batch in -o out --quiet --time-limit 0.5", dir);
+    RunResult r = RunPrism(
+        "batch in -o out --quiet --time-limit 0.5 --integrator path --texture-filter point", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     std::string report = test::ReadFile(dir / "out/report.json");
     EXPECT_NE(report.find("\"status\": \"ok\""), std::string::npos) << report;
@@ -81,6 +82,14 @@ TEST(TimeLimitCli, BatchPassesTheLimitToEachScene) {
     size_t at = report.find("\"render_seconds\": ");
     ASSERT_NE(at, std::string::npos) << report;
     EXPECT_GT(std::stod(report.substr(at + 18)), 0.4) << report;
+    // --integrator reaches the renders too (the path tracer's indirect light changes the
+    // image); a bad value is refused before any render.
+    ASSERT_EQ(RunPrism("batch in -o w --quiet --spp 4", dir).exitCode, 0);
+    ASSERT_EQ(RunPrism("batch in -o p --quiet --spp 4 --integrator path", dir).exitCode, 0);
+    EXPECT_NE(test::ReadFile(dir / "w/in_a.png"), test::ReadFile(dir / "p/in_a.png"));
+    r = RunPrism("batch in -o bad --quiet --integrator bdpt", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_FALSE(fs::exists(dir / "bad/in_a.png"));
 }
 
 }  // namespace
