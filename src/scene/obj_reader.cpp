@@ -33,6 +33,21 @@ std::string NormalizeTexturePath(std::string p) {
     return p;
 }
 
+// Appends the "imagemap" texture "obj:<material>:<slot>" reading `file` and returns it, for
+// the caller to add its other parameters (the reference lives until desc.textures grows).
+TextureDesc &AddImageTexture(SceneDescription &desc, const tinyobj::material_t &m,
+                             const std::string &slot, const std::string &file, bool isFloat,
+                             const FileLoc &loc) {
+    TextureDesc t;
+    t.type = "imagemap";
+    t.name = "obj:" + m.name + ":" + slot;
+    t.loc = loc;
+    t.isFloat = isFloat;
+    AddString(t.params, "filename", NormalizeTexturePath(file), loc);
+    desc.textures.push_back(std::move(t));
+    return desc.textures.back();
+}
+
 // MTL illumination models → pbrt-v3 materials:
 //   illum 4/6/7                       → "glass"  (index Ni, 1.5 when Ni <= 1; Kt = Tf if set)
 //   illum 5, or illum 3 with Ks != 0  → "mirror" (Kr = Ks)
@@ -58,14 +73,8 @@ MaterialDesc ConvertMaterial(const tinyobj::material_t &m, const FileLoc &loc,
     const int illum = m.illum;
     auto Kd = [&] {
         if (!m.diffuse_texname.empty()) {
-            TextureDesc t;
-            t.type = "imagemap";
-            t.name = "obj:" + m.name + ":map_Kd";
-            t.loc = loc;
-            t.isFloat = false;
-            AddString(t.params, "filename", NormalizeTexturePath(m.diffuse_texname), loc);
-            desc.textures.push_back(std::move(t));
-            AddTexture(ps, "Kd", desc.textures.back().name, loc);
+            AddTexture(ps, "Kd",
+                       AddImageTexture(desc, m, "map_Kd", m.diffuse_texname, false, loc).name, loc);
         } else {
             AddRGB(ps, "Kd", m.diffuse[0], m.diffuse[1], m.diffuse[2], loc);
         }
@@ -97,16 +106,10 @@ MaterialDesc ConvertMaterial(const tinyobj::material_t &m, const FileLoc &loc,
     if (!m.normal_texname.empty())
         AddString(ps, "normalmap", NormalizeTexturePath(m.normal_texname), loc);
     if (!m.bump_texname.empty()) {
-        TextureDesc t;
-        t.type = "imagemap";
-        t.name = "obj:" + m.name + ":bump";
-        t.loc = loc;
-        t.isFloat = true;
-        AddString(t.params, "filename", NormalizeTexturePath(m.bump_texname), loc);
+        TextureDesc &t = AddImageTexture(desc, m, "bump", m.bump_texname, true, loc);
         AddString(t.params, "encoding", "linear", loc);
         AddFloat(t.params, "scale", m.bump_texopt.bump_multiplier, loc);
-        desc.textures.push_back(std::move(t));
-        AddTexture(ps, "bumpmap", desc.textures.back().name, loc);
+        AddTexture(ps, "bumpmap", t.name, loc);
     }
     return md;
 }
@@ -128,15 +131,9 @@ void AddObjAlpha(const tinyobj::material_t &m, const FileLoc &loc, SceneDescript
     bool have = false;
     for (const TextureDesc &t : desc.textures) have = have || t.name == name;
     if (!have) {
-        TextureDesc t;
-        t.type = "imagemap";
-        t.name = name;
-        t.loc = loc;
-        t.isFloat = true;
-        AddString(t.params, "filename", NormalizeTexturePath(m.alpha_texname), loc);
+        TextureDesc &t = AddImageTexture(desc, m, "map_d", m.alpha_texname, true, loc);
         AddString(t.params, "encoding", "linear", loc);
         AddString(t.params, "channel", "alphaorluminance", loc);
-        desc.textures.push_back(std::move(t));
     }
     AddTexture(shapeParams, "alpha", name, loc);
     AddString(shapeParams, "alphamode", "mask", loc);
