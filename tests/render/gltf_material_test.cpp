@@ -175,21 +175,26 @@ double SampledGlossyAlbedo(const BSDF &b, const Vec3f &wo, int n = 300) {
     return sum / (double(n) * n);
 }
 
+// A material of the sampling tests: a warm base colour, clearcoat roughness 0.5.
+struct Case {
+    float metallic, roughness, transmission, clearcoat;
+};
+BSDF CaseBSDF(const Case &c) {
+    Params p;
+    p.base = RGB(0.9f, 0.7f, 0.5f);
+    p.metallic = c.metallic;
+    p.roughness = c.roughness;
+    p.transmission = c.transmission;
+    p.clearcoat = c.clearcoat;
+    p.clearcoatRoughness = 0.5f;
+    return FlatBSDF(Gltf(p));
+}
+
 TEST(GltfMaterial, ImportanceSamplingMatchesTheIntegral) {
-    struct Case {
-        float metallic, roughness, transmission, clearcoat;
-    };
     for (Case c : {Case{1, 0.3f, 0, 0}, Case{1, 0.8f, 0, 0}, Case{0, 0.5f, 0, 0},
                    Case{0, 0.6f, 1, 0}, Case{0.5f, 0.4f, 0, 1}})
         for (double to : {0.3, 1.1}) {
-            Params p;
-            p.base = RGB(0.9f, 0.7f, 0.5f);
-            p.metallic = c.metallic;
-            p.roughness = c.roughness;
-            p.transmission = c.transmission;
-            p.clearcoat = c.clearcoat;
-            p.clearcoatRoughness = 0.5f;
-            BSDF b = FlatBSDF(Gltf(p));
+            BSDF b = CaseBSDF(c);
             Vec3f wo = Dir(to, 0);
             double integral = Albedo(b, wo, 800, /*glossyOnly=*/true);
             double sampled = SampledGlossyAlbedo(b, wo);
@@ -202,20 +207,10 @@ TEST(GltfMaterial, ImportanceSamplingMatchesTheIntegral) {
 // The full sampling (diffuse and glossy lobes, GltfSampleF): f·|cos|/pdf averages to the
 // integrated albedo, and the density it reports is the one GltfPdf gives.
 TEST(GltfMaterial, FullSamplingMatchesTheIntegral) {
-    struct Case {
-        float metallic, roughness, transmission, clearcoat;
-    };
     for (Case c : {Case{0, 0.5f, 0, 0}, Case{0.5f, 0.3f, 0, 0}, Case{1, 0.7f, 0, 0},
                    Case{0, 0.6f, 0.5f, 0}, Case{0.2f, 0.4f, 0, 1}})
         for (double to : {0.3, 1.0}) {
-            Params p;
-            p.base = RGB(0.9f, 0.7f, 0.5f);
-            p.metallic = c.metallic;
-            p.roughness = c.roughness;
-            p.transmission = c.transmission;
-            p.clearcoat = c.clearcoat;
-            p.clearcoatRoughness = 0.5f;
-            BSDF b = FlatBSDF(Gltf(p));
+            BSDF b = CaseBSDF(c);
             Vec3f wo = Dir(to, 0);
             double integral = Albedo(b, wo, 800);
             const int n = 256;
