@@ -429,11 +429,11 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args) {
     cmd->add_option("--integrator", args->integrator,
                     "Integrator for every scene: whitted, distribution, directlighting, path or "
                     "volpath (as prism render; default: each scene's)")
-        ->check(CLI::IsMember({"whitted", "distribution", "directlighting", "path", "volpath"}));
+        ->check(CLI::IsMember(IntegratorNames));
     cmd->add_option("--texture-filter", args->textureFilter,
                     "Image-texture lookups for every scene: ewa, trilinear, bilinear, point or "
                     "none (as prism render)")
-        ->check(CLI::IsMember({"none", "point", "bilinear", "trilinear", "ewa"}));
+        ->check(CLI::IsMember(TextureFilterNames));
     cmd->add_option("--time-limit", args->timeLimit,
                     "Seconds per scene: each renders in progressive passes until its time runs "
                     "out (or --spp is reached), as prism render --time-limit")

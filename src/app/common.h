@@ -20,6 +20,12 @@ class Option;
 
 namespace prism {
 
+// The values of --integrator and --texture-filter (render and batch take both).
+inline const std::vector<std::string> IntegratorNames = {"whitted", "distribution",
+                                                         "directlighting", "path", "volpath"};
+inline const std::vector<std::string> TextureFilterNames = {"none", "point", "bilinear",
+                                                            "trilinear", "ewa"};
+
 // The check of an --exposure value (render and batch): "" when it is "auto" or a number of EV
 // in [-64, 64], else the message.
 std::string CheckExposureText(const std::string &text);

@@ -398,7 +398,7 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "whitted (pbrt-v3's: no glossy rays), distribution (Whitted plus glossy "
                     "reflection and transmission), directlighting, path or volpath (pbrt-v3's); "
                     "default: the scene's Integrator (OBJ and glTF: distribution)")
-        ->check(CLI::IsMember({"whitted", "distribution", "directlighting", "path", "volpath"}));
+        ->check(CLI::IsMember(IntegratorNames));
     cmd->add_option("--glossy-samples", args->glossySamples,
                     "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "
                     "(distribution integrator; overrides \"glossysamples\", default 8)")
@@ -407,7 +407,7 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "Image-texture lookups for every imagemap: ewa, trilinear, bilinear (finest "
                     "level), point, or none (bilinear, and checkerboards point-sampled: no "
                     "footprint filtering); default: each texture's \"filter\" (EWA)")
-        ->check(CLI::IsMember({"none", "point", "bilinear", "trilinear", "ewa"}));
+        ->check(CLI::IsMember(TextureFilterNames));
     cmd->add_option("--crop", args->crop,
                     "Crop window x0,x1,y0,y1 in [0,1] (like Film \"cropwindow\")");
     cmd->add_option("--precision", args->precision, "Arithmetic of the analytic intersectors")
