@@ -21,10 +21,9 @@ namespace prism {
 
 namespace {
 
-// The renderer's tile size (render/renderer.h) and sample purposes (render/renderer.cpp), so
+// The renderer's tile size (render/renderer.h; the sample purposes are render/sampler.h's), so
 // both passes trace the same rays in the same order of tiles.
 constexpr int TileSize = RenderTileSize;
-enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1 };
 
 struct PassCounters {
     uint64_t camera = 0, hits = 0, shadow = 0, occluded = 0;

@@ -21,10 +21,6 @@ constexpr const char *Names[] = {
     "primitive_id", "instance_id", "material_id", "direct", "indirect", "variance"};
 static_assert(sizeof(Names) / sizeof(Names[0]) == size_t(Aov::Count));
 
-// The sample patterns of the kernel's tile loop (render/kernel_impl.h), so the AOV pass sees
-// the beauty's camera rays.
-enum : uint32_t { FilmPurpose = 0, LensPurpose = 1, TimePurpose = 0x74696d65 };
-
 constexpr int BandRows = 8;
 
 }  // namespace

@@ -25,9 +25,6 @@ namespace prism {
 // stacks of coincident "none" surfaces without changing any real scene.
 inline constexpr int MaxPassThrough = 256;
 
-// TimePurpose: a pattern of its own, so the time dimension shifts no other.
-enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1, TimePurpose = 0x74696d65 };
-
 // Media (render/kernel_media.h): the purposes of the march offsets and of the random streams
 // of shadow rays through heterogeneous media, and the seed of such a stream for a sample.
 enum MediumPurpose : uint32_t { MediumMarchPurpose = 0x6d617263, MediumShadowPurpose = 0x73686477 };
@@ -340,9 +337,7 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
     // Ray differentials for filtered textures (pbrt-v3: scaled by max(1/8, 1/sqrt(spp))).
     const bool differentials = scene.differentials;
     const float diffScale = std::max(.125f, 1 / std::sqrt(float(spp)));
-    // One sample per pixel sits at the pixel centre, except in the later passes of a
-    // progressive render (render/progressive.h), whose pattern seeds differ.
-    const bool jitter = spp > 1 || scene.sampleSeed != 0;
+    const bool jitter = scene.JitterFilmSamples();
     const int w = tb.pMax.x - tb.pMin.x, h = tb.pMax.y - tb.pMin.y;
     const size_t n = size_t(w) * size_t(h) * spp;
     if (buf.L.size() < n) {

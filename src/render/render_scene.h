@@ -99,6 +99,9 @@ struct RenderScene {
     // Mixed into every sample pattern's seed: 0 for a render, the pass's seed for the passes
     // of a progressive render (render/progressive.h), whose samples must differ.
     uint32_t sampleSeed = 0;
+    // Whether camera samples are jittered: one sample per pixel sits at the pixel centre,
+    // except in the later passes of a progressive render, whose pattern seeds differ.
+    bool JitterFilmSamples() const { return spp > 1 || sampleSeed != 0; }
     // --stats: the film also sums each pixel's even and odd samples apart, for the noise
     // estimate (RenderStats::noiseVariance).
     bool estimateNoise = false;

@@ -21,15 +21,11 @@ namespace prism {
 template <class LiFn>
 void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, FilmTile *tile,
                        const LiFn &li) {
-    // The kernel's purposes (render/kernel_impl.h SamplePurpose): the same film positions.
-    constexpr uint32_t FilmPurpose = 0, LensPurpose = 1, TimePurpose = 0x74696d65;
     const uint32_t spp = uint32_t(scene.spp);
     const bool lens = scene.features.lens;
     const bool motion = scene.features.effects.Has(Effect::MotionBlur);
     const CMJPattern cmj(spp);
-    // One sample per pixel sits at the pixel centre, except in the later passes of a
-    // progressive render, whose seeds differ (as in the kernel).
-    const bool jitter = spp > 1 || scene.sampleSeed != 0;
+    const bool jitter = scene.JitterFilmSamples();
     // Ray differentials for filtered textures (as the kernel's tile loop).
     const float diffScale = std::max(.125f, 1 / std::sqrt(float(spp)));
     for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {

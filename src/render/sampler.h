@@ -184,6 +184,12 @@ inline Vec2f Sample02(uint32_t n, uint32_t scrambleX, uint32_t scrambleY) {
             std::min(float(y) * 0x1p-32f, 0x1.fffffep-1f)};
 }
 
+// The purposes of the camera samples' patterns: every tile loop (the kernel's, the path
+// integrators', the AOV pass, bench's ceiling) draws the same film positions, lens samples and
+// ray times from them. TimePurpose is a pattern of its own, so the time dimension shifts no
+// other.
+enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1, TimePurpose = 0x74696d65 };
+
 // Pattern seed for a pixel and a purpose (film position, light k, ...).
 inline uint32_t PatternSeed(int x, int y, uint32_t purpose, uint32_t seed = 0) {
     uint64_t h = (uint64_t(uint32_t(x)) * 0x9E3779B1u) ^ (uint64_t(uint32_t(y)) << 32);
