@@ -98,7 +98,7 @@ PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) 
                             for (int x = bx; x < ex; ++x) {
                                 Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f)
                                                    : cmj.Sample(s, PatternSeed(x, y, FilmPurpose));
-                                Vec2f pFilm(float(x) + u.x, float(y) + u.y);
+                                const Vec2f pFilm = FilmPosition(x, y, u);
                                 Vec2f uLens = scene.features.lens
                                                   ? cmj.Sample(s, PatternSeed(x, y, LensPurpose))
                                                   : Vec2f(0.5f, 0.5f);

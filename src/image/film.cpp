@@ -239,7 +239,11 @@ FilmTile Film::MakeTile(const Bounds2i &tilePixels) const {
 }
 
 void Film::ResetTile(const Bounds2i &tilePixels, FilmTile *tile, bool noise) const {
-    tile->bounds_ = TileFootprint(tilePixels);
+    ResetTileBounds(TileFootprint(tilePixels), tile, noise);
+}
+
+void Film::ResetTileBounds(const Bounds2i &bounds, FilmTile *tile, bool noise) const {
+    tile->bounds_ = bounds;
     tile->kernel_ = kernel_;
     tile->nonFinite_ = NonFiniteRecord();
     // assign() keeps the capacity: after the first tiles no allocation.
@@ -303,9 +307,48 @@ TiledFilm::TiledFilm(Vec2i fullResolution, Bounds2i cropPixels, Filter filter, i
         Bounds2i f = film_.TileFootprint(TilePixels(ty * nx_));
         ringRows_ = std::max(ringRows_, f.Height());
     }
-    ring_.resize(size_t(ringRows_) * size_t(width_));
     finalY_ = openY_ = pb.pMin.y;
-    image_ = Image(pb.Width(), pb.Height(), 3);
+}
+
+bool TiledFilm::ResolvesTiles() const {
+    const FilterKernel &k = film_.kernel_;
+    return inPlace_ && k.kind == Filter::Kind::Box && k.radius[0] == 0.5f && k.radius[1] == 0.5f &&
+           !noise_;
+}
+
+void TiledFilm::ResetTile(int t, FilmTile *tile) const {
+    const Bounds2i tb = TilePixels(t);
+    if (ResolvesTiles())
+        film_.ResetTileBounds(tb, tile, false);
+    else
+        film_.ResetTile(tb, tile, noise_);
+}
+
+void TiledFilm::ResolveTile(int t, const FilmTile &tile) {
+    PRISM_CHECK(ResolvesTiles() && next_ == 0 && tile.bounds_ == TilePixels(t));
+    {
+        std::lock_guard<std::mutex> lock(resolveMutex_);
+        if (image_.pixels.empty()) {
+            // The first tile allocates the frame, uninitialized: each tile writes its own pixels
+            // (and touches its own pages) below.
+            const Bounds2i &pb = film_.cropPixels_;
+            image_ = Image::Uninitialized(pb.Width(), pb.Height(), 3);
+            resolved_.assign(size_t(NumTiles()), 0);
+        }
+        nonFinite_.Merge(tile.nonFinite_);
+    }
+    const Bounds2i &pb = film_.cropPixels_, &tb = tile.bounds_;
+    const int w = tb.Width();
+    for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
+        const FilmPixel *src = &tile.pixels_[size_t(y - tb.pMin.y) * size_t(w)];
+        float *out =
+            &image_
+                 .pixels[(size_t(y - pb.pMin.y) * size_t(width_) + size_t(tb.pMin.x - pb.pMin.x)) *
+                         3];
+        // The ring's sum of this pixel would be 0 + the tile's sum: the same double.
+        for (int x = 0; x < w; ++x) ResolvePixel(src[x], out + 3 * size_t(x));
+    }
+    resolved_[size_t(t)] = 1;
 }
 
 Bounds2i TiledFilm::TilePixels(int t) const {
@@ -341,7 +384,13 @@ void TiledFilm::OpenRowsBelow(int y) {
 }
 
 void TiledFilm::MergeNext(const FilmTile *tile) {
-    PRISM_CHECK(next_ < NumTiles());
+    PRISM_CHECK(next_ < NumTiles() && resolved_.empty());
+    if (ring_.empty()) {
+        // The first merge allocates the ring and the zero-filled frame (rows no tile reaches,
+        // when cancelled, stay zero).
+        ring_.resize(size_t(ringRows_) * size_t(width_));
+        image_ = Image(film_.cropPixels_.Width(), film_.cropPixels_.Height(), 3);
+    }
     int t = next_++;
     // Rows above this tile row's footprint are complete: no later tile reaches them.
     Bounds2i f = film_.TileFootprint(TilePixels(t - t % nx_));
@@ -373,6 +422,20 @@ void TiledFilm::MergeNext(const FilmTile *tile) {
 }
 
 Image TiledFilm::Finish() {
+    if (!resolved_.empty()) {
+        // Tiles resolved in place: zero those not rendered (cancelled).
+        for (int t = 0; t < NumTiles(); ++t) {
+            if (resolved_[size_t(t)]) continue;
+            const Bounds2i tb = TilePixels(t), &pb = film_.cropPixels_;
+            for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
+                float *out = &image_.pixels[(size_t(y - pb.pMin.y) * size_t(width_) +
+                                             size_t(tb.pMin.x - pb.pMin.x)) *
+                                            3];
+                std::fill(out, out + 3 * size_t(tb.Width()), 0.f);
+            }
+        }
+        return std::move(image_);
+    }
     while (next_ < NumTiles()) MergeNext(nullptr);
     FinalizeRowsBelow(film_.cropPixels_.pMax.y);
     return std::move(image_);

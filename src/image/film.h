@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <vector>
@@ -150,6 +151,8 @@ class Film {
   private:
     friend class TiledFilm;
     Film(Vec2i fullResolution, Bounds2i cropPixels, Filter filter, bool allocatePixels);
+    // ResetTile with the tile's pixel bounds given (TiledFilm's tiles resolved in place).
+    void ResetTileBounds(const Bounds2i &bounds, FilmTile *tile, bool noise) const;
 
     Vec2i fullResolution_;
     Bounds2i cropPixels_;
@@ -170,10 +173,28 @@ class TiledFilm {
 
     int NumTiles() const { return nx_ * ny_; }
     Bounds2i TilePixels(int t) const;
-    // Reuses `tile`'s buffer for tile t.
-    void ResetTile(int t, FilmTile *tile) const { film_.ResetTile(TilePixels(t), tile, noise_); }
+    // Reuses `tile`'s buffer for tile t (its own pixels only, with ResolvesTiles()).
+    void ResetTile(int t, FilmTile *tile) const;
     // Tiles keep the noise halves, and merged tiles add their NoiseVariance.
     void EnableNoiseEstimate() { noise_ = true; }
+
+    // Tiles resolved in place, for pbrt's default box filter (radius 1/2) without the noise
+    // estimate: a tile then holds just its own pixels, and ResolveTile writes them to the image
+    // from the thread that rendered it, with no ring, no in-order merge and no zero-filled
+    // frame up front. The caller promises that every sample it adds to a tile lies in the
+    // pixel it was drawn for (the render's samples do: render/sampler.h FilmPosition); a
+    // sample outside the tile would be lost, where the merged tiles' one-pixel border keeps
+    // it. Each pixel is resolved from the same double sums as through MergeNext, so for such
+    // samples the image is the same, bit for bit. Returns ResolvesTiles(); call it before
+    // the first ResetTile and after EnableNoiseEstimate.
+    bool EnableResolveInPlace() {
+        inPlace_ = true;
+        return ResolvesTiles();
+    }
+    bool ResolvesTiles() const;
+    // Writes tile t's pixels to the image. Thread-safe for distinct tiles; only with
+    // ResolvesTiles(), and not mixed with MergeNext.
+    void ResolveTile(int t, const FilmTile &tile);
     double NoiseVariance() const { return noiseVariance_; }
     uint64_t NoisePixels() const { return noisePixels_; }
 
@@ -199,7 +220,11 @@ class TiledFilm {
     int finalY_ = 0, openY_ = 0;  // crop rows: [finalY_, openY_) are live in the ring
     Image image_;
     NonFiniteRecord nonFinite_;
-    bool noise_ = false;
+    // ResolveTile: which tiles were written (the rest are zeroed by Finish), and a lock for
+    // nonFinite_.
+    std::vector<uint8_t> resolved_;
+    std::mutex resolveMutex_;
+    bool noise_ = false, inPlace_ = false;
     double noiseVariance_ = 0;
     uint64_t noisePixels_ = 0;
 };

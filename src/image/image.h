@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/check.h"
@@ -10,13 +12,40 @@
 
 namespace prism {
 
+// std::allocator, except that value-initialization (vector(n), resize(n)) leaves the elements
+// uninitialized: an image whose every pixel is about to be written is allocated without
+// touching its pages (the render's film writes its tiles from the worker threads, so a frame's
+// page faults are taken in parallel, not up front on one thread).
+template <class T>
+struct NoInitAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = NoInitAllocator<U>;
+    };
+    NoInitAllocator() = default;
+    template <class U>
+    NoInitAllocator(const NoInitAllocator<U> &) noexcept {}
+    template <class U>
+    void construct(U *p) noexcept {
+        ::new (static_cast<void *>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U *p, Args &&...args) {
+        ::new (static_cast<void *>(p)) U(std::forward<Args>(args)...);
+    }
+};
+using PixelVector = std::vector<float, NoInitAllocator<float>>;
+
 struct Image {
     int width = 0, height = 0, channels = 3;
-    std::vector<float> pixels;
+    // resize(n) leaves new values uninitialized (NoInitAllocator); assign(n, v) fills.
+    PixelVector pixels;
 
     Image() = default;
     // Zero-filled image; channels is 1, 3 or 4 (gray, RGB, RGBA) by convention.
     Image(int w, int h, int c = 3);
+    // The same size with uninitialized pixels, for a writer that sets every one of them.
+    static Image Uninitialized(int w, int h, int c = 3);
 
     size_t PixelOffset(int x, int y) const {
         PRISM_DCHECK(x >= 0 && x < width && y >= 0 && y < height);

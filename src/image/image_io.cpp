@@ -183,7 +183,7 @@ Image DecodeOpened(ImageDecoder &in, const ReadImageOptions &opts,
             bytes, 0, limit);
     }
 
-    std::vector<float> buf(size_t(spec.width) * size_t(spec.height) * size_t(nRead));
+    PixelVector buf(size_t(spec.width) * size_t(spec.height) * size_t(nRead));
     try {
         in.ReadFloat(nRead, buf.data());
     } catch (const std::runtime_error &e) {

@@ -115,7 +115,7 @@ std::vector<AovLayer> RenderAovs(const RenderScene &scene, const std::vector<Aov
     const bool motion = scene.features.effects.Has(Effect::MotionBlur);
     auto cameraRay = [&](int x, int y, uint32_t s, Vec2f *pFilm) {
         Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f) : cmj.Sample(s, PatternSeed(x, y, FilmPurpose));
-        *pFilm = Vec2f(float(x) + u.x, float(y) + u.y);
+        *pFilm = FilmPosition(x, y, u);
         Vec2f uLens = lens ? cmj.Sample(s, PatternSeed(x, y, LensPurpose)) : Vec2f(0.5f, 0.5f);
         float time = motion ? cmj.Sample(s, PatternSeed(x, y, TimePurpose)).x : 0.f;
         return scene.camera->GenerateRay(*pFilm, uLens, time);

@@ -377,7 +377,7 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                     for (int x = bx; x < ex; ++x, ++m) {
                         // One sample: the pixel centre; more: correlated multi-jittered.
                         Vec2f u = jitter ? cmj.Sample(s, filmSeed[m]) : Vec2f(0.5f, 0.5f);
-                        Vec2f pFilm(float(x) + u.x, float(y) + u.y);
+                        const Vec2f pFilm = FilmPosition(x, y, u);
                         Vec2f uLens(0.5f, 0.5f);
                         float time = 0;
                         // Per-ray camera samples: the lens sample (and, with motion blur, which

@@ -98,6 +98,10 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
     std::atomic<int> nextTile{0};
     tbb::enumerable_thread_specific<RayCounters> counters;
     tbb::enumerable_thread_specific<TileScratch> scratch;
+    // pbrt's default box filter: each worker resolves its tiles straight into the image
+    // (TiledFilm::ResolvesTiles), in a tile buffer of its own; other filters merge in order.
+    const bool inPlace = film.EnableResolveInPlace();
+    tbb::enumerable_thread_specific<FilmTile> ownTile;
     std::atomic<int> done{0};
     // The kernel is chosen here, once per render: the one specialized for the scene's effects
     // (render/kernel.h), or the general one for --effects all.
@@ -128,10 +132,13 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
             // tiles finish nearly in index order and few wait for their merge.
             int t = nextTile.fetch_add(1);
             Bounds2i tb = film.TilePixels(t);
-            FilmTile *tile = merger.Acquire();
+            FilmTile *tile = inPlace ? &ownTile.local() : merger.Acquire();
             film.ResetTile(t, tile);
             renderTile(scene, tb, rc, scratch.local(), tile);
-            merger.Submit(t, tile);
+            if (inPlace)
+                film.ResolveTile(t, *tile);
+            else
+                merger.Submit(t, tile);
             done.fetch_add(1);
         }
     });
@@ -144,7 +151,7 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
         reporter.join();
         progress(1.0);
     }
-    bool cancelled = !merger.Flush();
+    bool cancelled = inPlace ? done.load() < nTiles : !merger.Flush();
     Image img = film.Finish();
     if (stats) {
         stats->renderSeconds =

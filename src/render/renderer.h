@@ -1,5 +1,7 @@
-// The tile-parallel render loop: TBB over tiles, each tile filtered into its own buffer, tiles
-// merged in a fixed order so the image is identical for any thread count.
+// The tile-parallel render loop: TBB over tiles, each tile filtered into its own buffer. With
+// pbrt's default box filter each tile is resolved straight into the image by its thread
+// (image/film.h TiledFilm::ResolvesTiles); other filters reach across tiles, which are then
+// merged in a fixed order. Either way the image is identical for any thread count.
 #pragma once
 
 #include <functional>

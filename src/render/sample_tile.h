@@ -35,7 +35,7 @@ void RenderTileSamples(const RenderScene &scene, Bounds2i tb, RayCounters &rc, F
             const uint32_t timeSeed = motion ? PatternSeed(x, y, TimePurpose, scene.sampleSeed) : 0;
             for (uint32_t s = 0; s < spp; ++s) {
                 const Vec2f u = jitter ? cmj.Sample(s, filmSeed) : Vec2f(0.5f, 0.5f);
-                const Vec2f pFilm(float(x) + u.x, float(y) + u.y);
+                const Vec2f pFilm = FilmPosition(x, y, u);
                 Vec2f uLens(0.5f, 0.5f);
                 if (lens) {
                     uLens = cmj.Sample(s, lensSeed);

@@ -190,6 +190,16 @@ inline Vec2f Sample02(uint32_t n, uint32_t scrambleX, uint32_t scrambleY) {
 // other.
 enum SamplePurpose : uint32_t { FilmPurpose = 0, LensPurpose = 1, TimePurpose = 0x74696d65 };
 
+// The film position of sample u in [0, 1)^2 of pixel (x, y). float(x) + u rounds up to x + 1
+// when u is within half an ulp of 1 (about 1 sample in 30,000 at x ~ 1000); such a sample is
+// kept on the pixel's last float, so every sample lies in the pixel it was drawn for (the
+// film resolves box-filtered tiles in place on this: image/film.h TiledFilm::ResolvesTiles).
+inline Vec2f FilmPosition(int x, int y, Vec2f u) {
+    const float px = float(x) + u.x, py = float(y) + u.y;
+    const float ex = float(x + 1), ey = float(y + 1);
+    return Vec2f(px < ex ? px : NextFloatDown(ex), py < ey ? py : NextFloatDown(ey));
+}
+
 // Pattern seed for a pixel and a purpose (film position, light k, ...).
 inline uint32_t PatternSeed(int x, int y, uint32_t purpose, uint32_t seed = 0) {
     uint64_t h = (uint64_t(uint32_t(x)) * 0x9E3779B1u) ^ (uint64_t(uint32_t(y)) << 32);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -100,6 +101,74 @@ TEST(TiledFilm, SkippedTileContributesNothing) {
     for (const Sample &s : samples)
         if (!(s.p.x < 10 && s.p.y >= 10)) kept.push_back(s);
     EXPECT_TRUE(BitEqual(RenderTiled(proto, kept, 10), RenderStreamed(proto, samples, 10, 2)));
+}
+
+// Through TiledFilm with tiles resolved in place (the render's path for the box filter), the
+// tiles resolved in a scrambled order as threads finish them; `skip` not rendered.
+Image RenderInPlace(const Film &proto, const std::vector<Sample> &samples, int tileSize,
+                    int skip = -1) {
+    TiledFilm film(proto.FullResolution(), proto.PixelBounds(), proto.GetFilter(), tileSize);
+    EXPECT_TRUE(film.EnableResolveInPlace());
+    std::vector<int> order(size_t(film.NumTiles()));
+    for (size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+    std::shuffle(order.begin(), order.end(), std::mt19937(5));
+    FilmTile tile;
+    for (int t : order) {
+        if (t == skip) continue;
+        Bounds2i tb = film.TilePixels(t);
+        film.ResetTile(t, &tile);
+        EXPECT_EQ(tile.PixelBounds(), tb);  // no border: just the tile's pixels
+        for (const Sample &s : samples)
+            if (tb.Inside({int(std::floor(s.p.x)), int(std::floor(s.p.y))}))
+                tile.AddSample(s.p, s.L);
+        film.ResolveTile(t, tile);
+    }
+    return film.Finish();
+}
+
+// Samples that lie in the pixel they were drawn for (render/sampler.h FilmPosition): those
+// that float rounding put on the next pixel's edge are dropped.
+std::vector<Sample> InPixelSamples(const Bounds2i &b, int n, uint32_t seed) {
+    std::vector<Sample> in;
+    for (const Sample &s : RandomSamples(b, n, seed)) {
+        const float fx = std::floor(s.p.x), fy = std::floor(s.p.y);
+        if (s.p.x - fx < 1 && s.p.y - fy < 1) in.push_back(s);
+    }
+    return in;
+}
+
+TEST(TiledFilm, ResolvedInPlaceBitIdenticalToMergedTiles) {
+    const Bounds2i crops[] = {Full(37, 29), {{3, 5}, {30, 26}}};
+    for (const Bounds2i &crop : crops) {
+        Film proto({37, 29}, crop, MakeBoxFilter());
+        auto samples = InPixelSamples(proto.PixelBounds(), 3, 11);
+        for (int tileSize : {1, 4, 16, 64}) {
+            Image merged = RenderStreamed(proto, samples, tileSize);
+            EXPECT_TRUE(BitEqual(RenderInPlace(proto, samples, tileSize), merged))
+                << "tile size " << tileSize;
+        }
+        // A tile not rendered (a cancelled render) is black, as when merged.
+        EXPECT_TRUE(
+            BitEqual(RenderInPlace(proto, samples, 10, 2), RenderStreamed(proto, samples, 10, 2)));
+    }
+}
+
+TEST(TiledFilm, ResolvesInPlaceOnlyForTheUnitBoxWithoutNoise) {
+    auto inPlace = [](const Filter &f, bool noise) {
+        TiledFilm film({16, 16}, Full(16, 16), f, 8);
+        if (noise) film.EnableNoiseEstimate();
+        return film.EnableResolveInPlace();
+    };
+    EXPECT_TRUE(inPlace(MakeBoxFilter(), false));
+    EXPECT_FALSE(inPlace(MakeBoxFilter(), true));
+    EXPECT_FALSE(inPlace(MakeBoxFilter(1.f), false));
+    EXPECT_FALSE(inPlace(MakeGaussianFilter(2.f), false));
+    // Without the caller's promise, tiles keep their border and merge in order.
+    TiledFilm film({16, 16}, Full(16, 16), MakeBoxFilter(), 8);
+    EXPECT_FALSE(film.ResolvesTiles());
+    FilmTile tile;
+    film.ResetTile(0, &tile);
+    EXPECT_EQ(tile.PixelBounds(), Bounds2i({0, 0}, {9, 9}));
 }
 
 TEST(Filter, Values) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -66,6 +67,27 @@ TEST(CMJPattern, EveryCountFillsItsStrata) {
     EXPECT_EQ(CMJGrid(16).m, 4u);
     EXPECT_EQ(CMJGrid(12).m, 4u);  // m (m - 1) counts keep Kensler's grid
     EXPECT_EQ(CMJGrid(23).m, 23u);
+}
+
+}  // namespace prism
+
+namespace prism {
+
+// Every film position lies in the pixel it was drawn for, even where float(x) + u rounds up
+// to x + 1; elsewhere it is that sum, unchanged.
+TEST(FilmPosition, StaysInItsPixel) {
+    const float belowOne = std::nextafter(1.f, 0.f);
+    for (int x : {0, 1, 7, 600, 1599, 4095, 100000}) {
+        for (float u : {0.f, 0.25f, 0.5f, 0.999f, 1 - 1e-6f, belowOne}) {
+            const Vec2f p = FilmPosition(x, x + 3, Vec2f(u, u));
+            EXPECT_EQ(int(std::floor(p.x)), x) << x << " " << u;
+            EXPECT_EQ(int(std::floor(p.y)), x + 3) << x << " " << u;
+            if (float(x) + u < float(x + 1)) EXPECT_EQ(p.x, float(x) + u);
+        }
+    }
+    // The case it exists for: at x = 1599, x + (1 - 2^-24) rounds to 1600.
+    EXPECT_EQ(1599.f + belowOne, 1600.f);
+    EXPECT_LT(FilmPosition(1599, 0, Vec2f(belowOne, 0)).x, 1600.f);
 }
 
 }  // namespace prism
