@@ -326,7 +326,6 @@ void Accel::SetSurfaceNeeds(int shape, unsigned needs) {
 
 SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
     const Impl::Entry &e = impl_->shapes[hit.shape];
-    SurfaceInteraction si;
     if (e.prototype) {
         // Phase 2 in instance space, then back to render space. Normals use the inverse
         // transpose and flip when the instance transform swaps handedness, exactly as if the
@@ -345,7 +344,7 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         Vec3d pI(s.p);
         Vec3d pW = w.Point(pI);
         Vec3d errW = w.PointError(pI, Vec3d(s.pError), MachineEpsilon<float>());
-        si = s;
+        SurfaceInteraction si = s;
         si.p = Vec3f(pW);
         for (int i = 0; i < 3; ++i)
             si.pError[i] = float(errW[i] + std::abs(double(si.p[i]) - pW[i]) +
@@ -366,7 +365,9 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         return si;
     }
     if (e.mesh) {
-        si = e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d, e.needs, r.time);
+        // Built in the caller's result (no zero-filled or copied SurfaceInteraction: per hit).
+        return e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d, e.needs, r.time,
+                                   hit.shape);
     } else {
         // Phase 2: the callback's object-space hit (the root routine's full-precision result),
         // or, where it was not recorded (instances), the same root routine run again on the
@@ -385,13 +386,13 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
                        .Point(pW);
             oh.pError = Abs(oh.p) * 1e-6;
         }
-        si = e.analytic->Interaction(oh, r.d, e.needs, r.time);
+        SurfaceInteraction si = e.analytic->Interaction(oh, r.d, e.needs, r.time);
         si.t = hit.t;
+        si.shape = hit.shape;
+        si.prim = hit.prim;
+        si.time = r.time;
+        return si;
     }
-    si.shape = hit.shape;
-    si.prim = hit.prim;
-    si.time = r.time;
-    return si;
 }
 
 void Accel::PrefetchHits(const RawHit *hits, int n) const {

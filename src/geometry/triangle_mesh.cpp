@@ -140,20 +140,22 @@ Vec3f TriangleMesh::GeometricNormal(size_t prim) const {
 }
 
 SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, float t,
-                                             const Vec3f &rayDir, unsigned needs,
-                                             float time) const {
+                                             const Vec3f &rayDir, unsigned needs, float time,
+                                             int shape) const {
     const uint32_t *vi = Triangle(prim);
     const bool moving = !stepPositions_.empty();
     Vec3f p0 = moving ? PositionAt(vi[0], time) : Position(vi[0]),
           p1 = moving ? PositionAt(vi[1], time) : Position(vi[1]),
           p2 = moving ? PositionAt(vi[2], time) : Position(vi[2]);
     float b0 = 1 - u - v, b1 = u, b2 = v;
-    SurfaceInteraction si;
-    si.p = p0 * b0 + p1 * b1 + p2 * b2;
+    // Every field is computed into a local and the result is built once, in the caller's
+    // object, at the end (a SurfaceInteraction declared up front is zero-filled first: 144
+    // bytes per hit, and was then copied out).
+    const Vec3f p = p0 * b0 + p1 * b1 + p2 * b2;
     // pbrt-v3 triangle.cpp: gamma7 * sum |b_i p_i|.
     // (A moving mesh's vertices are interpolated here and by Embree, each rounding: more.)
-    si.pError = (Abs(p0 * b0) + Abs(p1 * b1) + Abs(p2 * b2)) *
-                (moving ? Gamma<float>(12) : Gamma<float>(7));
+    Vec3f pError = (Abs(p0 * b0) + Abs(p1 * b1) + Abs(p2 * b2)) *
+                   (moving ? Gamma<float>(12) : Gamma<float>(7));
     // pbrt-v3 also rejects its own triangle test's hits below that test's error bound in t;
     // Embree has no such test, so a spawned ray must start beyond the error of Embree's. Its
     // test (Moeller-Trumbore in float; Pluecker when ROBUST) takes the origin's side of the
@@ -166,10 +168,10 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
         Vec3f e1 = p1 - p0, e2 = p2 - p0;
         float ng = Length(Cross(e1, e2));
         // One sqrt: sqrt is monotonic and correctly rounded, so this is the max of the lengths.
-        float reach = std::sqrt(std::max(
-            {LengthSquared(p0 - si.p), LengthSquared(p1 - si.p), LengthSquared(p2 - si.p)}));
+        float reach = std::sqrt(
+            std::max({LengthSquared(p0 - p), LengthSquared(p1 - p), LengthSquared(p2 - p)}));
         float aspect = ng > 0 ? Length(e1) * Length(e2) / ng : 1;
-        si.pError += Vec3f(1, 1, 1) * (Gamma<float>(8) * reach * (1 + aspect));
+        pError += Vec3f(1, 1, 1) * (Gamma<float>(8) * reach * (1 + aspect));
     }
 
     Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
@@ -178,49 +180,60 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
         uv1 = uv_[vi[1]];
         uv2 = uv_[vi[2]];
     }
+    Vec2f uv, uvSecond;
     if (needs & NeedUV) {
-        si.uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
-        si.uv1 = uv1_.empty() ? si.uv : uv1_[vi[0]] * b0 + uv1_[vi[1]] * b1 + uv1_[vi[2]] * b2;
+        uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
+        uvSecond = uv1_.empty() ? uv : uv1_[vi[0]] * b0 + uv1_[vi[1]] * b1 + uv1_[vi[2]] * b2;
     }
 
     Vec3f n = UnitNormal(p0, p1, p2, flipNormals_);
     if (n == Vec3f(0, 0, 0)) n = Normalize(-rayDir);  // degenerate: never NaN
+    Vec3f dpdu, dpdv;
     if (needs & NeedDpdu) {
         // Partial derivatives from the uv parameterization (pbrt-v3 Triangle::Intersect).
         Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
         Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
         double det = double(duv02.x) * duv12.y - double(duv02.y) * duv12.x;
         if (std::abs(det) < 1e-12) {
-            CoordinateSystem(n, &si.dpdu, &si.dpdv);
+            CoordinateSystem(n, &dpdu, &dpdv);
         } else {
             float invdet = float(1 / det);
-            si.dpdu = (dp02 * duv12.y - dp12 * duv02.y) * invdet;
-            si.dpdv = (dp12 * duv02.x - dp02 * duv12.x) * invdet;
+            dpdu = (dp02 * duv12.y - dp12 * duv02.y) * invdet;
+            dpdv = (dp12 * duv02.x - dp02 * duv12.x) * invdet;
         }
     }
-    si.n = si.ns = n;
+    Vec3f ns = n;
     if (!normals_.empty()) {
-        Vec3f ns = moving ? NormalAt(vi[0], time) * b0 + NormalAt(vi[1], time) * b1 +
-                                NormalAt(vi[2], time) * b2
-                          : normals_[vi[0]] * b0 + normals_[vi[1]] * b1 + normals_[vi[2]] * b2;
-        float len = Length(ns);
+        Vec3f nsi = moving ? NormalAt(vi[0], time) * b0 + NormalAt(vi[1], time) * b1 +
+                                 NormalAt(vi[2], time) * b2
+                           : normals_[vi[0]] * b0 + normals_[vi[1]] * b1 + normals_[vi[2]] * b2;
+        float len = Length(nsi);
         if (len > 0) {
-            si.ns = ns / len;
+            ns = nsi / len;
             // pbrt: with shading normals, the geometric normal is turned to agree with them.
-            si.n = FaceForward(n, si.ns);
+            n = FaceForward(n, ns);
         }
     }
     if ((needs & NeedDpdu) && !tangents_.empty()) {
         Vec3f tg = tangents_[vi[0]] * b0 + tangents_[vi[1]] * b1 + tangents_[vi[2]] * b2;
         if (LengthSquared(tg) > 0) {
-            si.dpdu = tg;
-            si.dpdv = bitangents_[vi[0]] * b0 + bitangents_[vi[1]] * b1 + bitangents_[vi[2]] * b2;
+            dpdu = tg;
+            dpdv = bitangents_[vi[0]] * b0 + bitangents_[vi[1]] * b1 + bitangents_[vi[2]] * b2;
         }
     }
-    si.wo = Normalize(-rayDir);
-    si.t = t;
-    si.prim = int(prim);
-    return si;
+    return SurfaceInteraction{.p = p,
+                              .pError = pError,
+                              .n = n,
+                              .ns = ns,
+                              .dpdu = dpdu,
+                              .dpdv = dpdv,
+                              .uv = uv,
+                              .uv1 = uvSecond,
+                              .wo = Normalize(-rayDir),
+                              .t = t,
+                              .shape = shape,
+                              .prim = int(prim),
+                              .time = time};
 }
 
 void TriangleMesh::SetTangents(const Transform &renderFromObject, const std::vector<float> &xyzw) {

@@ -95,9 +95,10 @@ class TriangleMesh {
     Vec3f GeometricNormal(size_t prim) const;
     // Phase 2 for a hit with Embree barycentrics (u, v) of vertices 1 and 2; uv and dpdu/dpdv
     // only as `needs` (SurfaceNeeds) asks.
-    // `time` (Ray::time) matters only for a moving mesh.
+    // `time` (Ray::time) matters only for a moving mesh; it and `shape` (the render scene's
+    // index of this mesh) are stored in the result, so that Accel returns it as built.
     SurfaceInteraction Interaction(size_t prim, float u, float v, float t, const Vec3f &rayDir,
-                                   unsigned needs = NeedAll, float time = 0) const;
+                                   unsigned needs = NeedAll, float time = 0, int shape = -1) const;
 
   private:
     // Vertex i (and its shading normal) where a moving mesh is at `time`.
