@@ -172,6 +172,26 @@ void FilmTile::AddSample(Vec2f pFilm, const RGB &L) {
     }
 }
 
+void FilmTile::AddPixelSamples(Vec2i p, const RGB *L, int n) {
+    PRISM_DCHECK(UnitBox());
+    if (p.x < bounds_.pMin.x || p.x >= bounds_.pMax.x || p.y < bounds_.pMin.y ||
+        p.y >= bounds_.pMax.y)
+        return;
+    FilmPixel &px = pixels_[size_t(p.y - bounds_.pMin.y) * size_t(bounds_.Width()) +
+                            size_t(p.x - bounds_.pMin.x)];
+    for (int i = 0; i < n; ++i) {
+        RGB v = L[i];
+        if (!v.IsFinite()) {
+            nonFinite_.Add(p);
+            v = RGB(0.f);
+        }
+        px.r += double(v.r);
+        px.g += double(v.g);
+        px.b += double(v.b);
+        px.weight += 1.0;
+    }
+}
+
 void FilmTile::AddNoiseSample(Vec2f pFilm, const RGB &v) {
     double cx = ClampCoord(pFilm.x), cy = ClampCoord(pFilm.y);
     int x = int(std::floor(cx)), y = int(std::floor(cy));

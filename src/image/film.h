@@ -82,6 +82,15 @@ class FilmTile {
     // default box filter a sample lands in exactly the one pixel containing it). Radiance with
     // a NaN/Inf component is counted and added as 0; its filter weight still counts.
     void AddSample(Vec2f pFilm, const RGB &L);
+    // pbrt's default box filter (radius 1/2) without the noise estimate: samples then go to
+    // the one pixel that contains them with weight 1.
+    bool UnitBox() const {
+        return kernel_.kind == Filter::Kind::Box && kernel_.radius[0] == 0.5f &&
+               kernel_.radius[1] == 0.5f && !noise_;
+    }
+    // With UnitBox(): adds n samples that all lie in pixel p (render/sampler.h FilmPosition
+    // keeps them there), in order: the same sums as AddSample of each, without locating each.
+    void AddPixelSamples(Vec2i p, const RGB *L, int n);
 
     // Pixels this tile accumulates into (within the film's crop window).
     const Bounds2i &PixelBounds() const { return bounds_; }

@@ -413,12 +413,19 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
             }
         }
     }
+    // pbrt's default box: each pixel's samples at once (they lie in it: FilmPosition).
+    const bool unitBox = tile->UnitBox();
     for (int y = tb.pMin.y; y < tb.pMax.y; ++y)
-        for (int x = tb.pMin.x; x < tb.pMax.x; ++x)
+        for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
+            if (unitBox) {
+                tile->AddPixelSamples({x, y}, &buf.L[index(x, y, 0)], int(spp));
+                continue;
+            }
             for (uint32_t s = 0; s < spp; ++s) {
                 size_t i = index(x, y, s);
                 tile->AddSample(buf.pFilm[i], buf.L[i]);
             }
+        }
 }
 
 }  // namespace prism

@@ -171,6 +171,33 @@ TEST(TiledFilm, ResolvesInPlaceOnlyForTheUnitBoxWithoutNoise) {
     EXPECT_EQ(tile.PixelBounds(), Bounds2i({0, 0}, {9, 9}));
 }
 
+// A pixel's samples added at once (the render's path for the box filter) sum exactly as
+// when added one by one, NaN samples included (counted, added as 0, with their weight).
+TEST(FilmTile, AddPixelSamplesMatchesAddSample) {
+    Film film({8, 8}, Full(8, 8), MakeBoxFilter());
+    auto samples = InPixelSamples(Full(8, 8), 5, 13);
+    samples[7].L = RGB(std::nanf(""), 1.f, 2.f);
+    FilmTile one = film.MakeTile(Full(8, 8)), all = film.MakeTile(Full(8, 8));
+    ASSERT_TRUE(all.UnitBox());
+    for (const Sample &s : samples) one.AddSample(s.p, s.L);
+    for (size_t i = 0; i < samples.size();) {
+        const Vec2i p(int(std::floor(samples[i].p.x)), int(std::floor(samples[i].p.y)));
+        std::vector<RGB> L;
+        for (; i < samples.size() && int(std::floor(samples[i].p.x)) == p.x &&
+               int(std::floor(samples[i].p.y)) == p.y;
+             ++i)
+            L.push_back(samples[i].L);
+        all.AddPixelSamples(p, L.data(), int(L.size()));
+    }
+    ASSERT_EQ(one.Sums().size(), all.Sums().size());
+    EXPECT_EQ(
+        std::memcmp(one.Sums().data(), all.Sums().data(), one.Sums().size() * sizeof(FilmPixel)),
+        0);
+    EXPECT_EQ(all.NonFinite().count, 1u);
+    EXPECT_EQ(one.NonFinite().firstPixel, all.NonFinite().firstPixel);
+    EXPECT_FALSE(Film({8, 8}, Full(8, 8), MakeGaussianFilter()).MakeTile(Full(8, 8)).UnitBox());
+}
+
 TEST(Filter, Values) {
     Filter box = MakeBoxFilter();
     EXPECT_EQ(box.Evaluate(0.f, 0.f), 1.f);
