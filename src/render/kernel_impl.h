@@ -351,6 +351,7 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
     RayDifferential diffs[16];
     RawHit hits[16];
     size_t slot[16];
+    int pixelX[16], pixelY[16];
     uint32_t filmSeed[16], lensSeed[16], timeSeed[16];
     const CMJPattern cmj(spp);
     for (int by = tb.pMin.y; by < tb.pMax.y; by += PacketH) {
@@ -394,6 +395,8 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                             diffs[m] = scene.camera->GenerateDifferential(rays[m], pFilm, uLens,
                                                                           time, diffScale);
                         slot[m] = index(x, y, s);
+                        pixelX[m] = x;
+                        pixelY[m] = y;
                         buf.pFilm[slot[m]] = pFilm;
                     }
                 }
@@ -401,7 +404,7 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                 scene.accel->PrefetchHits(hits, m);
                 rc.camera += uint64_t(m);
                 for (int i = 0; i < m; ++i) {
-                    SampleContext sc{bx + i % (ex - bx), by + i / (ex - bx), s, spp};
+                    SampleContext sc{pixelX[i], pixelY[i], s, spp};
                     if (differentials) sc.diff = &diffs[i];
                     RGB L = kernel.LiCamera(rays[i], hits[i], rc, sc) * scene.filmScale;
                     if (scene.maxSampleLuminance < Infinity && L.IsFinite()) {
