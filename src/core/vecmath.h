@@ -181,6 +181,22 @@ constexpr T Gamma(int n) {
     return (n * MachineEpsilon<T>()) / (1 - n * MachineEpsilon<T>());
 }
 
+// float(v), kept as a float: the optimizer cannot fold double(OpaqueFloat(v)) back into v.
+// GCC 12 (Debian 12's compiler) does that at -O2 and above when its SLP vectorizer packs such
+// conversions in pairs (cvtpd2ps with no cvtps2pd back), so |double(float(v)) - v|, the
+// rounding error an error bound adds, came out as 0 (tests/geometry/shape_test.cpp checks the
+// bound of an analytic hit point).
+inline float OpaqueFloat(double v) {
+    float f = float(v);
+#if defined(__GNUC__)
+    __asm__("" : "+g"(f));
+#endif
+    return f;
+}
+inline Vec3f OpaqueFloat(const Vec3d &v) {
+    return {OpaqueFloat(v.x), OpaqueFloat(v.y), OpaqueFloat(v.z)};
+}
+
 // std::nextafter(v, +-Infinity) without the library call (three per spawned ray): the
 // neighbouring float by one step of its bit pattern; both zeros step to the smallest denormal
 // of the direction; infinities toward themselves and NaN stay.

@@ -345,7 +345,7 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         Vec3d pW = w.Point(pI);
         Vec3d errW = w.PointError(pI, Vec3d(s.pError), MachineEpsilon<float>());
         SurfaceInteraction si = s;
-        si.p = Vec3f(pW);
+        si.p = OpaqueFloat(pW);  // kept a float for the rounding term below (vecmath.h)
         for (int i = 0; i < 3; ++i)
             si.pError[i] = float(errW[i] + std::abs(double(si.p[i]) - pW[i]) +
                                  std::abs(pW[i]) * MachineEpsilon<float>());
@@ -372,11 +372,11 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         // Phase 2: the callback's object-space hit (the root routine's full-precision result),
         // or, where it was not recorded (instances), the same root routine run again on the
         // winning shape: it finds the same root, as it did for the same ray in the callback.
+        if (hit.hasObject)  // (the result's t is the float of the recorded t: hit.t)
+            return e.analytic->Interaction(hit.object, r.d, e.needs, r.time, hit.shape, hit.prim);
         ObjectHit oh;
-        if (hit.hasObject) {
-            oh = hit.object;
-        } else if (!e.analytic->IntersectAt(r.o, r.d, r.tMin, r.tMax, impl_->options.precision,
-                                            r.time, &oh)) {
+        if (!e.analytic->IntersectAt(r.o, r.d, r.tMin, r.tMax, impl_->options.precision, r.time,
+                                     &oh)) {
             // Cannot happen for a deterministic routine; fall back to the float t.
             oh.t = hit.t;
             Vec3d pW = Vec3d(r.o) + Vec3d(r.d) * double(hit.t);
@@ -386,11 +386,9 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
                        .Point(pW);
             oh.pError = Abs(oh.p) * 1e-6;
         }
-        SurfaceInteraction si = e.analytic->Interaction(oh, r.d, e.needs, r.time);
+        SurfaceInteraction si =
+            e.analytic->Interaction(oh, r.d, e.needs, r.time, hit.shape, hit.prim);
         si.t = hit.t;
-        si.shape = hit.shape;
-        si.prim = hit.prim;
-        si.time = r.time;
         return si;
     }
 }

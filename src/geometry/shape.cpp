@@ -105,37 +105,65 @@ float AnalyticShape::Pdf(const Vec3f &ref, const Vec3f &p, const Vec3f &n) const
     return std::isfinite(pdf) ? float(pdf) : 0.f;
 }
 
-SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir,
-                                              unsigned needs, float time) const {
-    SurfaceInteraction si;
-    std::optional<Transform> moved;  // (static shapes construct nothing here)
-    if (motion_) moved = motion_->Interpolate(double(time));
-    const Transform &rfo = motion_ ? *moved : renderFromObject_;
-    LocalGeometry g;
-    if (needs == NeedNone)
-        g.n = GeometricNormal(hit);
-    else
-        g = Geometry(hit);
-    Vec3d pW = rfo.Point(hit.p);
-    Vec3d errW = rfo.PointError(hit.p, hit.pError, MachineEpsilon<double>());
-    si.p = Vec3f(pW);
-    // Rounding the double world point to float adds up to half an ulp per component; bound it
-    // by the exact difference plus one float ulp of headroom.
-    for (int i = 0; i < 3; ++i)
-        si.pError[i] = float(errW[i] + std::abs(double(si.p[i]) - pW[i]) +
-                             std::abs(pW[i]) * MachineEpsilon<float>());
-    Vec3d n = Normalize(rfo.Normal(g.n));
-    if (flipNormals_) n = -n;
-    si.n = si.ns = Vec3f(n);
-    if (needs & NeedDpdu) {
-        si.dpdu = Vec3f(rfo.Vector(g.dpdu));
-        si.dpdv = Vec3f(rfo.Vector(g.dpdv));
+namespace {
+
+// AnalyticShape::Interaction with the render-from-object transform at the ray's time. The
+// result is built once, at the end, in the caller's object (a SurfaceInteraction declared up
+// front is zero-filled first, 144 bytes per hit, as is a LocalGeometry).
+SurfaceInteraction ShapeInteraction(const AnalyticShape &shape, const Transform &rfo,
+                                    const ObjectHit &hit, const Vec3f &rayDir, unsigned needs,
+                                    float time, int shapeIndex, int prim, bool flip) {
+    Vec3d gn;
+    Vec3f dpdu, dpdv;
+    Vec2f uv;
+    if (needs == NeedNone) {
+        gn = shape.GeometricNormal(hit);
+    } else {
+        const LocalGeometry g = shape.Geometry(hit);
+        gn = g.n;
+        if (needs & NeedDpdu) {
+            dpdu = Vec3f(rfo.Vector(g.dpdu));
+            dpdv = Vec3f(rfo.Vector(g.dpdv));
+        }
+        if (needs & NeedUV) uv = Vec2f(float(g.uv.x), float(g.uv.y));
     }
-    if (needs & NeedUV) si.uv = si.uv1 = Vec2f(float(g.uv.x), float(g.uv.y));
-    si.wo = Normalize(-rayDir);
-    si.t = float(hit.t);
-    si.instanceShape = hit.part;  // -1 except for CSG operands
-    return si;
+    const Vec3d pW = rfo.Point(hit.p);
+    const Vec3d errW = rfo.PointError(hit.p, hit.pError, MachineEpsilon<double>());
+    const Vec3f p = OpaqueFloat(pW);
+    // Rounding the double world point to float adds up to half an ulp per component; bound it
+    // by the exact difference plus one float ulp of headroom (OpaqueFloat: see vecmath.h).
+    const Vec3f pError(
+        float(errW.x + std::abs(double(p.x) - pW.x) + std::abs(pW.x) * MachineEpsilon<float>()),
+        float(errW.y + std::abs(double(p.y) - pW.y) + std::abs(pW.y) * MachineEpsilon<float>()),
+        float(errW.z + std::abs(double(p.z) - pW.z) + std::abs(pW.z) * MachineEpsilon<float>()));
+    Vec3d n = Normalize(rfo.Normal(gn));
+    if (flip) n = -n;
+    return SurfaceInteraction{.p = p,
+                              .pError = pError,
+                              .n = Vec3f(n),
+                              .ns = Vec3f(n),
+                              .dpdu = dpdu,
+                              .dpdv = dpdv,
+                              .uv = uv,
+                              .uv1 = uv,
+                              .wo = Normalize(-rayDir),
+                              .t = float(hit.t),
+                              .shape = shapeIndex,
+                              .prim = prim,
+                              .instanceShape = hit.part,  // -1 except for CSG operands
+                              .time = time};
+}
+
+}  // namespace
+
+SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir,
+                                              unsigned needs, float time, int shape,
+                                              int prim) const {
+    if (motion_)
+        return ShapeInteraction(*this, motion_->Interpolate(double(time)), hit, rayDir, needs, time,
+                                shape, prim, flipNormals_);
+    return ShapeInteraction(*this, renderFromObject_, hit, rayDir, needs, time, shape, prim,
+                            flipNormals_);
 }
 
 }  // namespace prism

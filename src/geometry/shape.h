@@ -125,9 +125,11 @@ class AnalyticShape {
     Bounds3f RenderBounds() const;
     // Phase 2: the full render-space interaction for a hit.
     // `needs` (SurfaceNeeds) says whether uv and dpdu/dpdv are computed; the rest always is.
-    // `time` (Ray::time) matters only for a moving shape.
+    // `time` (Ray::time) matters only for a moving shape; it, `shape` and `prim` (the render
+    // scene's indices) are stored in the result, so that Accel returns it as built.
     SurfaceInteraction Interaction(const ObjectHit &hit, const Vec3f &rayDir,
-                                   unsigned needs = NeedAll, float time = 0) const;
+                                   unsigned needs = NeedAll, float time = 0, int shape = -1,
+                                   int prim = 0) const;
 
     // Motion blur: the render-from-object transform over the shutter, its times fractions of
     // the shutter interval (0 at shutteropen, 1 at shutterclose; Ray::time), its value at time

@@ -348,3 +348,29 @@ TEST(Sphere, InteractionWithoutSurfaceDataKeepsPointAndNormal) {
 
 }  // namespace
 }  // namespace prism
+
+namespace prism {
+
+// A hit point's error bound covers the rounding of its double world-space position to float.
+// GCC 12's SLP vectorizer folded that rounding away in the loop this bound was computed in
+// before (core/vecmath.h OpaqueFloat): on this sphere the bound missed up to half a float ulp
+// in y and z, which this test would have caught.
+TEST(Sphere, HitErrorCoversTheRoundingToFloat) {
+    const Transform rfo = Translate({0.1, 2.0000001, 13.146825427662719});
+    Sphere sphere(rfo, false, 1, -1, 1, 360);
+    for (const Vec3d &p : {Vec3d(0, 0, 1), Vec3d(0.6, 0, 0.8), Vec3d(0, -0.28, 0.96)}) {
+        ObjectHit hit;
+        hit.t = 1;
+        hit.p = p;
+        const SurfaceInteraction si = sphere.Interaction(hit, Vec3f(0, 0, -1), NeedNone);
+        const Vec3d pW = rfo.Point(p);
+        for (int i = 0; i < 3; ++i) {
+            const double rounding = std::abs(double(si.p[i]) - pW[i]);
+            EXPECT_GE(double(si.pError[i]), rounding) << "component " << i;
+        }
+        // The case of the bug: y and z of the world point are not floats.
+        EXPECT_NE(double(si.p.y), pW.y);
+    }
+}
+
+}  // namespace prism
