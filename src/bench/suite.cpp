@@ -129,6 +129,7 @@ int RunSuite(const SuiteOptions &options) {
     }
     if (options.quick) {
         ctx.povRuns = 1;
+        ctx.scalingRuns = 1;
         ctx.startupRuns = 5;
         ctx.memoryRuns = 1;
         ctx.ceilingRepeats = 1;

@@ -14,7 +14,7 @@ struct SuiteContext {
     std::string tmp;        // scratch directory, removed at the end
     std::string sharedDir;  // ../shared
     std::string sourceDir;  // the source tree (scenes/whitted.pbrt)
-    int povRuns = 5, startupRuns = 20, memoryRuns = 3, ceilingRepeats = 3;
+    int povRuns = 5, scalingRuns = 7, startupRuns = 20, memoryRuns = 3, ceilingRepeats = 3;
     std::string povRes = "800x600";  // POV-Ray comparison and thread scaling
     std::string markdown;            // the section being measured (RunSuite collects them)
     std::vector<BenchMetric> metrics;
