@@ -311,6 +311,12 @@ BxDFLobes &BSDF::AddPart(const RGB &weight) {
     return *new (&parts_[n_++]) BxDFLobes();
 }
 
+void BSDF::AddPart(const RGB &weight, const BxDFLobes &lobes) {
+    PRISM_CHECK(n_ < MaxParts);
+    new (&weight_[n_]) RGB(weight);
+    new (&parts_[n_++]) BxDFLobes(lobes);
+}
+
 RGB BSDF::f(const Vec3f &woW, const Vec3f &wiW) const {
     Vec3f wo = ToLocal(woW), wi = ToLocal(wiW);
     if (wo.z == 0) return RGB(0);

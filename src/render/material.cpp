@@ -190,7 +190,7 @@ void Material::Prepare() {
 
 void Material::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const {
     if (fixed_) {
-        for (const FixedPart &fp : fixedParts_) b.AddPart(weight * fp.weight) = fp.lobes;
+        for (const FixedPart &fp : fixedParts_) b.AddPart(weight * fp.weight, fp.lobes);
         return;
     }
     if (kind == Kind::Mix) {
