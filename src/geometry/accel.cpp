@@ -345,10 +345,7 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
         Vec3d pW = w.Point(pI);
         Vec3d errW = w.PointError(pI, Vec3d(s.pError), MachineEpsilon<float>());
         SurfaceInteraction si = s;
-        si.p = OpaqueFloat(pW);  // kept a float for the rounding term below (vecmath.h)
-        for (int i = 0; i < 3; ++i)
-            si.pError[i] = float(errW[i] + std::abs(double(si.p[i]) - pW[i]) +
-                                 std::abs(pW[i]) * MachineEpsilon<float>());
+        RoundHitPoint(pW, errW, &si.p, &si.pError);
         bool flip = w.SwapsHandedness();
         Vec3f n = Vec3f(Normalize(w.Normal(Vec3d(s.n))));
         Vec3f ns = Vec3f(Normalize(w.Normal(Vec3d(s.ns))));

@@ -1,6 +1,7 @@
 // The full description of a closest hit, computed once after traversal (phase 2).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "core/vecmath.h"
@@ -14,6 +15,18 @@ namespace prism {
 // zero dpdu makes BSDF::SetFrame fall back to CoordinateSystem(ns), which only rotates the
 // frame about ns and so changes no isotropic BSDF beyond float rounding.
 enum SurfaceNeeds : unsigned { NeedNone = 0, NeedUV = 1, NeedDpdu = 2, NeedAll = 3 };
+
+// A render-space hit point computed in double, as float: *p, and *pError = errW (the double
+// computation's bound) plus the exact rounding to float plus one float ulp of headroom.
+// OpaqueFloat keeps the rounding the second term measures (core/vecmath.h).
+inline void RoundHitPoint(const Vec3d &pW, const Vec3d &errW, Vec3f *p, Vec3f *pError) {
+    *p = OpaqueFloat(pW);
+    auto bound = [](double w, double err, float f) {
+        return float(err + std::abs(double(f) - w) + std::abs(w) * MachineEpsilon<float>());
+    };
+    *pError =
+        Vec3f(bound(pW.x, errW.x, p->x), bound(pW.y, errW.y, p->y), bound(pW.z, errW.z, p->z));
+}
 
 struct SurfaceInteraction {
     Vec3f p;                 // render-space hit point

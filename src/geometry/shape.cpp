@@ -129,13 +129,8 @@ SurfaceInteraction ShapeInteraction(const AnalyticShape &shape, const Transform 
     }
     const Vec3d pW = rfo.Point(hit.p);
     const Vec3d errW = rfo.PointError(hit.p, hit.pError, MachineEpsilon<double>());
-    const Vec3f p = OpaqueFloat(pW);
-    // Rounding the double world point to float adds up to half an ulp per component; bound it
-    // by the exact difference plus one float ulp of headroom (OpaqueFloat: see vecmath.h).
-    const Vec3f pError(
-        float(errW.x + std::abs(double(p.x) - pW.x) + std::abs(pW.x) * MachineEpsilon<float>()),
-        float(errW.y + std::abs(double(p.y) - pW.y) + std::abs(pW.y) * MachineEpsilon<float>()),
-        float(errW.z + std::abs(double(p.z) - pW.z) + std::abs(pW.z) * MachineEpsilon<float>()));
+    Vec3f p, pError;
+    RoundHitPoint(pW, errW, &p, &pError);
     Vec3d n = Normalize(rfo.Normal(gn));
     if (flip) n = -n;
     return SurfaceInteraction{.p = p,
