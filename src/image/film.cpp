@@ -121,8 +121,7 @@ void FilmTile::AddSample(Vec2f pFilm, const RGB &L) {
         v = RGB(0.f);
     }
     if (noise_) AddNoiseSample(pFilm, v);
-    if (kernel_.kind == Filter::Kind::Box && kernel_.radius[0] == 0.5f &&
-        kernel_.radius[1] == 0.5f) {
+    if (kernel_.IsUnitBox()) {
         // pbrt's default box (radius 1/2): the one pixel x with x <= p < x + 1, x = floor(p),
         // with weight 1 (below, x0 == x1 == floor(p) exactly in double and |x + 1/2 - p| <= 1/2):
         // the same sums without the weight tables and their calls.
@@ -132,12 +131,7 @@ void FilmTile::AddSample(Vec2f pFilm, const RGB &L) {
         y -= double(y) > cy;
         if (x < bounds_.pMin.x || x >= bounds_.pMax.x || y < bounds_.pMin.y || y >= bounds_.pMax.y)
             return;
-        FilmPixel &p = pixels_[size_t(y - bounds_.pMin.y) * size_t(bounds_.Width()) +
-                               size_t(x - bounds_.pMin.x)];
-        p.r += double(v.r);
-        p.g += double(v.g);
-        p.b += double(v.b);
-        p.weight += 1.0;
+        AddToPixel({x, y}, v);
         return;
     }
     // Pixel x receives the sample if x + 0.5 - r <= p < x + 0.5 + r, i.e. x in
@@ -177,18 +171,13 @@ void FilmTile::AddPixelSamples(Vec2i p, const RGB *L, int n) {
     if (p.x < bounds_.pMin.x || p.x >= bounds_.pMax.x || p.y < bounds_.pMin.y ||
         p.y >= bounds_.pMax.y)
         return;
-    FilmPixel &px = pixels_[size_t(p.y - bounds_.pMin.y) * size_t(bounds_.Width()) +
-                            size_t(p.x - bounds_.pMin.x)];
     for (int i = 0; i < n; ++i) {
         RGB v = L[i];
         if (!v.IsFinite()) {
             nonFinite_.Add(p);
             v = RGB(0.f);
         }
-        px.r += double(v.r);
-        px.g += double(v.g);
-        px.b += double(v.b);
-        px.weight += 1.0;
+        AddToPixel(p, v);
     }
 }
 
@@ -330,11 +319,7 @@ TiledFilm::TiledFilm(Vec2i fullResolution, Bounds2i cropPixels, Filter filter, i
     finalY_ = openY_ = pb.pMin.y;
 }
 
-bool TiledFilm::ResolvesTiles() const {
-    const FilterKernel &k = film_.kernel_;
-    return inPlace_ && k.kind == Filter::Kind::Box && k.radius[0] == 0.5f && k.radius[1] == 0.5f &&
-           !noise_;
-}
+bool TiledFilm::ResolvesTiles() const { return inPlace_ && film_.kernel_.IsUnitBox() && !noise_; }
 
 void TiledFilm::ResetTile(int t, FilmTile *tile) const {
     const Bounds2i tb = TilePixels(t);
@@ -357,14 +342,11 @@ void TiledFilm::ResolveTile(int t, const FilmTile &tile) {
         }
         nonFinite_.Merge(tile.nonFinite_);
     }
-    const Bounds2i &pb = film_.cropPixels_, &tb = tile.bounds_;
+    const Bounds2i &tb = tile.bounds_;
     const int w = tb.Width();
     for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
         const FilmPixel *src = &tile.pixels_[size_t(y - tb.pMin.y) * size_t(w)];
-        float *out =
-            &image_
-                 .pixels[(size_t(y - pb.pMin.y) * size_t(width_) + size_t(tb.pMin.x - pb.pMin.x)) *
-                         3];
+        float *out = ImagePixel(tb.pMin.x, y);
         // The ring's sum of this pixel would be 0 + the tile's sum: the same double.
         for (int x = 0; x < w; ++x) ResolvePixel(src[x], out + 3 * size_t(x));
     }
@@ -382,10 +364,9 @@ Bounds2i TiledFilm::TilePixels(int t) const {
 }
 
 void TiledFilm::FinalizeRowsBelow(int y) {
-    const Bounds2i &pb = film_.cropPixels_;
     for (; finalY_ < y; ++finalY_) {
         const FilmPixel *row = Row(finalY_);
-        float *out = &image_.pixels[size_t(finalY_ - pb.pMin.y) * size_t(width_) * 3];
+        float *out = ImagePixel(film_.cropPixels_.pMin.x, finalY_);
         // Rows no tile reached (only possible when cancelled) were never opened: zero.
         if (finalY_ >= openY_) {
             std::fill(out, out + size_t(width_) * 3, 0.f);
@@ -446,11 +427,9 @@ Image TiledFilm::Finish() {
         // Tiles resolved in place: zero those not rendered (cancelled).
         for (int t = 0; t < NumTiles(); ++t) {
             if (resolved_[size_t(t)]) continue;
-            const Bounds2i tb = TilePixels(t), &pb = film_.cropPixels_;
+            const Bounds2i tb = TilePixels(t);
             for (int y = tb.pMin.y; y < tb.pMax.y; ++y) {
-                float *out = &image_.pixels[(size_t(y - pb.pMin.y) * size_t(width_) +
-                                             size_t(tb.pMin.x - pb.pMin.x)) *
-                                            3];
+                float *out = ImagePixel(tb.pMin.x, y);
                 std::fill(out, out + 3 * size_t(tb.Width()), 0.f);
             }
         }

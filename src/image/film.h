@@ -46,6 +46,10 @@ struct FilterKernel {
     explicit FilterKernel(const Filter &f);
     // Zero for |d| > radius[axis].
     float Evaluate1D(int axis, float d) const;
+    // pbrt's default box (radius 1/2): a sample goes to the one pixel containing it, weight 1.
+    bool IsUnitBox() const {
+        return kind == Filter::Kind::Box && radius[0] == 0.5f && radius[1] == 0.5f;
+    }
 };
 
 // Sums of filter-weighted radiance in double precision: with many samples per pixel this keeps
@@ -84,10 +88,7 @@ class FilmTile {
     void AddSample(Vec2f pFilm, const RGB &L);
     // pbrt's default box filter (radius 1/2) without the noise estimate: samples then go to
     // the one pixel that contains them with weight 1.
-    bool UnitBox() const {
-        return kernel_.kind == Filter::Kind::Box && kernel_.radius[0] == 0.5f &&
-               kernel_.radius[1] == 0.5f && !noise_;
-    }
+    bool UnitBox() const { return kernel_.IsUnitBox() && !noise_; }
     // With UnitBox(): adds n samples that all lie in pixel p (render/sampler.h FilmPosition
     // keeps them there), in order: the same sums as AddSample of each, without locating each.
     void AddPixelSamples(Vec2i p, const RGB *L, int n);
@@ -110,6 +111,15 @@ class FilmTile {
 
   private:
     void AddNoiseSample(Vec2f pFilm, const RGB &v);
+    // The unit box's sum for pixel p of bounds_: v (finite) with weight 1.
+    void AddToPixel(Vec2i p, const RGB &v) {
+        FilmPixel &px = pixels_[size_t(p.y - bounds_.pMin.y) * size_t(bounds_.Width()) +
+                                size_t(p.x - bounds_.pMin.x)];
+        px.r += double(v.r);
+        px.g += double(v.g);
+        px.b += double(v.b);
+        px.weight += 1.0;
+    }
 
     friend class Film;
     friend class TiledFilm;
@@ -218,6 +228,11 @@ class TiledFilm {
 
   private:
     FilmPixel *Row(int y) { return &ring_[size_t(y % ringRows_) * size_t(width_)]; }
+    // The image's pixel (x, y) in crop coordinates: its 3 floats.
+    float *ImagePixel(int x, int y) {
+        const Bounds2i &pb = film_.cropPixels_;
+        return &image_.pixels[(size_t(y - pb.pMin.y) * size_t(width_) + size_t(x - pb.pMin.x)) * 3];
+    }
     void FinalizeRowsBelow(int y);  // writes image rows [finalY_, y) and frees their ring rows
     void OpenRowsBelow(int y);      // zeroes ring rows [openY_, y)
 
