@@ -340,10 +340,11 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
     const bool jitter = scene.JitterFilmSamples();
     const int w = tb.pMax.x - tb.pMin.x, h = tb.pMax.y - tb.pMin.y;
     const size_t n = size_t(w) * size_t(h) * spp;
-    if (buf.L.size() < n) {
-        buf.L.resize(n);
-        buf.pFilm.resize(n);
-    }
+    // pbrt's default box: each pixel's samples go to it at once (they lie in it: FilmPosition),
+    // so their film positions are not kept.
+    const bool unitBox = tile->UnitBox();
+    if (buf.L.size() < n) buf.L.resize(n);
+    if (!unitBox && buf.pFilm.size() < n) buf.pFilm.resize(n);
     auto index = [&](int x, int y, uint32_t s) {
         return (size_t(y - tb.pMin.y) * size_t(w) + size_t(x - tb.pMin.x)) * spp + s;
     };
@@ -397,7 +398,7 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
                         slot[m] = index(x, y, s);
                         pixelX[m] = x;
                         pixelY[m] = y;
-                        buf.pFilm[slot[m]] = pFilm;
+                        if (!unitBox) buf.pFilm[slot[m]] = pFilm;
                     }
                 }
                 scene.accel->IntersectPacket(rays, m, hits);
@@ -416,8 +417,6 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
             }
         }
     }
-    // pbrt's default box: each pixel's samples at once (they lie in it: FilmPosition).
-    const bool unitBox = tile->UnitBox();
     for (int y = tb.pMin.y; y < tb.pMax.y; ++y)
         for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
             if (unitBox) {
