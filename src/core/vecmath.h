@@ -184,7 +184,7 @@ constexpr T Gamma(int n) {
 // float(v), kept as a float: the optimizer cannot fold double(OpaqueFloat(v)) back into v.
 // GCC 12 (Debian 12's compiler) does that at -O2 and above when its SLP vectorizer packs such
 // conversions in pairs (cvtpd2ps with no cvtps2pd back), so |double(float(v)) - v|, the
-// rounding error an error bound adds, came out as 0 (tests/geometry/shape_test.cpp checks the
+// rounding error an error bound adds, came out as 0 (tests/geometry/sphere_test.cpp checks the
 // bound of an analytic hit point).
 inline float OpaqueFloat(double v) {
     float f = float(v);
