@@ -47,30 +47,41 @@ std::vector<Aov> ChooseAovs(const std::string &aovOption, const RenderScene &sce
                   " gets the beauty alone");
         return {};
     }
-    if (scene.integrator != IntegratorKind::Whitted && AovsNeedWhitted(aovs)) {
+    if (!scene.integrator->Traits().directAov && AovsNeedDirect(aovs)) {
         if (list != "all")
             throw UsageError(
-                "the direct and indirect AOVs need Integrator \"whitted\" (this "
-                "render uses " +
-                Quote(scene.integratorName) + "; try --integrator whitted)");
+                "the direct and indirect AOVs need an integrator that separates direct light "
+                "(this render uses " +
+                Quote(scene.IntegratorName()) + "; try --integrator whitted)");
         aovs.erase(std::remove_if(aovs.begin(), aovs.end(),
                                   [](Aov a) { return a == Aov::Direct || a == Aov::Indirect; }),
                    aovs.end());
-        diag.Warn("AOVs direct and indirect are left out: they need Integrator \"whitted\"");
+        diag.Warn("AOVs direct and indirect are left out: Integrator " +
+                  Quote(scene.IntegratorName()) + " does not separate direct light");
     }
     return aovs;
 }
 
-void WriteAovExr(const std::string &out, const Image &beauty, float scale, const RenderScene &scene,
-                 const SceneDescription &desc, const std::vector<Aov> &aovs) {
-    ShapeLookup lookup(desc, scene);
-    AovIdFn ids = [&](const SurfaceInteraction &si, int *shape, int *material, int *instance) {
-        ShapeDeclaration d = lookup.Find(si);
+AovOutput::AovOutput(const SceneDescription &desc, const RenderScene &scene,
+                     const std::vector<Aov> &aovs)
+    : lookup_(std::make_unique<ShapeLookup>(desc, scene)),
+      materials_(desc.materials.size()),
+      instances_(desc.instances.size()) {
+    const ShapeLookup *lookup = lookup_.get();
+    AovIdFn ids = [lookup](const SurfaceInteraction &si, int *shape, int *material, int *instance) {
+        ShapeDeclaration d = lookup->Find(si);
         *shape = d.shapeId;
         *material = d.materialId;
         *instance = d.instanceId;
     };
-    std::vector<AovLayer> layers = RenderAovs(scene, aovs, ids);
+    frame_ = std::make_unique<AovFrame>(scene, aovs, std::move(ids));
+}
+
+AovOutput::~AovOutput() = default;
+
+void AovOutput::Write(const std::string &out, const Image &beauty, float scale) const {
+    const ShapeLookup &lookup = *lookup_;
+    std::vector<AovLayer> layers = frame_->Layers();
     std::vector<NamedChannel> channels;
     std::vector<std::pair<std::string, std::string>> attributes;
     for (AovLayer &l : layers) {
@@ -94,10 +105,9 @@ void WriteAovExr(const std::string &out, const Image &beauty, float scale, const
             manifest(int(lookup.Declarations().size()),
                      [&](int id) { return lookup.ShapeLabel(id); });
         if (l.aov == Aov::MaterialId)
-            manifest(int(desc.materials.size()) + 1,
-                     [&](int id) { return lookup.MaterialLabel(id); });
+            manifest(int(materials_) + 1, [&](int id) { return lookup.MaterialLabel(id); });
         if (l.aov == Aov::InstanceId)
-            manifest(int(desc.instances.size()), [&](int id) { return lookup.InstanceLabel(id); });
+            manifest(int(instances_), [&](int id) { return lookup.InstanceLabel(id); });
     }
     WriteMultiChannelExr(out, beauty, channels, attributes);
 }

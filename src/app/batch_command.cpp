@@ -30,6 +30,7 @@
 #include "app/output_file.h"
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "render/integrator.h"
 #include "scene/load_scene.h"
 
 namespace fs = std::filesystem;
@@ -427,9 +428,9 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args) {
     cmd->add_option("--env-mode", args->envMode, "replace (default) or add")
         ->check(CLI::IsMember({"replace", "add"}));
     cmd->add_option("--integrator", args->integrator,
-                    "Integrator for every scene: whitted, distribution, directlighting, path or "
-                    "volpath (as prism render; default: each scene's)")
-        ->check(CLI::IsMember(IntegratorNames));
+                    "Integrator for every scene: whitted, distribution, directlighting, path, "
+                    "volpath or ambientocclusion (as prism render; default: each scene's)")
+        ->check(CLI::IsMember(IntegratorNames()));
     cmd->add_option("--texture-filter", args->textureFilter,
                     "Image-texture lookups for every scene: ewa, trilinear, bilinear, point or "
                     "none (as prism render)")

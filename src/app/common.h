@@ -20,9 +20,8 @@ class Option;
 
 namespace prism {
 
-// The values of --integrator and --texture-filter (render and batch take both).
-inline const std::vector<std::string> IntegratorNames = {"whitted", "distribution",
-                                                         "directlighting", "path", "volpath"};
+// The values of --texture-filter (render and batch take it; --integrator takes
+// render/integrator.h IntegratorNames()).
 inline const std::vector<std::string> TextureFilterNames = {"none", "point", "bilinear",
                                                             "trilinear", "ewa"};
 

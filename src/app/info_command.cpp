@@ -39,9 +39,9 @@ void PrintEffects(const RenderScene &scene) {
         if (e.Has(eff))
             std::printf("  %s: on (%s)\n", EffectName(eff), e.reasons[i].c_str());
         else if ((eff == Effect::GlossyReflection || eff == Effect::GlossyTransmission) &&
-                 scene.integrator == IntegratorKind::Whitted)
+                 !scene.integrator->Traits().roughGlass)
             std::printf("  %s: off (Integrator \"%s\" traces no glossy rays)\n", EffectName(eff),
-                        scene.integratorName.c_str());
+                        scene.IntegratorName());
         else
             std::printf("  %s: off\n", EffectName(eff));
     }
@@ -49,11 +49,10 @@ void PrintEffects(const RenderScene &scene) {
         std::printf("  shadows of %s: %d shadow ray%s per shading point\n", l.light.c_str(),
                     l.shadowRays, l.shadowRays == 1 ? "" : "s");
     std::printf("max useful depth: %d (maxdepth %d)\n", e.maxUsefulDepth, scene.maxDepth);
-    if (scene.integrator == IntegratorKind::Whitted ||
-        scene.integrator == IntegratorKind::Distribution)
+    if (scene.integrator->Traits().effectKernel)
         std::printf("kernel:     %s\n", KernelMaskName(KernelMaskFor(scene)).c_str());
-    else  // the path and directlighting integrators run their own loop
-        std::printf("kernel:     none (%s integrator)\n", scene.integratorName.c_str());
+    else  // the other integrators trace each camera sample through their Li
+        std::printf("kernel:     none (%s integrator)\n", scene.IntegratorName());
 }
 
 int RunInfo(const InfoArgs &a) {
@@ -168,7 +167,7 @@ int RunInfo(const InfoArgs &a) {
     std::printf("film:       %dx%d\n",
                 desc.film.params.GetInt("xresolution", PbrtDefaultXResolution),
                 desc.film.params.GetInt("yresolution", PbrtDefaultYResolution));
-    std::printf("integrator: %s (%s)\n", built.integratorName.c_str(), built.integratorWhy.c_str());
+    std::printf("integrator: %s (%s)\n", built.IntegratorName(), built.integratorWhy.c_str());
     PrintEffects(built);
     std::vector<Warning> w = diag.Warnings();
     std::printf("warnings:   %zu\n", w.size());

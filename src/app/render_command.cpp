@@ -18,6 +18,7 @@
 #include "build/build_scene.h"
 #include "core/file_io.h"
 #include "image/image_io.h"
+#include "render/integrator.h"
 #include "render/kernel.h"
 #include "render/progressive.h"
 #include "render/renderer.h"
@@ -140,7 +141,8 @@ struct RenderJob::State {
     std::optional<TargetChoice> target;
     std::optional<RenderScene> scene;
     std::string out;
-    std::vector<Aov> aovs;  // empty: no AOV pass
+    std::vector<Aov> aovs;                 // empty: no AOVs
+    std::unique_ptr<AovOutput> aovOutput;  // with aovs: filled by the render
     std::chrono::steady_clock::time_point start;
     const std::chrono::steady_clock::time_point created = std::chrono::steady_clock::now();
     int lastQuarter = 0;
@@ -207,8 +209,8 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
         if (!a.quiet && writer) std::fprintf(stderr, "%s\n", DescribeChoice(*s_->target).c_str());
     }
     auto t1 = std::chrono::steady_clock::now();
+    opts.estimateNoise = a.stats;
     s_->scene.emplace(BuildRenderScene(desc, opts, diag));
-    s_->scene->estimateNoise = a.stats;
     const RenderScene &scene = *s_->scene;
     // Scene setup: meshes read (PLY), textures decoded, materials and lights built.
     s_->setupSeconds = SecondsSince(t1) - scene.buildSeconds;
@@ -223,6 +225,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     if (out.empty()) out = std::filesystem::path(a.scene).stem().string() + ".png";
     if (writer) CheckOutputPath(out);  // before rendering: a long render must not fail at the end
     s_->aovs = ChooseAovs(a.aov, scene, out, s_->diag);
+    if (!s_->aovs.empty()) s_->aovOutput = std::make_unique<AovOutput>(desc, scene, s_->aovs);
 }
 
 RenderJob::~RenderJob() = default;
@@ -232,13 +235,32 @@ const RenderScene &RenderJob::Scene() const { return *s_->scene; }
 Image RenderJob::RenderImage(RenderStats *stats, const ProgressFn &progress,
                              const volatile int *cancel) {
     const RenderArgs &a = s_->a;
-    if (a.timeLimit <= 0) return Render(*s_->scene, stats, progress, cancel);
+    AovFrame *aovs = s_->aovOutput ? &s_->aovOutput->Frame() : nullptr;
+    if (a.timeLimit <= 0) {
+        RenderOptions options;
+        options.sampler = s_->scene->sampler;
+        options.progress = progress;
+        options.cancel = cancel;
+        options.aovs = aovs;
+        return Render(*s_->scene, options, stats);
+    }
     TimeLimit limit;
     limit.seconds = a.timeLimit - SecondsSince(s_->created);
     // --spp caps the passes; without it they go on until the time runs out.
-    limit.maxSpp = a.sppGiven ? s_->scene->spp : MaxProgressiveSpp;
-    return RenderProgressive(*s_->scene, limit, stats, progress, cancel);
+    limit.maxSpp = a.sppGiven ? s_->scene->sampler.spp : MaxProgressiveSpp;
+    return RenderProgressive(*s_->scene, limit, stats, progress, cancel, aovs);
 }
+bool RenderJob::HasAovs() const { return s_->aovOutput != nullptr; }
+
+void RenderJob::RenderAovs(const volatile int *cancel) {
+    if (!s_->aovOutput) return;
+    RenderOptions options;
+    options.sampler = s_->scene->sampler;
+    options.cancel = cancel;
+    options.aovs = &s_->aovOutput->Frame();
+    Render(*s_->scene, options, nullptr);
+}
+
 const std::string &RenderJob::Output() const { return s_->out; }
 
 ProgressFn RenderJob::Progress() {
@@ -255,11 +277,11 @@ void RenderJob::Write(const Image &img) {
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
     const OutputTransform outTransform =
         ChooseOutputTransform(s_->a, *s_->scene, s_->desc, linearOut, img);
-    if (!s_->aovs.empty()) {
-        // A separate pass after the beauty, so renders without AOVs run none of it.
+    if (s_->aovOutput) {
+        // The AOVs the render computed from its own tiles.
         Image toWrite = img;
         ApplyOutputTransform(toWrite, outTransform, true);
-        WriteAovExr(out, toWrite, std::exp2(outTransform.exposure), *s_->scene, s_->desc, s_->aovs);
+        s_->aovOutput->Write(out, toWrite, std::exp2(outTransform.exposure));
     } else if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
         WriteImage(out, img);
     } else {
@@ -289,8 +311,8 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                      "rays: camera %llu, shadow %llu, reflection %llu, refraction %llu, "
                      "pass-through %llu, glossy %llu; %.2f Mrays/s\n",
                      out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
-                     scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
-                     a.precision.c_str(), scene.integratorName.c_str(), s_->parseSeconds,
+                     scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, stats.spp, scene.maxDepth,
+                     a.precision.c_str(), scene.IntegratorName(), s_->parseSeconds,
                      s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,
                      (unsigned long long)r.camera, (unsigned long long)r.shadow,
                      (unsigned long long)r.reflection, (unsigned long long)r.refraction,
@@ -319,18 +341,18 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
         for (size_t e = 0; e < size_t(Effect::Count); ++e)
             if (scene.features.effects.Has(Effect(e)))
                 on += std::string(on.empty() ? "" : ", ") + EffectName(Effect(e));
-        // The path and directlighting integrators run their own loop, not the kernel.
-        const bool kernel = scene.integrator == IntegratorKind::Whitted ||
-                            scene.integrator == IntegratorKind::Distribution;
-        const std::string kernelName = kernel ? KernelMaskName(stats.kernelMask)
-                                              : "none (" + scene.integratorName + " integrator)";
+        // Only the Whitted and distribution integrators run the effect kernel.
+        const std::string kernelName =
+            scene.integrator->Traits().effectKernel
+                ? KernelMaskName(stats.kernelMask)
+                : std::string("none (") + scene.IntegratorName() + " integrator)";
         std::fprintf(stderr, "effects: %s; kernel: %s\n", on.empty() ? "none" : on.c_str(),
                      kernelName.c_str());
         if (!stats.passSpp.empty()) {
             std::string passes;
             for (int n : stats.passSpp) passes += (passes.empty() ? "" : "+") + std::to_string(n);
             std::fprintf(stderr, "time limit %gs: %zu passes (%s = %d spp)\n", a.timeLimit,
-                         stats.passSpp.size(), passes.c_str(), scene.spp);
+                         stats.passSpp.size(), passes.c_str(), stats.spp);
         }
         if (a.stats) {
             std::optional<double> rse = RelativeStandardError(img, stats);
@@ -396,9 +418,10 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
         ->check(CLI::Range(0, 1000));
     cmd->add_option("--integrator", args->integrator,
                     "whitted (pbrt-v3's: no glossy rays), distribution (Whitted plus glossy "
-                    "reflection and transmission), directlighting, path or volpath (pbrt-v3's); "
+                    "reflection and transmission), directlighting, path, volpath or "
+                    "ambientocclusion (ao) (pbrt-v3's); "
                     "default: the scene's Integrator (OBJ and glTF: distribution)")
-        ->check(CLI::IsMember(IntegratorNames));
+        ->check(CLI::IsMember(IntegratorNames()));
     cmd->add_option("--glossy-samples", args->glossySamples,
                     "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "
                     "(distribution integrator; overrides \"glossysamples\", default 8)")

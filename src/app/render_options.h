@@ -70,6 +70,11 @@ class RenderJob {
     // Renders the image: Render(), or with --time-limit RenderProgressive with the time left
     // since the job started.
     Image RenderImage(RenderStats *stats, const ProgressFn &progress, const volatile int *cancel);
+    // Whether the output gets AOVs; RenderImage computes them from its own tiles. prism-mpi,
+    // whose tiles render on other ranks, computes them on rank 0 with RenderAovs: the same
+    // samples again (render/aov.h).
+    bool HasAovs() const;
+    void RenderAovs(const volatile int *cancel);
     const std::string &Output() const;
     // The progress display (empty with --quiet or --no-progress); its clock starts here.
     ProgressFn Progress();

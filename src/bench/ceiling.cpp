@@ -1,11 +1,7 @@
 #include "bench/ceiling.h"
 
-#include <pmmintrin.h>
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-#include <xmmintrin.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +9,7 @@
 #include <memory>
 
 #include "build/build_scene.h"
+#include "image/film.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
 #include "scene/load_scene.h"
@@ -20,10 +17,6 @@
 namespace prism {
 
 namespace {
-
-// The renderer's tile size (render/renderer.h; the sample purposes are render/sampler.h's), so
-// both passes trace the same rays in the same order of tiles.
-constexpr int TileSize = RenderTileSize;
 
 struct PassCounters {
     uint64_t camera = 0, hits = 0, shadow = 0, occluded = 0;
@@ -63,74 +56,64 @@ inline void TraceShadowRays(const RenderScene &scene, const Ray &ray, float t, P
     }
 }
 
-// The ceiling pass: the render loop's tiles and camera rays, traversal only.
+// The ceiling pass: the render loop's tiles (ForEachTile over the film's tile grid) and camera
+// rays (the render's CameraSampler), traversal only.
 PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) {
-    const Bounds2i &pb = scene.pixelBounds;
-    int nx = (pb.pMax.x - pb.pMin.x + TileSize - 1) / TileSize;
-    int ny = (pb.pMax.y - pb.pMin.y + TileSize - 1) / TileSize;
-    int nTiles = nx * ny;
+    const TiledFilm grid(scene.resolution, scene.pixelBounds, scene.filter, RenderTileSize);
     tbb::enumerable_thread_specific<PassCounters> counters;
     tbb::enumerable_thread_specific<Scratch> scratch;
     const Accel &accel = *scene.accel;
-    const CMJPattern cmj(uint32_t(scene.spp));
-    tbb::parallel_for(tbb::blocked_range<int>(0, nTiles, 1), [&](const tbb::blocked_range<int> &r) {
-        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+    const CameraSampler camera(scene, scene.sampler);
+    const uint32_t spp = camera.Spp();
+    ForEachTile(0, grid.NumTiles(), [&](int t, int) {
         PassCounters &pc = counters.local();
         Scratch &sc = scratch.local();
-        for (int t = r.begin(); t != r.end(); ++t) {
-            int tx = t % nx, ty = t / nx;
-            int x0 = pb.pMin.x + tx * TileSize, y0 = pb.pMin.y + ty * TileSize;
-            int x1 = std::min(x0 + TileSize, pb.pMax.x), y1 = std::min(y0 + TileSize, pb.pMax.y);
-            const uint32_t spp = uint32_t(scene.spp);
-            sc.rays.clear();
-            sc.packets.clear();
-            // The render loop's order (render/renderer.cpp): blocks of RenderPacketW x
-            // RenderPacketH pixels, one packet per sample index, so Packet16 traces the
-            // render's own camera packets.
-            for (int by = y0; by < y1; by += RenderPacketH) {
-                for (int bx = x0; bx < x1; bx += RenderPacketW) {
-                    const int ex = std::min(bx + RenderPacketW, x1),
-                              ey = std::min(by + RenderPacketH, y1);
-                    for (uint32_t s = 0; s < spp; ++s) {
-                        size_t first = sc.rays.size();
-                        for (int y = by; y < ey; ++y) {
-                            for (int x = bx; x < ex; ++x) {
-                                Vec2f u = spp == 1 ? Vec2f(0.5f, 0.5f)
-                                                   : cmj.Sample(s, PatternSeed(x, y, FilmPurpose));
-                                const Vec2f pFilm = FilmPosition(x, y, u);
-                                Vec2f uLens = scene.features.lens
-                                                  ? cmj.Sample(s, PatternSeed(x, y, LensPurpose))
-                                                  : Vec2f(0.5f, 0.5f);
-                                sc.rays.push_back(scene.camera->GenerateRay(pFilm, uLens));
-                            }
-                        }
-                        sc.packets.push_back(int(sc.rays.size() - first));
-                    }
+        const Bounds2i tb = grid.TilePixels(t);
+        sc.rays.clear();
+        sc.packets.clear();
+        // The render loop's order (render/kernel_impl.h): blocks of RenderPacketW x
+        // RenderPacketH pixels, one packet per sample index, so Packet16 traces the render's
+        // own camera packets.
+        for (int by = tb.pMin.y; by < tb.pMax.y; by += RenderPacketH) {
+            for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += RenderPacketW) {
+                const int ex = std::min(bx + RenderPacketW, tb.pMax.x),
+                          ey = std::min(by + RenderPacketH, tb.pMax.y);
+                CameraSampler::Seeds seeds[RenderPacketW * RenderPacketH];
+                int m = 0;
+                for (int y = by; y < ey; ++y)
+                    for (int x = bx; x < ex; ++x) seeds[m++] = camera.PixelSeeds(x, y);
+                for (uint32_t s = 0; s < spp; ++s) {
+                    const size_t first = sc.rays.size();
+                    m = 0;
+                    for (int y = by; y < ey; ++y)
+                        for (int x = bx; x < ex; ++x)
+                            sc.rays.push_back(
+                                camera.GenerateRay(camera.Sample(x, y, s, seeds[m++])));
+                    sc.packets.push_back(int(sc.rays.size() - first));
                 }
             }
-            size_t n = sc.rays.size();
-            pc.camera += n;
-            if (traversal == CeilingTraversal::Packet16) {
-                sc.hits.resize(n);
-                // Each packet's shadow rays right after it, as the render shades a packet.
-                size_t first = 0;
-                for (int m : sc.packets) {
-                    accel.IntersectPacket(&sc.rays[first], m, &sc.hits[first]);
-                    for (size_t i = first; i < first + size_t(m); ++i) {
-                        if (sc.hits[i].shape < 0) continue;
-                        pc.hits++;
-                        TraceShadowRays(scene, sc.rays[i], sc.hits[i].t, pc);
-                    }
-                    first += size_t(m);
-                }
-            } else {
-                for (size_t i = 0; i < n; ++i) {
-                    RawHit hit;
-                    if (!accel.IntersectRaw(sc.rays[i], &hit)) continue;
+        }
+        const size_t n = sc.rays.size();
+        pc.camera += n;
+        if (traversal == CeilingTraversal::Packet16) {
+            sc.hits.resize(n);
+            // Each packet's shadow rays right after it, as the render shades a packet.
+            size_t first = 0;
+            for (int m : sc.packets) {
+                accel.IntersectPacket(&sc.rays[first], m, &sc.hits[first]);
+                for (size_t i = first; i < first + size_t(m); ++i) {
+                    if (sc.hits[i].shape < 0) continue;
                     pc.hits++;
-                    TraceShadowRays(scene, sc.rays[i], hit.t, pc);
+                    TraceShadowRays(scene, sc.rays[i], sc.hits[i].t, pc);
                 }
+                first += size_t(m);
+            }
+        } else {
+            for (size_t i = 0; i < n; ++i) {
+                RawHit hit;
+                if (!accel.IntersectRaw(sc.rays[i], &hit)) continue;
+                pc.hits++;
+                TraceShadowRays(scene, sc.rays[i], hit.t, pc);
             }
         }
     });
@@ -172,7 +155,7 @@ CeilingResult RunCeiling(const CeilingOptions &o, std::FILE *log) {
     CeilingResult res;
     res.width = scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x;
     res.height = scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y;
-    res.spp = scene.spp;
+    res.spp = scene.sampler.spp;
     res.threads =
         int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
     res.triangles = scene.features.triangles;

@@ -21,10 +21,10 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     BuildContext ctx{desc, settings, diag, scene, budget, {}, {}, {}};
     BuildFilm(ctx);
     BuildCamera(ctx);  // sets renderFromWorld, which every later step uses
-    BuildSampler(ctx);
+    BuildIntegratorSettings(ctx);
+    BuildSampler(ctx);  // after the integrator: whether it draws pbrt's sample patterns
     BuildPixelFilter(ctx);
     ChargeFilmMemory(ctx);  // needs the crop window and the filter's radius
-    BuildIntegratorSettings(ctx);
     BuildTextures(ctx);
     BuildLights(ctx);
     BuildMedia(ctx);
@@ -36,6 +36,8 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     // Rays carry differentials only where a texture filters over their footprint.
     for (const Material &m : scene.materials) scene.differentials |= m.UsesDifferentials();
     scene.allEffects = settings.allEffects;
+    scene.estimateNoise = settings.estimateNoise;
+    scene.integrator->Prepare(scene);  // the lights exist: e.g. the light choice
     if (scene.lights.empty())
         diag.Warn(desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0},
                   "the scene has no light sources");

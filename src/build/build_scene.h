@@ -22,7 +22,6 @@ namespace prism {
 inline constexpr int MaxImageResolution = 1 << 16;  // per axis
 inline constexpr int MaxSamplesPerPixel = 1 << 16;
 inline constexpr int MaxTraceDepth = 1000;
-inline constexpr int MaxGlossySamples = 1024;  // per glossy lobe and hit
 
 // Replaces the geometry of an analytic shape (e.g. by its tessellated twin, validate/); returns
 // nullptr to keep the analytic shape. Calls `charge` with the mesh's size before allocating it
@@ -40,8 +39,8 @@ struct BuildSettings {
     std::optional<Transform> worldFromCamera;  // replaces the camera's placement
     float fovDeg = 0;                          // 0: the Camera's; degrees on the shorter axis
     int lightSamples = 0;                      // 0: each area/infinite light's own nsamples
-    std::string integrator;                    // "whitted" or "distribution"; "": the scene's
-    int glossySamples = 0;                     // 0: the Integrator's "glossysamples"
+    std::string integrator;  // a name of render/integrator_list.inc; "": the scene's
+    int glossySamples = 0;   // 0: the Integrator's "glossysamples"
     // Image-texture lookups: "point", "bilinear", "trilinear" or "ewa" for every imagemap
     // (--texture-filter); "": each texture's own "filter" (pbrt-v3's default, EWA).
     std::string textureFilter;
@@ -72,6 +71,9 @@ struct BuildSettings {
     // --effects all: the renderer runs its general kernel rather than the one specialized for
     // the scene's effects (RenderScene::allEffects; the same image, for comparison).
     bool allEffects = false;
+    // --stats: the film also keeps each pixel's even and odd samples apart, for the noise
+    // estimate (RenderScene::estimateNoise).
+    bool estimateNoise = false;
     ShapeReplacement replaceAnalyticShape;  // empty: every analytic shape stays analytic
 };
 

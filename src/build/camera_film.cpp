@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "build/directive_params.h"
 #include "core/memory.h"
 #include "core/pbrt_defaults.h"
 #include "image/tonemap.h"
@@ -185,21 +186,18 @@ void BuildSampler(BuildContext &ctx) {
     }
     // Prism draws its own stratified (correlated multi-jittered) samples whatever the file
     // names; only the sample count is read. The default (no Sampler directive) is not named.
-    // The path and directlighting integrators draw "02sequence"/"lowdiscrepancy" and "random"
-    // samples as pbrt-v3 does (render/sampler.h SamplePattern).
+    // The path integrators (directlighting, path, volpath, ao) draw "02sequence"/
+    // "lowdiscrepancy" and "random" samples as pbrt-v3 does (render/sampler.h SamplePattern).
     const std::string context = "sampler " + Quote(desc.sampler.type);
-    const std::string integrator =
-        settings.integrator.empty() ? desc.integrator.type : settings.integrator;
-    const bool pathLike =
-        integrator == "directlighting" ||
-        (integrator == "path" && (!settings.integrator.empty() || desc.integrator.loc.Valid()));
+    // The integrators that draw PixelSamples (render/integrator.h IntegratorTraits).
+    const bool patterns = scene.integrator->Traits().samplePatterns;
     const std::string &st = desc.sampler.type;
-    if (pathLike && st == "random")
-        scene.samplePattern = SamplePattern::Independent;
-    else if (pathLike && (st == "02sequence" || st == "lowdiscrepancy"))
-        scene.samplePattern = SamplePattern::ZeroTwo;
-    if (st != "stratified" && desc.sampler.loc.Valid() &&
-        scene.samplePattern == SamplePattern::Stratified)
+    SamplePattern &pattern = scene.sampler.pattern;
+    if (patterns && st == "random")
+        pattern = SamplePattern::Independent;
+    else if (patterns && (st == "02sequence" || st == "lowdiscrepancy"))
+        pattern = SamplePattern::ZeroTwo;
+    if (st != "stratified" && desc.sampler.loc.Valid() && pattern == SamplePattern::Stratified)
         diag.Warn(desc.sampler.loc, context + " is replaced by Prism's stratified sampler");
     WarnIgnoredRest(sp, diag, context, "Prism's stratified sampler reads only the sample count");
     if (settings.spp > 0) spp = settings.spp;
@@ -208,7 +206,7 @@ void BuildSampler(BuildContext &ctx) {
         throw SceneError(desc.sampler.loc, "samples per pixel " + std::to_string(spp) +
                                                " out of range (1 to " + std::to_string(maxSpp) +
                                                ")");
-    scene.spp = spp;
+    scene.sampler.spp = spp;
 }
 
 void BuildPixelFilter(BuildContext &ctx) {
@@ -261,7 +259,7 @@ void BuildIntegratorSettings(BuildContext &ctx) {
     // A pbrt scene without an Integrator directive keeps rendering with Whitted (pbrt's default
     // would be "path"); OBJ and glTF scenes name "distribution" themselves.
     const bool named = !settings.integrator.empty() || desc.integrator.loc.Valid();
-    scene.integratorName = named || type != "path" ? type : "whitted";
+    std::string name = named || type != "path" ? type : "whitted";
     if (!settings.integrator.empty())
         scene.integratorWhy = "--integrator " + settings.integrator;
     else if (desc.integrator.loc.Valid())
@@ -271,78 +269,27 @@ void BuildIntegratorSettings(BuildContext &ctx) {
     else
         scene.integratorWhy = "default: the scene names no Integrator";
     int maxDepth = ip.GetInt("maxdepth", 5);
-    if (type == "distribution") {
-        // Prism's extension: Whitted plus glossy rays (docs/FORMAT.md).
-        scene.integrator = IntegratorKind::Distribution;
-        int n = settings.glossySamples > 0 ? settings.glossySamples
-                                           : ip.GetInt("glossysamples", DefaultGlossySamples);
-        if (n < 1 || n > MaxGlossySamples)
-            throw SceneError(desc.integrator.loc, "glossysamples " + std::to_string(n) +
-                                                      " out of range (1 to " +
-                                                      std::to_string(MaxGlossySamples) + ")");
-        scene.glossySamples = n;
-        WarnIgnoredRest(ip, diag, "integrator \"distribution\"",
-                        "Prism's distribution integrator reads only maxdepth and glossysamples");
-    } else if (type == "directlighting") {
-        scene.integrator = IntegratorKind::DirectLighting;
-        const std::string strategy = ip.GetString("strategy", "all");
-        if (strategy != "all" && strategy != "one") {
-            // pbrt-v3: "Strategy \"...\" for direct lighting unknown. Using \"all\"."
-            const Param *p = ip.Find("strategy");
-            diag.Warn(p ? p->loc : desc.integrator.loc,
-                      "strategy " + Quote(strategy) + " is unknown; using \"all\"");
-        }
-        scene.directAllLights = strategy != "one";
-        scene.lightChoice = LightChoice::Uniform;  // pbrt-v3: "one" picks lights uniformly
-        WarnIgnoredRest(ip, diag, "integrator \"directlighting\"",
-                        "Prism's directlighting integrator reads maxdepth and strategy");
-    } else if ((type == "path" && named) || type == "volpath") {
-        // "volpath": the path tracer with participating media (the same parameters).
-        scene.integrator = type == "volpath" ? IntegratorKind::VolPath : IntegratorKind::Path;
-        scene.rrThreshold = ip.GetFloat("rrthreshold", 1.f);
-        if (!(scene.rrThreshold >= 0))
-            throw SceneError(desc.integrator.loc, "rrthreshold must be a number >= 0");
-        const std::string lss = ip.GetString("lightsamplestrategy", "spatial");
-        const Param *p = ip.Find("lightsamplestrategy");
-        if (lss == "uniform") {
-            scene.lightChoice = LightChoice::Uniform;
-        } else if (lss == "power") {
-            scene.lightChoice = LightChoice::Power;
-        } else {
-            // pbrt-v3's default "spatial" (a distribution per voxel from the lights'
-            // contributions there) stands in as one scene-wide mixture, half by power and half
-            // uniform (docs/PATH.md); an unknown name is "spatial", as in pbrt-v3.
-            scene.lightChoice = LightChoice::Spatial;
-            if (p && lss == "spatial")
-                diag.Warn(p->loc,
-                          "lightsamplestrategy \"spatial\" is rendered with one light "
-                          "distribution for the whole scene (half by power, half "
-                          "uniform)");
-            else if (p)
-                diag.Warn(p->loc,
-                          "lightsamplestrategy " + Quote(lss) + " is unknown; using \"spatial\"");
-        }
-        // The one effect of the path integrator that no material or light turns on.
-        if (!settings.integrator.empty())
-            scene.features.effects.Enable(Effect::IndirectIllumination, "--integrator " + type);
-        else
-            scene.features.effects.Enable(Effect::IndirectIllumination, "Integrator " + Quote(type),
-                                          desc.integrator.loc);
-        WarnIgnoredRest(ip, diag, "integrator " + Quote(type),
-                        "Prism's path integrators read maxdepth, rrthreshold and "
-                        "lightsamplestrategy");
-    } else {
-        scene.integrator = IntegratorKind::Whitted;
+    const bool known = std::find(IntegratorNames().begin(), IntegratorNames().end(), name) !=
+                       IntegratorNames().end();
+    if (!known) {
         // Only an Integrator the file names is worth a warning (pbrt's default is "path").
-        // pbrt's default is "path"; a scene without an Integrator renders as before, with Whitted.
-        if (type != "whitted" && desc.integrator.loc.Valid())
+        if (desc.integrator.loc.Valid())
             diag.Warn(desc.integrator.loc,
                       "integrator " + Quote(type) + " is rendered with Whitted (maxdepth " +
                           std::to_string(settings.maxDepth >= 0 ? settings.maxDepth : maxDepth) +
                           ")");
-        WarnIgnoredRest(ip, diag, "integrator " + Quote(type),
-                        "Prism's Whitted integrator reads only maxdepth");
+        name = "whitted";
     }
+    const DirectiveParams params(ip, diag, "integrator " + Quote(type), desc.integrator.loc);
+    IntegratorInputs in{
+        params, desc.integrator.loc, settings.glossySamples, scene.features.effects, {}, {}};
+    if (!settings.integrator.empty()) {
+        in.why = "--integrator " + type;
+    } else {
+        in.why = "Integrator " + Quote(type);
+        in.whyLoc = desc.integrator.loc;
+    }
+    scene.integrator = CreateIntegrator(name, in);
     if (settings.maxDepth >= 0) maxDepth = settings.maxDepth;
     if (maxDepth < 0 || maxDepth > MaxTraceDepth)
         throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) +

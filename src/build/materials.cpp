@@ -206,7 +206,7 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
             if (!c || c->Value().r > 0) isRough = true;
         }
         if (m.type == "dielectric") RemapRoughnessAsV4(mat);
-        if (isRough && ctx.scene.integrator == IntegratorKind::Whitted)
+        if (isRough && !ctx.scene.integrator->Traits().roughGlass)
             diag.Warn(m.loc,
                       "rough glass is rendered as smooth glass by the Whitted integrator "
                       "(Integrator \"distribution\" renders it rough)");

@@ -163,12 +163,10 @@ void BuildMedia(BuildContext &ctx) {
 void WarnIgnoredMedia(BuildContext &ctx) {
     const RenderScene &scene = ctx.scene;
     if (!scene.features.effects.Has(Effect::Media)) return;
-    if (scene.integrator != IntegratorKind::Path &&
-        scene.integrator != IntegratorKind::DirectLighting)
-        return;
+    if (scene.integrator->Traits().media) return;
     // pbrt-v3's path and directlighting integrators ignore media too (with a warning).
     ctx.diag.Warn(ctx.desc.integrator.loc,
-                  "integrator " + Quote(scene.integratorName) +
+                  "integrator " + Quote(scene.IntegratorName()) +
                       " ignores participating media (as pbrt-v3's does); \"volpath\" renders "
                       "them");
 }

@@ -92,7 +92,7 @@ void NoteMaterialEffects(BuildContext &ctx, const Material &m, const std::string
     // The distribution, directlighting and path integrators turn rough glass into glossy lobes
     // and sample glossy lobes; Whitted follows rough glass's delta lobes (pbrt-v3's
     // "whitted"): it is specular there.
-    const bool distribution = ctx.scene.integrator != IntegratorKind::Whitted;
+    const bool distribution = ctx.scene.integrator->Traits().roughGlass;
     bool roughGlassOnly = false;
     if (distribution && m.kind == Material::Kind::Glass) {
         const ConstantTexture *cu = AsConstant(m.uRoughness), *cv = AsConstant(m.vRoughness);

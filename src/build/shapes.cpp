@@ -304,7 +304,8 @@ struct ShapeBuilder : BuildStep {
         ao.quality = settings.bvhQuality;
         const Bounds2i &pb = scene.pixelBounds;
         ao.expectedSamples = uint64_t(std::max(0, pb.pMax.x - pb.pMin.x)) *
-                             uint64_t(std::max(0, pb.pMax.y - pb.pMin.y)) * uint64_t(scene.spp);
+                             uint64_t(std::max(0, pb.pMax.y - pb.pMin.y)) *
+                             uint64_t(scene.sampler.spp);
         scene.accel = std::make_unique<Accel>(ao);
         for (const ShapeDesc &s : desc.shapes) AddShape(s);
         for (const InstanceDesc &inst : desc.instances) AddInstance(inst);

@@ -324,8 +324,9 @@ void Accel::SetSurfaceNeeds(int shape, unsigned needs) {
     impl_->shapes[size_t(shape)].needs = needs;
 }
 
-SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
+SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit, unsigned extraNeeds) const {
     const Impl::Entry &e = impl_->shapes[hit.shape];
+    const unsigned needs = e.needs | extraNeeds;
     if (e.prototype) {
         // Phase 2 in instance space, then back to render space. Normals use the inverse
         // transpose and flip when the instance transform swaps handedness, exactly as if the
@@ -363,14 +364,14 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
     }
     if (e.mesh) {
         // Built in the caller's result (no zero-filled or copied SurfaceInteraction: per hit).
-        return e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d, e.needs, r.time,
+        return e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d, needs, r.time,
                                    hit.shape);
     } else {
         // Phase 2: the callback's object-space hit (the root routine's full-precision result),
         // or, where it was not recorded (instances), the same root routine run again on the
         // winning shape: it finds the same root, as it did for the same ray in the callback.
         if (hit.hasObject)  // (the result's t is the float of the recorded t: hit.t)
-            return e.analytic->Interaction(hit.object, r.d, e.needs, r.time, hit.shape, hit.prim);
+            return e.analytic->Interaction(hit.object, r.d, needs, r.time, hit.shape, hit.prim);
         ObjectHit oh;
         if (!e.analytic->IntersectAt(r.o, r.d, r.tMin, r.tMax, impl_->options.precision, r.time,
                                      &oh)) {
@@ -384,7 +385,7 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit) const {
             oh.pError = Abs(oh.p) * 1e-6;
         }
         SurfaceInteraction si =
-            e.analytic->Interaction(oh, r.d, e.needs, r.time, hit.shape, hit.prim);
+            e.analytic->Interaction(oh, r.d, needs, r.time, hit.shape, hit.prim);
         si.t = hit.t;
         return si;
     }

@@ -87,8 +87,11 @@ class Accel {
     // a valid mask), which exercises the N-wide user-geometry callbacks. hits[i].shape is -1
     // for a miss; occluded[i] (if given) receives the occlusion answer.
     void IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded = nullptr) const;
-    // Full interaction for a raw hit (same ray).
-    SurfaceInteraction Interaction(const Ray &ray, const RawHit &hit) const;
+    // Full interaction for a raw hit (same ray). extraNeeds: surface data computed for a hit on
+    // a top-level shape beyond its SurfaceNeeds (the AOVs' uv and tangents), without changing
+    // what the render's own hits compute.
+    SurfaceInteraction Interaction(const Ray &ray, const RawHit &hit,
+                                   unsigned extraNeeds = 0) const;
     // Prefetches the mesh data Interaction will read for these hits (a packet's hits, before
     // they are shaded one by one, so their cache misses overlap).
     void PrefetchHits(const RawHit *hits, int n) const;

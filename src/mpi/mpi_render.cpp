@@ -236,7 +236,7 @@ int RunMpiRender(const RenderArgs &a) {
         std::vector<RankTotals> totals(static_cast<size_t>(size));
         if (size == 1) {
             // No other rank: render here, as `prism render` does.
-            img = Render(job->Scene(), &stats, progress, &g_stop);
+            img = job->RenderImage(&stats, progress, &g_stop);
             if (stats.cancelled) return ExitInterrupted;
         } else {
             FrameTiles frame(job->Scene());
@@ -248,6 +248,8 @@ int RunMpiRender(const RenderArgs &a) {
             }
             img = frame.Finish(&stats);
             for (const RankTotals &t : totals) stats.rays += t.rays;
+            job->RenderAovs(&g_stop);  // the tiles' samples are the other ranks'
+            if (g_stop) return ExitInterrupted;
             stats.renderSeconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }

@@ -1,7 +1,9 @@
 // Arbitrary output variables (AOVs): per-pixel layers beside the beauty image, written into one
 // multi-channel EXR (`prism render --aov`, Film "string aovs"; README "AOVs"). They are computed
-// by a pass of their own after the beauty render, chosen once per render: a render without AOVs
-// runs none of this code and its image is unchanged.
+// from the render itself, tile by tile, by the one tile driver (render/renderer.h), under every
+// integrator: the variance and the direct/indirect split from the beauty's own samples, the
+// geometric layers from the first hit of the same camera rays (as Mitsuba's aov integrator). A
+// render without AOVs runs none of this code and its image is unchanged.
 //
 // Filtering: the geometric layers (depth, P, N, Ng, uv) and the ids come from one sample per
 // pixel, the one nearest the pixel centre (the centre itself at 1 spp), so ids are never blended
@@ -12,11 +14,13 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/transform.h"
 #include "geometry/interaction.h"
+#include "image/bounds2.h"
 
 namespace prism {
 
@@ -33,7 +37,7 @@ enum class Aov {
     PrimitiveId,  // primitive_id: triangle index (0 for analytic shapes; -1: no hit)
     InstanceId,   // instance_id: 1 + ObjectInstance index (0: not in an instance)
     MaterialId,   // material_id: 1 the default matte, 2 + Material declaration index
-    Direct,       // direct.R/G/B: emission + direct lighting at the first hit (whitted)
+    Direct,       // direct.R/G/B: emission + direct lighting at the first hit
     Indirect,     // indirect.R/G/B: everything else (specular reflection and refraction)
     Variance,     // variance.R/G/B: per-pixel sample variance of the beauty
     Count
@@ -57,11 +61,56 @@ struct AovLayer {
     std::vector<float> pixels;
 };
 
-// Renders the requested AOVs of `scene` (after the beauty: it turns on uv and tangents of
-// every top-level shape). Direct and indirect need Integrator "whitted": for "distribution"
-// they are an error reported by the caller (AovsNeedWhitted).
-std::vector<AovLayer> RenderAovs(const RenderScene &scene, const std::vector<Aov> &aovs,
-                                 const AovIdFn &ids);
-bool AovsNeedWhitted(const std::vector<Aov> &aovs);
+struct TileContext;
+struct TileSamples;
+class Film;
+class FilmTile;
+
+// The AOVs of one render (or of every pass of a progressive render), filled tile by tile by
+// the tile driver. Tiles write disjoint pixels, so AddTile runs on any thread; the direct and
+// indirect films merge their tiles in index order at EndPass, so the layers do not depend on
+// the thread count.
+class AovFrame {
+  public:
+    AovFrame(const RenderScene &scene, const std::vector<Aov> &aovs, AovIdFn ids);
+    ~AovFrame();
+    AovFrame(const AovFrame &) = delete;
+    AovFrame &operator=(const AovFrame &) = delete;
+
+    // The integrator must give each sample's direct part (TileSamples::wantDirect).
+    bool WantsDirect() const { return split_; }
+    // Before a pass of nTiles tiles.
+    void BeginPass(int nTiles);
+    // Tile t of the pass: `samples` as the film takes them (film scale and clamp applied).
+    void AddTile(const TileContext &ctx, int t, const TileSamples &samples);
+    // After the pass's last tile: its samples per pixel weigh it against the other passes.
+    void EndPass(int spp);
+    std::vector<AovLayer> Layers() const;
+
+  private:
+    void AddGeometry(const TileContext &ctx, const Bounds2i &tb);
+    float &At(Aov a, int x, int y, size_t c);
+
+    const RenderScene &scene_;
+    std::vector<Aov> aovs_;
+    AovIdFn ids_;
+    Bounds2i pb_;
+    int slot_[size_t(Aov::Count)];
+    std::vector<AovLayer> layers_;
+    bool split_ = false, variance_ = false, geometric_ = false, albedo_ = false;
+    bool firstPass_ = true;
+    // The variance: per pixel and channel the running mean and sum of squared deviations of
+    // every pass's samples (Chan et al.'s pairwise update), and their count.
+    std::vector<double> mean_, m2_;
+    uint64_t samples_ = 0;
+    // Direct and indirect: this pass's films and tiles; the passes' images summed by spp.
+    std::unique_ptr<Film> directFilm_, indirectFilm_;
+    std::vector<FilmTile> directTiles_, indirectTiles_;
+    std::vector<double> directSum_, indirectSum_;
+    int splitSpp_ = 0;
+};
+
+// Whether the AOVs need an integrator whose direct part is exact (IntegratorTraits::directAov).
+bool AovsNeedDirect(const std::vector<Aov> &aovs);
 
 }  // namespace prism

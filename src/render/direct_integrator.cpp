@@ -1,39 +1,70 @@
 #include "render/direct_integrator.h"
 
+#include "core/params.h"
 #include "render/area_light.h"
 #include "render/bsdf.h"
 #include "render/differentials.h"
-#include "render/kernel.h"
 #include "render/render_scene.h"
-#include "render/sample_tile.h"
 
 namespace prism {
 
-namespace {
-constexpr int MaxPassThroughSurfaces = 256;
-}  // namespace
+// Integrator "directlighting" (integrator_list.inc). Parameters:
+//   maxdepth  integer  5      the longest delta path (--maxdepth wins)
+//   strategy  string   "all"  all: every light with its own "nsamples"; one: one light per
+//                             sample, chosen uniformly
+std::unique_ptr<Integrator> CreateDirectLightingIntegrator(const IntegratorInputs &in) {
+    const Params &p = in.params;
+    const std::string strategy = p.String("strategy", "all");
+    // pbrt-v3: "Strategy \"...\" for direct lighting unknown. Using \"all\"."
+    if (strategy != "all" && strategy != "one")
+        p.Warn(p.Loc("strategy"), "strategy " + Quote(strategy) + " is unknown; using \"all\"");
+    p.WarnUnread("Prism's directlighting integrator reads maxdepth and strategy");
+    return std::make_unique<DirectLightingIntegrator>(strategy != "one");
+}
 
-RGB DirectLightingIntegrator::Li(const Ray &rayIn, const PixelSamples &ps, int depth,
-                                 RayCounters &counters) const {
+IntegratorTraits DirectLightingIntegrator::Traits() const {
+    IntegratorTraits t;
+    t.samplePatterns = true;
+    t.roughGlass = true;
+    t.directAov = true;
+    return t;
+}
+
+// pbrt-v3: strategy "one" picks lights uniformly.
+void DirectLightingIntegrator::Prepare(const RenderScene &scene) {
+    chooser_ = LightChooser(scene, LightChoice::Uniform);
+}
+
+RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps,
+                                 RayCounters &rc, RGB *direct) const {
+    return Li(scene, ray, ps, 0, rc, direct);
+}
+
+RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &rayIn, const PixelSamples &ps,
+                                 int depth, RayCounters &counters, RGB *direct) const {
     Ray ray = rayIn;
     SurfaceInteraction si;
     const ShapeInfo *info = nullptr;
     for (int pass = 0;; ++pass) {
-        if (!scene_.accel->Intersect(ray, &si)) {
+        if (!scene.accel->Intersect(ray, &si)) {
             RGB L;
-            for (const auto &light : scene_.lights) L += light->Le(ray);
+            for (const auto &light : scene.lights) L += light->Le(ray);
+            if (direct) *direct = L;
             return L;
         }
-        info = &scene_.Info(si);
-        if (!scene_.materials[size_t(info->material)].IsPassThrough()) break;
-        if (pass >= MaxPassThroughSurfaces) return RGB(0);
-        ray = si.SpawnRay(ray.d, scene_.offset);
+        info = &scene.Info(si);
+        if (!scene.materials[size_t(info->material)].IsPassThrough()) break;
+        if (pass >= MaxPassThrough) {
+            if (direct) *direct = RGB(0);
+            return RGB(0);
+        }
+        ray = si.SpawnRay(ray.d, scene.offset);
         counters.passThrough++;
     }
-    const Material &mat = scene_.materials[size_t(info->material)];
+    const Material &mat = scene.materials[size_t(info->material)];
     RGB L;
     if (info->areaLight >= 0)
-        L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(info->areaLight)])
+        L += static_cast<const DiffuseAreaLight &>(*scene.lights[size_t(info->areaLight)])
                  .L(si, si.wo);
     if (mat.PerturbsShading()) mat.PerturbShading(si);
     TextureContext tc{si.uv, si.p, si.uv1};
@@ -42,33 +73,31 @@ RGB DirectLightingIntegrator::Li(const Ray &rayIn, const PixelSamples &ps, int d
     if (mat.HasEmission()) L += mat.Emitted(tc);
     BSDF bsdf = mat.GetBSDF(si, tc);
     bsdf.MakeRoughSpecularGlossy();  // pbrt-v3: rough glass is a microfacet BSDF
-    if (!scene_.lights.empty() && bsdf.HasNonSpecular()) {
-        if (scene_.directAllLights)
-            L += SampleAllLights(scene_, si, bsdf, ps, depth, counters);
+    if (!scene.lights.empty() && bsdf.HasNonSpecular()) {
+        if (allLights_)
+            L += SampleAllLights(scene, si, bsdf, ps, depth, counters);
         else
-            L += SampleOneLight(scene_, chooser_, si, bsdf, ps, depth, counters);
+            L += SampleOneLight(scene, chooser_, si, bsdf, ps, depth, counters);
     }
+    if (direct) *direct = L;
     // Delta reflection and transmission (pbrt-v3 SpecularReflect / SpecularTransmit).
-    if (depth + 1 < scene_.maxDepth) {
+    if (depth + 1 < scene.maxDepth) {
         Vec3f wi;
         RGB weight;
         for (int part = 0; part < bsdf.NumParts(); ++part) {
             if (bsdf.SampleSpecularReflection(part, si.wo, &wi, &weight)) {
                 counters.reflection++;
-                L += weight * Li(si.SpawnRay(wi, scene_.offset), ps, depth + 1, counters);
+                L += weight *
+                     Li(scene, si.SpawnRay(wi, scene.offset), ps, depth + 1, counters, nullptr);
             }
             if (bsdf.SampleSpecularTransmission(part, si.wo, &wi, &weight)) {
                 counters.refraction++;
-                L += weight * Li(si.SpawnRay(wi, scene_.offset), ps, depth + 1, counters);
+                L += weight *
+                     Li(scene, si.SpawnRay(wi, scene.offset), ps, depth + 1, counters, nullptr);
             }
         }
     }
     return L;
-}
-
-void RenderTileDirect(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &,
-                      FilmTile *tile) {
-    RenderTileWith<DirectLightingIntegrator>(scene, tb, rc, tile);
 }
 
 }  // namespace prism

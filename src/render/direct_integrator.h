@@ -5,34 +5,28 @@
 // maxdepth. docs/PATH.md.
 #pragma once
 
-#include "geometry/interaction.h"
-#include "image/bounds2.h"
+#include "render/integrator.h"
 #include "render/light_sampling.h"
-#include "render/whitted.h"
 
 namespace prism {
 
-class FilmTile;
-struct RenderScene;
-struct TileScratch;
-
-class DirectLightingIntegrator {
+class DirectLightingIntegrator : public Integrator {
   public:
-    explicit DirectLightingIntegrator(const RenderScene &scene) : scene_(scene), chooser_(scene) {}
-    // Radiance along a ray; depth counts delta bounces (camera rays are depth 0).
-    RGB Li(const Ray &ray, const PixelSamples &ps, int depth, RayCounters &counters) const;
-    // A camera ray's radiance (depth 0).
-    RGB Li(const Ray &ray, const PixelSamples &ps, RayCounters &counters) const {
-        return Li(ray, ps, 0, counters);
-    }
+    // allLights: strategy "all" (every light, its own sample count), else "one".
+    explicit DirectLightingIntegrator(bool allLights) : allLights_(allLights) {}
+    const char *Name() const override { return "directlighting"; }
+    IntegratorTraits Traits() const override;
+    void Prepare(const RenderScene &scene) override;
+    RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, RayCounters &rc,
+           RGB *direct) const override;
 
   private:
-    const RenderScene &scene_;
+    // Radiance along a ray; depth counts delta bounces (camera rays are depth 0).
+    RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, int depth,
+           RayCounters &counters, RGB *direct) const;
+
+    bool allLights_;
     LightChooser chooser_;
 };
-
-// Renders the pixels tb of one tile with the directlighting integrator.
-void RenderTileDirect(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &buf,
-                      FilmTile *tile);
 
 }  // namespace prism

@@ -1,17 +1,35 @@
 #include "render/distribution_integrator.h"
 
-#include "render/kernel.h"
+#include <string>
+
+#include "core/params.h"
 
 namespace prism {
 
-RGB DistributionIntegrator::Li(const Ray &ray, int depth, RayCounters &counters,
-                               const SampleContext &sc, bool emitted) const {
-    return Kernel<KernelAll>(scene_, true).Li(ray, depth, counters, sc, emitted);
+// Integrator "distribution" (a Prism extension; integrator_list.inc). Parameters:
+//   maxdepth       integer  5  the longest specular or glossy path (--maxdepth wins)
+//   glossysamples  integer  8  glossy rays per glossy lobe at the first glossy bounce (1
+//                              deeper down), 1 to MaxGlossySamples; --glossy-samples wins
+std::unique_ptr<Integrator> CreateDistributionIntegrator(const IntegratorInputs &in) {
+    const int n = in.glossySamples > 0 ? in.glossySamples
+                                       : in.params.Int("glossysamples", DefaultGlossySamples);
+    if (n < 1 || n > MaxGlossySamples)
+        throw SceneError(in.loc, "glossysamples " + std::to_string(n) + " out of range (1 to " +
+                                     std::to_string(MaxGlossySamples) + ")");
+    in.params.WarnUnread("Prism's distribution integrator reads only maxdepth and glossysamples");
+    return std::make_unique<DistributionIntegrator>(n);
 }
 
-RGB DistributionIntegrator::LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
-                                     const SampleContext &sc) const {
-    return Kernel<KernelAll>(scene_, true).LiCamera(ray, hit, counters, sc);
+RGB DistributionTracer::Li(const Ray &ray, int depth, RayCounters &counters,
+                           const SampleContext &sc, bool emitted) const {
+    return Kernel<KernelAll>(scene_, KernelParams{true, glossySamples_, 0})
+        .Li(ray, depth, counters, sc, emitted);
+}
+
+RGB DistributionTracer::LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
+                                 const SampleContext &sc) const {
+    return Kernel<KernelAll>(scene_, KernelParams{true, glossySamples_, 0})
+        .LiCamera(ray, hit, counters, sc);
 }
 
 }  // namespace prism

@@ -13,6 +13,8 @@
 // shades as Whitted does. The code is the kernel of render/kernel.h (Kernel<K> with KernelGlossy).
 #pragma once
 
+#include <memory>
+
 #include "render/whitted.h"
 
 namespace prism {
@@ -21,6 +23,11 @@ namespace prism {
 // light samples rather than glossy rays.
 inline constexpr float GlossyLightSampleAlpha = 0.2f;
 
+// Glossy rays per glossy lobe at the first glossy bounce of a path (1 deeper down), unless the
+// Integrator's "glossysamples" or --glossy-samples says otherwise; and the most it may say.
+inline constexpr int DefaultGlossySamples = 8;
+inline constexpr int MaxGlossySamples = 1024;
+
 // How a hit's glossy lobes are sampled.
 enum class GlossyRays {
     None,         // no glossy rays: light samples through every non-delta lobe (Whitted)
@@ -28,16 +35,27 @@ enum class GlossyRays {
     AllLights,    // glossy rays bring back infinite and area lights
 };
 
-// The distribution integrator as a value: the general kernel (render/kernel.h) with glossy rays.
 class DistributionIntegrator : public WhittedIntegrator {
   public:
-    static constexpr bool Glossy = true;
-    explicit DistributionIntegrator(const RenderScene &scene) : WhittedIntegrator(scene) {}
-    // emitted false: the emission of the first surface hit is left out (glossy rays).
+    explicit DistributionIntegrator(int glossySamples)
+        : WhittedIntegrator(KernelParams{true, glossySamples, 0}) {}
+    const char *Name() const override { return "distribution"; }
+};
+
+// The distribution kernel as a value, for tests: the general kernel with glossy rays. emitted
+// false: the emission of the first surface hit is left out (glossy rays).
+class DistributionTracer {
+  public:
+    explicit DistributionTracer(const RenderScene &scene, int glossySamples = 8)
+        : scene_(scene), glossySamples_(glossySamples) {}
     RGB Li(const Ray &ray, int depth, RayCounters &counters, const SampleContext &sc = {},
            bool emitted = true) const;
     RGB LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
                  const SampleContext &sc = {}) const;
+
+  private:
+    const RenderScene &scene_;
+    int glossySamples_;
 };
 
 }  // namespace prism

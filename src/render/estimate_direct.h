@@ -12,8 +12,8 @@
 #include "render/light_sampling.h"
 #include "render/medium.h"
 #include "render/medium_tracking.h"
+#include "render/ray_counters.h"
 #include "render/render_scene.h"
-#include "render/whitted.h"
 
 namespace prism {
 

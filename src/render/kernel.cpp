@@ -8,8 +8,8 @@
 namespace prism {
 
 template <uint32_t K>
-void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &buf,
-                      FilmTile *tile);  // instantiated in kernel_*.cpp
+void RenderTileKernel(const TileContext &ctx, const KernelParams &params, TileSamples &out,
+                      RayCounters &rc);  // instantiated in kernel_*.cpp
 
 uint32_t KernelMaskFor(const RenderScene &scene) {
     const EffectSet &e = scene.features.effects;
@@ -20,7 +20,7 @@ uint32_t KernelMaskFor(const RenderScene &scene) {
     const bool recursion = scene.maxDepth > 1;
     if (recursion && (e.Has(Effect::SpecularReflection) || e.Has(Effect::Refraction)))
         mask |= KernelSpecular;
-    if (recursion && scene.integrator == IntegratorKind::Distribution &&
+    if (recursion && scene.integrator && scene.integrator->Traits().glossyRays &&
         (e.Has(Effect::GlossyReflection) || e.Has(Effect::GlossyTransmission)))
         mask |= KernelGlossy;
     if (e.Has(Effect::SoftShadows) || e.Has(Effect::Environment)) mask |= KernelLightSamples;
@@ -35,6 +35,14 @@ uint32_t KernelMaskFor(const RenderScene &scene) {
         if (!m.IsLambertian() && !m.IsPassThrough()) mask |= KernelBsdf;
     }
     return KernelCanonical(mask);
+}
+
+RGB KernelDirectLiCamera(const RenderScene &scene, const KernelParams &params, const Ray &ray,
+                         const RawHit &hit, RayCounters &rc, const SampleContext &sc) {
+    constexpr uint32_t DirectMask = KernelAll & ~(KernelSpecular | KernelGlossy);
+    KernelParams p = params;
+    p.glossyRays = false;
+    return Kernel<DirectMask>(scene, p).LiCamera(ray, hit, rc, sc);
 }
 
 uint32_t KernelAllFor(const RenderScene &scene) {
@@ -57,14 +65,14 @@ std::string KernelMaskName(uint32_t mask) {
 
 namespace {
 template <size_t... M>
-constexpr std::array<RenderTileFn, sizeof...(M)> MakeTable(std::index_sequence<M...>) {
+constexpr std::array<KernelTileFn, sizeof...(M)> MakeTable(std::index_sequence<M...>) {
     return {&RenderTileKernel<KernelCanonical(uint32_t(M))>...};
 }
 }  // namespace
 
-RenderTileFn KernelRenderTile(uint32_t mask) {
+KernelTileFn KernelRenderTile(uint32_t mask) {
     if (mask & KernelMedia) return &RenderTileKernel<KernelMediaMask>;
-    static const std::array<RenderTileFn, KernelAll + 1> table =
+    static const std::array<KernelTileFn, KernelAll + 1> table =
         MakeTable(std::make_index_sequence<KernelAll + 1>());
     return table[mask & KernelAll];
 }

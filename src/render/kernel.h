@@ -22,15 +22,35 @@
 
 #include "geometry/accel.h"
 #include "image/bounds2.h"
-#include "render/whitted.h"
+#include "render/integrator.h"
 
 namespace prism {
 
 struct BSDF;
 struct TextureContext;
 struct RenderScene;
-class FilmTile;
 enum class GlossyRays;
+
+// Identifies the camera sample being traced, so that light samples form stratified patterns
+// across the pixel's samples and are a pure function of (pixel, sample); and carries the
+// throughput of the path down to the ray being traced (for the ray-weight cutoff).
+struct SampleContext {
+    int x = 0, y = 0;
+    uint32_t sample = 0, spp = 1;
+    RGB beta = RGB(1);         // product of the specular weights from the camera to this ray
+    bool afterGlossy = false;  // a glossy bounce lies between the camera and this ray
+    // The ray's differentials (RenderScene::differentials), or null: unfiltered lookups.
+    const RayDifferential *diff = nullptr;
+    int medium = -1;  // the medium the ray starts in (RenderScene::media; -1: none)
+};
+
+// What the kernel reads beside the scene: whether it traces glossy rays (Integrator
+// "distribution") and how many, and the seed of the render's sample patterns.
+struct KernelParams {
+    bool glossyRays = false;
+    int glossySamples = 8;
+    uint32_t seed = 0;
+};
 
 enum KernelBit : uint32_t {
     KernelSpecular = 1u << 0,       // delta reflection and transmission: recursion
@@ -72,8 +92,8 @@ class Kernel {
     static_assert(GeneralBsdf || !(Specular || Glossy), "a Lambertian kernel does not bounce");
     static_assert(!Media || K == KernelMediaMask, "media run in the general kernel only");
 
-    // glossyRays: trace glossy rays (Integrator "distribution"); read only when Glossy.
-    Kernel(const RenderScene &scene, bool glossyRays) : scene_(scene), glossyRays_(glossyRays) {}
+    // params.glossyRays: trace glossy rays (Integrator "distribution"); read only when Glossy.
+    Kernel(const RenderScene &scene, const KernelParams &params) : scene_(scene), params_(params) {}
     // Radiance along a ray; depth counts specular bounces (camera rays are depth 0). emitted
     // false (glossy rays only): the area light of the first hit is not added, because light
     // samples at the previous hit estimated it.
@@ -121,18 +141,17 @@ class Kernel {
                     const SampleContext &sc) const;
 
     const RenderScene &scene_;
-    bool glossyRays_;
+    KernelParams params_;
 };
 
-// Per-thread buffers for one tile's samples, reused from tile to tile.
-struct TileScratch {
-    std::vector<Vec2f> pFilm;
-    std::vector<RGB> L;
-};
-// Renders the pixels tb of one tile with Kernel<mask> into `tile`.
-using RenderTileFn = void (*)(const RenderScene &scene, Bounds2i tb, RayCounters &rc,
-                              TileScratch &buf, FilmTile *tile);
-RenderTileFn KernelRenderTile(uint32_t mask);  // KernelMedia set: the media kernel
+// Fills the camera samples of one tile with Kernel<mask> (packets of camera rays).
+using KernelTileFn = void (*)(const TileContext &ctx, const KernelParams &params, TileSamples &out,
+                              RayCounters &rc);
+KernelTileFn KernelRenderTile(uint32_t mask);  // KernelMedia set: the media kernel
+// The direct part of a camera ray whose closest hit is known (the direct AOV): emission and
+// direct lighting at the first surface, by the kernel without specular or glossy rays.
+RGB KernelDirectLiCamera(const RenderScene &scene, const KernelParams &params, const Ray &ray,
+                         const RawHit &hit, RayCounters &rc, const SampleContext &sc);
 
 // The instantiated mask that runs `mask`: KernelBsdf is added where the mask bounces (a
 // Lambertian kernel has no specular or glossy code).

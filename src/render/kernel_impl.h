@@ -7,7 +7,6 @@
 #include <cmath>
 #include <vector>
 
-#include "image/film.h"
 #include "render/area_light.h"
 #include "render/bsdf.h"
 #include "render/differentials.h"
@@ -20,10 +19,6 @@
 #include "render/sampler.h"
 
 namespace prism {
-
-// Consecutive invisible-interface crossings allowed before a ray is dropped; guards against
-// stacks of coincident "none" surfaces without changing any real scene.
-inline constexpr int MaxPassThrough = 256;
 
 // Media (render/kernel_media.h): the purposes of the march offsets and of the random streams
 // of shadow rays through heterogeneous media, and the seed of such a stream for a sample.
@@ -130,7 +125,7 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
         // lights those rays bring back are not light-sampled through them (GlossyRays).
         GlossyRays glossy = GlossyRays::None;
         if constexpr (Glossy)
-            if (glossyRays_) glossy = PrepareGlossy(bsdf, depth);
+            if (params_.glossyRays) glossy = PrepareGlossy(bsdf, depth);
         // glTF occlusion: scales the environment's light and the indirect paths (1 elsewhere).
         const float ambient = mat->AmbientOcclusion(tc);
         // Direct lighting through the non-specular lobes.
@@ -185,7 +180,7 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
             if (byGlossyRays && !hasDiffuse) continue;
             uint32_t seed =
                 usesSample ? PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919),
-                                         scene_.sampleSeed)
+                                         params_.seed)
                            : 0;
             RGB Lj;
             for (int k = 0; k < n; ++k) {
@@ -205,7 +200,7 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
                     MediumSampler sampler(MediumSeed(sc,
                                                      uint32_t(MediumShadowPurpose + j * 131 +
                                                               size_t(k) * 7 + size_t(depth) * 7919),
-                                                     scene_.sampleSeed));
+                                                     params_.seed));
                     const RGB tr =
                         ShadowTransmittance(scene_, shadow, medium, ls.infinite, sampler, counters);
                     if (tr.IsBlack()) continue;
@@ -281,7 +276,7 @@ template <uint32_t K>
 void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, GlossyRays mode,
                           int depth, RayCounters &counters, const SampleContext &sc, RGB &L) const {
     const bool emitted = mode == GlossyRays::AllLights;
-    const uint32_t n = sc.afterGlossy ? 1u : uint32_t(scene_.glossySamples);
+    const uint32_t n = sc.afterGlossy ? 1u : uint32_t(params_.glossySamples);
     // The rays below sample the pixel's samples × n further: the hits they reach stratify
     // their own samples over that larger set (while the count stays small).
     const bool refine = uint64_t(sc.spp) * n <= (1u << 24);
@@ -290,7 +285,7 @@ void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, Glossy
         // A stratified pattern over the pixel's samples × n, per pixel, depth and part.
         const uint32_t seed =
             PatternSeed(sc.x, sc.y, uint32_t(0x6c6f7373u + uint32_t(depth) * 977u + uint32_t(part)),
-                        (sc.afterGlossy ? 0x9e3779b9u : 0u) + scene_.sampleSeed);
+                        (sc.afterGlossy ? 0x9e3779b9u : 0u) + params_.seed);
         for (uint32_t k = 0; k < n; ++k) {
             const uint32_t index = sc.sample * n + k;
             Vec2f u = CMJSample(index, sc.spp * n, seed);
@@ -320,114 +315,61 @@ void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, Glossy
 
 // Camera rays are traced in packets of up to RenderPacketW x RenderPacketH pixels at one sample
 // index (coherent rays through Embree's 16-wide packet path), then shaded one by one from their
-// hits. Samples are added to the tile afterwards in pixel-then-sample order, so the film sums
-// exactly as when each sample was traced and added in turn.
+// hits, each sample's radiance into its slot of `out` (the driver adds them to the film in
+// pixel-then-sample order).
 template <uint32_t K>
-void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &buf,
-                      FilmTile *tile) {
+void RenderTileKernel(const TileContext &ctx, const KernelParams &params, TileSamples &out,
+                      RayCounters &rc) {
     constexpr int PacketW = RenderPacketW, PacketH = RenderPacketH;
-    const Kernel<K> kernel(scene, scene.integrator == IntegratorKind::Distribution);
-    // Lens samples: compiled in with the camera-sample bit, then drawn when the camera has a
-    // lens (the general kernel decides this at run time, a specialized one knows).
-    const bool lens = Kernel<K>::CameraSamples && scene.features.lens;
-    // Motion blur: each camera ray's time (a fraction of the shutter) is stratified over the
-    // pixel's samples; scenes where nothing moves keep time 0 and draw nothing.
-    const bool motion = Kernel<K>::CameraSamples && scene.features.effects.Has(Effect::MotionBlur);
-    const uint32_t spp = uint32_t(scene.spp);
-    // Ray differentials for filtered textures (pbrt-v3: scaled by max(1/8, 1/sqrt(spp))).
-    const bool differentials = scene.differentials;
-    const float diffScale = std::max(.125f, 1 / std::sqrt(float(spp)));
-    const bool jitter = scene.JitterFilmSamples();
-    const int w = tb.pMax.x - tb.pMin.x, h = tb.pMax.y - tb.pMin.y;
-    const size_t n = size_t(w) * size_t(h) * spp;
-    // pbrt's default box: each pixel's samples go to it at once (they lie in it: FilmPosition),
-    // so their film positions are not kept.
-    const bool unitBox = tile->UnitBox();
-    if (buf.L.size() < n) buf.L.resize(n);
-    if (!unitBox && buf.pFilm.size() < n) buf.pFilm.resize(n);
-    auto index = [&](int x, int y, uint32_t s) {
-        return (size_t(y - tb.pMin.y) * size_t(w) + size_t(x - tb.pMin.x)) * spp + s;
-    };
+    const RenderScene &scene = ctx.scene;
+    const CameraSampler &camera = ctx.camera;
+    const Kernel<K> kernel(scene, params);
+    const Bounds2i tb = out.bounds;
+    const uint32_t spp = out.spp;
+    const bool lens = camera.Lens();
+    const bool differentials = camera.Differentials();
     Ray rays[16];
     RayDifferential diffs[16];
     RawHit hits[16];
     size_t slot[16];
     int pixelX[16], pixelY[16];
-    uint32_t filmSeed[16], lensSeed[16], timeSeed[16];
-    const CMJPattern cmj(spp);
+    CameraSampler::Seeds seeds[16];
     for (int by = tb.pMin.y; by < tb.pMax.y; by += PacketH) {
         for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += PacketW) {
             const int ex = std::min(bx + PacketW, tb.pMax.x),
                       ey = std::min(by + PacketH, tb.pMax.y);
             // The packet's pattern seeds, once for all its samples.
-            if (jitter || lens || motion) {
-                int m = 0;
-                for (int y = by; y < ey; ++y)
-                    for (int x = bx; x < ex; ++x, ++m) {
-                        filmSeed[m] = PatternSeed(x, y, FilmPurpose, scene.sampleSeed);
-                        if constexpr (Kernel<K>::CameraSamples) {
-                            lensSeed[m] =
-                                lens ? PatternSeed(x, y, LensPurpose, scene.sampleSeed) : 0;
-                            timeSeed[m] =
-                                motion ? PatternSeed(x, y, TimePurpose, scene.sampleSeed) : 0;
-                        }
-                    }
-            }
+            int m = 0;
+            for (int y = by; y < ey; ++y)
+                for (int x = bx; x < ex; ++x, ++m) seeds[m] = camera.PixelSeeds(x, y);
             for (uint32_t s = 0; s < spp; ++s) {
-                int m = 0;
+                m = 0;
                 for (int y = by; y < ey; ++y) {
                     for (int x = bx; x < ex; ++x, ++m) {
-                        // One sample: the pixel centre; more: correlated multi-jittered.
-                        Vec2f u = jitter ? cmj.Sample(s, filmSeed[m]) : Vec2f(0.5f, 0.5f);
-                        const Vec2f pFilm = FilmPosition(x, y, u);
-                        Vec2f uLens(0.5f, 0.5f);
-                        float time = 0;
-                        // Per-ray camera samples: the lens sample (and, with motion blur, which
-                        // sets the same bit through Effect::MotionBlur, the ray's time).
-                        if constexpr (Kernel<K>::CameraSamples)
-                            if (lens) {
-                                uLens = cmj.Sample(s, lensSeed[m]);
-                                rc.lensSamples++;
-                            }
-                        if constexpr (Kernel<K>::CameraSamples)
-                            if (motion) time = cmj.Sample(s, timeSeed[m]).x;
-                        rays[m] = scene.camera->GenerateRay(pFilm, uLens, time);
-                        if (differentials)
-                            diffs[m] = scene.camera->GenerateDifferential(rays[m], pFilm, uLens,
-                                                                          time, diffScale);
-                        slot[m] = index(x, y, s);
+                        const CameraSample cs = camera.Sample(x, y, s, seeds[m]);
+                        rays[m] = camera.GenerateRay(cs);
+                        if (differentials) diffs[m] = camera.GenerateDifferential(rays[m], cs);
+                        slot[m] = out.Index(x, y, s);
                         pixelX[m] = x;
                         pixelY[m] = y;
-                        if (!unitBox) buf.pFilm[slot[m]] = pFilm;
+                        if (out.wantPositions) out.pFilm[slot[m]] = cs.pFilm;
                     }
                 }
+                if (lens) rc.lensSamples += uint64_t(m);
                 scene.accel->IntersectPacket(rays, m, hits);
                 scene.accel->PrefetchHits(hits, m);
                 rc.camera += uint64_t(m);
                 for (int i = 0; i < m; ++i) {
                     SampleContext sc{pixelX[i], pixelY[i], s, spp};
                     if (differentials) sc.diff = &diffs[i];
-                    RGB L = kernel.LiCamera(rays[i], hits[i], rc, sc) * scene.filmScale;
-                    if (scene.maxSampleLuminance < Infinity && L.IsFinite()) {
-                        float lum = L.Luminance();
-                        if (lum > scene.maxSampleLuminance) L *= scene.maxSampleLuminance / lum;
-                    }
-                    buf.L[slot[i]] = L;
+                    out.L[slot[i]] = kernel.LiCamera(rays[i], hits[i], rc, sc);
+                    if (out.wantDirect)
+                        out.direct[slot[i]] =
+                            KernelDirectLiCamera(scene, params, rays[i], hits[i], rc, sc);
                 }
             }
         }
     }
-    for (int y = tb.pMin.y; y < tb.pMax.y; ++y)
-        for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
-            if (unitBox) {
-                tile->AddPixelSamples({x, y}, &buf.L[index(x, y, 0)], int(spp));
-                continue;
-            }
-            for (uint32_t s = 0; s < spp; ++s) {
-                size_t i = index(x, y, s);
-                tile->AddSample(buf.pFilm[i], buf.L[i]);
-            }
-        }
 }
 
 }  // namespace prism
@@ -437,9 +379,9 @@ void RenderTileKernel(const RenderScene &scene, Bounds2i tb, RayCounters &rc, Ti
 namespace prism {
 
 // Explicit instantiation of one mask (kernel_*.cpp).
-#define PRISM_INSTANTIATE_KERNEL(M)                                                                \
-    template class Kernel<M>;                                                                      \
-    template void RenderTileKernel<M>(const RenderScene &, Bounds2i, RayCounters &, TileScratch &, \
-                                      FilmTile *);
+#define PRISM_INSTANTIATE_KERNEL(M)                                                             \
+    template class Kernel<M>;                                                                   \
+    template void RenderTileKernel<M>(const TileContext &, const KernelParams &, TileSamples &, \
+                                      RayCounters &);
 
 }  // namespace prism

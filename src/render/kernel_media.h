@@ -34,9 +34,8 @@ RGB Kernel<K>::LiMedia(Ray ray, bool hit, SurfaceInteraction si, int depth, RayC
         if (medium >= 0) {
             const Ray segment = MediumSegment(ray, from, hit ? &si.p : nullptr);
             L += T * InScattered(segment, segment.tMax, medium, depth, counters, sc);
-            MediumSampler sampler(
-                MediumSeed(sc, MediumShadowPurpose ^ uint32_t(depth * 977 + pass * 31 + 1),
-                           scene_.sampleSeed));
+            MediumSampler sampler(MediumSeed(
+                sc, MediumShadowPurpose ^ uint32_t(depth * 977 + pass * 31 + 1), params_.seed));
             T *= scene_.media[size_t(medium)]->Tr(segment, sampler);
             if (T.IsBlack()) return L;
         }
@@ -86,7 +85,7 @@ RGB Kernel<K>::InScattered(const Ray &ray, float tEnd, int mediumIndex, int dept
     // One jittered offset per sample, stratified over the pixel's samples.
     const float u = CMJSample(sc.sample, sc.spp,
                               PatternSeed(sc.x, sc.y, MediumMarchPurpose + uint32_t(depth) * 977u,
-                                          scene_.sampleSeed))
+                                          params_.seed))
                         .x;
     SurfaceInteraction at;
     at.wo = -ray.d / len;
@@ -115,7 +114,7 @@ RGB Kernel<K>::InScattered(const Ray &ray, float tEnd, int mediumIndex, int dept
             counters.shadow++;
             const uint32_t purpose = MediumShadowPurpose + uint32_t(i) * 0x9e3779b9u +
                                      uint32_t(j * 131 + 17) + uint32_t(depth) * 7919u;
-            MediumSampler sampler(MediumSeed(sc, purpose, scene_.sampleSeed));
+            MediumSampler sampler(MediumSeed(sc, purpose, params_.seed));
             const RGB tr =
                 ShadowTransmittance(scene_, shadow, mediumIndex, ls.infinite, sampler, counters);
             Ls += T * ss * ls.Li * tr * (phase / ls.pdf);

@@ -6,8 +6,8 @@
 #include "render/area_light.h"
 #include "render/bsdf.h"
 #include "render/estimate_direct.h"
+#include "render/ray_counters.h"
 #include "render/render_scene.h"
-#include "render/whitted.h"
 
 namespace prism {
 
@@ -36,8 +36,9 @@ void ComputeLightPower(RenderScene &scene) {
     for (const auto &light : scene.lights) scene.lightPower.push_back(light->Power(radius));
 }
 
-LightChooser::LightChooser(const RenderScene &scene) : n_(int(scene.lights.size())) {
-    if (scene.lightChoice == LightChoice::Uniform || scene.lightPower.size() != size_t(n_)) return;
+LightChooser::LightChooser(const RenderScene &scene, LightChoice choice)
+    : n_(int(scene.lights.size())) {
+    if (choice == LightChoice::Uniform || scene.lightPower.size() != size_t(n_)) return;
     auto power = [&](int i) {
         double p = scene.lightPower[size_t(i)];
         return std::isfinite(p) ? std::max(0.0, p) : 0.0;
@@ -46,7 +47,7 @@ LightChooser::LightChooser(const RenderScene &scene) : n_(int(scene.lights.size(
     for (int i = 0; i < n_; ++i) sum += power(i);
     if (!(sum > 0)) return;
     // Spatial's stand-in: half the choices by power, half uniform (defensive sampling).
-    const double uniformShare = scene.lightChoice == LightChoice::Spatial ? 0.5 : 0.0;
+    const double uniformShare = choice == LightChoice::Spatial ? 0.5 : 0.0;
     cdf_.resize(size_t(n_));
     double run = 0;
     for (int i = 0; i < n_; ++i) {

@@ -36,7 +36,7 @@ struct PixelSamples {
     int x = 0, y = 0;
     uint32_t sample = 0, spp = 1;
     SamplePattern pattern = SamplePattern::Stratified;
-    uint32_t passSeed = 0;  // RenderScene::sampleSeed: differs between progressive passes
+    uint32_t passSeed = 0;  // SamplerSettings::seed: differs between progressive passes
     // The camera ray's differentials where a texture filters (RenderScene::differentials),
     // else null; read at the first hit only (pbrt-v3's path tracer drops them after it).
     const RayDifferential *diff = nullptr;
@@ -110,9 +110,17 @@ bool SampleNextDirection(const BSDF &bsdf, const Vec3f &wo, const PixelSamples &
 void ComputeLightPower(RenderScene &scene);
 
 // Chooses a light for a one-light direct-lighting sample (uniformly, or by power).
+// How the path and directlighting integrators choose the light of a one-light direct-lighting
+// sample: uniformly, in proportion to the lights' power, or (the stand-in for pbrt-v3's
+// "spatial", the path default, which weighs lights by their contribution per region of the
+// scene) half by power and half uniformly, so a dim light that lights what the camera sees is
+// never starved.
+enum class LightChoice { Uniform, Power, Spatial };
+
 class LightChooser {
   public:
-    explicit LightChooser(const RenderScene &scene);
+    LightChooser() = default;  // no lights
+    LightChooser(const RenderScene &scene, LightChoice choice);
     // The light index for u in [0,1) and its probability; -1 when there are no lights.
     int Choose(float u, float *prob) const;
 

@@ -1,7 +1,7 @@
 #include "render/medium_tracking.h"
 
+#include "render/ray_counters.h"
 #include "render/render_scene.h"
-#include "render/whitted.h"
 
 namespace prism {
 

@@ -7,6 +7,7 @@
 
 #include "core/color.h"
 #include "geometry/interaction.h"
+#include "render/integrator.h"
 #include "render/medium.h"
 
 namespace prism {
@@ -14,8 +15,8 @@ namespace prism {
 struct RenderScene;
 struct RayCounters;
 
-// Consecutive invisible surfaces a ray may cross (as the kernel's MaxPassThrough).
-inline constexpr int MaxMediumCrossings = 256;
+// Consecutive invisible surfaces a ray may cross.
+inline constexpr int MaxMediumCrossings = MaxPassThrough;
 
 // The part of ray in a medium that begins at `from` (the previous boundary's hit point rather
 // than the spawned ray's origin, which its offset moves ahead) and ends at `to` (hit) or runs

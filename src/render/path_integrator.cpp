@@ -1,81 +1,103 @@
 #include "render/path_integrator.h"
 
-#include <algorithm>
-
-#include "render/area_light.h"
-#include "render/bsdf.h"
-#include "render/differentials.h"
-#include "render/kernel.h"
+#include "core/params.h"
+#include "render/effects.h"
+#include "render/path_vertex.h"
 #include "render/render_scene.h"
-#include "render/sample_tile.h"
 
 namespace prism {
 
-namespace {
-// Consecutive "none" surfaces a path may cross without a bounce (as the Whitted kernel).
-constexpr int MaxPassThroughSurfaces = 256;
-}  // namespace
+PathParams ReadPathParams(const IntegratorInputs &in) {
+    const Params &p = in.params;
+    PathParams pp;
+    pp.rrThreshold = p.Float("rrthreshold", 1.f);
+    if (!(pp.rrThreshold >= 0)) throw SceneError(in.loc, "rrthreshold must be a number >= 0");
+    const std::string lss = p.String("lightsamplestrategy", "spatial");
+    if (lss == "uniform") {
+        pp.lightChoice = LightChoice::Uniform;
+    } else if (lss == "power") {
+        pp.lightChoice = LightChoice::Power;
+    } else {
+        // pbrt-v3's default "spatial" (a distribution per voxel from the lights' contributions
+        // there) stands in as one scene-wide mixture, half by power and half uniform
+        // (docs/PATH.md); an unknown name is "spatial", as in pbrt-v3.
+        pp.lightChoice = LightChoice::Spatial;
+        if (p.Has("lightsamplestrategy") && lss == "spatial")
+            p.Warn(p.Loc("lightsamplestrategy"),
+                   "lightsamplestrategy \"spatial\" is rendered with one light distribution for "
+                   "the whole scene (half by power, half uniform)");
+        else if (p.Has("lightsamplestrategy"))
+            p.Warn(p.Loc("lightsamplestrategy"),
+                   "lightsamplestrategy " + Quote(lss) + " is unknown; using \"spatial\"");
+    }
+    // The one effect of the path integrators that no material or light turns on.
+    in.effects.Enable(Effect::IndirectIllumination, in.why, in.whyLoc);
+    p.WarnUnread("Prism's path integrators read maxdepth, rrthreshold and lightsamplestrategy");
+    return pp;
+}
 
-RGB PathIntegrator::Li(const Ray &cameraRay, const PixelSamples &ps, RayCounters &counters) const {
-    RGB L, beta(1);
+// Integrator "path" (integrator_list.inc). Parameters:
+//   maxdepth             integer  5          the longest path (--maxdepth wins)
+//   rrthreshold          float    1          Russian roulette below this throughput, after the
+//                                            third bounce
+//   lightsamplestrategy  string   "spatial"  uniform | power | spatial (half by power, half
+//                                            uniform)
+std::unique_ptr<Integrator> CreatePathIntegrator(const IntegratorInputs &in) {
+    return std::make_unique<PathIntegrator>(ReadPathParams(in));
+}
+
+IntegratorTraits PathIntegrator::Traits() const {
+    IntegratorTraits t;
+    t.samplePatterns = true;
+    t.roughGlass = true;
+    t.directAov = true;
+    return t;
+}
+
+void PathIntegrator::Prepare(const RenderScene &scene) {
+    chooser_ = LightChooser(scene, params_.lightChoice);
+}
+
+RGB PathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const PixelSamples &ps,
+                       RayCounters &counters, RGB *direct) const {
+    PathState path;
     Ray ray = cameraRay;
-    bool specularBounce = false;
-    float etaScale = 1;  // radiance scaling by refraction, undone for Russian roulette
     int passes = 0;
+    bool directDone = false;
     for (int bounces = 0;; ++bounces) {
-        // Intersect.
         SurfaceInteraction si;
-        const bool found = scene_.accel->Intersect(ray, &si);
-        const ShapeInfo *info = found ? &scene_.Info(si) : nullptr;
-        // Emission that no light sample covered: seen by the camera, or after a delta bounce.
-        if (bounces == 0 || specularBounce) {
-            if (!found) {
-                for (const auto &light : scene_.lights) L += beta * light->Le(ray);
-            } else if (info->areaLight >= 0) {
-                L += beta *
-                     static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(info->areaLight)])
-                         .L(si, si.wo);
-            }
-        }
-        if (!found || bounces >= scene_.maxDepth) break;
-        const Material &mat = scene_.materials[size_t(info->material)];
+        const bool found = scene.accel->Intersect(ray, &si);
+        const ShapeInfo *info = found ? &scene.Info(si) : nullptr;
+        if (bounces == 0 || path.specularBounce)
+            AddUnsampledEmission(scene, ray, found ? &si : nullptr, info, path);
+        if (!found || bounces >= scene.maxDepth) break;
+        const Material &mat = scene.materials[size_t(info->material)];
         if (mat.IsPassThrough()) {
             // pbrt: a surface without a BSDF continues the ray without counting a bounce.
-            if (++passes > MaxPassThroughSurfaces) break;
-            ray = si.SpawnRay(ray.d, scene_.offset);
+            if (++passes > MaxPassThrough) break;
+            ray = si.SpawnRay(ray.d, scene.offset);
             counters.passThrough++;
             --bounces;
             continue;
         }
         passes = 0;
-        if (mat.PerturbsShading()) mat.PerturbShading(si);
-        TextureContext tc{si.uv, si.p, si.uv1};
         // The first hit's footprint (not behind pass-through surfaces: their continued rays
         // carry no differentials, as in the Whitted kernel).
-        if (bounces == 0 && ps.diff && ray.o == cameraRay.o)
-            ComputeDifferentials(si, *ps.diff, &tc);
-        // Emission a material carries itself (glTF emissive textures; no light samples it).
-        if (mat.HasEmission()) L += beta * mat.Emitted(tc);
-        BSDF bsdf = mat.GetBSDF(si, tc);
-        bsdf.MakeRoughSpecularGlossy();  // pbrt-v3: rough glass is a microfacet BSDF
-        // Direct lighting: one light, light and BSDF samples weighted by MIS.
-        if (bsdf.HasNonSpecular())
-            L += beta * SampleOneLight(scene_, chooser_, si, bsdf, ps, bounces, counters);
-        // Sample the BSDF for the next direction.
+        const RayDifferential *diff = bounces == 0 && ray.o == cameraRay.o ? ps.diff : nullptr;
         Vec3f wi;
-        if (!SampleNextDirection(bsdf, si.wo, ps, bounces, beta, specularBounce, etaScale, &wi,
-                                 counters))
-            break;
-        ray = si.SpawnRay(wi, scene_.offset);
+        const bool more = SurfaceVertex(scene, chooser_, si, mat, ps, bounces, diff,
+                                        NoMediaVisibility{}, path, &wi, counters);
+        if (bounces == 0 && direct) {
+            *direct = path.L;
+            directDone = true;
+        }
+        if (!more) break;
+        ray = si.SpawnRay(wi, scene.offset);
         // Russian roulette (pbrt-v3: after the third bounce, below rrthreshold).
-        if (!SurvivesRoulette(beta, etaScale, scene_.rrThreshold, bounces, ps)) break;
+        if (!SurvivesRoulette(path.beta, path.etaScale, params_.rrThreshold, bounces, ps)) break;
     }
-    return L;
-}
-
-void RenderTilePath(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &,
-                    FilmTile *tile) {
-    RenderTileWith<PathIntegrator>(scene, tb, rc, tile);
+    if (direct && !directDone) *direct = path.L;
+    return path.L;
 }
 
 }  // namespace prism

@@ -17,8 +17,8 @@ int NextPassSpp(int done, int maxSpp, double secondsLeft, double secondsPerSpp) 
     return 0;
 }
 
-Image RenderProgressive(RenderScene &scene, const TimeLimit &limit, RenderStats *stats,
-                        const ProgressFn &progress, const volatile int *cancel) {
+Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, RenderStats *stats,
+                        const ProgressFn &progress, const volatile int *cancel, AovFrame *aovs) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -32,19 +32,22 @@ Image RenderProgressive(RenderScene &scene, const TimeLimit &limit, RenderStats 
         const int spp = NextPassSpp(done, limit.maxSpp, limit.seconds - elapsed(),
                                     done > 0 ? total.renderSeconds / double(done) : 0.0);
         if (spp == 0) break;
-        scene.spp = spp;
+        RenderOptions options;
+        options.sampler = scene.sampler;
+        options.sampler.spp = spp;
         // Pass 0 keeps seed 0: a budget of one pass renders what a plain render would.
-        scene.sampleSeed = pass * 0x9E3779B9u;
-        ProgressFn passProgress;
+        options.sampler.seed = pass * 0x9E3779B9u;
+        options.cancel = cancel;
+        options.aovs = aovs;
         if (progress) {
-            passProgress = [&, spp](double f) {
+            options.progress = [&, spp](double f) {
                 double bySamples = (double(done) + f * spp) / double(limit.maxSpp);
                 double byTime = limit.seconds > 0 ? elapsed() / limit.seconds : 1.0;
                 progress(std::min(0.99, std::max(bySamples, byTime)));
             };
         }
         RenderStats ps;
-        Image pi = Render(scene, &ps, passProgress, cancel);
+        Image pi = Render(scene, options, &ps);
         total.rays += ps.rays;
         total.renderSeconds += ps.renderSeconds;
         total.nonFiniteSamples += ps.nonFiniteSamples;
@@ -84,8 +87,7 @@ Image RenderProgressive(RenderScene &scene, const TimeLimit &limit, RenderStats 
     }
     total.noiseVariance = weight > 0 ? var : 0;
     if (weight == 0) total.noisePixels = 0;
-    scene.spp = std::max(done, 1);
-    scene.sampleSeed = 0;
+    total.spp = done;
     if (progress && !total.cancelled) progress(1.0);
     if (stats) *stats = total;
     return img;

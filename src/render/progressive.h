@@ -1,5 +1,5 @@
 // Progressive rendering for `--time-limit`: the image is rendered in passes, each a complete
-// render with sample patterns of its own (RenderScene::sampleSeed), and the passes are averaged
+// render with sample patterns of its own (SamplerSettings::seed), and the passes are averaged
 // weighted by their samples per pixel. Passes grow (2, 2, 4, 8, ... samples per pixel, sized
 // from the measured time per sample to fit the time left) until the time runs out or the
 // sample budget is spent. A pass that has started finishes, so the image is always complete.
@@ -24,10 +24,12 @@ struct TimeLimit {
 // no noise estimate of its own).
 int NextPassSpp(int done, int maxSpp, double secondsLeft, double secondsPerSpp);
 
-// Renders `scene` within `limit`. The scene's spp and sampleSeed change during the call and
-// are left at the total samples per pixel rendered and 0. stats->passSpp lists the passes; the
-// noise variance (with scene.estimateNoise) is that of the averaged image.
-Image RenderProgressive(RenderScene &scene, const TimeLimit &limit, RenderStats *stats,
-                        const ProgressFn &progress = {}, const volatile int *cancel = nullptr);
+// Renders `scene` within `limit`, each pass with the scene's sampler at the pass's spp and
+// seed. stats->spp is the total samples per pixel and stats->passSpp lists the passes; the
+// noise variance (with scene.estimateNoise) is that of the averaged image. `aovs`, when given,
+// collects every pass's tiles.
+Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, RenderStats *stats,
+                        const ProgressFn &progress = {}, const volatile int *cancel = nullptr,
+                        AovFrame *aovs = nullptr);
 
 }  // namespace prism

@@ -13,6 +13,7 @@
 #include "image/tonemap.h"
 #include "render/camera.h"
 #include "render/effects.h"
+#include "render/integrator.h"
 #include "render/light.h"
 #include "render/material.h"
 #include "render/medium.h"
@@ -35,26 +36,6 @@ struct SceneFeatures {
     size_t triangles = 0;
     EffectSet effects;  // what the scene calls for, with reasons (render/effects.h)
 };
-
-// The integrator a render runs (the renderer dispatches on it once per render).
-enum class IntegratorKind {
-    Whitted,         // pbrt-v3's "whitted" (also what every other pbrt integrator renders as)
-    Distribution,    // Prism's "distribution": Whitted plus glossy rays
-    DirectLighting,  // pbrt-v3's "directlighting" (render/direct_integrator.h)
-    Path,            // pbrt-v3's "path" (render/path_integrator.h)
-    VolPath,         // pbrt-v3's "volpath" (render/volpath_integrator.h)
-};
-
-// How the path and directlighting integrators choose the light of a one-light direct-lighting
-// sample (render/light_sampling.h): uniformly, in proportion to the lights' power, or (the
-// stand-in for pbrt-v3's "spatial", the path default, which weighs lights by their
-// contribution per region of the scene) half by power and half uniformly, so a dim light that
-// lights what the camera sees is never starved.
-enum class LightChoice { Uniform, Power, Spatial };
-
-// Glossy rays per glossy lobe at the first glossy bounce of a path (1 deeper down), unless the
-// Integrator's "glossysamples" or --glossy-samples says otherwise.
-inline constexpr int DefaultGlossySamples = 8;
 
 struct ShapeInfo {
     int material = 0;        // index into RenderScene::materials
@@ -95,20 +76,12 @@ struct RenderScene {
     Filter filter;
     float filmScale = 1;
     float maxSampleLuminance = Infinity;
-    int spp = 1;
-    // Mixed into every sample pattern's seed: 0 for a render, the pass's seed for the passes
-    // of a progressive render (render/progressive.h), whose samples must differ.
-    uint32_t sampleSeed = 0;
-    // Whether camera samples are jittered: one sample per pixel sits at the pixel centre,
-    // except in the later passes of a progressive render, whose pattern seeds differ.
-    bool JitterFilmSamples() const { return spp > 1 || sampleSeed != 0; }
+    // The sampler: spp, the pattern of the path integrators' dimensions and the seed (0: a
+    // render's; progressive passes render with seeds of their own, render/progressive.h).
+    SamplerSettings sampler;
     // --stats: the film also sums each pixel's even and odd samples apart, for the noise
     // estimate (RenderStats::noiseVariance).
     bool estimateNoise = false;
-    // The samples of the path and directlighting integrators (render/sampler.h): pbrt-v3's
-    // (0,2)-sequence for "02sequence" and "lowdiscrepancy", independent for "random",
-    // stratified patterns otherwise. The Whitted kernel draws its own stratified patterns.
-    SamplePattern samplePattern = SamplePattern::Stratified;
     int maxDepth = 5;
     // Accuracy knobs (BuildSettings): the ray-weight cutoff (0: every ray) and how spawned rays
     // leave a surface.
@@ -121,14 +94,11 @@ struct RenderScene {
     std::optional<ToneMap> filmToneMap;
     // Film "aovs" (Prism extension, render/aov.h): "" or a checked AOV list ("all", "Z,N").
     std::string filmAovs;
-    std::string integratorName;  // the integrator that runs ("whitted", "path", ...)
-    std::string integratorWhy;   // why: "Integrator \"path\" at f.pbrt:3", "--integrator path"
-    IntegratorKind integrator = IntegratorKind::Whitted;
-    int glossySamples = DefaultGlossySamples;  // DistributionIntegrator only
-    // directlighting "strategy": true "all" (every light, its own sample count), false "one".
-    bool directAllLights = true;
-    float rrThreshold = 1;  // path "rrthreshold": Russian roulette below this throughput
-    LightChoice lightChoice = LightChoice::Spatial;  // path "lightsamplestrategy"
+    // The integrator that runs (render/integrator.h, created from the Integrator directive),
+    // and why it is that one: "Integrator \"path\" at f.pbrt:3", "--integrator path".
+    std::unique_ptr<Integrator> integrator;
+    std::string integratorWhy;
+    const char *IntegratorName() const { return integrator ? integrator->Name() : "none"; }
     // Each light's power (luminance), for LightChoice::Power: filled by the build
     // (render/light_sampling.h ComputeLightPower); empty: lights are chosen uniformly.
     std::vector<double> lightPower;

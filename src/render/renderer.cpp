@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <xmmintrin.h>
 
 #include <algorithm>
@@ -16,10 +17,8 @@
 #include <thread>
 #include <vector>
 
-#include "render/direct_integrator.h"
-#include "render/kernel.h"
-#include "render/path_integrator.h"
-#include "render/volpath_integrator.h"
+#include "image/film.h"
+#include "render/aov.h"
 
 namespace prism {
 
@@ -71,42 +70,103 @@ class TileMerger {
     std::vector<FilmTile *> free_;
 };
 
-// The tile function of the scene's integrator: the path and directlighting integrators, or the
-// Whitted/distribution kernel specialized for `mask`.
-RenderTileFn TileFunction(const RenderScene &scene, uint32_t mask) {
-    switch (scene.integrator) {
-        case IntegratorKind::Path:
-            return &RenderTilePath;
-        case IntegratorKind::VolPath:
-            return &RenderTileVolPath;
-        case IntegratorKind::DirectLighting:
-            return &RenderTileDirect;
-        default:
-            return KernelRenderTile(mask);
-    }
+}  // namespace
+
+int MaxTileWorkers() { return tbb::this_task_arena::max_concurrency(); }
+
+int ForEachTile(int begin, int end, const std::function<void(int t, int worker)> &body,
+                const volatile int *cancel) {
+    std::atomic<int> next{begin}, done{0};
+    tbb::parallel_for(tbb::blocked_range<int>(begin, end, 1),
+                      [&](const tbb::blocked_range<int> &r) {
+                          // Flush denormals to zero, as Embree recommends, in every worker.
+                          _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+                          _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+                          const int worker = tbb::this_task_arena::current_thread_index();
+                          for (int i = r.begin(); i != r.end(); ++i) {
+                              if (cancel && *cancel) return;
+                              // Each body call takes as many tiles as its range holds, but in
+                              // global order, so tiles finish nearly in index order and few wait
+                              // for their merge.
+                              body(next.fetch_add(1), worker);
+                              done.fetch_add(1);
+                          }
+                      });
+    return done.load();
 }
 
-}  // namespace
+TileDriver::TileDriver(const RenderScene &scene, const SamplerSettings &sampler, AovFrame *aovs)
+    : scene_(scene),
+      sampler_(sampler),
+      camera_(scene, sampler_),
+      context_{scene, sampler_, camera_, scene.integrator->KernelMask(scene)},
+      aovs_(aovs) {}
+
+void TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSamples &buf,
+                            RayCounters &rc) const {
+    const bool unitBox = tile->UnitBox();
+    buf.wantDirect = aovs_ && aovs_->WantsDirect();
+    buf.wantPositions = !unitBox || buf.wantDirect;
+    buf.Reset(tb, uint32_t(sampler_.spp));
+    scene_.integrator->RenderTile(context_, buf, rc);
+    // The film's scale, and pbrt's clamp of bright samples (Film "maxsampleluminance"); the
+    // direct part is scaled as its sample is.
+    const float scale = scene_.filmScale, maxLum = scene_.maxSampleLuminance;
+    const size_t n = buf.L.size();
+    for (size_t i = 0; i < n; ++i) {
+        RGB L = buf.L[i] * scale;
+        float clamp = 1;
+        if (maxLum < Infinity && L.IsFinite()) {
+            const float lum = L.Luminance();
+            if (lum > maxLum) {
+                clamp = maxLum / lum;
+                L *= clamp;
+            }
+        }
+        buf.L[i] = L;
+        if (buf.wantDirect) buf.direct[i] = buf.direct[i] * (scale * clamp);
+    }
+    const uint32_t spp = buf.spp;
+    for (int y = tb.pMin.y; y < tb.pMax.y; ++y)
+        for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
+            const size_t first = buf.Index(x, y, 0);
+            // pbrt's default box: each pixel's samples go to it at once (they lie in it:
+            // FilmPosition).
+            if (unitBox) {
+                tile->AddPixelSamples({x, y}, &buf.L[first], int(spp));
+                continue;
+            }
+            for (uint32_t s = 0; s < spp; ++s)
+                tile->AddSample(buf.pFilm[first + s], buf.L[first + s]);
+        }
+    if (aovs_) aovs_->AddTile(context_, t, buf);
+}
 
 Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &progress,
              const volatile int *cancel) {
+    RenderOptions options;
+    options.sampler = scene.sampler;
+    options.progress = progress;
+    options.cancel = cancel;
+    return Render(scene, options, stats);
+}
+
+Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats *stats) {
     auto start = std::chrono::steady_clock::now();
+    const ProgressFn &progress = options.progress;
     TiledFilm film(scene.resolution, scene.pixelBounds, scene.filter, RenderTileSize);
     if (scene.estimateNoise) film.EnableNoiseEstimate();
-    int nTiles = film.NumTiles();
+    const int nTiles = film.NumTiles();
     TileMerger merger(film);
-    std::atomic<int> nextTile{0};
     tbb::enumerable_thread_specific<RayCounters> counters;
-    tbb::enumerable_thread_specific<TileScratch> scratch;
+    tbb::enumerable_thread_specific<TileSamples> scratch;
     // pbrt's default box filter: each worker resolves its tiles straight into the image
     // (TiledFilm::ResolvesTiles), in a tile buffer of its own; other filters merge in order.
     const bool inPlace = film.EnableResolveInPlace();
     tbb::enumerable_thread_specific<FilmTile> ownTile;
     std::atomic<int> done{0};
-    // The kernel is chosen here, once per render: the one specialized for the scene's effects
-    // (render/kernel.h), or the general one for --effects all.
-    const uint32_t kernelMask = scene.allEffects ? KernelAllFor(scene) : KernelMaskFor(scene);
-    const RenderTileFn renderTile = TileFunction(scene, kernelMask);
+    if (options.aovs) options.aovs->BeginPass(nTiles);
+    const TileDriver driver(scene, options.sampler, options.aovs);
 
     // Progress is reported from a helper thread so worker threads never block on output.
     std::mutex mutex;
@@ -121,27 +181,19 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
         });
     }
 
-    tbb::parallel_for(tbb::blocked_range<int>(0, nTiles, 1), [&](const tbb::blocked_range<int> &r) {
-        // Flush denormals to zero, as Embree recommends, in every worker.
-        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-        RayCounters &rc = counters.local();
-        for (int i = r.begin(); i != r.end(); ++i) {
-            if (cancel && *cancel) return;
-            // Each body call takes as many tiles as its range holds, but in global order, so
-            // tiles finish nearly in index order and few wait for their merge.
-            int t = nextTile.fetch_add(1);
-            Bounds2i tb = film.TilePixels(t);
+    ForEachTile(
+        0, nTiles,
+        [&](int t, int) {
             FilmTile *tile = inPlace ? &ownTile.local() : merger.Acquire();
             film.ResetTile(t, tile);
-            renderTile(scene, tb, rc, scratch.local(), tile);
+            driver.RenderTile(t, film.TilePixels(t), tile, scratch.local(), counters.local());
             if (inPlace)
                 film.ResolveTile(t, *tile);
             else
                 merger.Submit(t, tile);
             done.fetch_add(1);
-        }
-    });
+        },
+        options.cancel);
     if (progress) {
         {
             std::lock_guard<std::mutex> lock(mutex);
@@ -152,16 +204,18 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
         progress(1.0);
     }
     bool cancelled = inPlace ? done.load() < nTiles : !merger.Flush();
+    if (options.aovs && !cancelled) options.aovs->EndPass(options.sampler.spp);
     Image img = film.Finish();
     if (stats) {
         stats->renderSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->spp = options.sampler.spp;
         stats->rays = RayCounters{};
         for (const RayCounters &c : counters) stats->rays += c;
         stats->nonFiniteSamples = film.NonFiniteCount();
         stats->firstNonFinitePixel = film.FirstNonFinitePixel();
         stats->cancelled = cancelled;
-        stats->kernelMask = kernelMask;
+        stats->kernelMask = driver.KernelMask();
         stats->noiseVariance = film.NoiseVariance();
         stats->noisePixels = film.NoisePixels();
     }
@@ -183,7 +237,8 @@ namespace prism {
 
 FrameTiles::FrameTiles(const RenderScene &scene)
     : scene_(scene),
-      kernelMask_(scene.allEffects ? KernelAllFor(scene) : KernelMaskFor(scene)),
+      driver_(scene, scene.sampler, nullptr),
+      kernelMask_(driver_.KernelMask()),
       film_(std::make_unique<TiledFilm>(scene.resolution, scene.pixelBounds, scene.filter,
                                         RenderTileSize)) {}
 
@@ -194,22 +249,13 @@ int FrameTiles::NumTiles() const { return film_->NumTiles(); }
 void FrameTiles::RenderTiles(int begin, int end, std::vector<FilmTile> *tiles,
                              RayCounters *rays) const {
     tiles->resize(size_t(end - begin));
-    const RenderTileFn renderTile = TileFunction(scene_, kernelMask_);
     tbb::enumerable_thread_specific<RayCounters> counters;
-    tbb::enumerable_thread_specific<TileScratch> scratch;
-    tbb::parallel_for(tbb::blocked_range<int>(begin, end, 1),
-                      [&](const tbb::blocked_range<int> &r) {
-                          // As in Render(): denormals flushed to zero in every worker, so the
-                          // samples match.
-                          _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-                          _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-                          RayCounters &rc = counters.local();
-                          for (int t = r.begin(); t != r.end(); ++t) {
-                              FilmTile *tile = &(*tiles)[size_t(t - begin)];
-                              film_->ResetTile(t, tile);
-                              renderTile(scene_, film_->TilePixels(t), rc, scratch.local(), tile);
-                          }
-                      });
+    tbb::enumerable_thread_specific<TileSamples> scratch;
+    ForEachTile(begin, end, [&](int t, int) {
+        FilmTile *tile = &(*tiles)[size_t(t - begin)];
+        film_->ResetTile(t, tile);
+        driver_.RenderTile(t, film_->TilePixels(t), tile, scratch.local(), counters.local());
+    });
     for (const RayCounters &c : counters) *rays += c;
 }
 
@@ -225,6 +271,7 @@ Image FrameTiles::Finish(RenderStats *stats) {
         stats->nonFiniteSamples = film_->NonFiniteCount();
         stats->firstNonFinitePixel = film_->FirstNonFinitePixel();
         stats->kernelMask = kernelMask_;
+        stats->spp = scene_.sampler.spp;
     }
     return img;
 }

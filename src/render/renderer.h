@@ -1,7 +1,11 @@
-// The tile-parallel render loop: TBB over tiles, each tile filtered into its own buffer. With
-// pbrt's default box filter each tile is resolved straight into the image by its thread
-// (image/film.h TiledFilm::ResolvesTiles); other filters reach across tiles, which are then
-// merged in a fixed order. Either way the image is identical for any thread count.
+// The one tile driver. Every render (`prism render`, batch, progressive passes, prism-mpi's
+// FrameTiles, bench's ceiling pass) runs its tiles through ForEachTile, and every shading pass
+// through TileDriver: the scene's integrator fills a tile's camera samples (render/integrator.h),
+// the driver applies the film scale and the sample clamp, adds the samples to the film tile and
+// hands them to the AOVs. With pbrt's default box filter each tile is resolved straight into the
+// image by its thread (image/film.h TiledFilm::ResolvesTiles); other filters reach across
+// tiles, which are then merged in a fixed order. Either way the image is identical for any
+// thread count.
 #pragma once
 
 #include <functional>
@@ -10,8 +14,8 @@
 #include <vector>
 
 #include "image/image.h"
+#include "render/integrator.h"
 #include "render/render_scene.h"
-#include "render/whitted.h"
 
 namespace prism {
 
@@ -22,8 +26,11 @@ inline constexpr int RenderTileSize = 16;
 // index (bench's ceiling pass traces the same packets).
 inline constexpr int RenderPacketW = 4, RenderPacketH = 4;
 
+class AovFrame;
+
 struct RenderStats {
     double renderSeconds = 0;
+    int spp = 0;  // samples per pixel rendered (all passes of a progressive render)
     RayCounters rays;
     uint64_t nonFiniteSamples = 0;
     std::optional<Vec2i> firstNonFinitePixel;
@@ -46,10 +53,48 @@ std::optional<double> RelativeStandardError(const Image &img, const RenderStats 
 // Called with the fraction done (0..1), from a single thread.
 using ProgressFn = std::function<void(double fraction)>;
 
-// `cancel`, when given, is polled between tiles; once it reads true the remaining tiles are
-// skipped and stats->cancelled is set.
+// How one render runs, beside the scene.
+struct RenderOptions {
+    SamplerSettings sampler;  // usually the scene's (RenderScene::sampler)
+    ProgressFn progress;
+    // Polled between tiles; once it reads true the remaining tiles are skipped and
+    // stats->cancelled is set.
+    const volatile int *cancel = nullptr;
+    AovFrame *aovs = nullptr;  // the AOVs, computed from this render's own tiles
+};
+
+Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats *stats);
+// With the scene's sampler and no AOVs.
 Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &progress = {},
              const volatile int *cancel = nullptr);
+
+// The one parallel loop over tiles [begin, end): TBB workers take tile indices in order from a
+// shared counter (so tiles finish nearly in index order), with denormals flushed to zero in
+// every worker as Embree recommends. body(t, worker) runs once per tile; `worker` is the
+// worker's slot, in [0, MaxTileWorkers()), for per-thread state. Stops taking tiles once
+// *cancel reads true; returns how many tiles ran.
+int ForEachTile(int begin, int end, const std::function<void(int t, int worker)> &body,
+                const volatile int *cancel = nullptr);
+int MaxTileWorkers();
+
+// The per-tile work of one shading render: the scene's integrator fills the camera samples of
+// a tile, the film scale and clamp are applied, and the samples go to the film tile and the
+// AOVs. Immutable: RenderTile runs on any worker.
+class TileDriver {
+  public:
+    TileDriver(const RenderScene &scene, const SamplerSettings &sampler, AovFrame *aovs);
+    uint32_t KernelMask() const { return context_.kernelMask; }
+    // Renders tile t (pixels tb) into `tile` (reset by the caller), with buf as scratch.
+    void RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSamples &buf,
+                    RayCounters &rc) const;
+
+  private:
+    const RenderScene &scene_;
+    SamplerSettings sampler_;
+    CameraSampler camera_;
+    TileContext context_;
+    AovFrame *aovs_;
+};
 
 // A frame rendered tile by tile by a caller that hands the tiles out itself (prism-mpi: tiles
 // rendered on other processes). Rendering every tile with RenderTile and merging them with
@@ -76,6 +121,7 @@ class FrameTiles {
 
   private:
     const RenderScene &scene_;
+    TileDriver driver_;
     uint32_t kernelMask_;
     std::unique_ptr<TiledFilm> film_;
 };

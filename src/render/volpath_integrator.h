@@ -5,32 +5,22 @@
 // between the light and the Henyey–Greenstein phase function) and continuation (phase-function
 // sampling) replace the BSDF's; light samples and the MIS rays toward lights carry the
 // transmittance of the media and invisible boundaries they cross (render/medium_tracking.h).
-// Russian roulette as in "path". docs/MEDIA.md.
+// Surface vertices are path's own (render/path_vertex.h), so without media volpath renders
+// path's image bit for bit. Russian roulette as in "path". docs/MEDIA.md.
 #pragma once
 
-#include "image/bounds2.h"
-#include "render/light_sampling.h"
-#include "render/whitted.h"
+#include "render/path_integrator.h"
 
 namespace prism {
 
-class FilmTile;
-struct RenderScene;
-struct TileScratch;
-
-class VolPathIntegrator {
+class VolPathIntegrator : public PathIntegrator {
   public:
-    explicit VolPathIntegrator(const RenderScene &scene) : scene_(scene), chooser_(scene) {}
-    // Radiance along a camera ray (starting in the camera's medium) for the camera sample ps.
-    RGB Li(const Ray &ray, const PixelSamples &ps, RayCounters &counters) const;
-
-  private:
-    const RenderScene &scene_;
-    LightChooser chooser_;
+    explicit VolPathIntegrator(const PathParams &params) : PathIntegrator(params) {}
+    const char *Name() const override { return "volpath"; }
+    IntegratorTraits Traits() const override;
+    // A camera ray starts in the camera's medium.
+    RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, RayCounters &rc,
+           RGB *direct) const override;
 };
-
-// Renders the pixels tb of one tile with the volumetric path tracer (Integrator "volpath").
-void RenderTileVolPath(const RenderScene &scene, Bounds2i tb, RayCounters &rc, TileScratch &buf,
-                       FilmTile *tile);
 
 }  // namespace prism

@@ -47,7 +47,7 @@ StudySetting Setting(StudyKnob knob, std::string value, std::function<void(Build
 // knob KnobReusesScene names must be copied here.
 void ApplyRenderTimeSettings(const BuildSettings &s, int baseSpp, int baseMaxDepth,
                              RenderScene *scene) {
-    scene->spp = s.spp > 0 ? s.spp : baseSpp;
+    scene->sampler.spp = s.spp > 0 ? s.spp : baseSpp;
     scene->maxDepth = s.maxDepth >= 0 ? s.maxDepth : baseMaxDepth;
     scene->rayCutoff = s.rayCutoff;
     scene->offset = s.offset;
@@ -276,7 +276,7 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
     base.spp = options.baseSpp;
     base.budget = &budget;
     RenderScene scene = BuildRenderScene(desc, base, diag);
-    const int baseSpp = scene.spp, baseMaxDepth = scene.maxDepth;
+    const int baseSpp = scene.sampler.spp, baseMaxDepth = scene.maxDepth;
 
     StudyResult result;
     result.scene = sceneName;
@@ -302,11 +302,11 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
 
     // The reference: the base scene (double precision, analytic shapes, error-bound offsets,
     // no cutoff are the defaults) at many samples and depth 16.
-    scene.spp = options.referenceSpp;
+    scene.sampler.spp = options.referenceSpp;
     scene.maxDepth = std::max(ReferenceMaxDepth, baseMaxDepth);
     Run ref = RenderOnce(scene);
     result.referenceSeconds = ref.stats.renderSeconds;
-    scene.spp = baseSpp;
+    scene.sampler.spp = baseSpp;
     scene.maxDepth = baseMaxDepth;
 
     // The shared scene's build time, as a median over as many builds as the others get.

@@ -47,15 +47,15 @@ RenderScene BuildAt(const SceneDescription &desc, const BuildSettings &base, Vec
 int ReferenceDepth(const RenderScene &scene) { return std::max(ReferenceMaxDepth, scene.maxDepth); }
 
 Image RenderReference(RenderScene &scene, int spp, double *seconds = nullptr) {
-    int spp0 = scene.spp, depth0 = scene.maxDepth;
+    int spp0 = scene.sampler.spp, depth0 = scene.maxDepth;
     float cutoff0 = scene.rayCutoff;
-    scene.spp = spp;
+    scene.sampler.spp = spp;
     scene.maxDepth = ReferenceDepth(scene);
     scene.rayCutoff = 0;
     RenderStats stats;
     Image ref = Render(scene, &stats);
     if (seconds) *seconds = stats.renderSeconds;
-    scene.spp = spp0;
+    scene.sampler.spp = spp0;
     scene.maxDepth = depth0;
     scene.rayCutoff = cutoff0;
     return ref;
@@ -69,7 +69,7 @@ struct Series {
 Series RenderSeries(RenderScene &scene, const std::vector<int> &spps, const Image &ref) {
     Series s;
     for (int n : spps) {
-        scene.spp = n;
+        scene.sampler.spp = n;
         RenderStats stats;
         Image img = Render(scene, &stats);
         double e = RelativeRmse(img, ref);
@@ -255,7 +255,7 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
         double n = c.noise(o.pilotRefSpp);
         refNoise2[r] = n * n;
         // The depth bias at this resolution: the same samples at the reference's depth.
-        scene.spp = ProbeSpp;
+        scene.sampler.spp = ProbeSpp;
         Image shallow = Render(scene, nullptr);
         double d = RelativeRmse(shallow, RenderReference(scene, ProbeSpp));
         depthBias2[r] = d * d;
@@ -273,7 +273,7 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
     {
         MemoryBudget b(limit);
         RenderScene scene = BuildAt(desc, base, choice.resolution, 0, b);
-        scene.spp = 1;
+        scene.sampler.spp = 1;
         Image noCutoff;
         for (size_t c = 0; c < o.cutoffs.size(); ++c) {
             scene.rayCutoff = o.cutoffs[c];
@@ -290,8 +290,9 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
         // measured at 2 and 4 spp, B^2 = 2 b^2(4) - b^2(2) (at least b^2(4) / 2).
         double b2[2];
         for (int i = 0; i < 2; ++i) {
-            scene.spp = 2 << i;
-            double d = RelativeRmse(Render(scene, nullptr), RenderReference(scene, scene.spp));
+            scene.sampler.spp = 2 << i;
+            double d =
+                RelativeRmse(Render(scene, nullptr), RenderReference(scene, scene.sampler.spp));
             b2[i] = d * d;
         }
         fullDepthBias2 = std::max(2 * b2[1] - b2[0], 0.5 * b2[1]);

@@ -28,7 +28,7 @@ TEST(BuildScene, SettingsReplaceTheDescriptionsValues) {
     RenderScene r = BuildRenderScene(d, s, diag);
     EXPECT_EQ(r.resolution.x, 32);
     EXPECT_EQ(r.resolution.y, 16);
-    EXPECT_EQ(r.spp, 3);
+    EXPECT_EQ(r.sampler.spp, 3);
     EXPECT_EQ(r.maxDepth, 2);
     // Camera-relative render space: the replaced camera's eye is the render-space origin.
     Vec3d eye = r.renderFromWorld.Point(Vec3d(1, 2, 3));

@@ -389,7 +389,7 @@ TEST(DistributionIntegrator, RoughGlassAlphas) {
     Diagnostics diag(false);
     SceneDescription desc = LoadScene((dir / "glass.pbrt").string(), diag);
     RenderScene scene = BuildRenderScene(desc, BuildSettings{}, diag);
-    EXPECT_EQ(scene.integrator, IntegratorKind::Distribution);
+    EXPECT_STREQ(scene.IntegratorName(), "distribution");
     SurfaceInteraction si;
     si.n = si.ns = Vec3f(0, 0, 1);
     si.dpdu = Vec3f(1, 0, 0);

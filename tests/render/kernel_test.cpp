@@ -183,7 +183,7 @@ TEST(Effects, KernelMasksOfRealScenes) {
     EXPECT_EQ(KernelMaskFor(Build(OrenNayarScene())), uint32_t(KernelBsdf));
 
     RenderScene obj = Build(ObjScene());
-    EXPECT_EQ(obj.integrator, IntegratorKind::Distribution);
+    EXPECT_STREQ(obj.IntegratorName(), "distribution");
     EXPECT_TRUE(obj.features.effects.Has(Effect::GlossyReflection));
 }
 

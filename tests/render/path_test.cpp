@@ -347,14 +347,14 @@ TEST(PathIntegrator, IntegratorOverrideAndReason) {
     BuildSettings opts;
     opts.integrator = "path";
     RenderScene s = BuildText("why", DiffuseRoom("", 1), opts);
-    EXPECT_EQ(s.integrator, IntegratorKind::Path);
+    EXPECT_STREQ(s.IntegratorName(), "path");
     EXPECT_EQ(s.integratorWhy, "--integrator path");
     EXPECT_TRUE(s.features.effects.Has(Effect::IndirectIllumination));
     RenderScene d = BuildText("why2", DiffuseRoom("", 1));
-    EXPECT_EQ(d.integrator, IntegratorKind::Whitted);  // no Integrator: Whitted, as before
+    EXPECT_STREQ(d.IntegratorName(), "whitted");  // no Integrator: Whitted, as before
     EXPECT_FALSE(d.features.effects.Has(Effect::IndirectIllumination));
     RenderScene n = BuildText("why3", DiffuseRoom("Integrator \"directlighting\"", 1));
-    EXPECT_EQ(n.integrator, IntegratorKind::DirectLighting);
+    EXPECT_STREQ(n.IntegratorName(), "directlighting");
     EXPECT_NE(n.integratorWhy.find("Integrator \"directlighting\" at "), std::string::npos);
 }
 

@@ -82,8 +82,10 @@ TEST(Progressive, OnePassIsThePlainRender) {
     EXPECT_EQ(
         std::memcmp(plain.pixels.data(), prog.pixels.data(), plain.pixels.size() * sizeof(float)),
         0);
-    EXPECT_EQ(b.spp, 2);
-    EXPECT_EQ(b.sampleSeed, 0u);
+    EXPECT_EQ(st.spp, 2);
+    // The passes change the sampler they render with, not the scene.
+    EXPECT_EQ(b.sampler.spp, 2);
+    EXPECT_EQ(b.sampler.seed, 0u);
 }
 
 TEST(Progressive, PassesAverageToAConvergingImage) {
@@ -91,8 +93,9 @@ TEST(Progressive, PassesAverageToAConvergingImage) {
     RenderStats st;
     Image img = RenderProgressive(scene, {1e9, 64}, &st);
     EXPECT_EQ(st.passSpp, (std::vector<int>{2, 2, 4, 8, 16, 32}));
-    EXPECT_EQ(scene.spp, 64);
-    EXPECT_EQ(scene.sampleSeed, 0u);
+    EXPECT_EQ(st.spp, 64);
+    EXPECT_EQ(scene.sampler.spp, 1);  // the scene is left as built
+    EXPECT_EQ(scene.sampler.seed, 0u);
     // Each pass draws new samples: 64 samples in passes are about as close to the reference
     // as one 64-spp render, and much closer than the first pass alone.
     RenderScene plain = Build(64), two = Build(2);
@@ -120,7 +123,7 @@ TEST(Progressive, StopsWhenTheTimeRunsOut) {
     Image img = RenderProgressive(scene, {limit, MaxProgressiveSpp}, &st);
     double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_GE(st.passSpp.size(), 2u);
-    EXPECT_LT(scene.spp, MaxProgressiveSpp);
+    EXPECT_LT(st.spp, MaxProgressiveSpp);
     // Passes are sized to end before the limit; a generous bound for a loaded machine.
     EXPECT_LT(took, limit + 2.0);
     EXPECT_EQ(img.width, 40);

@@ -51,7 +51,7 @@ struct TestScene {
             committed = true;
         }
         RayCounters c;
-        return WhittedIntegrator(scene).Li(r, 0, c);
+        return WhittedTracer(scene).Li(r, 0, c);
     }
     bool committed = false;
 };
@@ -100,7 +100,7 @@ TEST(Whitted, CameraPacketsMatchSingleRaysExactly) {
     mirror.Kr = Const(RGB(0.9f));
     ts.AddQuad({{2, -1, -5}, {2, 5, -5}, {2, 5, 5}, {2, -1, 5}}, ts.AddMaterial(mirror));
     ts.Li(Ray{{0, 3, -3}, {0, 0, 1}, Infinity});  // commits
-    WhittedIntegrator integrator(ts.scene);
+    WhittedTracer integrator(ts.scene);
     for (int n = 1; n <= 16; n += 5) {
         Ray rays[16];
         RawHit hits[16];

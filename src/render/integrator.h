@@ -1,0 +1,177 @@
+// The integrator interface and the one camera sample every pass draws.
+//
+// An Integrator is created from the scene's Integrator directive by its own Create (beside its
+// class; the list is integrator_list.inc) and held by the RenderScene. The one tile driver
+// (render/renderer.h) hands it a tile at a time: its RenderTile fills the radiance of every
+// camera sample of the tile (TileSamples), and the driver adds them to the film and derives
+// the AOVs from them. RenderTile's default traces each camera sample's ray through Li; the
+// Whitted/distribution kernel overrides it with its packet path.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "geometry/ray.h"
+#include "image/bounds2.h"
+#include "render/ray_counters.h"
+#include "render/sampler.h"
+
+namespace prism {
+
+// Consecutive invisible-interface ("none" material) crossings allowed before a ray is dropped,
+// in every integrator; guards against stacks of coincident surfaces without changing any real
+// scene.
+inline constexpr int MaxPassThrough = 256;
+
+class EffectSet;
+class Params;
+struct PixelSamples;
+struct RenderScene;
+
+// The sampler of a render: samples per pixel, the seed mixed into every pattern (0 for a
+// render; each pass of a progressive render has its own) and the pattern the path
+// integrators draw their dimensions from. Progressive passes change this, not the scene.
+struct SamplerSettings {
+    int spp = 1;
+    uint32_t seed = 0;
+    SamplePattern pattern = SamplePattern::Stratified;
+    // One sample per pixel sits at the pixel centre, except in the later passes of a
+    // progressive render, whose pattern seeds differ.
+    bool JitterFilm() const { return spp > 1 || seed != 0; }
+};
+
+// Where on the film, on the lens and in the shutter one camera sample lies.
+struct CameraSample {
+    Vec2f pFilm;
+    Vec2f uLens{0.5f, 0.5f};
+    float time = 0;
+};
+
+// The camera samples of a render. Every pass that traces camera rays (the integrators' tiles,
+// the AOVs, bench's ceiling) draws them here, so they trace the same rays by construction.
+// Film, lens and time are stratified over the pixel's samples (correlated multi-jittered).
+class CameraSampler {
+  public:
+    CameraSampler(const RenderScene &scene, const SamplerSettings &sampler);
+
+    // The pattern seeds of pixel (x, y), computed once for all its samples.
+    struct Seeds {
+        uint32_t film = 0, lens = 0, time = 0;
+    };
+    Seeds PixelSeeds(int x, int y) const {
+        Seeds s;
+        if (jitter_) s.film = PatternSeed(x, y, FilmPurpose, seed_);
+        if (lens_) s.lens = PatternSeed(x, y, LensPurpose, seed_);
+        if (motion_) s.time = PatternSeed(x, y, TimePurpose, seed_);
+        return s;
+    }
+    // Sample s of pixel (x, y).
+    CameraSample Sample(int x, int y, uint32_t s, const Seeds &seeds) const {
+        CameraSample cs;
+        cs.pFilm = FilmPosition(x, y, jitter_ ? cmj_.Sample(s, seeds.film) : Vec2f(0.5f, 0.5f));
+        if (lens_) cs.uLens = cmj_.Sample(s, seeds.lens);
+        if (motion_) cs.time = cmj_.Sample(s, seeds.time).x;
+        return cs;
+    }
+    Ray GenerateRay(const CameraSample &cs) const;
+    // The ray's differentials (pbrt-v3: scaled by max(1/8, 1/sqrt(spp))).
+    RayDifferential GenerateDifferential(const Ray &ray, const CameraSample &cs) const;
+
+    uint32_t Spp() const { return spp_; }
+    bool Lens() const { return lens_; }  // lens samples are drawn (depth of field)
+    bool Motion() const { return motion_; }
+    // Camera rays carry differentials (some texture filters: RenderScene::differentials).
+    bool Differentials() const { return differentials_; }
+
+  private:
+    const RenderScene &scene_;
+    uint32_t spp_, seed_;
+    CMJPattern cmj_;
+    bool jitter_, lens_, motion_, differentials_;
+    float diffScale_;
+};
+
+// The camera samples of one tile as an integrator fills them, pixel by pixel, each pixel's
+// samples in order (Index).
+struct TileSamples {
+    Bounds2i bounds;
+    uint32_t spp = 1;
+    std::vector<RGB> L;          // the radiance of each sample, as Li returns it
+    std::vector<Vec2f> pFilm;    // each sample's film position, when wantPositions
+    std::vector<RGB> direct;     // its direct part (Integrator::Li), when wantDirect
+    bool wantPositions = false;  // the film's filter reaches beyond a sample's pixel
+    bool wantDirect = false;     // the direct/indirect AOVs are rendered
+
+    size_t Index(int x, int y, uint32_t s) const {
+        return (size_t(y - bounds.pMin.y) * size_t(bounds.pMax.x - bounds.pMin.x) +
+                size_t(x - bounds.pMin.x)) *
+                   spp +
+               s;
+    }
+    // Sizes the buffers for tile b (reused from tile to tile).
+    void Reset(const Bounds2i &b, uint32_t samples);
+};
+
+// What a render passes to an integrator's tile.
+struct TileContext {
+    const RenderScene &scene;
+    const SamplerSettings &sampler;
+    const CameraSampler &camera;
+    uint32_t kernelMask = 0;  // Integrator::KernelMask, chosen once per render
+};
+
+// What the rest of Prism asks of an integrator, beside rendering.
+struct IntegratorTraits {
+    // Sampler "random" and "02sequence" are drawn as pbrt-v3 draws them (PixelSamples); false:
+    // the stratified patterns of the kernel.
+    bool samplePatterns = false;
+    bool media = false;         // renders participating media (else: a warning, as pbrt-v3)
+    bool roughGlass = false;    // renders rough glass rough (Whitted follows its delta lobes)
+    bool directAov = false;     // Li's direct part is exact (the direct and indirect AOVs)
+    bool effectKernel = false;  // runs the kernel specialized per effect set (render/kernel.h)
+    bool glossyRays = false;    // traces glossy rays (Integrator "distribution")
+};
+
+class Integrator {
+  public:
+    virtual ~Integrator() = default;
+    virtual const char *Name() const = 0;
+    virtual IntegratorTraits Traits() const = 0;
+    // Called once the scene is built (the lights exist): per-scene state such as the light
+    // choice. The integrator is immutable during a render.
+    virtual void Prepare(const RenderScene &scene) {}
+    // The effect kernel a render of `scene` runs (render/kernel.h), chosen once per render; 0
+    // for integrators without one.
+    virtual uint32_t KernelMask(const RenderScene &scene) const { return 0; }
+
+    // The radiance along camera ray `ray` of camera sample ps. *direct, when not null, gets its
+    // direct part: emission and direct lighting at the first surface (or medium) vertex.
+    virtual RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps,
+                   RayCounters &rc, RGB *direct) const = 0;
+    // Fills out's radiance for every camera sample of tile out.bounds: by default each
+    // sample's camera ray (CameraSampler) through Li.
+    virtual void RenderTile(const TileContext &ctx, TileSamples &out, RayCounters &rc) const;
+};
+
+// What an integrator's Create reads.
+struct IntegratorInputs {
+    const Params &params;   // the Integrator directive's (or none's: every default)
+    FileLoc loc;            // the directive (invalid: the scene names no Integrator)
+    int glossySamples = 0;  // --glossy-samples (0: the file's)
+    // The scene's effects: an integrator enables what it simulates of its own (path: indirect
+    // illumination), with `why` (at whyLoc) as the reason.
+    EffectSet &effects;
+    std::string why;
+    FileLoc whyLoc;
+};
+
+// The integrator registered as `name` (integrator_list.inc), or null when none is.
+std::unique_ptr<Integrator> CreateIntegrator(const std::string &name, const IntegratorInputs &in);
+// The registered names, in list order.
+const std::vector<std::string> &IntegratorNames();
+
+}  // namespace prism

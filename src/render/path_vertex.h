@@ -1,0 +1,59 @@
+// The steps path and volpath share, so that volpath without media is path, bit for bit: the
+// emission a path collects where no light sample covered it, and the surface vertex (shading
+// normals, the texture context with the camera ray's footprint, emission, one-light direct
+// lighting with MIS, and the BSDF sample that continues the path). Visibility says how light
+// reaches the vertex (render/estimate_direct.h): unoccluded (path) or through media (volpath).
+#pragma once
+
+#include "render/differentials.h"
+#include "render/estimate_direct.h"
+
+namespace prism {
+
+// What a path carries from vertex to vertex.
+struct PathState {
+    RGB L;                        // radiance collected so far
+    RGB beta{1};                  // throughput
+    bool specularBounce = false;  // the last bounce was a delta lobe's
+    float etaScale = 1;           // radiance scaling by refraction, undone for Russian roulette
+};
+
+// Emission no light sample covered (seen by the camera, or after a delta bounce): every light's
+// Le for a ray that escapes (si null), else the area light of the surface it hits.
+inline void AddUnsampledEmission(const RenderScene &scene, const Ray &ray,
+                                 const SurfaceInteraction *si, const ShapeInfo *info,
+                                 PathState &path) {
+    if (!si) {
+        for (const auto &light : scene.lights) path.L += path.beta * light->Le(ray);
+    } else if (info->areaLight >= 0) {
+        path.L += path.beta *
+                  static_cast<const DiffuseAreaLight &>(*scene.lights[size_t(info->areaLight)])
+                      .L(*si, si->wo);
+    }
+}
+
+// The surface vertex `bounces` of a path at si (material mat, not a pass-through surface).
+// diff: the camera ray's differentials at its first hit, else null. Returns false when the
+// path ends there; else *wi is the direction it continues in.
+template <class Visibility>
+bool SurfaceVertex(const RenderScene &scene, const LightChooser &chooser, SurfaceInteraction &si,
+                   const Material &mat, const PixelSamples &ps, int bounces,
+                   const RayDifferential *diff, const Visibility &vis, PathState &path, Vec3f *wi,
+                   RayCounters &counters) {
+    if (mat.PerturbsShading()) mat.PerturbShading(si);
+    TextureContext tc{si.uv, si.p, si.uv1};
+    if (diff) ComputeDifferentials(si, *diff, &tc);
+    // Emission a material carries itself (glTF emissive textures; no light samples it).
+    if (mat.HasEmission()) path.L += path.beta * mat.Emitted(tc);
+    BSDF bsdf = mat.GetBSDF(si, tc);
+    bsdf.MakeRoughSpecularGlossy();  // pbrt-v3: rough glass is a microfacet BSDF
+    // Direct lighting: one light, light and BSDF samples weighted by MIS.
+    if (bsdf.HasNonSpecular())
+        path.L += path.beta * SampleOneLightWith(scene, chooser, si, BsdfScatter{bsdf}, ps, bounces,
+                                                 counters, vis);
+    // Sample the BSDF for the next direction.
+    return SampleNextDirection(bsdf, si.wo, ps, bounces, path.beta, path.specularBounce,
+                               path.etaScale, wi, counters);
+}
+
+}  // namespace prism

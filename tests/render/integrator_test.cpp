@@ -1,0 +1,118 @@
+// The integrator interface (render/integrator.h): the registry of integrator_list.inc, the
+// scene assembly's fallback for names it lacks, and pbrt-v3's ambient occlusion integrator
+// against closed forms.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "build/build_scene.h"
+#include "render/renderer.h"
+#include "scene/load_scene.h"
+#include "test_util.h"
+
+namespace prism {
+namespace {
+
+using test::ScratchDir;
+using test::WriteTestFile;
+
+struct Built {
+    RenderScene scene;
+    std::vector<Warning> warnings;
+};
+
+Built BuildText(const std::string &name, const std::string &text, int res, int spp) {
+    Diagnostics diag(false);
+    SceneDescription desc = LoadScene(WriteTestFile(ScratchDir("integrator") / name, text), diag);
+    BuildSettings s;
+    s.resolution = Vec2i(res, res);
+    s.spp = spp;
+    Built b{BuildRenderScene(desc, s, diag), {}};
+    b.warnings = diag.Warnings();
+    return b;
+}
+
+TEST(Integrator, TheRegistryNamesEachIntegratorOnce) {
+    std::vector<std::string> names = IntegratorNames();
+    for (const char *n :
+         {"whitted", "distribution", "directlighting", "path", "volpath", "ambientocclusion", "ao"})
+        EXPECT_EQ(std::count(names.begin(), names.end(), n), 1) << n;
+    EXPECT_EQ(names.size(), 7u);
+}
+
+TEST(Integrator, AnUnknownIntegratorRendersWithWhittedAndSaysWhere) {
+    Built b = BuildText("bdpt.pbrt",
+                        "Integrator \"bdpt\" \"integer maxdepth\" [ 3 ]\nWorldBegin\n"
+                        "LightSource \"point\"\nShape \"sphere\"\nWorldEnd\n",
+                        4, 1);
+    EXPECT_STREQ(b.scene.IntegratorName(), "whitted");
+    EXPECT_EQ(b.scene.maxDepth, 3);
+    bool warned = false;
+    for (const Warning &w : b.warnings)
+        warned |= w.loc.line == 1 &&
+                  w.message.find("\"bdpt\" is rendered with Whitted") != std::string::npos;
+    EXPECT_TRUE(warned);
+}
+
+// A camera between a floor and a disk of radius 1 at height 1 above the point it sees: the disk
+// hides the cone of half-angle 45 degrees about the normal, so ambient occlusion (the integral
+// of visibility times cos over the hemisphere, pbrt-v3's convention) is pi cos^2(45) = pi / 2.
+std::string DiskAbove(const std::string &integrator) {
+    return "LookAt 0 0.5 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" [ 0.5 ]\n" +
+           integrator +
+           "\nWorldBegin\n"
+           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+           "  \"point P\" [-50 0 -50  50 0 -50  50 0 50  -50 0 50]\n"
+           "AttributeBegin\nTranslate 0 1 0\nRotate 90 1 0 0\nShape \"disk\" \"float radius\" 1\n"
+           "AttributeEnd\nWorldEnd\n";
+}
+
+TEST(AmbientOcclusion, DiskAboveHidesHalfTheCosineWeightedSky) {
+    for (const char *cos : {"true", "false"}) {
+        SCOPED_TRACE(cos);
+        Built b = BuildText("disk.pbrt",
+                            DiskAbove(std::string("Integrator \"ambientocclusion\" ") +
+                                      "\"integer nsamples\" 64 \"bool cossample\" " + cos),
+                            1, 64);
+        EXPECT_STREQ(b.scene.IntegratorName(), "ambientocclusion");
+        RenderStats stats;
+        const Image img = Render(b.scene, &stats);
+        // 64 x 64 stratified directions per pixel.
+        EXPECT_NEAR(img.GetRGB(0, 0).g, Pi / 2, 0.01 * Pi);
+        EXPECT_EQ(stats.rays.shadow, 64u * 64u);
+    }
+}
+
+TEST(AmbientOcclusion, AnOpenHemisphereIsPiAndAMissIsBlack) {
+    // Without the disk every cosine-weighted direction escapes: each adds pi / n exactly.
+    Built open = BuildText("open.pbrt",
+                           "LookAt 0 0.5 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" 20\n"
+                           "Integrator \"ao\" \"integer nsamples\" 8\nWorldBegin\n"
+                           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+                           "  \"point P\" [-50 0 -50  50 0 -50  50 0 50  -50 0 50]\nWorldEnd\n",
+                           4, 2);
+    const Image img = Render(open.scene, nullptr);
+    for (float v : img.pixels) EXPECT_NEAR(v, Pi, 1e-5);
+    Built miss = BuildText("miss.pbrt",
+                           "LookAt 0 0.5 0  0 1 0  0 0 1\nCamera \"perspective\"\n"
+                           "Integrator \"ao\"\nWorldBegin\nShape \"sphere\" \"float radius\" 0.1\n"
+                           "WorldEnd\n",
+                           4, 1);
+    const Image black = Render(miss.scene, nullptr);
+    for (float v : black.pixels) EXPECT_EQ(v, 0.f);
+}
+
+TEST(AmbientOcclusion, SampleCountOutOfRangeIsALocatedError) {
+    try {
+        BuildText("bad.pbrt", "Integrator \"ao\"\n  \"integer nsamples\" 0\nWorldBegin\nWorldEnd\n",
+                  4, 1);
+        FAIL() << "no error";
+    } catch (const SceneError &e) {
+        EXPECT_NE(std::string(e.what()).find("bad.pbrt:2:"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("nsamples 0 out of range"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace prism
