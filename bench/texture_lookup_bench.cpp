@@ -1,9 +1,8 @@
 // docs/TEXTURES.md "Why not OpenImageIO's TextureSystem": Prism's MIPMap (EWA, trilinear) against
 // OIIO's TextureSystem on one image and the same 2 million lookups (random positions,
-// anisotropic footprints from 1/8 to 64 texels), one thread. Not part of the build:
-//   g++ -O3 -std=c++20 -Isrc bench/texture_lookup_bench.cpp src/render/mipmap.cpp \
-//       src/image/image.cpp -lOpenImageIO -lOpenImageIO_Util -o texture_lookup_bench
-//   ./texture_lookup_bench ../shared/scenes/pbrt-spheres-differentials-texfilt/textures/lines.png
+// anisotropic footprints from 1/8 to 64 texels), one thread. Built with the project
+// (bench/CMakeLists.txt):
+//   build/bench/texture_lookup_bench ../shared/scenes/pbrt-spheres-differentials-texfilt/textures/lines.png
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/texture.h>
 #include <chrono>

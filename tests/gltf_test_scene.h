@@ -1,5 +1,5 @@
 // A glTF test scene more than one test binary renders: the unit quad with two uv sets and a
-// texture (tests/build/gltf_lighting_test.cpp, tests/render/volpath_test.cpp).
+// texture (tests/assembly/gltf_lighting_test.cpp, tests/render/volpath_test.cpp).
 #pragma once
 
 #include <cstdint>

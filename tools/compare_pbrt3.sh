@@ -7,7 +7,7 @@
 # Usage: tools/compare_pbrt3.sh [OUTDIR] [FACTOR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-OUT="${1:-pbrt3-comparison}"
+OUT="${1:-docs/pbrt3}"
 FACTOR="${2:-4}"
 PRISM="${PRISM:-$PWD/build/prism}"
 REF="${SHARED:-$PWD/../shared}/pbrt3-reference"

@@ -7,9 +7,9 @@
 
 #include "app/commands.h"
 #include "app/common.h"
-#include "bench/ceiling.h"
-#include "bench/knot.h"
-#include "bench/suite.h"
+#include "tools/bench/ceiling.h"
+#include "tools/bench/knot.h"
+#include "tools/bench/suite.h"
 
 namespace prism {
 

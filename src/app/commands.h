@@ -13,7 +13,7 @@ namespace prism {
 inline constexpr int ExitOk = 0;
 inline constexpr int ExitInternal = 1;
 inline constexpr int ExitBadInput = 2;
-// 3 and 4: `prism validate` (ExitOutOfBand, ExitBadSlope in validate/validate.h).
+// 3 and 4: `prism validate` (ExitOutOfBand, ExitBadSlope in tools/validate/validate.h).
 inline constexpr int ExitInterrupted = 130;  // SIGINT or SIGTERM: nothing half-written
 
 // Registers the subcommand's options on `app`; the returned callback runs it.
@@ -22,7 +22,7 @@ void AddTraceCommand(CLI::App &app, int *exitCode);
 void AddPickCommand(CLI::App &app, int *exitCode);
 void AddInfoCommand(CLI::App &app, int *exitCode);
 void AddBatchCommand(CLI::App &app, int *exitCode);
-void AddValidateCommand(CLI::App &app, int *exitCode);  // exit 3/4: see validate/validate.h
+void AddValidateCommand(CLI::App &app, int *exitCode);  // exit 3/4: see tools/validate/validate.h
 void AddBenchCommand(CLI::App &app, int *exitCode);
 void AddStudyCommand(CLI::App &app, int *exitCode);
 // `prism` with no arguments: render the default scene to whitted.png.

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "app/commands.h"
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/memory.h"

@@ -7,8 +7,8 @@
 
 #include "app/commands.h"
 #include "app/common.h"
-#include "build/build_scene.h"
-#include "build/shape_factory.h"
+#include "assembly/build_scene.h"
+#include "assembly/shape_factory.h"
 #include "core/file_io.h"
 #include "core/pbrt_defaults.h"
 #include "render/kernel.h"

@@ -10,7 +10,7 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/shape_lookup.h"
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "render/bsdf.h"
 #include "scene/load_scene.h"
 

@@ -15,7 +15,7 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/render_options.h"
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "core/file_io.h"
 #include "image/image_io.h"
 #include "render/integrator.h"
@@ -23,8 +23,8 @@
 #include "render/progressive.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "study/target_error.h"
-#include "validate/tessellate.h"
+#include "tools/study/target_error.h"
+#include "tools/validate/tessellate.h"
 
 namespace prism {
 

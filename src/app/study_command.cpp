@@ -1,6 +1,6 @@
 // `prism study SCENE [--knob NAME ...|all] [--res WxH] [--repeats N] [--threads N] [--out DIR]`:
-// what each kind of accuracy costs in time on the scene (study/study.h). Writes results.csv and
-// report.md to DIR once every setting has run (nothing on bad input), then the plots through
+// what each kind of accuracy costs in time on the scene (tools/study/study.h). Writes results.csv
+// and report.md to DIR once every setting has run (nothing on bad input), then the plots through
 // tools/plot_study.py when python3 with matplotlib is available.
 #include <tbb/global_control.h>
 
@@ -16,8 +16,8 @@
 #include "app/output_file.h"
 #include "core/memory.h"
 #include "scene/load_scene.h"
-#include "study/study.h"
-#include "study/study_report.h"
+#include "tools/study/study.h"
+#include "tools/study/study_report.h"
 
 namespace prism {
 

@@ -14,15 +14,15 @@
 #include "app/commands.h"
 #include "app/common.h"
 #include "app/output_file.h"
-#include "build/build_scene.h"
-#include "build/shape_factory.h"
+#include "assembly/build_scene.h"
+#include "assembly/shape_factory.h"
 #include "core/file_io.h"
 #include "image/image.h"
 #include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "validate/tessellate.h"
-#include "validate/validate.h"
+#include "tools/validate/tessellate.h"
+#include "tools/validate/validate.h"
 
 namespace prism {
 

@@ -1,6 +1,6 @@
 // Every analytic shape is a profile curve (rho(v), z(v)) swept about z: each shape describes
 // itself so (AnalyticShape::Revolution, in the shape's own .cpp) for tessellation and
-// `prism validate` (validate/tessellate.h).
+// `prism validate` (tools/validate/tessellate.h).
 #pragma once
 
 #include "core/vecmath.h"

@@ -20,7 +20,7 @@
 
 namespace prism {
 
-struct RevolutionProfile;  // validate/tessellate.h
+struct RevolutionProfile;  // tools/validate/tessellate.h
 
 enum class Precision { Float, Double };
 

@@ -1,5 +1,5 @@
 // The pbrt parameters of one Shape directive as a shape's CreateShape<T> reads them. build/
-// implements this over scene/'s ParamSet (build/shape_factory.cpp), so geometry/ does not
+// implements this over scene/'s ParamSet (assembly/shape_factory.cpp), so geometry/ does not
 // depend on scene/.
 #pragma once
 

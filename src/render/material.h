@@ -94,7 +94,7 @@ class Material {
     BSDF GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) const;
     // Adds this material's lobes to `bsdf`, scaled by `weight` (used by mix).
     void AddParts(BSDF &bsdf, const TextureContext &tc, const RGB &weight) const;
-    // Called once the parameters are final (build/materials.cpp): a material whose textures
+    // Called once the parameters are final (assembly/materials.cpp): a material whose textures
     // are all constant gets its lobes built here once, and AddParts then copies them instead
     // of evaluating textures and remapping roughness at every hit.
     void Prepare();

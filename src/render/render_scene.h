@@ -1,4 +1,4 @@
-// Everything a render needs, built once from a SceneDescription (build/build_scene.h) and
+// Everything a render needs, built once from a SceneDescription (assembly/build_scene.h) and
 // immutable while rendering.
 #pragma once
 

@@ -1,7 +1,7 @@
 // Participating media in the pbrt graphics state (pbrt-v3 api.cpp): MakeNamedMedium defines a
 // named medium with the CTM, MediumInterface sets the inside and outside media of the shapes
 // that follow (and the camera's, its outside one). Types and parameters are checked when the
-// scene is built (build/media.cpp).
+// scene is built (assembly/media.cpp).
 #include "scene/scene_builder.h"
 
 namespace prism {

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "render/light_sampling.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"

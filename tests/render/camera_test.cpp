@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 

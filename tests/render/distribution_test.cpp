@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "image/image_compare.h"
 #include "image/image_io.h"
 #include "render/bsdf.h"

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "test_util.h"

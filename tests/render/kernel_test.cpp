@@ -1,7 +1,7 @@
 // The kernels specialized per effect set (render/kernel.h): the kernel mask of real scenes;
 // for each effect, a scene without it traces no ray of its kind; and the specialized kernel
 // renders bit-identical images to the general one (--effects all). The effect set itself:
-// tests/build/scene_effects_test.cpp.
+// tests/assembly/scene_effects_test.cpp.
 #include "render/kernel.h"
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "test_util.h"

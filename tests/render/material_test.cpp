@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "scene/pbrt_parser.h"
 
 namespace prism {

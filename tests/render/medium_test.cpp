@@ -1,4 +1,4 @@
-// Participating media (render/medium.h, render/kernel_media.h, build/media.cpp): transmittance
+// Participating media (render/medium.h, render/kernel_media.h, assembly/media.cpp): transmittance
 // of homogeneous media through boundaries and nested media, ratio and delta tracking of grids
 // against the closed form, single scattering from a point light against a quadrature, the
 // Henyey–Greenstein phase function and its sampling, and media-free scenes unchanged.
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "image/image_compare.h"
 #include "image/image_io.h"
 #include "render/kernel.h"

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 

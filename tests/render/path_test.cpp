@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "geometry/sphere.h"
 #include "render/bsdf.h"
 #include "render/infinite_light.h"

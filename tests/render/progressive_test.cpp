@@ -10,7 +10,7 @@
 #include <cstring>
 #include <optional>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "scene/load_scene.h"
 #include "test_util.h"
 

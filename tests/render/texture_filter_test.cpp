@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "image/image_io.h"
 #include "render/camera.h"
 #include "render/differentials.h"

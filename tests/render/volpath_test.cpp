@@ -7,7 +7,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "build/build_scene.h"
+#include "assembly/build_scene.h"
 #include "gltf_test_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"

@@ -1,0 +1,311 @@
+#include "assembly/camera_film.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "assembly/directive_params.h"
+#include "core/memory.h"
+#include "core/pbrt_defaults.h"
+#include "image/tonemap.h"
+#include "render/aov.h"
+#include "render/renderer.h"
+
+namespace prism {
+
+void BuildFilm(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    const BuildSettings &settings = ctx.settings;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const ParamSet &film = desc.film.params;
+    int xres = film.GetInt("xresolution", PbrtDefaultXResolution);
+    int yres = film.GetInt("yresolution", PbrtDefaultYResolution);
+    // The file's values are checked even when settings replace them: they are bad input.
+    const int maxRes = MaxImageResolution;
+    if (xres <= 0 || yres <= 0 || xres > maxRes || yres > maxRes) {
+        const Param *p = film.Find(xres <= 0 || xres > maxRes ? "xresolution" : "yresolution");
+        throw SceneError(p ? p->loc : desc.film.loc,
+                         "image resolution " + std::to_string(xres) + "x" + std::to_string(yres) +
+                             " is out of range (1 to " + std::to_string(maxRes) + " per axis)");
+    }
+    if (settings.resolution.x > 0) {
+        xres = settings.resolution.x;
+        yres = settings.resolution.y;
+        // The caller checks its own values (and names their source); this is the backstop.
+        if (xres > maxRes || yres > maxRes)
+            throw SceneError("resolution " + std::to_string(xres) + "x" + std::to_string(yres) +
+                             " is out of range (1 to " + std::to_string(maxRes) + " per axis)");
+    }
+    scene.resolution = {xres, yres};
+    std::array<float, 4> crop{0, 1, 0, 1};
+    std::vector<float> cw = film.GetFloats("cropwindow");
+    if (cw.size() == 4) std::copy(cw.begin(), cw.end(), crop.begin());
+    if (settings.crop) crop = *settings.crop;
+    crop = {
+        Clamp(std::min(crop[0], crop[1]), 0.f, 1.f), Clamp(std::max(crop[0], crop[1]), 0.f, 1.f),
+        Clamp(std::min(crop[2], crop[3]), 0.f, 1.f), Clamp(std::max(crop[2], crop[3]), 0.f, 1.f)};
+    Bounds2i pb;
+    pb.pMin = {int(std::ceil(xres * crop[0])), int(std::ceil(yres * crop[2]))};
+    pb.pMax = {int(std::ceil(xres * crop[1])), int(std::ceil(yres * crop[3]))};
+    if (pb.pMax.x <= pb.pMin.x || pb.pMax.y <= pb.pMin.y)
+        throw SceneError(desc.film.loc, "the crop window covers no pixels");
+    scene.pixelBounds = pb;
+    scene.outputFilename = film.GetString("filename", "");
+    scene.filmScale = film.GetFloat("scale", 1.f);
+    scene.maxSampleLuminance = film.GetFloat("maxsampleluminance", Infinity);
+    // Prism extensions (docs/FORMAT.md): exposure in EV and the tone map of 8-bit outputs;
+    // the command line's --exposure and --tonemap replace them.
+    scene.filmExposure = film.GetFloat("exposure", 0.f);
+    if (!std::isfinite(scene.filmExposure) || std::abs(scene.filmExposure) > 64) {
+        const Param *p = film.Find("exposure");
+        throw SceneError(p ? p->loc : desc.film.loc, "film \"exposure\" must lie in [-64, 64]");
+    }
+    if (const Param *p = film.Find("tonemap")) {
+        ToneMap op;
+        std::string name = film.GetString("tonemap", "");
+        if (!ParseToneMap(name, &op))
+            throw SceneError(p->loc, "unknown film \"tonemap\" " + Quote(name) +
+                                         " (expected none, neutral, aces or filmic)");
+        scene.filmToneMap = op;
+    }
+    if (const Param *p = film.Find("aovs")) {
+        std::vector<Aov> aovs;
+        std::string error;
+        scene.filmAovs = film.GetString("aovs", "");
+        if (!ParseAovList(scene.filmAovs, &aovs, &error))
+            throw SceneError(p->loc, "film \"aovs\": " + error);
+    }
+    WarnIgnored(film, {"diagonal"}, diag, "film", "the film's physical size is not simulated");
+    film.ReportUnused(diag, "film");
+}
+
+void ChargeFilmMemory(BuildContext &ctx) {
+    const Bounds2i &pb = ctx.scene.pixelBounds;
+    const Vec2i res = ctx.scene.resolution;
+    uint64_t bytes =
+        EstimateFilmBytes(uint64_t(pb.pMax.x - pb.pMin.x), uint64_t(pb.pMax.y - pb.pMin.y),
+                          ctx.scene.filter.radiusX, ctx.scene.filter.radiusY, RenderTileSize);
+    // A resolution from the settings has no location in the file.
+    const Param *p = ctx.desc.film.params.Find("xresolution");
+    FileLoc loc = ctx.settings.resolution.x > 0 ? FileLoc{} : p ? p->loc : ctx.desc.film.loc;
+    ctx.budget.Charge(bytes, "image " + std::to_string(res.x) + "x" + std::to_string(res.y), loc);
+}
+
+void BuildCamera(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    const BuildSettings &settings = ctx.settings;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const CameraDesc &cd = desc.camera;
+    const ParamSet &cp = cd.params;
+    CameraParams params;
+    std::string type = cd.specified ? cd.type : "perspective";
+    if (type == "orthographic") {
+        params.orthographic = true;
+    } else if (type != "perspective") {
+        diag.Warn(cd.loc, "camera " + Quote(type) + " is not supported; using perspective");
+    }
+    params.fovDeg = cp.GetFloat("fov", PbrtDefaultFovDeg);
+    float halffov = cp.GetFloat("halffov", -1.f);
+    if (halffov > 0) params.fovDeg = 2 * halffov;
+    if (settings.fovDeg > 0) params.fovDeg = settings.fovDeg;
+    if (!(params.fovDeg > 0 && params.fovDeg < 180)) {
+        const Param *p = cp.Find("fov");
+        throw SceneError(p ? p->loc : cd.loc, "camera fov must be between 0 and 180 degrees");
+    }
+    std::vector<float> sw = cp.GetFloats("screenwindow");
+    if (sw.size() == 4)
+        for (int i = 0; i < 4; ++i) params.screenWindow[i] = sw[size_t(i)];
+    params.lensRadius = cp.GetFloat("lensradius", 0.f);
+    params.focalDistance = cp.GetFloat("focaldistance", 1e6f);
+    scene.features.lens = params.lensRadius > 0;
+    if (scene.features.lens) {
+        const Param *lr = cp.Find("lensradius");
+        scene.features.effects.Enable(Effect::DepthOfField,
+                                      "Camera " + Quote(type) + " \"lensradius\"",
+                                      lr ? lr->loc : cd.loc);
+    }
+    const Vec2i res = scene.resolution;
+    double frame = cp.GetFloat("frameaspectratio", float(double(res.x) / res.y));
+    // pbrt-v3: the shutter is open from "shutteropen" to "shutterclose" (default 0 1); a
+    // reversed pair is swapped with a warning.
+    double open = cp.GetFloat("shutteropen", 0.f), close = cp.GetFloat("shutterclose", 1.f);
+    if (!std::isfinite(open) || !std::isfinite(close)) {
+        const Param *p = cp.Find("shutteropen");
+        throw SceneError(p ? p->loc : cd.loc, "camera shutter times must be finite");
+    }
+    if (close < open) {
+        const Param *p = cp.Find("shutterclose");
+        diag.Warn(p ? p->loc : cd.loc, "camera shutterclose " + std::to_string(close) +
+                                           " is before shutteropen " + std::to_string(open) +
+                                           "; swapping them (as pbrt-v3)");
+        std::swap(open, close);
+    }
+    ctx.shutterOpen = open;
+    ctx.shutterClose = close;
+    cp.ReportUnused(diag, "camera");
+
+    Transform worldFromCamera = cd.cameraFromWorld.Inverse();
+    std::optional<TransformMotion> motion;  // a moving camera: worldFromCamera at the end
+    if (cd.motion && !settings.worldFromCamera)
+        motion = TransformMotion{cd.motion->end.Inverse(), cd.motion->startTime, cd.motion->endTime,
+                                 cd.motion->loc};
+    if (settings.worldFromCamera) worldFromCamera = *settings.worldFromCamera;
+    // Render in camera-centred world space (pbrt-v4 "cameraworld"): far-away scenes keep
+    // full float precision near the viewer (the viewer at the shutter's opening).
+    Transform renderFromCamera;
+    std::optional<AnimatedTransform> moving =
+        ShutterMotion(ctx, nullptr, worldFromCamera, motion, cd.loc, &renderFromCamera);
+    worldFromCamera = renderFromCamera;  // at the shutter's opening (still world space here)
+    Vec3d eye = worldFromCamera.Point(Vec3d(0, 0, 0));
+    scene.renderFromWorld = settings.cameraRelative ? Translate(-eye) : Transform();
+    scene.camera = std::make_unique<Camera>(params, scene.renderFromWorld * worldFromCamera,
+                                            scene.resolution, frame);
+    if (moving) {
+        // The same motion in render space (its keyframes translated like the world).
+        scene.camera->SetMotion(
+            AnimatedTransform(scene.renderFromWorld * moving->Start(), moving->StartTime(),
+                              scene.renderFromWorld * moving->End(), moving->EndTime()));
+    }
+}
+
+void BuildSampler(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    const BuildSettings &settings = ctx.settings;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const ParamSet &sp = desc.sampler.params;
+    int spp;
+    if (desc.sampler.type == "stratified") {
+        // In 64 bits: the product of two file values must not overflow.
+        int64_t n = int64_t(sp.GetInt("xsamples", 4)) * sp.GetInt("ysamples", 4);
+        spp = int(std::clamp<int64_t>(n, -(int64_t(1) << 30), int64_t(1) << 30));
+        sp.MarkUsed("jitter");
+    } else {
+        spp = sp.GetInt("pixelsamples", desc.sampler.type == "random" ? 4 : 16);
+    }
+    // Prism draws its own stratified (correlated multi-jittered) samples whatever the file
+    // names; only the sample count is read. The default (no Sampler directive) is not named.
+    // The path integrators (directlighting, path, volpath, ao) draw "02sequence"/
+    // "lowdiscrepancy" and "random" samples as pbrt-v3 does (render/sampler.h SamplePattern).
+    const std::string context = "sampler " + Quote(desc.sampler.type);
+    // The integrators that draw PixelSamples (render/integrator.h IntegratorTraits).
+    const bool patterns = scene.integrator->Traits().samplePatterns;
+    const std::string &st = desc.sampler.type;
+    SamplePattern &pattern = scene.sampler.pattern;
+    if (patterns && st == "random")
+        pattern = SamplePattern::Independent;
+    else if (patterns && (st == "02sequence" || st == "lowdiscrepancy"))
+        pattern = SamplePattern::ZeroTwo;
+    if (st != "stratified" && desc.sampler.loc.Valid() && pattern == SamplePattern::Stratified)
+        diag.Warn(desc.sampler.loc, context + " is replaced by Prism's stratified sampler");
+    WarnIgnoredRest(sp, diag, context, "Prism's stratified sampler reads only the sample count");
+    if (settings.spp > 0) spp = settings.spp;
+    const int maxSpp = MaxSamplesPerPixel;
+    if (spp <= 0 || spp > maxSpp)
+        throw SceneError(desc.sampler.loc, "samples per pixel " + std::to_string(spp) +
+                                               " out of range (1 to " + std::to_string(maxSpp) +
+                                               ")");
+    scene.sampler.spp = spp;
+}
+
+void BuildPixelFilter(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const ParamSet &fp = desc.filter.params;
+    Filter f;
+    std::string ft = desc.filter.type;
+    bool known = ft == "box" || ft == "gaussian" || ft == "triangle" || ft == "mitchell";
+    if (known) {
+        // pbrt-v3 radii: 0.5 for the box, 2 for the others.
+        float defaultRadius = ft == "box" ? 0.5f : 2.f;
+        f.radiusX = fp.GetFloat("xwidth", defaultRadius);
+        f.radiusY = fp.GetFloat("ywidth", defaultRadius);
+    }
+    if (ft == "box") {
+        f.kind = Filter::Kind::Box;
+    } else if (ft == "gaussian") {
+        f.kind = Filter::Kind::Gaussian;
+        f.alpha = fp.GetFloat("alpha", 2.f);
+    } else if (ft == "triangle") {
+        f.kind = Filter::Kind::Triangle;
+    } else if (ft == "mitchell") {
+        f.kind = Filter::Kind::Mitchell;
+        f.B = fp.GetFloat("B", 1.f / 3);
+        f.C = fp.GetFloat("C", 1.f / 3);
+    } else {
+        diag.Warn(desc.filter.loc,
+                  "pixel filter " + Quote(ft) + " is not supported; using gaussian");
+        f.kind = Filter::Kind::Gaussian;
+        f.radiusX = f.radiusY = 2;
+        fp.MarkAllUsed();
+    }
+    if (!(f.radiusX > 0 && f.radiusY > 0 && f.radiusX <= 16 && f.radiusY <= 16))
+        throw SceneError(desc.filter.loc, "pixel filter width must be in (0, 16]");
+    scene.filter = f;
+    fp.ReportUnused(diag, "pixel filter");
+}
+
+void BuildIntegratorSettings(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    const BuildSettings &settings = ctx.settings;
+    RenderScene &scene = ctx.scene;
+    Diagnostics &diag = ctx.diag;
+    const ParamSet &ip = desc.integrator.params;
+    // --integrator replaces the scene's choice (its parameters still apply).
+    const std::string type =
+        settings.integrator.empty() ? desc.integrator.type : settings.integrator;
+    // A pbrt scene without an Integrator directive keeps rendering with Whitted (pbrt's default
+    // would be "path"); OBJ and glTF scenes name "distribution" themselves.
+    const bool named = !settings.integrator.empty() || desc.integrator.loc.Valid();
+    std::string name = named || type != "path" ? type : "whitted";
+    if (!settings.integrator.empty())
+        scene.integratorWhy = "--integrator " + settings.integrator;
+    else if (desc.integrator.loc.Valid())
+        scene.integratorWhy = "Integrator " + Quote(type) + " at " + desc.integrator.loc.ToString();
+    else if (type != "path")
+        scene.integratorWhy = "default of the scene's format";
+    else
+        scene.integratorWhy = "default: the scene names no Integrator";
+    int maxDepth = ip.GetInt("maxdepth", 5);
+    const bool known = std::find(IntegratorNames().begin(), IntegratorNames().end(), name) !=
+                       IntegratorNames().end();
+    if (!known) {
+        // Only an Integrator the file names is worth a warning (pbrt's default is "path").
+        if (desc.integrator.loc.Valid())
+            diag.Warn(desc.integrator.loc,
+                      "integrator " + Quote(type) + " is rendered with Whitted (maxdepth " +
+                          std::to_string(settings.maxDepth >= 0 ? settings.maxDepth : maxDepth) +
+                          ")");
+        name = "whitted";
+    }
+    const DirectiveParams params(ip, diag, "integrator " + Quote(type), desc.integrator.loc);
+    IntegratorInputs in{
+        params, desc.integrator.loc, settings.glossySamples, scene.features.effects, {}, {}};
+    if (!settings.integrator.empty()) {
+        in.why = "--integrator " + type;
+    } else {
+        in.why = "Integrator " + Quote(type);
+        in.whyLoc = desc.integrator.loc;
+    }
+    scene.integrator = CreateIntegrator(name, in);
+    if (settings.maxDepth >= 0) maxDepth = settings.maxDepth;
+    if (maxDepth < 0 || maxDepth > MaxTraceDepth)
+        throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) +
+                                                  " out of range (0 to " +
+                                                  std::to_string(MaxTraceDepth) + ")");
+    scene.maxDepth = maxDepth;
+    // The accuracy knobs are settings, not scene data; the command line checks them too.
+    if (!(settings.rayCutoff >= 0) || !std::isfinite(settings.rayCutoff))
+        throw SceneError("ray cutoff " + std::to_string(settings.rayCutoff) +
+                         " must be a finite number >= 0");
+    if (settings.offset.mode == OffsetMode::FixedEpsilon &&
+        (!(settings.offset.epsilon > 0) || !std::isfinite(settings.offset.epsilon)))
+        throw SceneError("offset epsilon " + std::to_string(settings.offset.epsilon) +
+                         " must be a finite number > 0");
+    scene.rayCutoff = settings.rayCutoff;
+    scene.offset = settings.offset;
+}
+
+}  // namespace prism

@@ -1,0 +1,211 @@
+#include "assembly/shape_factory.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/file_io.h"
+#include "core/memory.h"
+#include "geometry/loop_subdiv.h"
+#include "geometry/shape_list.h"
+#include "scene/ply_reader.h"
+
+namespace prism {
+
+namespace {
+
+const FileLoc &ParamLoc(const ShapeDesc &s, const char *name) {
+    const Param *p = s.params.Find(name);
+    return p ? p->loc : s.loc;
+}
+
+// The bytes of these arrays, which a mesh is made from and which are freed after.
+uint64_t ArrayBytes(const std::vector<Vec3f> &P, const std::vector<int> &idx,
+                    const std::vector<Vec3f> &N, const std::vector<Vec2f> &uv) {
+    return P.size() * sizeof(Vec3f) + idx.size() * sizeof(int) + N.size() * sizeof(Vec3f) +
+           uv.size() * sizeof(Vec2f);
+}
+
+// Charges a mesh of `meshBytes` to the budget as the shape, with `transientBytes` more that
+// must fit beside it until it is made (MeshCharge, geometry/triangle_mesh.h).
+void ChargeMesh(MemoryBudget &budget, const ShapeDesc &s, uint64_t meshBytes,
+                uint64_t transientBytes) {
+    std::string what = "shape " + Quote(s.type);
+    budget.Check(meshBytes + transientBytes, what, s.loc);
+    budget.Charge(meshBytes, what, s.loc);
+}
+
+// The render-space mesh, charged to the budget before it is allocated together with the
+// arrays it is made from (freed when the shape's factory returns).
+std::unique_ptr<TriangleMesh> MakeMesh(const ShapeDesc &s, const Transform &renderFromObject,
+                                       const std::vector<Vec3f> &P, const std::vector<int> &idx,
+                                       const std::vector<Vec3f> &N, const std::vector<Vec2f> &uv,
+                                       MemoryBudget &budget, uint64_t transientBytes) {
+    ChargeMesh(budget, s, TriangleMesh::Bytes(P.size(), idx.size(), !N.empty(), !uv.empty()),
+               transientBytes);
+    std::vector<uint32_t> indices;
+    indices.reserve(idx.size());
+    for (int i : idx) {
+        if (i < 0)
+            throw SceneError(ParamLoc(s, "indices"), "negative vertex index " + std::to_string(i));
+        indices.push_back(uint32_t(i));
+    }
+    for (const Vec3f &p : P)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw SceneError(ParamLoc(s, "P"), "vertex position is not finite");
+    try {
+        return std::make_unique<TriangleMesh>(renderFromObject, s.reverseOrientation, P,
+                                              std::move(indices), N, uv);
+    } catch (const std::invalid_argument &e) {
+        throw SceneError(s.loc, std::string(s.type) + ": " + e.what());
+    }
+}
+
+ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
+                                Diagnostics &diag, MemoryBudget &budget) {
+    const ParamSet &ps = s.params;
+    std::vector<Vec3f> P = ps.GetPoint3s("P");
+    std::vector<int> indices = ps.GetInts("indices");
+    if (P.empty()) throw SceneError(s.loc, "trianglemesh needs vertex positions \"P\"");
+    if (indices.empty()) {
+        if (P.size() != 3) throw SceneError(s.loc, "trianglemesh needs \"indices\"");
+        indices = {0, 1, 2};
+    }
+    std::vector<Vec3f> N = ps.GetNormals("N");
+    std::vector<Vec2f> uv = ps.GetPoint2s("uv");
+    if (uv.empty()) uv = ps.GetPoint2s("st");
+    WarnIgnored(ps, {"S"}, diag, "trianglemesh", "shading tangents are not used");
+    WarnIgnored(ps, {"faceIndices"}, diag, "trianglemesh", "face indices are not used (no ptex)");
+    ShapeGeometry g;
+    // The arrays read from the parameters (their storage was charged when the scene was read;
+    // these float copies are at most half of it) are freed when this returns.
+    g.mesh =
+        MakeMesh(s, renderFromObject, P, indices, N, uv, budget, ArrayBytes(P, indices, N, uv));
+    // Prism extension (glTF TEXCOORD_1): "point2 uv1", a second texture coordinate set.
+    if (ps.Has("uv1")) {
+        std::vector<Vec2f> uv1 = ps.GetPoint2s("uv1");
+        ChargeMesh(budget, s, uv1.size() * sizeof(Vec2f), 0);
+        try {
+            g.mesh->SetUV1(std::move(uv1));
+        } catch (const std::invalid_argument &e) {
+            throw SceneError(ParamLoc(s, "uv1"), std::string(s.type) + ": " + e.what());
+        }
+    }
+    // Prism extension (glTF TANGENT): "float tangent", xyz and the bitangent sign per vertex.
+    if (ps.Has("tangent")) {
+        try {
+            g.mesh->SetTangents(renderFromObject, ps.GetFloats("tangent"));
+        } catch (const std::invalid_argument &e) {
+            throw SceneError(ParamLoc(s, "tangent"), std::string(s.type) + ": " + e.what());
+        }
+    }
+    return g;
+}
+
+ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
+                           const ShapeFactoryContext &ctx, MemoryBudget &budget) {
+    std::string file = s.params.GetString("filename", "");
+    if (file.empty()) throw SceneError(s.loc, "plymesh needs a \"filename\"");
+    // ReadPlyFile charges the file and the mesh it reads (ply_reader.h); both are freed when
+    // this returns, so that charge is given back once the render-space mesh is made and charged.
+    const std::string path = ResolveScenePath(ctx.desc, file);
+    const Param *fp = s.params.Find("filename");
+    CheckReadConfinement(path, fp ? fp->loc : s.loc, "plymesh file", file);
+    uint64_t usedBefore = budget.Used();
+    PlyMesh ply = ReadPlyFile(path, ctx.diag, budget);
+    uint64_t plyBytes = budget.Used() - usedBefore;
+    WarnIgnored(s.params, {"displacement", "edgelength"}, ctx.diag, "plymesh",
+                "displacement mapping is not supported");
+    ShapeGeometry g;
+    g.mesh = MakeMesh(s, renderFromObject, ply.P, ply.indices, ply.N, ply.uv, budget, 0);
+    budget.Release(plyBytes);
+    return g;
+}
+
+// scene/'s ParamSet seen through geometry/'s ShapeParams, for the shapes' CreateShape<T>.
+class ShapeDescParams final : public ShapeParams {
+  public:
+    explicit ShapeDescParams(const ShapeDesc &s) : s_(s) {}
+    const std::string &Type() const override { return s_.type; }
+    bool Has(const char *name) const override { return s_.params.Has(name); }
+    float Float(const char *name, float def) const override {
+        return s_.params.GetFloat(name, def);
+    }
+    Vec3f Point3(const char *name, Vec3f def) const override {
+        return s_.params.GetPoint3(name, def);
+    }
+    FileLoc Loc(const char *name) const override { return ParamLoc(s_, name); }
+
+  private:
+    const ShapeDesc &s_;
+};
+
+// [loopsubdiv] Loop subdivision on the CPU into a triangle mesh with limit normals.
+ShapeGeometry LoopSubdivShape(const ShapeDesc &s, const Transform &renderFromObject,
+                              const ShapeFactoryContext &ctx, MemoryBudget &budget) {
+    const ParamSet &ps = s.params;
+    const char *levelsName = ps.Has("levels") || !ps.Has("nlevels") ? "levels" : "nlevels";
+    int levels = ps.GetInt(levelsName, 3);
+    std::vector<Vec3f> P = ps.GetPoint3s("P");
+    std::vector<int> indices = ps.GetInts("indices");
+    if (P.empty()) throw SceneError(s.loc, "loopsubdiv needs vertex positions \"P\"");
+    if (indices.empty()) throw SceneError(s.loc, "loopsubdiv needs \"indices\"");
+    for (const Vec3f &p : P)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw SceneError(ParamLoc(s, "P"), "vertex position is not finite");
+    {
+        // Before subdividing: each level makes 4 triangles of one and a vertex of each edge,
+        // so the output has T = 4^levels F triangles and fewer than V0 + T vertices (the
+        // edges of all levels number less than 3/4 T). Its arrays (positions and normals, 24
+        // bytes a vertex; indices, 12 a triangle) and the mesh made from them must fit.
+        // (LoopSubdivide refuses levels and sizes beyond its limits.)
+        uint64_t faces = indices.size() / 3;
+        int l = std::clamp(levels, 0, MaxLoopSubdivLevels);
+        uint64_t tris = std::min<uint64_t>(faces << (2 * l), MaxLoopSubdivTriangles);
+        uint64_t verts = P.size() + tris;
+        ChargeMesh(budget, s, 0,
+                   TriangleMesh::Bytes(verts, 3 * tris, true, false) + verts * 24 + tris * 12);
+    }
+    LoopSubdivResult r;
+    try {
+        r = LoopSubdivide(P, indices, levels);
+    } catch (const std::invalid_argument &e) {
+        bool aboutLevels = std::string(e.what()).find("levels") != std::string::npos;
+        throw SceneError(ParamLoc(s, aboutLevels ? levelsName : "indices"),
+                         std::string("loopsubdiv: ") + e.what());
+    }
+    if (r.droppedFaces > 0)
+        ctx.diag.Warn(
+            ParamLoc(s, "indices"),
+            "loopsubdiv: skipped " + std::to_string(r.droppedFaces) + " degenerate triangle(s)");
+    if (r.indices.empty()) throw SceneError(s.loc, "loopsubdiv has no non-degenerate triangles");
+    ShapeGeometry g;
+    g.mesh = MakeMesh(s, renderFromObject, r.P, r.indices, r.N, {}, budget,
+                      ArrayBytes(r.P, r.indices, r.N, {}));
+    return g;
+}
+
+}  // namespace
+
+ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFromObject,
+                                  const ShapeFactoryContext &ctx) {
+#define PRISM_SHAPE(T, name)                                                                     \
+    if (s.type == name) {                                                                        \
+        ShapeGeometry g;                                                                         \
+        g.analytic = CreateShape<T>(ShapeDescParams(s), renderFromObject, s.reverseOrientation); \
+        return g;                                                                                \
+    }
+#include "geometry/shape_list.inc"
+#undef PRISM_SHAPE
+    MemoryBudget ownBudget(ctx.budget ? 1 : 0);  // the default limit, without a budget given
+    MemoryBudget &budget = ctx.budget ? *ctx.budget : ownBudget;
+    if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject, ctx.diag, budget);
+    if (s.type == "plymesh") return PlyMeshShape(s, renderFromObject, ctx, budget);
+    if (s.type == "loopsubdiv") return LoopSubdivShape(s, renderFromObject, ctx, budget);
+    ctx.diag.WarnOnce("shape:" + s.type, s.loc,
+                      "shape \"" + s.type + "\" is not supported; every such shape is skipped");
+    s.params.MarkAllUsed();
+    return {};
+}
+
+}  // namespace prism
