@@ -159,10 +159,6 @@ EnvironmentSpec ParseEnvironment(const std::string &spec, double rotateDeg,
     return env;
 }
 
-ToneMap DefaultToneMap(const std::string &sceneFormat) {
-    return sceneFormat == "pbrt" ? ToneMap::None : ToneMap::Neutral;
-}
-
 void CheckOutputPath(const std::string &path) {
     namespace fs = std::filesystem;
     std::string ext = LowerExtension(path);

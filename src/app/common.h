@@ -54,9 +54,6 @@ Transform ParseLookAt(const std::string &s);
 // and `mode` are those options' values ("" for a mode not given). UsageError on bad values.
 EnvironmentSpec ParseEnvironment(const std::string &spec, double rotateDeg,
                                  const std::string &mode);
-// The tone map 8-bit outputs get when neither --tonemap nor the Film says: none (clamp, as
-// pbrt-v3) for pbrt scenes, neutral (Khronos PBR Neutral) for OBJ, glTF and PLY.
-ToneMap DefaultToneMap(const std::string &sceneFormat);
 // Fails early (UsageError) if the image format is unsupported or the directory is missing.
 void CheckOutputPath(const std::string &path);
 // Fails early (UsageError) when no file can be created in `dir` ("" is the working

@@ -33,20 +33,19 @@ namespace {
 // The output transform: the command line's, else the Film's, else the format's default. The
 // exposure of an OBJ, glTF or PLY scene lit by its own lights (not the studio rig or --env)
 // written to an 8-bit format defaults to auto: their emitters come in arbitrary units.
-OutputTransform ChooseOutputTransform(const RenderArgs &a, const RenderScene &scene,
-                                      const SceneDescription &desc, bool linearOut,
+OutputTransform ChooseOutputTransform(const RenderArgs &a, const RenderScene &scene, bool linearOut,
                                       const Image &img) {
     OutputTransform t;
     t.exposure = a.exposureGiven ? a.exposure : scene.filmExposure;
     if (a.exposureGiven)
         t.autoExposure = a.exposureAuto;
     else if (scene.filmExposure == 0)
-        t.autoExposure = !linearOut && desc.format != "pbrt" && !desc.studioRig && a.env.empty();
+        t.autoExposure = !linearOut && scene.autoExposure8Bit && a.env.empty();
     ResolveAutoExposure(t, img);
     if (!a.toneMap.empty())
         ParseToneMap(a.toneMap, &t.toneMap);  // checked by CLI11
     else
-        t.toneMap = scene.filmToneMap.value_or(DefaultToneMap(desc.format));
+        t.toneMap = scene.filmToneMap;
     return t;
 }
 
@@ -275,8 +274,7 @@ ProgressFn RenderJob::Progress() {
 void RenderJob::Write(const Image &img) {
     const std::string &out = s_->out;
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
-    const OutputTransform outTransform =
-        ChooseOutputTransform(s_->a, *s_->scene, s_->desc, linearOut, img);
+    const OutputTransform outTransform = ChooseOutputTransform(s_->a, *s_->scene, linearOut, img);
     if (s_->aovOutput) {
         // The AOVs the render computed from its own tiles.
         Image toWrite = img;
@@ -298,7 +296,7 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
     const BuildSettings &opts = s_->opts;
     const std::string &out = s_->out;
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
-    const OutputTransform outTransform = ChooseOutputTransform(a, scene, desc, linearOut, img);
+    const OutputTransform outTransform = ChooseOutputTransform(a, scene, linearOut, img);
     if (s_->target && a.verify) {
         TargetVerification v = VerifyTarget(desc, opts, *s_->target, img, s_->diag);
         std::fprintf(stderr, "%s\n", DescribeVerification(*s_->target, v).c_str());

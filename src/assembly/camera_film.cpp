@@ -60,6 +60,9 @@ void BuildFilm(BuildContext &ctx) {
         const Param *p = film.Find("exposure");
         throw SceneError(p ? p->loc : desc.film.loc, "film \"exposure\" must lie in [-64, 64]");
     }
+    // The tone map of 8-bit outputs: the Film's, else none (clamp, as pbrt-v3) for pbrt
+    // scenes and neutral (Khronos PBR Neutral) for OBJ, glTF and PLY.
+    scene.filmToneMap = desc.format == "pbrt" ? ToneMap::None : ToneMap::Neutral;
     if (const Param *p = film.Find("tonemap")) {
         ToneMap op;
         std::string name = film.GetString("tonemap", "");
@@ -68,6 +71,10 @@ void BuildFilm(BuildContext &ctx) {
                                          " (expected none, neutral, aces or filmic)");
         scene.filmToneMap = op;
     }
+    // OBJ, glTF and PLY models lit by their own emitters (not the studio rig), whose units are
+    // arbitrary, are exposed automatically in 8-bit outputs. Decided here with the tone map, so
+    // that writing an image needs no SceneDescription.
+    scene.autoExposure8Bit = desc.format != "pbrt" && !desc.studioRig;
     if (const Param *p = film.Find("aovs")) {
         std::vector<Aov> aovs;
         std::string error;

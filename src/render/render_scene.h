@@ -88,10 +88,13 @@ struct RenderScene {
     float rayCutoff = 0;
     RayOffset offset;
     std::string outputFilename;  // Film "filename"
-    // Film "exposure" (EV) and "tonemap" (Prism extensions, image/tonemap.h); no tone map given:
-    // the format's default (the app decides).
+    // Film "exposure" (EV) and "tonemap" (Prism extensions, image/tonemap.h), the tone map
+    // defaulting to the format's; whether an 8-bit output without an exposure is exposed
+    // automatically (OBJ, glTF and PLY scenes lit by their own emitters). The command line may
+    // replace each.
     float filmExposure = 0;
-    std::optional<ToneMap> filmToneMap;
+    ToneMap filmToneMap = ToneMap::None;
+    bool autoExposure8Bit = false;
     // Film "aovs" (Prism extension, render/aov.h): "" or a checked AOV list ("all", "Z,N").
     std::string filmAovs;
     // The integrator that runs (render/integrator.h, created from the Integrator directive),
