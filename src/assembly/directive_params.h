@@ -9,10 +9,13 @@
 
 namespace prism {
 
-class DirectiveParams : public Params {
+// Base: Params, or an interface that extends it (render/light.h LightParams), whose own
+// readers a subclass adds.
+template <class Base = Params>
+class DirectiveParamsOf : public Base {
   public:
     // context: the directive for messages ("integrator \"path\""); loc: the directive's.
-    DirectiveParams(const ParamSet &ps, Diagnostics &diag, std::string context, FileLoc loc)
+    DirectiveParamsOf(const ParamSet &ps, Diagnostics &diag, std::string context, FileLoc loc)
         : ps_(ps), diag_(diag), context_(std::move(context)), loc_(std::move(loc)) {}
     const std::string &Context() const override { return context_; }
     bool Has(const char *name) const override { return ps_.Find(name) != nullptr; }
@@ -33,11 +36,12 @@ class DirectiveParams : public Params {
         WarnIgnoredRest(ps_, diag_, context_, why);
     }
 
-  private:
+  protected:
     const ParamSet &ps_;
     Diagnostics &diag_;
     std::string context_;
     FileLoc loc_;
 };
+using DirectiveParams = DirectiveParamsOf<>;
 
 }  // namespace prism

@@ -1,5 +1,6 @@
 #include "assembly/lights.h"
 
+#include "assembly/directive_params.h"
 #include "assembly/scene_effects.h"
 #include "assembly/textures.h"
 #include "render/area_light.h"
@@ -7,59 +8,52 @@
 
 namespace prism {
 
+namespace {
+
+// A LightSource's parameters over its ParamSet, images read relative to the scene.
+class SceneLightParams : public DirectiveParamsOf<LightParams> {
+  public:
+    SceneLightParams(BuildContext &ctx, const LightDesc &l)
+        : DirectiveParamsOf(l.params, ctx.diag, "light " + Quote(l.type), l.loc),
+          ctx_(ctx),
+          light_(l) {}
+    RGB Spectrum(const char *name, RGB def) const override { return ps_.GetRGB(name, def); }
+    Vec3f Point3(const char *name, Vec3f def) const override { return ps_.GetPoint3(name, def); }
+    RGB Scale() const override { return ScaleParam(ps_); }
+    std::shared_ptr<const Image> LoadImage(const char *name,
+                                           const std::string &file) const override {
+        return LoadSceneImage(ctx_, light_, file, ReadImageOptions::Encoding::Auto, name);
+    }
+
+  private:
+    BuildContext &ctx_;
+    const LightDesc &light_;
+};
+
+}  // namespace
+
 void BuildLights(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     RenderScene &scene = ctx.scene;
     Diagnostics &diag = ctx.diag;
     for (const LightDesc &l : desc.lights) {
-        const size_t lightsBefore = scene.lights.size();
         const ParamSet &ps = l.params;
-        Transform renderFromLight = scene.renderFromWorld * l.worldFromLight;
-        RGB sc = ScaleParam(ps);
-        if (l.type == "point") {
-            RGB I = ps.GetRGB("I", RGB(1)) * sc;
-            Vec3f from = ps.GetPoint3("from", Vec3f(0, 0, 0));
-            scene.lights.push_back(
-                std::make_unique<PointLight>(Vec3f(renderFromLight.Point(Vec3d(from))), I));
-        } else if (l.type == "spot") {
-            RGB I = ps.GetRGB("I", RGB(1)) * sc;
-            Vec3f from = ps.GetPoint3("from", Vec3f(0, 0, 0));
-            Vec3f to = ps.GetPoint3("to", Vec3f(0, 0, 1));
-            if (from == to)
-                throw SceneError(l.loc, "spot light \"from\" and \"to\" are the same point");
-            float cone = ps.GetFloat("coneangle", 30.f), delta = ps.GetFloat("conedeltaangle", 5.f);
-            Vec3d dir = Normalize(renderFromLight.Vector(Vec3d(to) - Vec3d(from)));
-            scene.lights.push_back(std::make_unique<SpotLight>(
-                Vec3f(renderFromLight.Point(Vec3d(from))), Vec3f(dir), I, cone, delta));
-        } else if (l.type == "distant") {
-            RGB L = ps.GetRGB("L", RGB(1)) * sc;
-            Vec3f from = ps.GetPoint3("from", Vec3f(0, 0, 0));
-            Vec3f to = ps.GetPoint3("to", Vec3f(0, 0, 1));
-            Vec3d w = renderFromLight.Vector(Vec3d(from) - Vec3d(to));
-            if (!(Length(w) > 0))
-                throw SceneError(l.loc, "distant light \"from\" and \"to\" are the same point");
-            scene.lights.push_back(std::make_unique<DistantLight>(Vec3f(Normalize(w)), L));
-        } else if (l.type == "infinite") {
-            RGB L = ps.GetRGB("L", RGB(1)) * sc;
-            std::string mapname = ps.GetString("mapname", "");
-            std::shared_ptr<const Image> map;
-            if (!mapname.empty())
-                map = LoadSceneImage(ctx, l, mapname, ReadImageOptions::Encoding::Auto, "mapname");
-            int n = ps.GetInt("nsamples", ps.GetInt("samples", 1));
-            if (ctx.settings.lightSamples > 0) n = ctx.settings.lightSamples;
-            if (n < 1 || n > 4096)
-                throw SceneError(l.loc, "infinite light nsamples must be 1 to 4096");
-            scene.lights.push_back(std::make_unique<InfiniteLight>(renderFromLight, L, map, n));
-            scene.features.environment = true;
-        } else {
+        const SceneLightParams params(ctx, l);
+        const LightInputs in{params, scene.renderFromWorld * l.worldFromLight, l.loc,
+                             ctx.settings.lightSamples};
+        std::unique_ptr<Light> light = CreateLight(l.type, in);
+        if (!light) {
             diag.WarnOnce(
                 "light:" + l.type, l.loc,
                 "light source " + Quote(l.type) + " is not supported; every such light is ignored");
             ps.MarkAllUsed();
         }
         ps.ReportUnused(diag, "light " + Quote(l.type));
-        if (scene.lights.size() > lightsBefore)
-            NoteLightEffects(ctx, "LightSource " + Quote(l.type), l.loc);
+        if (!light) continue;
+        // A light that is neither delta nor an area light surrounds the scene (infinite).
+        if (!light->IsDelta() && !light->IsArea()) scene.features.environment = true;
+        scene.lights.push_back(std::move(light));
+        NoteLightEffects(ctx, "LightSource " + Quote(l.type), l.loc);
     }
 }
 

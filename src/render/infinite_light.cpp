@@ -110,4 +110,26 @@ float InfiniteLight::PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
     return float(distribution_.Pdf(Vec2d(phi / (2 * Pi), theta / Pi)) / (2 * Pi * Pi * sinTheta));
 }
 
+// The most samples an infinite light may take per shading point.
+inline constexpr int MaxInfiniteLightSamples = 4096;
+
+// LightSource "infinite" (light_list.inc). Parameters:
+//   L                   spectrum  1   radiance (times the map's texels)
+//   scale               spectrum  1   multiplies L
+//   mapname             string    ""  an equirectangular image, z the pole (u = phi / 2 pi)
+//   nsamples (samples)  integer   1   light samples per shading point, 1 to 4096;
+//                                     --light-samples wins
+std::unique_ptr<Light> CreateInfiniteLight(const LightInputs &in) {
+    const LightParams &p = in.params;
+    const RGB L = p.Spectrum("L", RGB(1)) * p.Scale();
+    const std::string mapname = p.String("mapname", "");
+    std::shared_ptr<const Image> map;
+    if (!mapname.empty()) map = p.LoadImage("mapname", mapname);
+    int n = p.Int("nsamples", p.Int("samples", 1));
+    if (in.lightSamples > 0) n = in.lightSamples;
+    if (n < 1 || n > MaxInfiniteLightSamples)
+        throw SceneError(in.loc, "infinite light nsamples must be 1 to 4096");
+    return std::make_unique<InfiniteLight>(in.renderFromLight, L, map, n);
+}
+
 }  // namespace prism

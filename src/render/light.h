@@ -3,12 +3,17 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/color.h"
+#include "core/params.h"
 #include "core/transform.h"
 #include "geometry/interaction.h"
 
 namespace prism {
+
+struct Image;
 
 struct LightSample {
     RGB Li;
@@ -89,5 +94,31 @@ class DistantLight final : public Light {
     Vec3f w_;
     RGB L_;
 };
+
+// A LightSource directive's parameters as a light's Create reads them: core/params.h's plus
+// spectra (rgb, blackbody, spectrum: as RGB), points, and images (relative to the scene).
+class LightParams : public Params {
+  public:
+    virtual RGB Spectrum(const char *name, RGB def) const = 0;
+    virtual Vec3f Point3(const char *name, Vec3f def) const = 0;
+    // pbrt's "scale": a float or a spectrum, 1 by default.
+    virtual RGB Scale() const = 0;
+    // The image file named by string parameter `name` (relative to the scene), linear.
+    virtual std::shared_ptr<const Image> LoadImage(const char *name,
+                                                   const std::string &file) const = 0;
+};
+
+// What a light's Create reads.
+struct LightInputs {
+    const LightParams &params;
+    Transform renderFromLight;  // the CTM at the LightSource, in render space
+    FileLoc loc;                // the directive
+    int lightSamples = 0;       // --light-samples (0: the file's "nsamples")
+};
+
+// The light registered as `type` (light_list.inc), or null when none is. Throws SceneError for
+// bad parameters.
+std::unique_ptr<Light> CreateLight(const std::string &type, const LightInputs &in);
+const std::vector<std::string> &LightNames();
 
 }  // namespace prism
