@@ -1,4 +1,4 @@
-// prism: a Whitted ray tracer on Embree. Subcommands: render, info, trace, pick, validate,
+// prism: a CPU ray tracer on Embree. Subcommands: render, info, trace, pick, validate,
 // batch, bench and study (with no arguments: render scenes/whitted.pbrt).
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -8,7 +8,7 @@
 
 int main(int argc, char **argv) {
     if (argc == 1) return prism::RenderDefaultScene();
-    CLI::App app{"Prism: a CPU Whitted ray tracer on Embree (pbrt-v3, OBJ, glTF scenes)", "prism"};
+    CLI::App app{"Prism: a CPU ray tracer on Embree (pbrt-v3, OBJ, glTF scenes)", "prism"};
     app.require_subcommand(1);
     app.set_version_flag("--version", PRISM_VERSION);
     int exitCode = 0;
