@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "assembly/directive_params.h"
 #include "core/memory.h"
 #include "render/gltf_material.h"
 #include "render/mipmap.h"
@@ -120,190 +121,71 @@ struct TextureBuilder : BuildStep {
         return f;
     }
 
-    // [textures helper region] bilerp, uv, dots, fbm, wrinkled, windy and marble (pbrt-v3
-    // names and defaults); nullptr (after a warning) for the float variants pbrt-v3 lacks.
-    TexturePtr MakeProceduralTexture(const TextureDesc &t) {
-        const ParamSet &ps = t.params;
-        bool f = t.isFloat;
-        auto spectrumOnly = [&]() {
-            diag.Warn(t.loc, "texture class " + Quote(t.type) +
-                                 " has no float variant (as in pbrt-v3); texture " + Quote(t.name) +
-                                 " is ignored");
-            ps.MarkAllUsed();
-            return TexturePtr();
-        };
-        auto octaves = [&]() {
-            int n = ps.GetInt("octaves", 8);
-            if (n < 0 || n > 32) {
-                const Param *p = ps.Find("octaves");
-                throw SceneError(p ? p->loc : t.loc, t.type + " octaves must be 0 to 32");
+    // A Texture directive's parameters over its ParamSet, with the builder's tables.
+    class SceneTextureParams : public DirectiveParamsOf<TextureParams> {
+      public:
+        SceneTextureParams(TextureBuilder &b, const TextureDesc &t)
+            : DirectiveParamsOf(t.params, b.diag, "texture " + Quote(t.name), t.loc),
+              b_(b),
+              t_(t) {}
+        bool IsFloat() const override { return t_.isFloat; }
+        const std::string &Name() const override { return t_.name; }
+        TexturePtr Tex(const char *name, bool isFloat, RGB def) const override {
+            return b_.TexParam(ps_, name, isFloat, def);
+        }
+        RGB Spectrum(const char *name, RGB def) const override { return ps_.GetRGB(name, def); }
+        TextureMapping Mapping() const override { return b_.Mapping(t_); }
+        TextureMapping3D Mapping3D() const override {
+            return TextureMapping3D{(b_.scene.renderFromWorld * t_.worldFromTexture).Inverse()};
+        }
+        std::shared_ptr<const Image> LoadImage(const char *param, const std::string &file,
+                                               Encoding enc) const override {
+            const auto e = enc == Encoding::SRGB     ? ReadImageOptions::Encoding::SRGB
+                           : enc == Encoding::Linear ? ReadImageOptions::Encoding::Linear
+                                                     : ReadImageOptions::Encoding::Auto;
+            return b_.LoadImage(t_, file, e, param);
+        }
+        void Charge(size_t bytes, const std::string &what, const char *param) const override {
+            b_.budget.Charge(bytes, what, Loc(param));
+        }
+        std::shared_ptr<const MIPMap> Mip(const std::shared_ptr<const Image> &img, WrapMode wrap,
+                                          const std::string &file,
+                                          const char *param) const override {
+            auto &cached = b_.ctx.mipCache[{img.get(), int(wrap)}];
+            if (!cached) {
+                const FileLoc loc = Loc(param);
+                // The levels above the image take a third of it (in RGB floats).
+                b_.budget.Check(size_t(img->width) * size_t(img->height) * sizeof(RGB) / 3 + 64,
+                                "MIP map of texture " + Quote(file), loc);
+                cached = std::make_shared<MIPMap>(img, wrap);
+                b_.budget.Charge(cached->Bytes(), "MIP map of texture " + Quote(file), loc);
             }
-            return n;
-        };
-        TextureMapping3D m3{(scene.renderFromWorld * t.worldFromTexture).Inverse()};
-        if (t.type == "bilerp") {
-            auto v = [&](const char *n, float d) {
-                return f ? RGB(ps.GetFloat(n, d)) : ps.GetRGB(n, RGB(d));
-            };
-            return std::make_shared<BilerpTexture>(Mapping(t), v("v00", 0), v("v01", 1),
-                                                   v("v10", 0), v("v11", 1));
+            return cached;
         }
-        if (t.type == "uv") {
-            if (f) return spectrumOnly();
-            return std::make_shared<UVTexture>(Mapping(t));
+        TextureFilter Filter() const override { return b_.Filter(ps_); }
+        bool FootprintFilteringOff() const override {
+            const std::string &f = b_.settings.textureFilter;
+            return f == "none" || f == "point";
         }
-        if (t.type == "dots")
-            return std::make_shared<DotsTexture>(Mapping(t), TexParam(ps, "inside", f, RGB(1)),
-                                                 TexParam(ps, "outside", f, RGB(0)));
-        if (t.type == "fbm" || t.type == "wrinkled") {
-            auto kind = t.type == "fbm" ? NoiseTexture::Kind::FBm : NoiseTexture::Kind::Wrinkled;
-            int n = octaves();
-            return std::make_shared<NoiseTexture>(kind, m3, n, ps.GetFloat("roughness", .5f));
+        void WarnIgnored(const char *name, const std::string &why) const override {
+            prism::WarnIgnored(ps_, {name}, diag_, t_.type + " texture", why);
         }
-        if (t.type == "windy")
-            return std::make_shared<NoiseTexture>(NoiseTexture::Kind::Windy, m3, 0, 0.f);
-        if (t.type == "marble") {
-            if (f) return spectrumOnly();
-            int n = octaves();
-            return std::make_shared<MarbleTexture>(m3, n, ps.GetFloat("roughness", .5f),
-                                                   ps.GetFloat("scale", 1.f),
-                                                   ps.GetFloat("variation", .2f));
-        }
-        return nullptr;
-    }
-    // [end of textures helper region]
+        void MarkAllUsed() const override { ps_.MarkAllUsed(); }
 
-    TexturePtr MakeTexture(const TextureDesc &t) {
-        const ParamSet &ps = t.params;
-        bool f = t.isFloat;
-        RGB one(1), zero(0);
-        if (t.type == "constant") return TexParam(ps, "value", f, one);
-        if (t.type == "scale") {
-            if (!ps.Has("tex1") && !ps.Has("tex2") && (ps.Has("tex") || ps.Has("scale")))
-                // pbrt-v4 spelling: "tex" times the float "scale".
-                return std::make_shared<ScaleTexture>(TexParam(ps, "tex", f, one),
-                                                      TexParam(ps, "scale", true, one));
-            return std::make_shared<ScaleTexture>(TexParam(ps, "tex1", f, one),
-                                                  TexParam(ps, "tex2", f, one));
-        }
-        if (t.type == "mix")
-            return std::make_shared<MixTexture>(TexParam(ps, "tex1", f, zero),
-                                                TexParam(ps, "tex2", f, one),
-                                                TexParam(ps, "amount", true, RGB(0.5f)));
-        if (t.type == "checkerboard") {
-            int dim = ps.GetInt("dimension", 2);
-            if (dim != 2 && dim != 3)
-                throw SceneError(t.loc, "checkerboard dimension must be 2 or 3");
-            // pbrt-v3's "aamode": "closedform" (the default) box-filters the 2-D board over
-            // the ray's footprint; "none" point-samples. 3-D boards are point-sampled.
-            auto aa = CheckerboardTexture::AAMode::ClosedForm;
-            std::string aamode = ps.GetString("aamode", "closedform");
-            if (aamode == "none")
-                aa = CheckerboardTexture::AAMode::None;
-            else if (aamode != "closedform")
-                diag.Warn(ps.Find("aamode")->loc, "unknown checkerboard aamode " + Quote(aamode) +
-                                                      "; using \"closedform\"");
-            // --texture-filter none or point: no footprint filtering anywhere.
-            if (settings.textureFilter == "none" || settings.textureFilter == "point")
-                aa = CheckerboardTexture::AAMode::None;
-            return std::make_shared<CheckerboardTexture>(Mapping(t), TexParam(ps, "tex1", f, one),
-                                                         TexParam(ps, "tex2", f, zero), dim, aa);
-        }
-        if (t.type == "imagemap") {
-            std::string file = ps.GetString("filename", "");
-            if (file.empty()) throw SceneError(t.loc, "imagemap texture needs a \"filename\"");
-            std::string wrapName = ps.GetString("wrap", "repeat");
-            WrapMode wrap = WrapMode::Repeat;
-            if (wrapName == "black")
-                wrap = WrapMode::Black;
-            else if (wrapName == "clamp")
-                wrap = WrapMode::Clamp;
-            else if (wrapName != "repeat")
-                diag.Warn(ps.Find("wrap")->loc,
-                          "unknown wrap mode " + Quote(wrapName) + "; using repeat");
-            auto enc = ReadImageOptions::Encoding::Auto;
-            if (ps.Has("gamma"))
-                enc = ps.GetBool("gamma", false) ? ReadImageOptions::Encoding::SRGB
-                                                 : ReadImageOptions::Encoding::Linear;
-            // pbrt-v4's "encoding" for 8-bit images: "sRGB" and "linear" are honoured.
-            std::string encoding = ps.GetString("encoding", "");
-            if (encoding == "sRGB")
-                enc = ReadImageOptions::Encoding::SRGB;
-            else if (encoding == "linear")
-                enc = ReadImageOptions::Encoding::Linear;
-            else if (!encoding.empty())
-                WarnIgnored(ps, {"encoding"}, diag, "imagemap texture",
-                            "only \"sRGB\" and \"linear\" are read");
-            const TextureFilter filter = Filter(ps);
-            float maxAniso = ps.GetFloat("maxanisotropy", 8.f);
-            if (!(maxAniso >= 1)) {
-                diag.Warn(ps.Find("maxanisotropy")->loc, "maxanisotropy below 1; using 1");
-                maxAniso = 1;
-            }
-            auto img = LoadImage(t, file, enc, "filename");
-            // Prism extension for cut-outs (glTF baseColor alpha, OBJ map_d): a float texture
-            // of the image's "alpha" channel (1 without one), or "alphaorluminance".
-            std::string channel = f ? ps.GetString("channel", "luminance") : "luminance";
-            if (channel != "luminance" && channel != "alpha" && channel != "alphaorluminance")
-                throw SceneError(ps.Find("channel")->loc,
-                                 "imagemap \"channel\" must be \"luminance\", \"alpha\" or "
-                                 "\"alphaorluminance\", not " +
-                                     Quote(channel));
-            if (channel != "luminance" && (img->HasAlpha() || channel == "alpha")) {
-                const Param *fp = ps.Find("filename");
-                budget.Charge(img->pixels.size() * sizeof(float), "texture " + Quote(file),
-                              fp ? fp->loc : t.loc);
-                auto a = std::make_shared<Image>(*img);
-                const int ac = img->channels == 2 ? 1 : 3;
-                for (int y = 0; y < a->height; ++y)
-                    for (int x = 0; x < a->width; ++x)
-                        a->SetRGB(x, y, RGB(img->HasAlpha() ? img->At(x, y, ac) : 1.f));
-                img = a;
-            } else if (f && img->channels >= 3) {
-                // pbrt converts RGB texels of float textures to luminance, in a copy.
-                const Param *fp = ps.Find("filename");
-                budget.Charge(img->pixels.size() * sizeof(float), "texture " + Quote(file),
-                              fp ? fp->loc : t.loc);
-                auto lum = std::make_shared<Image>(*img);
-                for (int y = 0; y < lum->height; ++y)
-                    for (int x = 0; x < lum->width; ++x)
-                        lum->SetRGB(x, y, RGB(img->GetRGB(x, y).Luminance()));
-                img = lum;
-            }
-            std::shared_ptr<const MIPMap> mip;
-            if (filter == TextureFilter::Trilinear || filter == TextureFilter::EWA) {
-                auto &cached = ctx.mipCache[{img.get(), int(wrap)}];
-                if (!cached) {
-                    const Param *fp = ps.Find("filename");
-                    const FileLoc &loc = fp ? fp->loc : t.loc;
-                    // The levels above the image take a third of it (in RGB floats).
-                    budget.Check(size_t(img->width) * size_t(img->height) * sizeof(RGB) / 3 + 64,
-                                 "MIP map of texture " + Quote(file), loc);
-                    cached = std::make_shared<MIPMap>(img, wrap);
-                    budget.Charge(cached->Bytes(), "MIP map of texture " + Quote(file), loc);
-                }
-                mip = cached;
-            }
-            return std::make_shared<ImageTexture>(Mapping(t), img, wrap, ps.GetFloat("scale", 1.f),
-                                                  ps.GetBool("invert", false), filter, mip,
-                                                  maxAniso);
-        }
-        for (const char *c : {"bilerp", "uv", "dots", "fbm", "wrinkled", "windy", "marble"})
-            if (t.type == c) return MakeProceduralTexture(t);
-        if (t.type == "ptex") {
-            diag.Warn(t.loc, "ptex textures are not supported; texture " + Quote(t.name) +
-                                 " is a constant 0.5");
-            ps.MarkAllUsed();
-            return Constant(RGB(0.5f));
-        }
-        diag.Warn(t.loc, "texture class " + Quote(t.type) + " is not supported; texture " +
-                             Quote(t.name) + " is ignored");
-        return nullptr;
-    }
+      private:
+        TextureBuilder &b_;
+        const TextureDesc &t_;
+    };
 
+    // Each Texture directive through its class's Create (render/texture_list.inc).
     void Build() {
         for (const TextureDesc &t : desc.textures) {
-            TexturePtr tex = MakeTexture(t);
+            const SceneTextureParams params(*this, t);
+            bool known = false;
+            TexturePtr tex = CreateTexture(t.type, params, t.loc, &known);
+            if (!known)
+                diag.Warn(t.loc, "texture class " + Quote(t.type) + " is not supported; texture " +
+                                     Quote(t.name) + " is ignored");
             if (!tex) continue;
             if (!tex->IsConstant()) scene.features.textures = true;
             (t.isFloat ? ctx.floatTextures : ctx.rgbTextures)[t.name] = tex;

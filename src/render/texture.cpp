@@ -274,4 +274,213 @@ RGB MarbleTexture::Evaluate(const TextureContext &c) const {
     return (s0 * (1 - t) + s1 * t) * 1.5f;  // pbrt's extra 1.5 widens the colour range
 }
 
+// Creates, one per texture class (texture_list.inc), pbrt-v3's names and defaults.
+
+namespace {
+
+TexturePtr Constant(RGB v) { return std::make_shared<ConstantTexture>(v); }
+
+// A float variant pbrt-v3 lacks: ignored after a warning.
+TexturePtr SpectrumOnly(const TextureParams &p, const FileLoc &loc, const char *type) {
+    p.Warn(loc, std::string("texture class \"") + type +
+                    "\" has no float variant (as in pbrt-v3); texture " + Quote(p.Name()) +
+                    " is ignored");
+    p.MarkAllUsed();
+    return nullptr;
+}
+
+int Octaves(const TextureParams &p, const std::string &type) {
+    const int n = p.Int("octaves", 8);
+    if (n < 0 || n > 32) throw SceneError(p.Loc("octaves"), type + " octaves must be 0 to 32");
+    return n;
+}
+
+}  // namespace
+
+// "constant": value (texture or value, 1).
+TexturePtr CreateConstantTexture(const TextureParams &p, const FileLoc &) {
+    return p.Tex("value", p.IsFloat(), RGB(1));
+}
+
+// "scale": tex1 times tex2 (each a texture or value, 1); pbrt-v4's spelling "tex" times the
+// float "scale".
+TexturePtr CreateScaleTexture(const TextureParams &p, const FileLoc &) {
+    const bool f = p.IsFloat();
+    if (!p.Has("tex1") && !p.Has("tex2") && (p.Has("tex") || p.Has("scale")))
+        return std::make_shared<ScaleTexture>(p.Tex("tex", f, RGB(1)),
+                                              p.Tex("scale", true, RGB(1)));
+    return std::make_shared<ScaleTexture>(p.Tex("tex1", f, RGB(1)), p.Tex("tex2", f, RGB(1)));
+}
+
+// "mix": tex1 (0) and tex2 (1) blended by the float texture amount (0.5).
+TexturePtr CreateMixTexture(const TextureParams &p, const FileLoc &) {
+    const bool f = p.IsFloat();
+    return std::make_shared<MixTexture>(p.Tex("tex1", f, RGB(0)), p.Tex("tex2", f, RGB(1)),
+                                        p.Tex("amount", true, RGB(0.5f)));
+}
+
+// "checkerboard": dimension (2 or 3), tex1 (1), tex2 (0), aamode ("closedform" box-filters a
+// 2-D board over the ray's footprint; "none" point-samples; 3-D boards are point-sampled),
+// and the 2-D mapping parameters.
+TexturePtr CreateCheckerboardTexture(const TextureParams &p, const FileLoc &loc) {
+    const int dim = p.Int("dimension", 2);
+    if (dim != 2 && dim != 3) throw SceneError(loc, "checkerboard dimension must be 2 or 3");
+    auto aa = CheckerboardTexture::AAMode::ClosedForm;
+    const std::string aamode = p.String("aamode", "closedform");
+    if (aamode == "none")
+        aa = CheckerboardTexture::AAMode::None;
+    else if (aamode != "closedform")
+        p.Warn(p.Loc("aamode"),
+               "unknown checkerboard aamode " + Quote(aamode) + "; using \"closedform\"");
+    if (p.FootprintFilteringOff()) aa = CheckerboardTexture::AAMode::None;
+    const bool f = p.IsFloat();
+    return std::make_shared<CheckerboardTexture>(p.Mapping(), p.Tex("tex1", f, RGB(1)),
+                                                 p.Tex("tex2", f, RGB(0)), dim, aa);
+}
+
+// "imagemap": filename (required), wrap (repeat | black | clamp), scale (1), invert (false),
+// gamma (sRGB for 8-bit files by default) or pbrt-v4's encoding ("sRGB", "linear"), filter
+// (ewa | trilinear | bilinear | point; pbrt-v3's "trilinear" bool), maxanisotropy (8), the 2-D
+// mapping, and for float textures Prism's "channel" (luminance | alpha | alphaorluminance).
+TexturePtr CreateImageTexture(const TextureParams &p, const FileLoc &loc) {
+    const std::string file = p.String("filename", "");
+    if (file.empty()) throw SceneError(loc, "imagemap texture needs a \"filename\"");
+    const std::string wrapName = p.String("wrap", "repeat");
+    WrapMode wrap = WrapMode::Repeat;
+    if (wrapName == "black")
+        wrap = WrapMode::Black;
+    else if (wrapName == "clamp")
+        wrap = WrapMode::Clamp;
+    else if (wrapName != "repeat")
+        p.Warn(p.Loc("wrap"), "unknown wrap mode " + Quote(wrapName) + "; using repeat");
+    using Enc = TextureParams::Encoding;
+    Enc enc = Enc::Auto;
+    if (p.Has("gamma")) enc = p.Bool("gamma", false) ? Enc::SRGB : Enc::Linear;
+    const std::string encoding = p.String("encoding", "");
+    if (encoding == "sRGB")
+        enc = Enc::SRGB;
+    else if (encoding == "linear")
+        enc = Enc::Linear;
+    else if (!encoding.empty())
+        p.WarnIgnored("encoding", "only \"sRGB\" and \"linear\" are read");
+    const TextureFilter filter = p.Filter();
+    float maxAniso = p.Float("maxanisotropy", 8.f);
+    if (!(maxAniso >= 1)) {
+        p.Warn(p.Loc("maxanisotropy"), "maxanisotropy below 1; using 1");
+        maxAniso = 1;
+    }
+    std::shared_ptr<const Image> img = p.LoadImage("filename", file, enc);
+    // Prism extension for cut-outs (glTF baseColor alpha, OBJ map_d): a float texture of the
+    // image's "alpha" channel (1 without one), or "alphaorluminance".
+    const bool f = p.IsFloat();
+    const std::string channel = f ? p.String("channel", "luminance") : "luminance";
+    if (channel != "luminance" && channel != "alpha" && channel != "alphaorluminance")
+        throw SceneError(p.Loc("channel"),
+                         "imagemap \"channel\" must be \"luminance\", \"alpha\" or "
+                         "\"alphaorluminance\", not " +
+                             Quote(channel));
+    if (channel != "luminance" && (img->HasAlpha() || channel == "alpha")) {
+        p.Charge(img->pixels.size() * sizeof(float), "texture " + Quote(file), "filename");
+        auto a = std::make_shared<Image>(*img);
+        const int ac = img->channels == 2 ? 1 : 3;
+        for (int y = 0; y < a->height; ++y)
+            for (int x = 0; x < a->width; ++x)
+                a->SetRGB(x, y, RGB(img->HasAlpha() ? img->At(x, y, ac) : 1.f));
+        img = a;
+    } else if (f && img->channels >= 3) {
+        // pbrt converts RGB texels of float textures to luminance, in a copy.
+        p.Charge(img->pixels.size() * sizeof(float), "texture " + Quote(file), "filename");
+        auto lum = std::make_shared<Image>(*img);
+        for (int y = 0; y < lum->height; ++y)
+            for (int x = 0; x < lum->width; ++x)
+                lum->SetRGB(x, y, RGB(img->GetRGB(x, y).Luminance()));
+        img = lum;
+    }
+    std::shared_ptr<const MIPMap> mip;
+    if (filter == TextureFilter::Trilinear || filter == TextureFilter::EWA)
+        mip = p.Mip(img, wrap, file, "filename");
+    return std::make_shared<ImageTexture>(p.Mapping(), img, wrap, p.Float("scale", 1.f),
+                                          p.Bool("invert", false), filter, mip, maxAniso);
+}
+
+// "bilerp": the corner values v00 (0), v01 (1), v10 (0), v11 (1) over the 2-D mapping.
+TexturePtr CreateBilerpTexture(const TextureParams &p, const FileLoc &) {
+    auto v = [&](const char *n, float d) {
+        return p.IsFloat() ? RGB(p.Float(n, d)) : p.Spectrum(n, RGB(d));
+    };
+    return std::make_shared<BilerpTexture>(p.Mapping(), v("v00", 0), v("v01", 1), v("v10", 0),
+                                           v("v11", 1));
+}
+
+// "uv" (spectrum only): (s, t, 0) of the 2-D mapping.
+TexturePtr CreateUVTexture(const TextureParams &p, const FileLoc &loc) {
+    if (p.IsFloat()) return SpectrumOnly(p, loc, "uv");
+    return std::make_shared<UVTexture>(p.Mapping());
+}
+
+// "dots": inside (1) and outside (0) textures over the 2-D mapping.
+TexturePtr CreateDotsTexture(const TextureParams &p, const FileLoc &) {
+    const bool f = p.IsFloat();
+    return std::make_shared<DotsTexture>(p.Mapping(), p.Tex("inside", f, RGB(1)),
+                                         p.Tex("outside", f, RGB(0)));
+}
+
+// "fbm" and "wrinkled": octaves (8, 0 to 32) and roughness (0.5) of Perlin noise in the
+// texture's space.
+TexturePtr CreateFBmTexture(const TextureParams &p, const FileLoc &) {
+    const int n = Octaves(p, "fbm");
+    return std::make_shared<NoiseTexture>(NoiseTexture::Kind::FBm, p.Mapping3D(), n,
+                                          p.Float("roughness", .5f));
+}
+
+TexturePtr CreateWrinkledTexture(const TextureParams &p, const FileLoc &) {
+    const int n = Octaves(p, "wrinkled");
+    return std::make_shared<NoiseTexture>(NoiseTexture::Kind::Wrinkled, p.Mapping3D(), n,
+                                          p.Float("roughness", .5f));
+}
+
+// "windy": pbrt-v3's windy waves (no parameters).
+TexturePtr CreateWindyTexture(const TextureParams &p, const FileLoc &) {
+    return std::make_shared<NoiseTexture>(NoiseTexture::Kind::Windy, p.Mapping3D(), 0, 0.f);
+}
+
+// "marble" (spectrum only): octaves (8), roughness (0.5), scale (1), variation (0.2).
+TexturePtr CreateMarbleTexture(const TextureParams &p, const FileLoc &loc) {
+    if (p.IsFloat()) return SpectrumOnly(p, loc, "marble");
+    const int n = Octaves(p, "marble");
+    return std::make_shared<MarbleTexture>(p.Mapping3D(), n, p.Float("roughness", .5f),
+                                           p.Float("scale", 1.f), p.Float("variation", .2f));
+}
+
+// "ptex": not supported; a constant 0.5 after a warning.
+TexturePtr CreatePtexStandIn(const TextureParams &p, const FileLoc &loc) {
+    p.Warn(loc,
+           "ptex textures are not supported; texture " + Quote(p.Name()) + " is a constant 0.5");
+    p.MarkAllUsed();
+    return Constant(RGB(0.5f));
+}
+
+namespace {
+struct RegisteredTexture {
+    const char *name;
+    TexturePtr (*create)(const TextureParams &, const FileLoc &);
+};
+constexpr RegisteredTexture Textures[] = {
+#define PRISM_TEXTURE(name, create) {name, &create},
+#include "render/texture_list.inc"
+#undef PRISM_TEXTURE
+};
+}  // namespace
+
+TexturePtr CreateTexture(const std::string &type, const TextureParams &params, const FileLoc &loc,
+                         bool *known) {
+    for (const RegisteredTexture &r : Textures)
+        if (type == r.name) {
+            *known = true;
+            return r.create(params, loc);
+        }
+    *known = false;
+    return nullptr;
+}
+
 }  // namespace prism

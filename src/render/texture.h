@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/color.h"
+#include "core/params.h"
 #include "core/transform.h"
 #include "core/vecmath.h"
 
@@ -226,5 +227,42 @@ class MarbleTexture final : public Texture {
     int octaves_;
     float omega_, scale_, variation_;
 };
+
+// A Texture directive's parameters as a texture's Create reads them: core/params.h's plus
+// texture-valued parameters, spectra, the mappings, and image loading for image maps.
+class TextureParams : public Params {
+  public:
+    enum class Encoding { Auto, SRGB, Linear };   // of 8-bit images (Auto: by the file type)
+    virtual bool IsFloat() const = 0;             // a "float" (not "spectrum") texture
+    virtual const std::string &Name() const = 0;  // the texture's name, for messages
+    // A texture-valued parameter ("tex1", "amount"): a named texture of that kind, or a value,
+    // else def.
+    virtual TexturePtr Tex(const char *name, bool isFloat, RGB def) const = 0;
+    virtual RGB Spectrum(const char *name, RGB def) const = 0;
+    // pbrt's 2-D mapping ("mapping", "uscale", ...) and the texture space of 3-D textures.
+    virtual TextureMapping Mapping() const = 0;
+    virtual TextureMapping3D Mapping3D() const = 0;
+    // The image parameter `param` names (relative to the scene, cached, within the memory
+    // budget), a charge to the budget for a copy of it, its MIP pyramid (cached), and the
+    // lookup filter the command line and the texture ask for.
+    virtual std::shared_ptr<const Image> LoadImage(const char *param, const std::string &file,
+                                                   Encoding enc) const = 0;
+    virtual void Charge(size_t bytes, const std::string &what, const char *param) const = 0;
+    virtual std::shared_ptr<const MIPMap> Mip(const std::shared_ptr<const Image> &image,
+                                              WrapMode wrap, const std::string &file,
+                                              const char *param) const = 0;
+    virtual TextureFilter Filter() const = 0;
+    // --texture-filter none or point: no texture filters over the footprint.
+    virtual bool FootprintFilteringOff() const = 0;
+    // Marks `name` read, naming it once with `why` ("accepted, not simulated").
+    virtual void WarnIgnored(const char *name, const std::string &why) const = 0;
+    virtual void MarkAllUsed() const = 0;
+};
+
+// The texture class registered as `type` (texture_list.inc): the texture, or null when the
+// class is unknown (*known false) or its Create ignored the directive after a warning. Throws
+// SceneError for bad parameters.
+TexturePtr CreateTexture(const std::string &type, const TextureParams &params, const FileLoc &loc,
+                         bool *known);
 
 }  // namespace prism

@@ -145,5 +145,29 @@ TEST(TextureScene, EveryClassBuildsAndPtexWarns) {
     EXPECT_THROW(BuildRenderScene(bad, o, d2), SceneError);
 }
 
+// Every class of render/texture_list.inc is made by its own Create; a class the list lacks and
+// the float variants pbrt-v3 lacks are ignored, each with one warning at its directive.
+TEST(TextureScene, UnknownClassesAndMissingFloatVariantsAreIgnoredWithAWarning) {
+    Diagnostics diag;
+    SceneDescription d = Parse(
+        "Texture \"u\" \"float\" \"uv\"\n"
+        "Texture \"m\" \"float\" \"marble\"\n"
+        "Texture \"z\" \"spectrum\" \"zigzag\"\n"
+        "Shape \"sphere\"\n",
+        diag);
+    BuildSettings o;
+    o.resolution = {4, 4};
+    RenderScene s = BuildRenderScene(d, o, diag);
+    ASSERT_EQ(diag.Count(), size_t(3));
+    const std::vector<Warning> w = diag.Warnings();
+    EXPECT_NE(w[0].message.find("\"uv\" has no float variant"), std::string::npos) << w[0].message;
+    EXPECT_NE(w[1].message.find("\"marble\" has no float variant"), std::string::npos);
+    EXPECT_NE(w[2].message.find("\"zigzag\" is not supported"), std::string::npos);
+    // One warning per directive, at its line.
+    for (int i = 1; i < 3; ++i) EXPECT_EQ(w[size_t(i)].loc.line, w[0].loc.line + i);
+    EXPECT_TRUE(w[0].loc.Valid());
+    EXPECT_FALSE(s.features.textures);
+}
+
 }  // namespace
 }  // namespace prism
