@@ -18,16 +18,15 @@ class MaterialBuilder : BuildStep {
     int MaterialForShape(const ShapeDesc &s);
 
   private:
-    struct MaterialParams;
+    class SceneMaterialParams;
+    friend class SceneMaterialParams;
+    // Each material through its model's Create (render/material_list.inc).
     Material MakeMaterial(const MaterialDesc &m, int descIndex, const ParamSet *shapeParams,
                           bool *usedShape, int depth = 0);
     int ResolveNamedMaterial(const std::string &name, int from) const;
     std::shared_ptr<const Material> NamedMaterialRef(const std::string &name, int from,
                                                      const FileLoc &loc, int depth);
-    TexturePtr AnyTex(MaterialParams &mp, const std::string &n, RGB def);
-    void Roughness(Material &mat, MaterialParams &mp, float def);
-    void MakeGltfMaterial(Material &mat, MaterialParams &mp);
-    void ShadingPerturbation(Material &mat, MaterialParams &mp, const MaterialDesc &m);
+    void ShadingPerturbation(Material &mat, const SceneMaterialParams &mp, const MaterialDesc &m);
 
     std::vector<int> sharedMaterial_;  // desc material index → scene material index (-1: not yet)
     // Named materials referenced by mix materials, built once each (by desc index); the state

@@ -6,76 +6,6 @@
 
 namespace prism {
 
-namespace {
-
-const ConstantTexture *AsConstant(const TexturePtr &t) {
-    return dynamic_cast<const ConstantTexture *>(t.get());
-}
-// False only when the texture is absent or a constant black.
-bool MaybeNonBlack(const TexturePtr &t) {
-    if (!t) return false;
-    const ConstantTexture *c = AsConstant(t);
-    return !c || !c->Value().Clamped(0.f).IsBlack();
-}
-// False only when the (float) texture is absent or the constant 0.
-bool MaybeNonZero(const TexturePtr &t) {
-    if (!t) return false;
-    const ConstantTexture *c = AsConstant(t);
-    return !c || c->Value().r != 0;
-}
-// Rough glass: either roughness may be non-zero (pbrt-v3 GlassMaterial).
-bool MaybeRoughGlass(const Material &m) {
-    return MaybeNonZero(m.uRoughness) || MaybeNonZero(m.vRoughness);
-}
-
-}  // namespace
-
-bool MayReflectGlossily(const Material &m) {
-    switch (m.kind) {
-        case Material::Kind::Plastic:
-        case Material::Kind::Uber:
-            return MaybeNonBlack(m.Ks);
-        case Material::Kind::Metal: {
-            const ConstantTexture *cu = AsConstant(m.uRoughness), *cv = AsConstant(m.vRoughness);
-            if (!cu || !cv) return true;
-            float au = m.remapRoughness ? RoughnessToAlpha(cu->Value().r) : cu->Value().r;
-            float av = m.remapRoughness ? RoughnessToAlpha(cv->Value().r) : cv->Value().r;
-            return std::max(au, av) > SpecularMetalAlpha;
-        }
-        case Material::Kind::Substrate:
-            return MaybeNonBlack(m.Kd) || MaybeNonBlack(m.Ks);
-        case Material::Kind::Translucent:
-            return MaybeNonBlack(m.Ks) && MaybeNonBlack(m.reflect);
-        case Material::Kind::Glass:
-            return MaybeRoughGlass(m) && MaybeNonBlack(m.Kr);
-        case Material::Kind::Mix:
-            return MayReflectGlossily(*m.mix1) || MayReflectGlossily(*m.mix2);
-        case Material::Kind::Gltf:
-            return m.gltf.metallicRoughness ||
-                   m.gltf.roughness * m.gltf.roughness > SpecularMetalAlpha ||
-                   (m.gltf.clearcoat > 0 &&
-                    m.gltf.clearcoatRoughness * m.gltf.clearcoatRoughness > SpecularMetalAlpha);
-        default:
-            return false;
-    }
-}
-
-bool MayTransmitGlossily(const Material &m) {
-    switch (m.kind) {
-        case Material::Kind::Translucent:
-            return MaybeNonBlack(m.Ks) && MaybeNonBlack(m.transmit);
-        case Material::Kind::Glass:
-            return MaybeRoughGlass(m) && MaybeNonBlack(m.Kt);
-        case Material::Kind::Mix:
-            return MayTransmitGlossily(*m.mix1) || MayTransmitGlossily(*m.mix2);
-        case Material::Kind::Gltf:
-            return m.MayTransmit() && (m.gltf.metallicRoughness ||
-                                       m.gltf.roughness * m.gltf.roughness > SpecularMetalAlpha);
-        default:
-            return false;
-    }
-}
-
 std::string MaterialWhy(const SceneDescription &desc, const ShapeDesc &s, FileLoc *loc) {
     if (s.material < 0) {
         *loc = s.loc;
@@ -93,16 +23,12 @@ void NoteMaterialEffects(BuildContext &ctx, const Material &m, const std::string
     // and sample glossy lobes; Whitted follows rough glass's delta lobes (pbrt-v3's
     // "whitted"): it is specular there.
     const bool distribution = ctx.scene.integrator->Traits().roughGlass;
-    bool roughGlassOnly = false;
-    if (distribution && m.kind == Material::Kind::Glass) {
-        const ConstantTexture *cu = AsConstant(m.uRoughness), *cv = AsConstant(m.vRoughness);
-        roughGlassOnly = cu && cv && (cu->Value().r != 0 || cv->Value().r != 0);
-    }
+    const bool roughGlassOnly = distribution && m.Model().IsRoughGlass();
     if (m.MayReflectSpecularly() && !roughGlassOnly) e.Enable(Effect::SpecularReflection, why, loc);
     if (m.MayTransmit() && !roughGlassOnly) e.Enable(Effect::Refraction, why, loc);
     if (distribution) {
-        if (MayReflectGlossily(m)) e.Enable(Effect::GlossyReflection, why, loc);
-        if (MayTransmitGlossily(m)) e.Enable(Effect::GlossyTransmission, why, loc);
+        if (m.MayReflectGlossily()) e.Enable(Effect::GlossyReflection, why, loc);
+        if (m.MayTransmitGlossily()) e.Enable(Effect::GlossyTransmission, why, loc);
     }
     if (m.SurfaceNeeds() & NeedUV) e.Enable(Effect::Textures, why + " (textured)", loc);
     if (m.bump) e.Enable(Effect::BumpMapping, why + " (bumpmap)", loc);

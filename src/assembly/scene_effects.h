@@ -24,9 +24,4 @@ void FinishEffects(BuildContext &ctx);
 // directive) or, for pbrt's default material, the shape.
 std::string MaterialWhy(const SceneDescription &desc, const ShapeDesc &s, FileLoc *loc);
 
-// Whether a material may have glossy (microfacet) lobes that the distribution integrator
-// samples with rays: reflection, transmission.
-bool MayReflectGlossily(const Material &m);
-bool MayTransmitGlossily(const Material &m);
-
 }  // namespace prism

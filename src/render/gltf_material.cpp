@@ -95,4 +95,70 @@ RGB UVTransformTexture::Evaluate(const TextureContext &c) const {
     return child_->Evaluate(t);
 }
 
+bool GltfMaterial::MayReflectSpecularly() const {
+    // Textured roughness may go either way; a smooth base or coat is a mirror.
+    if (p_.metallicRoughness) return true;
+    float a = p_.roughness * p_.roughness;
+    float ca = p_.clearcoatRoughness * p_.clearcoatRoughness;
+    return a <= SpecularMetalAlpha || (p_.clearcoat > 0 && ca <= SpecularMetalAlpha);
+}
+
+bool GltfMaterial::MayReflectGlossily() const {
+    return p_.metallicRoughness || p_.roughness * p_.roughness > SpecularMetalAlpha ||
+           (p_.clearcoat > 0 && p_.clearcoatRoughness * p_.clearcoatRoughness > SpecularMetalAlpha);
+}
+
+bool GltfMaterial::MayTransmitGlossily() const {
+    return MayTransmit() &&
+           (p_.metallicRoughness || p_.roughness * p_.roughness > SpecularMetalAlpha);
+}
+
+float GltfMaterial::AmbientOcclusion(const TextureContext &tc) const {
+    if (!p_.occlusion) return 1;
+    const float ao = std::clamp(p_.occlusion->Evaluate(tc).r, 0.f, 1.f);
+    return 1 + p_.occlusionStrength * (ao - 1);
+}
+
+namespace {
+TexturePtr ConstantRGB(RGB v) { return std::make_shared<ConstantTexture>(v); }
+}  // namespace
+
+// Material "gltf" (a Prism extension the glTF reader writes, usable in .pbrt files;
+// material_list.inc): the glTF 2.0 metallic-roughness model. Parameters:
+//   basecolor (rgb 1) x basecolormap, metallic (1), roughness (1) x metallicroughnessmap
+//   (B: metallic, G: roughness), emissive (rgb 0) x emissivemap, occlusionmap with
+//   occlusionstrength (1), ior (1.5), transmission (0), specular (1), specularcolor (rgb 1),
+//   clearcoat (0), clearcoatroughness (0). Maps are named textures; "<map>transform" is
+//   KHR_texture_transform as [offset.u offset.v rotation scale.u scale.v], "<map>texcoord" 1
+//   reads the mesh's second uv set.
+std::shared_ptr<const MaterialModel> CreateGltfMaterial(const MaterialParams &mp, const FileLoc &) {
+    GltfMaterialParams g;
+    const RGB baseFactor = mp.Spectrum("basecolor", RGB(1));
+    if (TexturePtr t = mp.Map("basecolormap"))
+        g.baseColor = std::make_shared<ScaleTexture>(t, ConstantRGB(baseFactor));
+    else
+        g.baseColor = ConstantRGB(baseFactor);
+    g.metallic = mp.Float("metallic", 1.f);
+    g.roughness = mp.Float("roughness", 1.f);
+    g.metallicRoughness = mp.Map("metallicroughnessmap");
+    const RGB emissive = mp.Spectrum("emissive", RGB(0));
+    // Emission the material carries itself (the glTF reader turns untextured emission into an
+    // area light on the mesh instead, which light samples reach).
+    if (TexturePtr t = mp.Map("emissivemap")) {
+        if (!emissive.IsBlack())
+            g.emissive = std::make_shared<ScaleTexture>(t, ConstantRGB(emissive));
+    } else if (!emissive.IsBlack()) {
+        g.emissive = ConstantRGB(emissive);
+    }
+    g.occlusion = mp.Map("occlusionmap");
+    g.occlusionStrength = mp.Float("occlusionstrength", 1.f);
+    g.ior = mp.Float("ior", 1.5f);
+    g.transmission = mp.Float("transmission", 0.f);
+    g.specular = mp.Float("specular", 1.f);
+    g.specularColor = mp.Spectrum("specularcolor", RGB(1));
+    g.clearcoat = mp.Float("clearcoat", 0.f);
+    g.clearcoatRoughness = mp.Float("clearcoatroughness", 0.f);
+    return std::make_shared<GltfMaterial>(std::move(g));
+}
+
 }  // namespace prism

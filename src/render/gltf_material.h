@@ -17,13 +17,10 @@
 #pragma once
 
 #include "render/bsdf.h"
+#include "render/material.h"
 #include "render/texture.h"
 
 namespace prism {
-
-// Roughness (after remapping) below which a metal is treated as a polished conductor: a delta
-// reflection that recursion follows, instead of a highlight that point lights would miss.
-inline constexpr float SpecularMetalAlpha = 0.02f;
 
 // The parameters of one glTF material as Prism evaluates them at each hit. The textures are
 // already multiplied by their factors (baseColor = texture × baseColorFactor, emissive =
@@ -43,6 +40,30 @@ struct GltfMaterialParams {
     int MaxParts() const { return clearcoat > 0 ? 2 : 1; }
     // Adds the material's lobes (see above), scaled by `weight`.
     void AddParts(BSDF &bsdf, const TextureContext &tc, const RGB &weight) const;
+};
+
+// Prism's "gltf" material model (material_list.inc; the glTF reader writes it).
+class GltfMaterial final : public MaterialModel {
+  public:
+    explicit GltfMaterial(GltfMaterialParams p) : p_(std::move(p)) {}
+    const GltfMaterialParams &Gltf() const { return p_; }
+    void AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const override {
+        p_.AddParts(b, tc, weight);
+    }
+    bool MayReflectSpecularly() const override;
+    bool MayTransmit() const override { return p_.transmission > 0 && p_.metallic < 1; }
+    bool MayReflectGlossily() const override;
+    bool MayTransmitGlossily() const override;
+    int MaxParts() const override { return p_.MaxParts(); }
+    const Texture *Emission() const override { return p_.emissive.get(); }
+    float AmbientOcclusion(const TextureContext &tc) const override;
+    std::vector<const Texture *> Textures() const override {
+        return {p_.baseColor.get(), p_.metallicRoughness.get(), p_.emissive.get(),
+                p_.occlusion.get()};
+    }
+
+  private:
+    GltfMaterialParams p_;
 };
 
 // The dielectric F0 of glTF (KHR_materials_ior, _specular): ((ior - 1) / (ior + 1))² ×

@@ -1,6 +1,8 @@
-// Whitted materials with pbrt-v3 parameters and semantics: matte, plastic, mirror, glass,
-// metal, uber, substrate, translucent, mix and "" / none (an invisible interface). Each hit
-// turns a material into a BSDF value; docs/MATERIALS.md says what each one does.
+// Materials. A Material is what a hit reads: its model (one class per pbrt material type,
+// render/materials.h and render/gltf_material.h, made by a Create beside each class and listed
+// in material_list.inc) plus what every material may carry — a bump or normal map — and the
+// lobes of models whose textures are all constant, built once. Each hit turns a material into
+// a BSDF value; docs/MATERIALS.md says what each model does.
 #pragma once
 
 #include <algorithm>
@@ -8,59 +10,82 @@
 #include <string>
 #include <vector>
 
+#include "core/params.h"
 #include "geometry/interaction.h"
 #include "render/bsdf.h"
-#include "render/gltf_material.h"
 #include "render/texture.h"
 
 namespace prism {
 
+class Material;
+
+// Roughness (after remapping) below which a metal is treated as a polished conductor: a delta
+// reflection that recursion follows, instead of a highlight that point lights would miss.
+inline constexpr float SpecularMetalAlpha = 0.02f;
+
+// One material model: the lobes it adds at a hit, and what can be known of them before
+// rendering (the effects a scene calls for, the surface data a hit reads).
+class MaterialModel {
+  public:
+    virtual ~MaterialModel() = default;
+    // Adds the model's lobes to `bsdf`, scaled by `weight`.
+    virtual void AddParts(BSDF &bsdf, const TextureContext &tc, const RGB &weight) const = 0;
+    // An invisible interface ("none"): rays continue through it; inside a mix, the light of its
+    // share passes unchanged.
+    virtual bool IsPassThrough() const { return false; }
+    // Lambertian (f = kd/π): kernels without KernelBsdf (render/kernel.h) shade it from
+    // LambertianKd without building a BSDF.
+    virtual bool IsLambertian() const { return false; }
+    virtual RGB LambertianKd(const TextureContext &tc) const { return RGB(0); }
+    virtual bool MayReflectSpecularly() const { return false; }
+    virtual bool MayTransmit() const { return false; }
+    virtual bool MayReflectGlossily() const { return false; }
+    virtual bool MayTransmitGlossily() const { return false; }
+    // Glass whose roughness is a non-zero constant: glossy (not specular) for the integrators
+    // that render rough glass rough.
+    virtual bool IsRoughGlass() const { return false; }
+    // BSDF parts it can add (mixes add their children's; uber's opacity adds one).
+    virtual int MaxParts() const { return 1; }
+    // The surface data its lobes read (SurfaceNeeds): by default uv when a texture is not
+    // constant.
+    virtual unsigned LobeNeeds() const;
+    // Whether a texture it reads filters over the ray's footprint.
+    virtual bool TexturesUseDifferentials() const;
+    // Radiance the surface emits itself (a "gltf" material's emission), or null.
+    virtual const Texture *Emission() const { return nullptr; }
+    // glTF occlusion: the factor that scales the environment's light and indirect paths.
+    virtual float AmbientOcclusion(const TextureContext &) const { return 1; }
+    // The textures it reads (for the defaults above).
+    virtual std::vector<const Texture *> Textures() const { return {}; }
+};
+
 class Material {
   public:
-    enum class Kind {
-        Matte,
-        Plastic,
-        Mirror,
-        Glass,
-        Metal,
-        Uber,
-        Substrate,
-        Translucent,
-        Mix,
-        Gltf,  // glTF 2.0 metallic-roughness (render/gltf_material.h)
-        None
-    };
+    Material() = default;
+    Material(std::shared_ptr<const MaterialModel> model, std::string typeName)
+        : typeName(std::move(typeName)), model_(std::move(model)) {}
 
-    Kind kind = Kind::Matte;
     std::string typeName;  // as written in the scene, for `prism info`
-    // Spectrum textures: Kd, Ks, Kr, Kt, opacity (uber), reflect/transmit (translucent),
-    // amount (mix). Float textures: sigma, roughness, uRoughness/vRoughness (null: use
-    // roughness), index (eta).
-    TexturePtr Kd, Ks, Kr, Kt, sigma, roughness, uRoughness, vRoughness, index;
-    TexturePtr opacity, reflect, transmit, amount;
-    RGB metalEta, metalK;
-    bool remapRoughness = true;
-    // Mix: pbrt-v3 weights mix1 by amount and mix2 by 1 - amount (MixMaterial).
-    std::shared_ptr<const Material> mix1, mix2;
-    // Gltf: the glTF parameters.
-    GltfMaterialParams gltf;
+    const MaterialModel &Model() const { return *model_; }
+    template <class M>
+    const M *ModelAs() const {
+        return dynamic_cast<const M *>(model_.get());
+    }
 
     // Radiance the surface emits itself (a "gltf" material's "emissive"/"emissivemap" in a
     // .pbrt file; the glTF reader turns emission into area lights instead): seen by camera
     // rays and by the rays that Whitted and glossy recursion trace, but not light-sampled.
-    bool HasEmission() const { return kind == Kind::Gltf && gltf.emissive != nullptr; }
-    RGB Emitted(const TextureContext &tc) const { return gltf.emissive->Evaluate(tc).Clamped(0.f); }
+    bool HasEmission() const { return model_->Emission() != nullptr; }
+    RGB Emitted(const TextureContext &tc) const {
+        return model_->Emission()->Evaluate(tc).Clamped(0.f);
+    }
     // glTF occlusionTexture: the factor 1 + strength × (occlusion.r - 1) by which the light
     // that reaches the hit from the environment (infinite lights: an --env map, the studio
     // rig's uniform environment) and along indirect paths (specular and glossy rays, and a
     // path integrator's bounces) is scaled, as the glTF sample viewer scales its image-based
     // light; 1 for every other material. Direct light from point, spot, distant and area
     // lights is not scaled: Prism traces their shadows. docs/MATERIALS.md.
-    float AmbientOcclusion(const TextureContext &tc) const {
-        if (kind != Kind::Gltf || !gltf.occlusion) return 1;
-        const float ao = std::clamp(gltf.occlusion->Evaluate(tc).r, 0.f, 1.f);
-        return 1 + gltf.occlusionStrength * (ao - 1);
-    }
+    float AmbientOcclusion(const TextureContext &tc) const { return model_->AmbientOcclusion(tc); }
     // Shading-normal perturbation (render/bump.cpp), applied to the hit before it is shaded:
     // pbrt-v3's "bumpmap" (a float displacement texture), or a tangent-space normal map (glTF
     // normalTexture, OBJ norm, pbrt-v4 "normalmap") whose x and y are scaled by normalScale.
@@ -71,25 +96,24 @@ class Material {
     // Moves si.ns (and dpdu/dpdv) as the bump or normal map says; needs uv and dpdu/dpdv.
     void PerturbShading(SurfaceInteraction &si) const;
 
-    bool IsPassThrough() const { return kind == Kind::None; }
-    // Lambertian matte (no Oren–Nayar sigma): f = kd/π. Kernels without KernelBsdf
-    // (render/kernel.h) shade such materials from LambertianKd without building a BSDF.
-    bool IsLambertian() const;
+    bool IsPassThrough() const { return model_->IsPassThrough(); }
+    bool IsLambertian() const { return model_->IsLambertian(); }
     // kd as GetBSDF gives it (its one part, of weight 1); only for IsLambertian materials.
     RGB LambertianKd(const TextureContext &tc) const {
-        return fixed_ ? fixedParts_[0].lobes.kd : Kd->Evaluate(tc).Clamped(0.f);
+        return fixed_ ? fixedParts_[0].lobes.kd : model_->LambertianKd(tc);
     }
-    bool MayTransmit() const;
-    bool MayReflectSpecularly() const;
-    // BSDF parts this material can add (mixes add their children's; uber's opacity adds one).
-    int MaxParts() const;
+    bool MayTransmit() const { return model_->MayTransmit(); }
+    bool MayReflectSpecularly() const { return model_->MayReflectSpecularly(); }
+    bool MayReflectGlossily() const { return model_->MayReflectGlossily(); }
+    bool MayTransmitGlossily() const { return model_->MayTransmitGlossily(); }
+    int MaxParts() const { return model_->MaxParts(); }
     // The surface data a hit on this material reads (SurfaceNeeds), decided from its textures:
     // uv when any texture is not constant, dpdu when a glossy lobe may be anisotropic.
     unsigned SurfaceNeeds() const;
     // Whether a texture of the material filters over the ray's footprint (Texture::
     // UsesDifferentials), so hits on it compute TextureContext's derivatives. UsesDifferentials
     // is the value Prepare cached.
-    bool TexturesUseDifferentials() const;
+    bool TexturesUseDifferentials() const { return model_->TexturesUseDifferentials(); }
     bool UsesDifferentials() const { return differentials_; }
     BSDF GetBSDF(const SurfaceInteraction &si, const TextureContext &tc) const;
     // Adds this material's lobes to `bsdf`, scaled by `weight` (used by mix).
@@ -100,15 +124,46 @@ class Material {
     void Prepare();
 
   private:
-    // SurfaceNeeds of the lobes alone (without the shading perturbation).
-    unsigned LobeNeeds() const;
     struct FixedPart {
         RGB weight;
         BxDFLobes lobes;
     };
+    std::shared_ptr<const MaterialModel> model_;
     std::vector<FixedPart> fixedParts_;
     bool fixed_ = false;
     bool differentials_ = false;
 };
+
+// A Material directive's parameters as a model's Create reads them: core/params.h's plus
+// texture-valued parameters (a named texture or a value) and spectra. A Shape's own
+// parameters override its material's (pbrt-v3 GetMaterialForShape).
+class MaterialParams : public Params {
+  public:
+    virtual const std::string &Type() const = 0;  // as written ("conductor", "metal", ...)
+    virtual TexturePtr SpectrumTex(const char *name, RGB def) const = 0;
+    virtual TexturePtr FloatTex(const char *name, float def) const = 0;
+    // A spectrum-or-float texture (mix "amount": a spectrum in pbrt-v3, a float in v4).
+    virtual TexturePtr AnyTex(const char *name, RGB def) const = 0;
+    virtual RGB Spectrum(const char *name, RGB def) const = 0;
+    virtual std::vector<std::string> Strings(const char *name) const = 0;
+    virtual void MarkUsed(const char *name) const = 0;
+    // A glTF map (a spectrum texture with the "<name>transform"/"<name>texcoord" parameters the
+    // glTF reader writes), or null when absent.
+    virtual TexturePtr Map(const char *name) const = 0;
+    // The material a mix names (pbrt-v3 resolves names where the mix is declared), made with
+    // its own parameters; how many mixes enclose this material.
+    virtual std::shared_ptr<const Material> NamedMaterial(const std::string &name,
+                                                          const FileLoc &loc) const = 0;
+    virtual int MixDepth() const = 0;
+    // Whether the scene's integrator renders rough glass rough (IntegratorTraits::roughGlass).
+    virtual bool RoughGlassRendered() const = 0;
+};
+
+// The model registered as `type` (material_list.inc), or null when none is. Throws SceneError
+// for bad parameters.
+std::shared_ptr<const MaterialModel> CreateMaterialModel(const std::string &type,
+                                                         const MaterialParams &params,
+                                                         const FileLoc &loc);
+const std::vector<std::string> &MaterialNames();
 
 }  // namespace prism

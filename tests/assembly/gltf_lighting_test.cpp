@@ -11,6 +11,7 @@
 #include "gltf_test_scene.h"
 #include "image/image_io.h"
 #include "render/area_light.h"
+#include "render/gltf_material.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "test_util.h"
@@ -79,7 +80,8 @@ TEST_F(GltfLighting, TexCoord1SelectsTheSecondUvSetInEverySlot) {
         const ShapeInfo &info = b.scene.Info(si);
         const Material &m = b.scene.materials[size_t(info.material)];
         const TextureContext ctx{si.uv, si.p, si.uv1};
-        EXPECT_NEAR(m.gltf.baseColor->Evaluate(ctx).g, want, 1e-3);
+        ASSERT_TRUE(m.ModelAs<GltfMaterial>());
+        EXPECT_NEAR(m.ModelAs<GltfMaterial>()->Gltf().baseColor->Evaluate(ctx).g, want, 1e-3);
         EXPECT_NEAR(m.AmbientOcclusion(ctx), want, 1e-3);
         ASSERT_TRUE(m.normalMap);
         EXPECT_NEAR(m.normalMap->Evaluate(ctx).g, want, 1e-3);

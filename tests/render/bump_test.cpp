@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "render/material.h"
+#include "render/materials.h"
 
 namespace prism {
 namespace {
@@ -34,11 +35,9 @@ SurfaceInteraction FlatHit(float u, float v) {
 }
 
 Material Matte() {
-    Material m;
-    m.kind = Material::Kind::Matte;
-    m.Kd = std::make_shared<ConstantTexture>(RGB(0.5f));
-    m.sigma = std::make_shared<ConstantTexture>(RGB(0));
-    return m;
+    return Material(std::make_shared<MatteMaterial>(std::make_shared<ConstantTexture>(RGB(0.5f)),
+                                                    std::make_shared<ConstantTexture>(RGB(0))),
+                    "matte");
 }
 
 TEST(Bump, SineHeightFieldGivesTheAnalyticNormals) {

@@ -25,17 +25,16 @@ struct Params {
 };
 
 Material Gltf(const Params &p) {
-    Material m;
-    m.kind = Material::Kind::Gltf;
-    m.gltf.baseColor = Const(p.base);
-    m.gltf.metallic = p.metallic;
-    m.gltf.roughness = p.roughness;
-    m.gltf.ior = p.ior;
-    m.gltf.transmission = p.transmission;
-    m.gltf.specular = p.specular;
-    m.gltf.clearcoat = p.clearcoat;
-    m.gltf.clearcoatRoughness = p.clearcoatRoughness;
-    return m;
+    GltfMaterialParams g;
+    g.baseColor = Const(p.base);
+    g.metallic = p.metallic;
+    g.roughness = p.roughness;
+    g.ior = p.ior;
+    g.transmission = p.transmission;
+    g.specular = p.specular;
+    g.clearcoat = p.clearcoat;
+    g.clearcoatRoughness = p.clearcoatRoughness;
+    return Material(std::make_shared<GltfMaterial>(std::move(g)), "gltf");
 }
 
 BSDF FlatBSDF(const Material &m) {

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "assembly/build_scene.h"
+#include "render/materials.h"
 #include "scene/pbrt_parser.h"
 
 namespace prism {
@@ -22,25 +23,31 @@ SurfaceInteraction FlatHit() {
     return si;
 }
 
+UberMaterial::Params UberParams(float kd, float ks, float kr, float kt, float opacity) {
+    UberMaterial::Params u;
+    u.Kd = Const(kd);
+    u.Ks = Const(ks);
+    u.Kr = Const(kr);
+    u.Kt = Const(kt);
+    u.roughness = Const(0.1f);
+    u.index = Const(1.5f);
+    u.opacity = Const(opacity);
+    return u;
+}
+
 Material Uber(float kd, float ks, float kr, float kt, float opacity) {
-    Material m;
-    m.kind = Material::Kind::Uber;
-    m.Kd = Const(kd);
-    m.Ks = Const(ks);
-    m.Kr = Const(kr);
-    m.Kt = Const(kt);
-    m.roughness = Const(0.1f);
-    m.index = Const(1.5f);
-    m.opacity = Const(opacity);
-    return m;
+    return Material(std::make_shared<UberMaterial>(UberParams(kd, ks, kr, kt, opacity)), "uber");
 }
 
 std::shared_ptr<Material> Matte(RGB kd) {
-    auto m = std::make_shared<Material>();
-    m->kind = Material::Kind::Matte;
-    m->Kd = Const(kd);
-    m->sigma = Const(0.f);
-    return m;
+    return std::make_shared<Material>(std::make_shared<MatteMaterial>(Const(kd), Const(0.f)),
+                                      "matte");
+}
+
+Material Mix(std::shared_ptr<const Material> m1, std::shared_ptr<const Material> m2,
+             TexturePtr amount) {
+    return Material(std::make_shared<MixMaterial>(std::move(m1), std::move(m2), std::move(amount)),
+                    "mix");
 }
 
 TEST(Material, UberWithOnlyKrIsAFresnelMirror) {
@@ -75,11 +82,9 @@ TEST(Material, UberOpacityAddsAStraightPassThrough) {
 }
 
 TEST(Material, SubstrateAtNormalIncidence) {
-    Material m;
-    m.kind = Material::Kind::Substrate;
-    m.Kd = Const(RGB(0.6f, 0.4f, 0.2f));
-    m.Ks = Const(0.05f);
-    m.uRoughness = m.vRoughness = Const(0.1f);
+    Material m(std::make_shared<SubstrateMaterial>(Const(RGB(0.6f, 0.4f, 0.2f)), Const(0.05f),
+                                                   Roughness{Const(0.1f), Const(0.1f), true}),
+               "substrate");
     BSDF b = m.GetBSDF(FlatHit(), {});
     Vec3f n(0, 0, 1);
     RGB f = b.f(n, n);
@@ -95,14 +100,10 @@ TEST(Material, SubstrateAtNormalIncidence) {
 }
 
 Material Translucent(float ks) {
-    Material m;
-    m.kind = Material::Kind::Translucent;
-    m.Kd = Const(RGB(0.8f, 0.6f, 0.4f));
-    m.Ks = Const(ks);
-    m.reflect = Const(0.3f);
-    m.transmit = Const(0.7f);
-    m.roughness = Const(0.1f);
-    return m;
+    return Material(
+        std::make_shared<TranslucentMaterial>(Const(RGB(0.8f, 0.6f, 0.4f)), Const(ks), Const(0.3f),
+                                              Const(0.7f), Const(0.1f), true),
+        "translucent");
 }
 
 TEST(Material, TranslucentTransmitsLightFromTheBack) {
@@ -149,11 +150,7 @@ TEST(Material, MixOfMattesIsTheBlendedMatte) {
     // pbrt-v3 MixMaterial: namedmaterial1 weighted by amount, namedmaterial2 by 1 - amount.
     RGB A(0.8f, 0.1f, 0.3f), B(0.2f, 0.9f, 0.5f);
     float a = 0.3f;
-    Material mix;
-    mix.kind = Material::Kind::Mix;
-    mix.mix1 = Matte(A);
-    mix.mix2 = Matte(B);
-    mix.amount = Const(a);
+    Material mix = Mix(Matte(A), Matte(B), Const(a));
     BSDF b = mix.GetBSDF(FlatHit(), {});
     Material blended = *Matte(A * a + B * (1 - a));
     BSDF want = blended.GetBSDF(FlatHit(), {});
@@ -163,14 +160,10 @@ TEST(Material, MixOfMattesIsTheBlendedMatte) {
 }
 
 TEST(Material, MixWeightsDeltaLobes) {
-    Material mirror;
-    mirror.kind = Material::Kind::Mirror;
-    mirror.Kr = Const(1.f);
-    Material mix;
-    mix.kind = Material::Kind::Mix;
-    mix.mix1 = std::make_shared<Material>(mirror);
-    mix.mix2 = Matte(RGB(0.5f));
-    mix.amount = Const(RGB(0.25f, 0.5f, 1.f));  // per-channel weights, as pbrt's Spectrum
+    auto mirror =
+        std::make_shared<Material>(std::make_shared<MirrorMaterial>(Const(1.f)), "mirror");
+    // Per-channel weights, as pbrt's Spectrum.
+    Material mix = Mix(mirror, Matte(RGB(0.5f)), Const(RGB(0.25f, 0.5f, 1.f)));
     EXPECT_TRUE(mix.MayReflectSpecularly());
     BSDF b = mix.GetBSDF(FlatHit(), {});
     Vec3f wo = Normalize(Vec3f(0.3f, 0, 1)), wi;
@@ -208,7 +201,7 @@ TEST(MaterialScene, NamedMixResolvesAndBlends) {
         "NamedMaterial \"m\"\nShape \"sphere\"\n",
         diag);
     const Material &m = ShapeMaterial(s);
-    ASSERT_EQ(m.kind, Material::Kind::Mix);
+    ASSERT_TRUE(m.ModelAs<MixMaterial>());
     BSDF b = m.GetBSDF(FlatHit(), {});
     Vec3f n(0, 0, 1);
     RGB f = b.f(n, n);
@@ -248,8 +241,8 @@ TEST(MaterialScene, UnsupportedMaterialFallsBackToMatteWithItsColour) {
         "Shape \"sphere\"\n",
         diag);
     const Material &m = ShapeMaterial(s);
-    EXPECT_EQ(m.kind, Material::Kind::Matte);
-    EXPECT_EQ(m.Kd->Evaluate({}), RGB(0.2f, 0.4f, 0.6f));
+    ASSERT_TRUE(m.ModelAs<MatteMaterial>());
+    EXPECT_EQ(m.LambertianKd({}), RGB(0.2f, 0.4f, 0.6f));
     ASSERT_EQ(diag.Count(), size_t(1));
     EXPECT_NE(diag.Warnings()[0].message.find("disney"), std::string::npos);
 }
@@ -259,9 +252,10 @@ TEST(MaterialScene, V4Names) {
     RenderScene s =
         Build("Material \"conductor\" \"rgb reflectance\" [0.9 0.5 0.2]\nShape \"sphere\"\n", diag);
     const Material &m = ShapeMaterial(s);
-    ASSERT_EQ(m.kind, Material::Kind::Metal);
+    const MetalMaterial *metal = m.ModelAs<MetalMaterial>();
+    ASSERT_TRUE(metal);
     EXPECT_TRUE(m.MayReflectSpecularly());  // v4 conductors default to roughness 0
-    RGB r0 = FrConductor(1.f, RGB(1), m.metalEta, m.metalK);
+    RGB r0 = FrConductor(1.f, RGB(1), metal->Eta(), metal->K());
     EXPECT_NEAR(r0.r, 0.9f, 1e-4f);
     EXPECT_NEAR(r0.b, 0.2f, 1e-4f);
     Diagnostics d2;
@@ -269,7 +263,7 @@ TEST(MaterialScene, V4Names) {
         "Material \"diffusetransmission\" \"rgb transmittance\" [0.5 0.5 0.5]\n"
         "Shape \"sphere\"\n",
         d2);
-    EXPECT_EQ(ShapeMaterial(t).kind, Material::Kind::Translucent);
+    EXPECT_TRUE(ShapeMaterial(t).ModelAs<TranslucentMaterial>());
     BSDF b = ShapeMaterial(t).GetBSDF(FlatHit(), {});
     EXPECT_NEAR(b.f({0, 0, 1}, {0, 0, -1}).r, 0.5f * float(InvPi), 1e-6f);
     EXPECT_EQ(d2.Count(), size_t(0));
@@ -297,40 +291,33 @@ struct UTexture final : Texture {
 
 TEST(Material, SurfaceNeedsFollowTexturesAndAnisotropy) {
     EXPECT_EQ(Matte(RGB(0.5f))->SurfaceNeeds(), unsigned(NeedNone));
-    auto textured = Matte(RGB(0.5f));
-    textured->Kd = std::make_shared<UTexture>();
-    EXPECT_EQ(textured->SurfaceNeeds(), unsigned(NeedUV));
-    Material metal;
-    metal.kind = Material::Kind::Metal;
-    metal.uRoughness = Const(0.1f);
-    metal.vRoughness = Const(0.1f);
-    EXPECT_EQ(metal.SurfaceNeeds(), unsigned(NeedNone));  // isotropic: no tangent frame
-    metal.vRoughness = Const(0.3f);
-    EXPECT_EQ(metal.SurfaceNeeds(), unsigned(NeedDpdu));
-    metal.vRoughness = std::make_shared<UTexture>();
-    EXPECT_EQ(metal.SurfaceNeeds(), unsigned(NeedAll));
+    Material textured(std::make_shared<MatteMaterial>(std::make_shared<UTexture>(), Const(0.f)),
+                      "matte");
+    EXPECT_EQ(textured.SurfaceNeeds(), unsigned(NeedUV));
+    auto metal = [](TexturePtr v) {
+        return Material(std::make_shared<MetalMaterial>(RGB(1), RGB(1),
+                                                        Roughness{Const(0.1f), std::move(v), true}),
+                        "metal");
+    };
+    EXPECT_EQ(metal(Const(0.1f)).SurfaceNeeds(), unsigned(NeedNone));  // isotropic: no frame
+    EXPECT_EQ(metal(Const(0.3f)).SurfaceNeeds(), unsigned(NeedDpdu));
+    EXPECT_EQ(metal(std::make_shared<UTexture>()).SurfaceNeeds(), unsigned(NeedAll));
     Material uber = Uber(0.5f, 0.5f, 0, 0, 1);
     EXPECT_EQ(uber.SurfaceNeeds(), unsigned(NeedNone));
-    uber.vRoughness = Const(0.4f);
-    EXPECT_EQ(uber.SurfaceNeeds(), unsigned(NeedDpdu));
-    Material mix;
-    mix.kind = Material::Kind::Mix;
-    mix.mix1 = Matte(RGB(0.2f));
-    mix.mix2 = Matte(RGB(0.8f));
-    mix.amount = Const(0.3f);
-    EXPECT_EQ(mix.SurfaceNeeds(), unsigned(NeedNone));
-    mix.amount = std::make_shared<UTexture>();
-    EXPECT_EQ(mix.SurfaceNeeds(), unsigned(NeedUV));
+    UberMaterial::Params anisotropic = UberParams(0.5f, 0.5f, 0, 0, 1);
+    anisotropic.vRoughness = Const(0.4f);
+    EXPECT_EQ(Material(std::make_shared<UberMaterial>(anisotropic), "uber").SurfaceNeeds(),
+              unsigned(NeedDpdu));
+    EXPECT_EQ(Mix(Matte(RGB(0.2f)), Matte(RGB(0.8f)), Const(0.3f)).SurfaceNeeds(),
+              unsigned(NeedNone));
+    EXPECT_EQ(Mix(Matte(RGB(0.2f)), Matte(RGB(0.8f)), std::make_shared<UTexture>()).SurfaceNeeds(),
+              unsigned(NeedUV));
 }
 
 // Prepare builds the parts once; the BSDF a hit gets must be exactly the one built per hit.
 TEST(Material, PreparedPartsEqualPerHitParts) {
-    Material mix;
-    mix.kind = Material::Kind::Mix;
-    mix.mix1 = Matte(RGB(0.2f, 0.4f, 0.6f));
     auto uber = std::make_shared<Material>(Uber(0.3f, 0.4f, 0.2f, 0.1f, 0.7f));
-    mix.mix2 = uber;
-    mix.amount = Const(RGB(0.3f, 0.5f, 0.9f));
+    Material mix = Mix(Matte(RGB(0.2f, 0.4f, 0.6f)), uber, Const(RGB(0.3f, 0.5f, 0.9f)));
     std::vector<Material> materials = {*Matte(RGB(0.5f)), Uber(0.3f, 0.4f, 0.2f, 0.1f, 0.7f), mix};
     for (Material &m : materials) {
         BSDF a = m.GetBSDF(FlatHit(), {});

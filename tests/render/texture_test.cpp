@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "assembly/build_scene.h"
+#include "render/materials.h"
 #include "render/noise.h"
 #include "scene/pbrt_parser.h"
 
@@ -116,7 +117,9 @@ TEST(TextureScene, ThreeDTexturesUseTheInverseCTM) {
     const Material &m = s.materials[size_t(s.shapes[0].material)];
     Vec3f pWorld(0.7f, -0.4f, 1.3f);
     Vec3f pRender = Vec3f(s.renderFromWorld.Point(Vec3d(pWorld)));
-    EXPECT_NEAR(m.Kd->Evaluate(AtP(pRender)).g, FBm(pWorld * 0.5f, 0.5f, 4), 1e-5f);
+    ASSERT_TRUE(m.ModelAs<MatteMaterial>());
+    EXPECT_NEAR(m.ModelAs<MatteMaterial>()->Kd()->Evaluate(AtP(pRender)).g,
+                FBm(pWorld * 0.5f, 0.5f, 4), 1e-5f);
     EXPECT_EQ(diag.Count(), size_t(0));
 }
 

@@ -8,6 +8,7 @@
 
 #include "geometry/sphere.h"
 #include "render/bsdf.h"
+#include "render/materials.h"
 #include "render/render_scene.h"
 
 namespace prism {
@@ -16,12 +17,10 @@ namespace {
 TexturePtr Const(RGB v) { return std::make_shared<ConstantTexture>(v); }
 
 Material Matte(RGB kd) {
-    Material m;
-    m.kind = Material::Kind::Matte;
-    m.Kd = Const(kd);
-    m.sigma = Const(RGB(0));
-    return m;
+    return Material(std::make_shared<MatteMaterial>(Const(kd), Const(RGB(0))), "matte");
 }
+
+Material Mirror(RGB kr) { return Material(std::make_shared<MirrorMaterial>(Const(kr)), "mirror"); }
 
 // A scene with a large matte floor (y = 0, normal +y) lit by one point light.
 struct TestScene {
@@ -95,9 +94,7 @@ TEST(Whitted, CameraPacketsMatchSingleRaysExactly) {
     int s = ts.scene.accel->AddAnalytic(
         std::make_unique<Sphere>(Translate(Vec3d(0, 2, 0)), false, 0.5, -0.5, 0.5, 360));
     ts.AddShapeInfo(s, 0);
-    Material mirror;
-    mirror.kind = Material::Kind::Mirror;
-    mirror.Kr = Const(RGB(0.9f));
+    Material mirror = Mirror(RGB(0.9f));
     ts.AddQuad({{2, -1, -5}, {2, 5, -5}, {2, 5, 5}, {2, -1, 5}}, ts.AddMaterial(mirror));
     ts.Li(Ray{{0, 3, -3}, {0, 0, 1}, Infinity});  // commits
     WhittedTracer integrator(ts.scene);
@@ -127,9 +124,7 @@ TEST(Whitted, MirrorReturnsKrTimesRadiance) {
     // The floor point P seen directly, and via a vertical mirror with Kr 0.9 at x = 2.
     TestScene ts;
     ts.scene.lights.push_back(std::make_unique<PointLight>(Vec3f(0.5f, 3, 0), RGB(40)));
-    Material mirror;
-    mirror.kind = Material::Kind::Mirror;
-    mirror.Kr = Const(RGB(0.9f));
+    Material mirror = Mirror(RGB(0.9f));
     int m = ts.AddMaterial(mirror);
     ts.AddQuad({{2, -1, -5}, {2, 5, -5}, {2, 5, 5}, {2, -1, 5}}, m);
     Vec3f p(1.f, 0.f, 0.f);
@@ -149,11 +144,9 @@ TEST(Whitted, GlassAtNormalIncidenceLosesFresnelTwice) {
     for (int maxDepth : {3}) {
         TestScene ts(maxDepth);
         ts.scene.lights.push_back(std::make_unique<PointLight>(Vec3f(0, 5, 2), RGB(50)));
-        Material glass;
-        glass.kind = Material::Kind::Glass;
-        glass.Kr = Const(RGB(1));
-        glass.Kt = Const(RGB(1));
-        glass.index = Const(RGB(1.5f));
+        Material glass(std::make_shared<GlassMaterial>(Const(RGB(1)), Const(RGB(1)),
+                                                       Const(RGB(1.5f)), Roughness{}),
+                       "glass");
         int g = ts.AddMaterial(glass);
         Vec3f p(0, 0, 0);
         Vec3f eye(0, 4, -4);
@@ -201,9 +194,7 @@ TEST(Whitted, TotalInternalReflectionHasNoTransmission) {
 TEST(Whitted, MaxDepthLimitsRecursion) {
     TestScene ts(1);  // camera rays only: specular surfaces contribute no recursion
     ts.scene.lights.push_back(std::make_unique<PointLight>(Vec3f(0, 3, 0), RGB(40)));
-    Material mirror;
-    mirror.kind = Material::Kind::Mirror;
-    mirror.Kr = Const(RGB(0.9f));
+    Material mirror = Mirror(RGB(0.9f));
     ts.AddQuad({{2, -1, -5}, {2, 5, -5}, {2, 5, 5}, {2, -1, 5}}, ts.AddMaterial(mirror));
     EXPECT_EQ(ts.Li(Ray{{0, 1, 0}, Normalize(Vec3f(3, -1, 0)), Infinity}), RGB(0));
 }
