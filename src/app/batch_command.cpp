@@ -3,6 +3,7 @@
 // that crashes or runs out of memory cannot take the batch or the finished images with it.
 // report.json and summary.txt are rewritten (atomically) after every scene. The parts that
 // `prism-mpi batch` shares are declared in app/batch_jobs.h.
+#include <fcntl.h>
 #include <fmt/core.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -27,9 +28,9 @@
 #include "app/batch_jobs.h"
 #include "app/commands.h"
 #include "app/common.h"
-#include "app/output_file.h"
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "core/output_file.h"
 #include "scene/load_scene.h"
 
 namespace fs = std::filesystem;
@@ -197,7 +198,19 @@ std::string RunningExecutable() {
 
 void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
             bool dieWithParent) {
-    if (j.logPath.empty()) j.logPath = j.output + ".log.tmp";
+    // The log is a new file (O_EXCL | O_NOFOLLOW: core/output_file.h) in the output folder, or
+    // the path the caller chose (prism-mpi: the node's temporary folder), never followed
+    // through a symbolic link.
+    int logFd = -1;
+    if (j.logPath.empty()) {
+        logFd = CreateUniqueFile(fs::path(j.output).parent_path().string(), ".log.tmp", &j.logPath);
+    } else {
+        logFd =
+            ::open(j.logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (logFd < 0)
+            throw std::runtime_error("cannot create the render log " + Quote(j.logPath) + ": " +
+                                     std::strerror(errno));
+    }
     std::vector<std::string> args = {exe, "render", j.scene, "-o", j.output, "--no-progress"};
     if (a.spp > 0) {
         args.push_back("--spp");
@@ -236,11 +249,13 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     if (a.confine.Given()) args.push_back("--confine=" + ConfinementFolderFor(a.confine, j.scene));
     j.start = std::chrono::steady_clock::now();
     pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("cannot start a render process");
+    if (pid < 0) {
+        ::close(logFd);
+        throw std::runtime_error("cannot start a render process");
+    }
     if (pid == 0) {
         if (dieWithParent) prctl(PR_SET_PDEATHSIG, SIGTERM);
-        FILE *log = std::freopen(j.logPath.c_str(), "w", stderr);
-        (void)log;
+        if (::dup2(logFd, STDERR_FILENO) < 0) _exit(127);
         std::freopen("/dev/null", "w", stdout);
         std::vector<char *> argv;
         for (auto &s : args) argv.push_back(s.data());
@@ -248,6 +263,7 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
         execv(exe.c_str(), argv.data());
         _exit(127);
     }
+    ::close(logFd);
     j.pid = pid;
     j.status = "running";
 }

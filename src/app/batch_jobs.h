@@ -61,8 +61,8 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
 int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds);
 // The running executable (/proc/self/exe).
 std::string RunningExecutable();
-// Starts `exe render` for j in a child process (stderr to j.logPath, by default a log beside
-// the output).
+// Starts `exe render` for j in a child process (stderr to j.logPath, by default a new
+// `.prism-<pid>-XXXXXX.log.tmp` in the output's folder; never through a symbolic link).
 // dieWithParent: the child gets SIGTERM when this process dies (prism-mpi's ranks).
 void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
             bool dieWithParent = false);

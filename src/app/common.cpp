@@ -1,6 +1,7 @@
 #include "app/common.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -217,15 +218,29 @@ std::string ConfinementFolderFor(const ConfineOption &confine, const std::string
 }
 
 void CheckOutputConfinement(const std::string &out, const SceneEntity &film) {
+    namespace fs = std::filesystem;
     const std::string folder = ReadConfinementFolder();
     if (folder.empty()) return;
-    std::filesystem::path rel =
-        std::filesystem::path(CanonicalPath(out)).lexically_relative(folder);
-    if (!rel.empty() && *rel.begin() != "..") return;
     const Param *p = film.params.Find("filename");
-    throw SceneError(p ? p->loc : film.loc, "Film \"filename\" " + Quote(out) +
-                                                " is outside the confined folder " + Quote(folder) +
-                                                "; give the output with -o");
+    auto refuse = [&](const std::string &why) {
+        throw SceneError(p ? p->loc : film.loc, "Film \"filename\" " + Quote(out) + " " + why +
+                                                    "; give the output with -o");
+    };
+    // The folder the file goes into, with every symbolic link resolved, must lie inside the
+    // confined folder; the name itself must not be a link (nor anything but a regular file),
+    // even one pointing back inside: what the scene names is what gets replaced.
+    fs::path target(out);
+    fs::path dir =
+        CanonicalPath(target.parent_path().empty() ? "." : target.parent_path().string());
+    fs::path rel = (dir / target.filename()).lexically_relative(folder);
+    if (rel.empty() || *rel.begin() == ".." || target.filename().empty() ||
+        target.filename() == "." || target.filename() == "..")
+        refuse("is outside the confined folder " + Quote(folder));
+    struct stat st;
+    if (::lstat(out.c_str(), &st) == 0) {
+        if (S_ISLNK(st.st_mode)) refuse("is a symbolic link (confined outputs)");
+        if (!S_ISREG(st.st_mode)) refuse("exists and is not a regular file");
+    }
 }
 
 std::vector<std::string> NormalizeConfineArgs(int argc, char **argv) {

@@ -1,0 +1,66 @@
+// Writing output files (images, reports, logs) so that nothing is lost and nothing is written
+// where it does not belong. Every output Prism writes goes through AtomicOutputFile:
+//  - the temporary file is a new file with a short random name, `.prism-<pid>-XXXXXX.tmp`, in
+//    the target's folder, created with O_CREAT | O_EXCL | O_NOFOLLOW: a symbolic link planted
+//    under any name (an upload that ships links) is never written through, and the name stays
+//    short whatever the target's length;
+//  - every write, the fsync and the close are checked; the first failure is an exception
+//    naming the OS reason ("write error: No space left on device");
+//  - only a complete file is renamed over the target (rename replaces a symbolic link at the
+//    target rather than following it); on any failure, or when the object is destroyed
+//    without Commit, the temporary file is removed and the previous target stays untouched.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace prism {
+
+// The prefix of every temporary output file (see TemporaryOutputPid).
+inline constexpr std::string_view kTemporaryOutputPrefix = ".prism-";
+
+class AtomicOutputFile {
+  public:
+    // Creates the temporary file for `target` in the target's folder. Throws
+    // std::runtime_error("could not create a temporary file in DIR: REASON").
+    explicit AtomicOutputFile(const std::string &target);
+    // Removes the temporary file unless Commit succeeded.
+    ~AtomicOutputFile();
+    AtomicOutputFile(const AtomicOutputFile &) = delete;
+    AtomicOutputFile &operator=(const AtomicOutputFile &) = delete;
+
+    // Appends `n` bytes at the current position (partial writes and EINTR are retried).
+    // Throws std::runtime_error("write error: REASON").
+    void Write(const void *data, size_t n);
+    void Write(std::string_view s) { Write(s.data(), s.size()); }
+    // The current position, and moving it (OpenEXR writes its offset table last).
+    uint64_t Tell() const;
+    void Seek(uint64_t pos);
+    // fsync, close, rename over the target. Throws std::runtime_error("write error: REASON")
+    // (or the rename's reason); the temporary file is removed then.
+    void Commit();
+
+    const std::string &TemporaryPath() const { return tmp_; }
+
+  private:
+    void Discard();
+    std::string target_, tmp_;
+    int fd_ = -1;
+};
+
+// Creates a new, empty file `.prism-<pid>-XXXXXX<suffix>` in `dir` ("" = the current folder)
+// with O_CREAT | O_EXCL | O_NOFOLLOW, retrying another random name if one exists. Returns the
+// open descriptor (O_WRONLY, close-on-exec) and sets *path. Throws std::runtime_error
+// ("could not create a temporary file in DIR: REASON").
+int CreateUniqueFile(const std::string &dir, std::string_view suffix, std::string *path);
+
+// Writes `contents` to `path` through AtomicOutputFile. Throws std::runtime_error
+// `cannot write "PATH": REASON`.
+void WriteFileAtomically(const std::string &path, std::string_view contents);
+
+// The pid in a temporary output file's name (`.prism-<pid>-XXXXXX...`), or -1 when `name` is
+// not one.
+long TemporaryOutputPid(std::string_view name);
+
+}  // namespace prism
