@@ -3,6 +3,8 @@
 // accessor is bounds-checked here because tinygltf does not validate them.
 #include "scene/gltf_reader.h"
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -40,7 +42,28 @@ struct ReadBudget {
     std::optional<MemoryBudgetError> refused;
     // A buffer or image the read confinement (--confine) refused, and why.
     std::string confinedPath, confinedReason;
+    // The first buffer or image that could not be read otherwise (a FIFO, a device), and why.
+    std::string failedPath, failedReason;
 };
+
+// tinygltf's own FileExists probes every candidate path of a URI with fopen(path, "rb"): a
+// FIFO blocks there forever, and a file outside the --confine folder is opened before
+// ReadWholeFileWithinBudget could refuse it. This one opens nothing. A path the confinement
+// refuses "exists", so that the read below reports the refusal at the URI.
+bool FileExistsWithoutOpening(const std::string &path, void *) {
+    if (!ReadConfinementRefusal(path).empty()) return true;
+    struct stat st;
+    return ::stat(path.c_str(), &st) == 0;
+}
+
+// No expansion (tinygltf's default does none either: no `~`, no environment variables).
+std::string KeepFilePath(const std::string &path, void *) { return path; }
+
+bool RefuseToWrite(std::string *err, const std::string &, const std::vector<unsigned char> &,
+                   void *) {
+    if (err) *err += "Prism does not write glTF files\n";
+    return false;
+}
 
 // Replaces tinygltf's stb_image decoding: images without an external URI (data URIs and .glb
 // bufferViews) keep their encoded bytes in Image::image; external files are referenced by
@@ -70,6 +93,9 @@ bool ReadWholeFileWithinBudget(std::vector<unsigned char> *out, std::string *err
             if (error.tooLarge) b->budget.Check(error.size, what, FileLoc{b->topFile});
             if (error.refused && b->confinedPath.empty())
                 b->confinedPath = path, b->confinedReason = error.reason;
+            else if (!error.refused && !error.tooLarge && path != b->topFile &&
+                     b->failedPath.empty())
+                b->failedPath = path, b->failedReason = error.reason;
             if (err) *err += (error.tooLarge ? "file grew while read" : error.reason) + "\n";
             return false;
         }
@@ -398,8 +424,10 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
     tinygltf::TinyGLTF ctx;
     ReadBudget budget{memory, path, std::nullopt};
     ctx.SetImageLoader(&KeepEncodedBytes, &budget);
-    ctx.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath,
-                        &ReadWholeFileWithinBudget, &tinygltf::WriteWholeFile, &budget});
+    // Every file tinygltf touches goes through Prism's reader (core/file_io.h): no FIFO or
+    // device is opened, and --confine holds before anything is opened.
+    ctx.SetFsCallbacks({&FileExistsWithoutOpening, &KeepFilePath, &ReadWholeFileWithinBudget,
+                        &RefuseToWrite, &budget});
     std::string err, warn;
     bool ok;
     try {
@@ -413,6 +441,10 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
         throw SceneError(
             gltf_internal::LocateUri(path, budget.confinedPath),
             "cannot read file " + Quote(budget.confinedPath) + ": " + budget.confinedReason);
+    if (!budget.failedPath.empty())
+        throw SceneError(
+            gltf_internal::LocateUri(path, budget.failedPath),
+            "cannot read file " + Quote(budget.failedPath) + ": " + budget.failedReason);
     for (const std::string &w : MessageLines(warn)) diag.Warn(loc, w);
     if (!ok) {
         std::vector<std::string> errs = MessageLines(err);

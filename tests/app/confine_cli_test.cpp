@@ -10,6 +10,8 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "app/run_prism.h"
@@ -333,6 +335,68 @@ TEST(Confine, OutputSymlinksAreNeverWrittenThrough) {
     EXPECT_EQ(Snapshot(root / "outside"), before);
     EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(root / "up/out/report.json")));
     EXPECT_NE(ReadFile(root / "up/out/report.json").find("\"status\": \"ok\""), std::string::npos);
+}
+
+// The fault library (tests/app/fault_shim) with `faults` ("NAME=value ...").
+std::string Faults(const std::string &faults) {
+    return "ASAN_OPTIONS=\"${ASAN_OPTIONS}:verify_asan_link_order=0\" LD_PRELOAD='" +
+           std::string(PRISM_FAULT_SHIM) + "' " + faults;
+}
+
+// A glTF buffer or image URI naming a FIFO (issue 25): tinygltf's own file-exists probe
+// opened each candidate with fopen, which waits for a writer forever, in render, info,
+// validate and batch alike. Each command must fail at once with the URI's location. `timeout`
+// turns a regression into a failure (exit 124) instead of a hung test.
+TEST(Confine, GltfUriNamingAFifoFailsFastAtTheUri) {
+    fs::path dir = TempDir("gltf_fifo");
+    ASSERT_EQ(::mkfifo((dir / "fifo.bin").c_str(), 0600), 0);
+    ASSERT_EQ(::mkfifo((dir / "fifo.png").c_str(), 0600), 0);
+    std::ofstream(dir / "b.bin", std::ios::binary) << TriangleBuffer();
+    std::ofstream(dir / "buffer.gltf") << Gltf("fifo.bin");
+    std::ofstream(dir / "image.gltf") << Gltf("b.bin", "fifo.png");
+    const std::string timeout = "timeout -k 5 60";
+    for (const char *command : {"render", "info", "validate"}) {
+        for (auto [scene, at] : {std::pair{"buffer.gltf", "buffer.gltf:4:"},
+                                 std::pair{"image.gltf", "image.gltf:5:"}}) {
+            SCOPED_TRACE(std::string(command) + " " + scene);
+            const std::string quiet = std::string(command) == "info" ? "" : " -q";
+            RunResult r = RunPrism(std::string(command) + " " + scene + quiet, dir, timeout);
+            EXPECT_EQ(r.exitCode, 2) << r.err;
+            EXPECT_NE(r.err.find(std::string(at)), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+        }
+    }
+    std::ofstream(dir / "list.txt") << "buffer.gltf\nimage.gltf\n";
+    RunResult r = RunPrism("batch list.txt -o out -q", dir, timeout);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    std::string report = ReadFile(dir / "out/report.json");
+    EXPECT_NE(report.find("buffer.gltf:4:"), std::string::npos) << report;
+    EXPECT_NE(report.find("image.gltf:5:"), std::string::npos) << report;
+}
+
+// Under --confine a glTF URI outside the folder is refused before anything opens it: the
+// fault library ends the process (exit 99) if any open or fopen names the file.
+TEST(Confine, GltfUriOutsideTheFolderIsNeverOpened) {
+    fs::path root = TempDir("gltf_unopened");
+    fs::create_directories(root / "outside");
+    fs::create_directories(root / "scene");
+    std::ofstream(root / "outside/secret.bin", std::ios::binary) << TriangleBuffer();
+    fs::copy_file(Source + "/tests/golden/whitted_64x48.exr", root / "outside/secret.exr");
+    std::ofstream(root / "scene/b.bin", std::ios::binary) << TriangleBuffer();
+    std::ofstream(root / "scene/buffer.gltf") << Gltf("../outside/secret.bin");
+    std::ofstream(root / "scene/image.gltf") << Gltf("b.bin", "../outside/secret.exr");
+    for (auto [scene, at, file] : {std::tuple{"buffer.gltf", "buffer.gltf:4:", "secret.bin"},
+                                   std::tuple{"image.gltf", "image.gltf:5:", "secret.exr"}}) {
+        for (const char *command : {"render", "info", "validate"}) {
+            SCOPED_TRACE(std::string(command) + " " + scene);
+            const std::string quiet = std::string(command) == "info" ? "" : " -q";
+            RunResult r = RunPrism(std::string(command) + " scene/" + scene + " --confine" + quiet,
+                                   root, Faults("PRISM_FAULT_FORBID_OPEN=" + std::string(file)));
+            EXPECT_EQ(r.exitCode, 2) << r.err;
+            EXPECT_NE(r.err.find(std::string(at)), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find("outside the confined folder"), std::string::npos) << r.err;
+        }
+    }
 }
 
 TEST(Confine, BatchConfinesEachSceneToItsOwnFolder) {
