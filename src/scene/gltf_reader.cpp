@@ -5,12 +5,14 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "core/file_io.h"
 #include "core/memory.h"
@@ -44,6 +46,8 @@ struct ReadBudget {
     std::string confinedPath, confinedReason;
     // The first buffer or image that could not be read otherwise (a FIFO, a device), and why.
     std::string failedPath, failedReason;
+    // The glTF's JSON nests deeper than kMaxJsonDepth: refused before tinygltf parses it.
+    std::optional<SceneError> tooDeep;
 };
 
 // tinygltf's own FileExists probes every candidate path of a URI with fopen(path, "rb"): a
@@ -78,6 +82,49 @@ bool KeepEncodedBytes(tinygltf::Image *image, const int, std::string *, std::str
     return true;
 }
 
+// How deep JSON arrays and objects may nest in a glTF file. tinygltf turns JSON values (the
+// "extras" of anything) into its own Value recursively, so 20,000 nested brackets in a 40 KB
+// file overflowed the stack; real files nest about a dozen levels.
+constexpr int kMaxJsonDepth = 512;
+
+// The offset of the first '[' or '{' in `json` nested deeper than kMaxJsonDepth (brackets in
+// strings do not count), or npos.
+size_t TooDeepJson(std::string_view json) {
+    int depth = 0;
+    bool inString = false;
+    for (size_t i = 0; i < json.size(); ++i) {
+        char c = json[i];
+        if (inString) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth) return i;
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return std::string_view::npos;
+}
+
+// The JSON of a .gltf file (the whole file) or of a .glb (its first chunk, when it is JSON),
+// and where that JSON starts in the file.
+std::string_view JsonText(const std::vector<unsigned char> &file, bool glb, size_t *start) {
+    std::string_view all(reinterpret_cast<const char *>(file.data()), file.size());
+    *start = 0;
+    if (!glb) return all;
+    auto u32 = [&](size_t at) {
+        return uint32_t(file[at]) | uint32_t(file[at + 1]) << 8 | uint32_t(file[at + 2]) << 16 |
+               uint32_t(file[at + 3]) << 24;
+    };
+    if (file.size() < 20 || u32(16) != 0x4E4F534Au) return {};  // tinygltf reports it
+    *start = 20;
+    return all.substr(20, std::min<size_t>(u32(12), file.size() - 20));
+}
+
 // tinygltf reads the .gltf/.glb file, every external buffer and every external image whole.
 // This replacement reads only regular files (not /dev/zero or a FIFO named by a hostile URI)
 // and charges each to the memory budget, checked before anything is allocated.
@@ -100,6 +147,30 @@ bool ReadWholeFileWithinBudget(std::vector<unsigned char> *out, std::string *err
             return false;
         }
         b->budget.Charge(out->size(), what, FileLoc{b->topFile});
+        if (path == b->topFile) {
+            const bool glb = LowerExtension(path) == ".glb";
+            size_t start = 0;
+            std::string_view json = JsonText(*out, glb, &start);
+            size_t at = TooDeepJson(json);
+            if (at != std::string_view::npos) {
+                // A .gltf is text: line and column; a .glb's JSON chunk is one long line.
+                FileLoc loc{path};
+                if (!glb) {
+                    loc.line = 1 + int(std::count(json.begin(), json.begin() + long(at), '\n'));
+                    size_t lineStart = json.rfind('\n', at);
+                    loc.column =
+                        int(at - (lineStart == std::string_view::npos ? 0 : lineStart + 1)) + 1;
+                }
+                b->tooDeep = SceneError(
+                    loc,
+                    "JSON arrays and objects nest deeper than " + std::to_string(kMaxJsonDepth) +
+                        " levels" +
+                        (glb ? " (at byte " + std::to_string(start + at) + ")" : std::string()));
+                if (err) *err += "JSON nested too deeply\n";
+                out->clear();
+                return false;
+            }
+        }
     } catch (const MemoryBudgetError &e) {
         if (!b->refused) b->refused = e;
         if (err) *err += e.Message() + "\n";
@@ -437,6 +508,7 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
         throw SceneError(loc, std::string("cannot parse glTF file: ") + e.what());
     }
     if (budget.refused) throw *budget.refused;
+    if (budget.tooDeep) throw *budget.tooDeep;
     if (!budget.confinedPath.empty())
         throw SceneError(
             gltf_internal::LocateUri(path, budget.confinedPath),

@@ -1,0 +1,153 @@
+// Hostile scenes, round two (issue 25): small files that make Prism recurse too deep (stack
+// overflow), do quadratic work in its diagnostics, or print bytes that corrupt a terminal or a
+// report. The files are generated here: most are too large to check in, and their point is
+// their size. Each case must end with one located error (or the documented cap) and exit 2,
+// never a signal.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app/run_prism.h"
+
+namespace fs = std::filesystem;
+
+namespace prism {
+namespace {
+
+using test::ReadFile;
+using test::RunPrism;
+using test::RunResult;
+
+fs::path TempDir(const std::string &name) { return test::FreshTempDir("hostile", name); }
+
+// Five lines; what a case adds starts on line 6.
+const char *const kHead =
+    "LookAt 0 0 5  0 0 0  0 1 0\n"
+    "Camera \"perspective\" \"float fov\" 40\n"
+    "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\n"
+    "WorldBegin\n"
+    "LightSource \"point\" \"rgb I\" [10 10 10] \"point from\" [0 0 5]\n";
+
+int ErrorLines(const std::string &err) {
+    int n = 0;
+    for (size_t at = err.find("error:"); at != std::string::npos; at = err.find("error:", at + 1))
+        ++n;
+    return n;
+}
+
+// Renders `scene` in `dir`: exit status 2, exactly one error line containing `fragment`,
+// nothing written.
+void ExpectRefused(const fs::path &dir, const std::string &scene, const std::string &fragment,
+                   const std::string &command = "render") {
+    SCOPED_TRACE(command + " " + scene);
+    const std::string args = command == "render" ? " -o out.png -q" : "";
+    RunResult r = RunPrism(command + " " + scene + args, dir, "timeout -k 5 120");
+    EXPECT_EQ(r.exitCode, 2) << r.err.substr(0, 2000);
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err.substr(0, 2000);
+    EXPECT_EQ(ErrorLines(r.err), 1) << r.err.substr(0, 2000);
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
+void ExpectRenders(const fs::path &dir, const std::string &scene) {
+    SCOPED_TRACE(scene);
+    RunResult r = RunPrism("render " + scene + " -o ok.png -q", dir, "timeout -k 5 120");
+    EXPECT_EQ(r.exitCode, 0) << r.err.substr(0, 2000);
+    fs::remove(dir / "ok.png");
+}
+
+// A glTF with no geometry whose asset "extras" nest `depth` levels, alternating arrays and
+// objects; the deepest bracket is on line 2.
+std::string NestedGltf(int depth) {
+    std::string open, close;
+    for (int i = 0; i < depth; ++i) {
+        open += i % 2 ? "{\"a\": " : "[";
+        close.insert(0, i % 2 ? "}" : "]");
+    }
+    return "{\"asset\": {\"version\": \"2.0\", \"extras\":\n" + open + "1" + close +
+           "},\n\"scenes\": [{\"nodes\": []}], \"nodes\": [], \"note\": \"[[[[ {{{{\"}\n";
+}
+
+// The same JSON as a .glb (one JSON chunk, padded to 4 bytes).
+std::string Glb(std::string json) {
+    while (json.size() % 4) json += ' ';
+    auto u32 = [](uint32_t v) {
+        std::string s(4, '\0');
+        for (int i = 0; i < 4; ++i) s[size_t(i)] = char((v >> (8 * i)) & 0xff);
+        return s;
+    };
+    return "glTF" + u32(2) + u32(uint32_t(20 + json.size())) + u32(uint32_t(json.size())) + "JSON" +
+           json;
+}
+
+TEST(Hostile, DeeplyNestedGltfJsonIsRefusedWithItsLocation) {
+    fs::path dir = TempDir("gltf_depth");
+    // 2 levels of the document itself + 510 of extras = 512: allowed.
+    std::ofstream(dir / "ok.gltf") << NestedGltf(510);
+    ExpectRenders(dir, "ok.gltf");
+    std::ofstream(dir / "deep.gltf") << NestedGltf(20000);
+    // The 513th bracket: 511 of the extras, at column 1 + 510 brackets ("[" and "{\"a\": ").
+    std::ofstream(dir / "edge.gltf") << NestedGltf(511);
+    for (const char *command : {"render", "info", "validate"}) {
+        ExpectRefused(dir, "deep.gltf", "deep.gltf:2:", command);
+        ExpectRefused(dir, "deep.gltf", "JSON arrays and objects nest deeper than 512 levels",
+                      command);
+    }
+    ExpectRefused(dir, "edge.gltf", "edge.gltf:2:" + std::to_string(1 + 255 * 7) + ":");
+    std::ofstream(dir / "deep.glb", std::ios::binary) << Glb(NestedGltf(20000));
+    ExpectRefused(dir, "deep.glb", "deep.glb: error: JSON arrays and objects nest deeper");
+}
+
+// CSGBegin "union" `depth` times, each with a sphere beside the nested node.
+std::string NestedCsg(int depth) {
+    std::string s = kHead;
+    for (int i = 0; i < depth; ++i)
+        s += "CSGBegin \"union\"\nShape \"sphere\" \"float radius\" 0.5\n";
+    for (int i = 0; i < depth; ++i) s += "CSGEnd\n";
+    return s;
+}
+
+TEST(Hostile, DeeplyNestedCsgIsRefusedAtTheCsgBegin) {
+    fs::path dir = TempDir("csg_depth");
+    std::ofstream(dir / "ok.pbrt") << NestedCsg(256);
+    ExpectRenders(dir, "ok.pbrt");
+    std::ofstream(dir / "deep.pbrt") << NestedCsg(10000);
+    // The 257th CSGBegin: line 6 + 2 * 256.
+    ExpectRefused(dir, "deep.pbrt",
+                  "deep.pbrt:518:1: error: CSG nodes nest more than 256 levels deep (outermost "
+                  "CSGBegin at deep.pbrt:6:1)");
+}
+
+// `n` textures, each scaling the one before (twice: `twice`), and a sphere using the last.
+std::string TextureChain(int n, bool twice) {
+    std::string s = kHead;
+    s += "Texture \"t0\" \"spectrum\" \"constant\" \"rgb value\" [0.5 0.5 0.5]\n";
+    for (int i = 1; i < n; ++i) {
+        std::string prev = "\"t" + std::to_string(i - 1) + "\"";
+        s += "Texture \"t" + std::to_string(i) + "\" \"spectrum\" \"scale\" \"texture tex1\" " +
+             prev + (twice ? " \"texture tex2\" " + prev : " \"rgb tex2\" [1 1 1]") + "\n";
+    }
+    return s + "Material \"matte\" \"texture Kd\" \"t" + std::to_string(n - 1) +
+           "\"\nShape \"sphere\"\n";
+}
+
+TEST(Hostile, LongTextureChainsAreRefusedAtTheTexture) {
+    fs::path dir = TempDir("texture_depth");
+    std::ofstream(dir / "ok.pbrt") << TextureChain(256, false);
+    ExpectRenders(dir, "ok.pbrt");
+    std::ofstream(dir / "chain.pbrt") << TextureChain(100000, false);
+    // t256 is the 257th texture, on line 6 + 256.
+    ExpectRefused(dir, "chain.pbrt",
+                  "chain.pbrt:262:1: error: texture \"t256\": textures refer to textures more "
+                  "than 256 levels deep");
+    // Each texture twice refers to the one before: t16 would evaluate 2^17 - 1 textures.
+    std::ofstream(dir / "twice.pbrt") << TextureChain(40, true);
+    ExpectRefused(dir, "twice.pbrt",
+                  "twice.pbrt:22:1: error: texture \"t16\": one lookup would evaluate more than "
+                  "65536 textures");
+}
+
+}  // namespace
+}  // namespace prism
