@@ -208,6 +208,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     }
     auto t1 = std::chrono::steady_clock::now();
     s_->scene.emplace(BuildRenderScene(desc, opts, diag));
+    diag.Flush();  // "and N more warnings like ..." before the render's own lines
     s_->scene->estimateNoise = a.stats;
     const RenderScene &scene = *s_->scene;
     // Scene setup: meshes read (PLY), textures decoded, materials and lights built.
