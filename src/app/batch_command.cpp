@@ -93,9 +93,46 @@ std::vector<std::string> OutputNames(const std::vector<std::string> &scenes,
     return names;
 }
 
+// The length of the well-formed UTF-8 sequence at s[i] (1-4), or 0 when the byte there does
+// not start one (a stray continuation byte, an overlong form, a surrogate, past U+10FFFF).
+size_t Utf8SequenceAt(const std::string &s, size_t i) {
+    auto byte = [&](size_t k) { return k < s.size() ? static_cast<unsigned char>(s[k]) : 0u; };
+    auto cont = [&](size_t k) { return (byte(k) & 0xc0) == 0x80; };
+    unsigned b = byte(i);
+    if (b < 0x80) return 1;
+    if (b >= 0xc2 && b <= 0xdf) return cont(i + 1) ? 2 : 0;
+    if (b >= 0xe0 && b <= 0xef) {
+        unsigned b1 = byte(i + 1);
+        if ((b == 0xe0 && b1 < 0xa0) || (b == 0xed && b1 >= 0xa0)) return 0;
+        return cont(i + 1) && cont(i + 2) ? 3 : 0;
+    }
+    if (b >= 0xf0 && b <= 0xf4) {
+        unsigned b1 = byte(i + 1);
+        if ((b == 0xf0 && b1 < 0x90) || (b == 0xf4 && b1 >= 0x90)) return 0;
+        return cont(i + 1) && cont(i + 2) && cont(i + 3) ? 4 : 0;
+    }
+    return 0;
+}
+
+// A JSON string's contents: quotes, backslashes and control characters escaped, and every
+// byte that is not part of well-formed UTF-8 (a file name in Latin-1, say) written as
+// \u00XX, so report.json is valid UTF-8 whatever the names hold.
 std::string JsonEscape(const std::string &s) {
     std::string o;
-    for (char c : s) {
+    for (size_t i = 0; i < s.size();) {
+        char c = s[i];
+        size_t n = Utf8SequenceAt(s, i);
+        if (n == 0) {
+            o += fmt::format("\\u{:04x}", int(static_cast<unsigned char>(c)));
+            ++i;
+            continue;
+        }
+        if (n > 1) {
+            o.append(s, i, n);
+            i += n;
+            continue;
+        }
+        ++i;
         switch (c) {
             case '"':
                 o += "\\\"";
@@ -110,7 +147,7 @@ std::string JsonEscape(const std::string &s) {
                 o += "\\t";
                 break;
             default:
-                if (static_cast<unsigned char>(c) < 0x20)
+                if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
                     o += fmt::format("\\u{:04x}", int(c));
                 else
                     o += c;
@@ -176,9 +213,10 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
     std::string txt =
         fmt::format("{:<11} {:>8}  {:>5}  {}\n", "status", "seconds", "warn", "scene");
     for (const Job &j : jobs) {
+        // Names from the scenes' folder: control characters escaped, as on the terminal.
         txt += fmt::format("{:<11} {:>8.2f}  {:>5}  {}\n", j.status, j.seconds, j.warnings.size(),
-                           j.scene);
-        if (!j.error.empty()) txt += "            error: " + j.error + "\n";
+                           EscapeControlChars(j.scene));
+        if (!j.error.empty()) txt += "            error: " + EscapeControlChars(j.error) + "\n";
     }
     txt += fmt::format("\n{} ok, {} skipped (up to date), {} failed, {} interrupted, {} not run\n",
                        counts["ok"], counts["skipped"], counts["failed"], counts["interrupted"],
@@ -363,7 +401,8 @@ int RunBatch(const BatchArgs &a) {
         while (!g_interrupted && running < nJobs && next < jobs.size()) {
             Job &j = jobs[next++];
             if (j.status != "pending") continue;
-            if (!a.quiet) std::fprintf(stderr, "batch: rendering %s\n", j.scene.c_str());
+            if (!a.quiet)
+                std::fprintf(stderr, "batch: rendering %s\n", EscapeControlChars(j.scene).c_str());
             Launch(j, a, exe, threadsPerJob);
             ++running;
         }
@@ -387,8 +426,8 @@ int RunBatch(const BatchArgs &a) {
             --running;
             if (!a.quiet)
                 std::fprintf(stderr, "batch: %s %s (%.1fs)%s%s\n", j.status.c_str(),
-                             j.scene.c_str(), j.seconds, j.error.empty() ? "" : ": ",
-                             j.error.c_str());
+                             EscapeControlChars(j.scene).c_str(), j.seconds,
+                             j.error.empty() ? "" : ": ", EscapeControlChars(j.error).c_str());
             // A full disk must not stop the batch: the previous report stays (atomic
             // writes) and the next scene tries again; the final write below must succeed.
             try {

@@ -26,7 +26,9 @@ namespace prism {
 int RunGuarded(const std::function<int()> &fn) { return RunGuarded(fn, nullptr); }
 
 int RunGuarded(const std::function<int()> &fn, std::string *message) {
-    auto emit = [message](const std::string &line) {
+    // One line, whatever the message carries (a name with a newline or an escape sequence).
+    auto emit = [message](const std::string &text) {
+        std::string line = EscapeControlChars(text);
         if (message)
             *message = line;
         else

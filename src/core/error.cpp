@@ -4,20 +4,40 @@
 
 namespace prism {
 
+std::string EscapeControlChars(std::string_view s) {
+    static const char kHex[] = "0123456789abcdef";
+    std::string r;
+    r.reserve(s.size());
+    for (char c : s) {
+        unsigned char u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f) {
+            r += "\\x";
+            r += kHex[u >> 4];
+            r += kHex[u & 15];
+        } else {
+            r += c;
+        }
+    }
+    return r;
+}
+
 std::string FileLoc::ToString() const {
     if (line <= 0) return file;
     return file + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 
+// The message's control characters are escaped here too (not only the names it quoted):
+// what() is a C string, so a NUL in a path would otherwise end the message there.
 static std::string Located(const FileLoc &loc, const std::string &msg) {
-    return loc.Valid() ? loc.ToString() + ": error: " + msg : "error: " + msg;
+    return EscapeControlChars(loc.Valid() ? loc.ToString() + ": error: " + msg : "error: " + msg);
 }
 
 SceneError::SceneError(const FileLoc &loc, const std::string &msg)
-    : std::runtime_error(Located(loc, msg)), loc_(loc), msg_(msg) {}
+    : std::runtime_error(Located(loc, msg)), loc_(loc), msg_(EscapeControlChars(msg)) {}
 
 std::string Warning::ToString() const {
-    return loc.Valid() ? loc.ToString() + ": warning: " + message : "warning: " + message;
+    return EscapeControlChars(loc.Valid() ? loc.ToString() + ": warning: " + message
+                                          : "warning: " + message);
 }
 
 namespace {
@@ -128,7 +148,7 @@ void Diagnostics::Flush() {
         // After an earlier summary of this kind, only the ones since.
         std::fprintf(stderr, "warning: and %s more warnings like: %s\n",
                      WithThousands(size_t(dropped - kind.echoedDropped)).c_str(),
-                     kind.firstDropped.c_str());
+                     EscapeControlChars(kind.firstDropped).c_str());
         kind.echoedDropped = dropped;
     }
 }

@@ -14,11 +14,18 @@
 
 namespace prism {
 
-// `s` in double quotes, as names are shown in messages: unknown directive "Sphere".
+// `s` with every control character (bytes 0x00-0x1f and 0x7f: NUL, newline, escape, ...)
+// written as `\xNN`: names from a scene reach terminals, logs and summary.txt, where an escape
+// sequence would act and a NUL or newline would cut or split the message. Other bytes, and
+// backslashes, are kept, so escaping twice changes nothing more.
+std::string EscapeControlChars(std::string_view s);
+
+// `s` in double quotes, as names are shown in messages: unknown directive "Sphere"; control
+// characters escaped (EscapeControlChars).
 inline std::string Quote(std::string_view s) {
     std::string r;
     r.reserve(s.size() + 2);
-    r.append(1, '"').append(s).append(1, '"');
+    r.append(1, '"').append(EscapeControlChars(s)).append(1, '"');
     return r;
 }
 
@@ -44,7 +51,7 @@ class SceneError : public std::runtime_error {
 struct Warning {
     FileLoc loc;
     std::string message;
-    std::string ToString() const;  // "file:line:col: warning: message"
+    std::string ToString() const;  // "file:line:col: warning: message", control chars escaped
 };
 
 // Thread-safe collector of warnings. Identical warnings (same location and message) are kept

@@ -197,5 +197,85 @@ TEST(Hostile, ManyWarningsOfOneKindPrintTenAndOneSummaryLine) {
     EXPECT_NE(report.find("and 39,990 more warnings like"), std::string::npos);
 }
 
+// True when `s` has a byte below 0x20 other than newline, or 0x7f: what a terminal acts on.
+bool HasRawControlChars(const std::string &s) {
+    return std::any_of(s.begin(), s.end(), [](char c) {
+        unsigned char u = static_cast<unsigned char>(c);
+        return (u < 0x20 && c != '\n') || u == 0x7f;
+    });
+}
+
+// Names with a NUL or control characters (issue 25): a NUL in a quoted path cut the message
+// short there, and an escape sequence in a name reached the terminal as it was.
+TEST(Hostile, NulAndControlCharactersInNamesArePrintedEscaped) {
+    fs::path dir = TempDir("control_chars");
+    std::string nul = std::string(kHead) + "Include \"a" + std::string(1, '\0') + "b.pbrt\"\n";
+    std::ofstream(dir / "nul.pbrt", std::ios::binary) << nul;
+    RunResult r = RunPrism("render nul.pbrt -o out.png -q", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("nul.pbrt:6:1: error: cannot open file \"a\\x00b.pbrt\": No such file"),
+              std::string::npos)
+        << r.err;
+    // Warnings and an error naming escape sequences (colour, window title, clear screen).
+    std::ofstream(dir / "esc.pbrt") << kHead << "Shape \"sph\x1b[31mere\"\n"
+                                    << "Shape \"sphere\" \"float bo\x1b]0;owned\x07gus\" 1\n";
+    r = RunPrism("render esc.pbrt -o out.png --no-progress", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(HasRawControlChars(r.err)) << r.err;
+    EXPECT_NE(r.err.find("esc.pbrt:6:1: warning: shape \"sph\\x1b[31mere\""), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("unused parameter \"bo\\x1b]0;owned\\x07gus\""), std::string::npos)
+        << r.err;
+    std::ofstream(dir / "err.pbrt") << kHead << "NamedMaterial \"x\x1b[2J\"\n";
+    r = RunPrism("render err.pbrt -o out.png", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_FALSE(HasRawControlChars(r.err)) << r.err;
+    EXPECT_NE(r.err.find("err.pbrt:6:1: error: unknown named material \"x\\x1b[2J\""),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(ErrorLines(r.err), 1) << r.err;
+}
+
+// Whether `s` is well-formed UTF-8.
+bool ValidUtf8(const std::string &s) {
+    for (size_t i = 0; i < s.size();) {
+        unsigned char b = static_cast<unsigned char>(s[i]);
+        size_t n = b < 0x80                 ? 1
+                   : b >= 0xc2 && b <= 0xdf ? 2
+                   : b >= 0xe0 && b <= 0xef ? 3
+                   : b >= 0xf0 && b <= 0xf4 ? 4
+                                            : 0;
+        if (n == 0 || i + n > s.size()) return false;
+        for (size_t k = 1; k < n; ++k)
+            if ((static_cast<unsigned char>(s[i + k]) & 0xc0) != 0x80) return false;
+        i += n;
+    }
+    return true;
+}
+
+// A batch over scene files whose names hold an escape sequence and a Latin-1 byte: summary.txt
+// and the batch's stderr show them escaped, report.json stays valid UTF-8 (\u00XX).
+TEST(Hostile, BatchReportsOfStrangeFileNamesAreEscaped) {
+    fs::path dir = TempDir("batch_names");
+    fs::create_directories(dir / "in");
+    const std::string escName = "e\x1b[2Jvil.pbrt", latin1 = "caf\xe9.pbrt",
+                      utf8 = "na\xc3\xafve.pbrt";
+    for (const std::string &name : {escName, latin1, utf8})
+        std::ofstream(dir / "in" / name) << kHead << "Shape \"sphere\"\n";
+    std::ofstream(dir / "in" / "broken\x1b[1m.pbrt") << kHead << "Shape \"sph\x1b[5mere\" 1\n";
+    RunResult r = RunPrism("batch in -o out", dir);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_FALSE(HasRawControlChars(r.err)) << r.err;
+    std::string summary = ReadFile(dir / "out/summary.txt");
+    EXPECT_FALSE(HasRawControlChars(summary)) << summary;
+    EXPECT_NE(summary.find("in/e\\x1b[2Jvil.pbrt"), std::string::npos) << summary;
+    std::string report = ReadFile(dir / "out/report.json");
+    EXPECT_TRUE(ValidUtf8(report)) << report;
+    EXPECT_FALSE(HasRawControlChars(report)) << report;
+    EXPECT_NE(report.find("in/caf\\u00e9.pbrt"), std::string::npos) << report;
+    EXPECT_NE(report.find("in/na\xc3\xafve.pbrt"), std::string::npos) << report;  // kept
+    EXPECT_NE(report.find("in/e\\u001b[2Jvil.pbrt"), std::string::npos) << report;
+}
+
 }  // namespace
 }  // namespace prism
