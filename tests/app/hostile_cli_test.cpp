@@ -277,5 +277,25 @@ TEST(Hostile, BatchReportsOfStrangeFileNamesAreEscaped) {
     EXPECT_NE(report.find("in/e\\u001b[2Jvil.pbrt"), std::string::npos) << report;
 }
 
+// A legal 249-character output name (issue 25: the temporary name, the name plus about 20
+// characters, went past the 255-byte limit of a file name).
+TEST(Hostile, LongLegalOutputNamesAreWritten) {
+    fs::path dir = TempDir("long_name");
+    std::ofstream(dir / "s.pbrt") << kHead << "Shape \"sphere\"\n";
+    for (const char *ext : {".png", ".exr"}) {
+        const std::string name = std::string(249 - 4, 'n') + ext;
+        RunResult r = RunPrism("render s.pbrt -o " + name + " -q", dir);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_TRUE(fs::exists(dir / name)) << ext;
+    }
+    // And a batch whose scene makes a 249-character image name (its render log is named apart).
+    fs::create_directories(dir / "in");
+    std::ofstream(dir / "in" / (std::string(249 - 8, 'b') + ".pbrt"))
+        << kHead << "Shape \"sphere\"\n";
+    RunResult r = RunPrism("batch in -o out -q", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err << ReadFile(dir / "out/report.json");
+    EXPECT_TRUE(fs::exists(dir / "out" / ("in_" + std::string(249 - 8, 'b') + ".png")));
+}
+
 }  // namespace
 }  // namespace prism
