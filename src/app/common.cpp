@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "core/output_file.h"
 #include "image/image_io.h"
 #include "image/tonemap.h"
 #include "scene/scene_description.h"
@@ -183,6 +184,8 @@ void CheckWritableDirectory(const std::string &dir) {
     std::error_code ec;
     if (!dir.empty() && !fs::is_directory(dir, ec))
         throw UsageError("output directory " + Quote(dir) + " does not exist");
+    // What killed writers left here long ago (core/output_file.h says when that is sure).
+    RemoveStaleTemporaries(dir);
     // access(W_OK) says yes to root on a read-only folder; creating a file tells the truth.
     fs::path probe =
         fs::path(dir.empty() ? "." : dir) / (".prism-write-test-" + std::to_string(::getpid()));

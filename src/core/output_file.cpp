@@ -1,6 +1,7 @@
 #include "core/output_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <stdexcept>
 
@@ -132,8 +134,34 @@ long TemporaryOutputPid(std::string_view name) {
     size_t i = 0;
     for (; i < name.size() && i < 10 && name[i] >= '0' && name[i] <= '9'; ++i)
         pid = pid * 10 + (name[i] - '0');
-    if (i == 0 || i >= name.size() || name[i] != '-' || name.size() < i + 7) return -1;
+    if (i == 0 || i >= name.size() || name[i] != '-') return -1;
+    std::string_view rest = name.substr(i + 1);  // XXXXXX.tmp or XXXXXX.log.tmp
+    if (rest.size() < 6) return -1;
+    for (char c : rest.substr(0, 6))
+        if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'z'))) return -1;
+    rest.remove_prefix(6);
+    if (rest != ".tmp" && rest != ".log.tmp") return -1;
     return pid;
+}
+
+int RemoveStaleTemporaries(const std::string &dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::directory_iterator it(dir.empty() ? "." : dir, ec), end;
+    int removed = 0;
+    const time_t now = ::time(nullptr);
+    for (; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        long pid = TemporaryOutputPid(name);
+        if (pid <= 0 || pid == long(::getpid())) continue;
+        struct stat st;
+        if (::lstat(it->path().c_str(), &st) != 0 || !S_ISREG(st.st_mode) ||
+            st.st_uid != ::geteuid() || now - st.st_mtime < kStaleTemporarySeconds)
+            continue;
+        if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours
+        if (::unlink(it->path().c_str()) == 0) ++removed;
+    }
+    return removed;
 }
 
 }  // namespace prism

@@ -59,8 +59,20 @@ int CreateUniqueFile(const std::string &dir, std::string_view suffix, std::strin
 // `cannot write "PATH": REASON`.
 void WriteFileAtomically(const std::string &path, std::string_view contents);
 
-// The pid in a temporary output file's name (`.prism-<pid>-XXXXXX...`), or -1 when `name` is
-// not one.
+// The pid in a temporary output file's name (`.prism-<pid>-XXXXXX.tmp` or `...log.tmp`), or
+// -1 when `name` is not one.
 long TemporaryOutputPid(std::string_view name);
+
+// A process killed while it wrote (SIGKILL, the OOM killer, a power cut) leaves its
+// temporary file behind. This removes, in `dir`, the temporary output files that are surely
+// stale: named exactly as CreateUniqueFile names them, regular files (not links) owned by this
+// user, last modified more than kStaleTemporarySeconds ago, and whose pid names no live
+// process here (kill(pid, 0) fails with ESRCH). The age covers what the pid cannot: a folder
+// shared with another machine or pid namespace, where the same pid means another process (a
+// file being written is modified continually; a render log at least at its start, so the age
+// spares a log only as long as a render takes). Returns the number removed; errors are
+// ignored (the folder is checked for writing separately).
+inline constexpr long kStaleTemporarySeconds = 3600;
+int RemoveStaleTemporaries(const std::string &dir);
 
 }  // namespace prism

@@ -4,8 +4,11 @@
 // their size. Each case must end with one located error (or the documented cap) and exit 2,
 // never a signal.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -295,6 +298,41 @@ TEST(Hostile, LongLegalOutputNamesAreWritten) {
     RunResult r = RunPrism("batch in -o out -q", dir);
     EXPECT_EQ(r.exitCode, 0) << r.err << ReadFile(dir / "out/report.json");
     EXPECT_TRUE(fs::exists(dir / "out" / ("in_" + std::string(249 - 8, 'b') + ".png")));
+}
+
+// Temporary files left by writers that were killed are removed when Prism next writes into
+// the folder, but only the surely stale ones.
+TEST(Hostile, StaleTemporariesOfDeadWritersAreRemoved) {
+    fs::path dir = TempDir("stale");
+    std::ofstream(dir / "s.pbrt") << kHead << "Shape \"sphere\"\n";
+    pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) _exit(0);
+    int status = 0;
+    ASSERT_EQ(waitpid(child, &status, 0), child);  // `child` names no process any more
+    const std::string dead = ".prism-" + std::to_string(child) + "-";
+    const std::string alive = ".prism-" + std::to_string(getpid()) + "-";
+    const auto old = fs::file_time_type::clock::now() - std::chrono::hours(2);
+    auto plant = [&](const std::string &name, bool aged) {
+        std::ofstream(dir / name) << "partial";
+        if (aged) fs::last_write_time(dir / name, old);
+    };
+    plant(dead + "a1b2c3.tmp", true);      // stale: removed
+    plant(dead + "d4e5f6.log.tmp", true);  // stale render log: removed
+    plant(dead + "g7h8i9.tmp", false);     // recent: kept (maybe another machine's)
+    plant(alive + "j0k1l2.tmp", true);     // its writer lives: kept
+    plant(dead + "m3n4o5.txt", true);      // not a name Prism makes: kept
+    plant("keep.txt", true);
+    fs::create_symlink("keep.txt", dir / (dead + "p6q7r8.tmp"));  // a link: kept
+    RunResult r = RunPrism("render s.pbrt -o out.png -q", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(fs::exists(dir / (dead + "a1b2c3.tmp")));
+    EXPECT_FALSE(fs::exists(dir / (dead + "d4e5f6.log.tmp")));
+    EXPECT_TRUE(fs::exists(dir / (dead + "g7h8i9.tmp")));
+    EXPECT_TRUE(fs::exists(dir / (alive + "j0k1l2.tmp")));
+    EXPECT_TRUE(fs::exists(dir / (dead + "m3n4o5.txt")));
+    EXPECT_TRUE(fs::is_symlink(dir / (dead + "p6q7r8.tmp")));
+    EXPECT_EQ(ReadFile(dir / "keep.txt"), "partial");
 }
 
 }  // namespace
