@@ -159,7 +159,7 @@ std::string JsonEscape(const std::string &s) {
 }  // namespace
 
 int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds) {
-    WriteReports(a.outDir, jobs, wallSeconds);
+    WriteReports(a.outDir, jobs, wallSeconds, /*sync=*/true);
     int failed = 0;
     for (const Job &j : jobs) failed += j.status == "failed";
     if (!a.quiet) {
@@ -171,7 +171,8 @@ int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallS
     return failed;
 }
 
-void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds) {
+void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds,
+                  bool sync) {
     std::map<std::string, int> counts;
     double renderSum = 0;
     for (const Job &j : jobs) {
@@ -208,7 +209,7 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
     }
     json += fmt::format("}},\n  \"wall_seconds\": {:.3f}, \"render_seconds\": {:.3f}\n}}\n",
                         wallSeconds, renderSum);
-    WriteFileAtomically((fs::path(outDir) / "report.json").string(), json);
+    WriteFileAtomically((fs::path(outDir) / "report.json").string(), json, sync);
 
     std::string txt =
         fmt::format("{:<11} {:>8}  {:>5}  {}\n", "status", "seconds", "warn", "scene");
@@ -224,7 +225,7 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
     txt +=
         fmt::format("batch {:.2f} s; the renders' render phases add up to {:.2f} s ({:.0f}%)\n",
                     wallSeconds, renderSum, wallSeconds > 0 ? 100 * renderSum / wallSeconds : 0.0);
-    WriteFileAtomically((fs::path(outDir) / "summary.txt").string(), txt);
+    WriteFileAtomically((fs::path(outDir) / "summary.txt").string(), txt, sync);
 }
 
 std::string RunningExecutable() {

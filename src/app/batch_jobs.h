@@ -54,8 +54,10 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args);
 // Checks the options (UsageError), collects the scenes, creates the output directory and marks
 // the scenes whose output is up to date as skipped.
 std::vector<Job> PrepareBatch(const BatchArgs &a);
-// Rewrites report.json and summary.txt in a.outDir atomically.
-void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds);
+// Rewrites report.json and summary.txt in a.outDir atomically; `sync` (the final reports,
+// FinishReports) also fsyncs them (core/output_file.h).
+void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds,
+                  bool sync = false);
 // The end of a batch: the final reports, the summary on stderr (unless quiet); returns the
 // number of failed scenes.
 int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds);

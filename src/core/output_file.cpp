@@ -61,7 +61,8 @@ int CreateUniqueFile(const std::string &dir, std::string_view suffix, std::strin
                              Quote(dir.empty() ? "." : dir) + ": " + std::strerror(err));
 }
 
-AtomicOutputFile::AtomicOutputFile(const std::string &target) : target_(target) {
+AtomicOutputFile::AtomicOutputFile(const std::string &target, bool sync)
+    : target_(target), sync_(sync) {
     fd_ = CreateUniqueFile(std::filesystem::path(target).parent_path().string(), ".tmp", &tmp_);
 }
 
@@ -102,7 +103,7 @@ void AtomicOutputFile::Commit() {
     // fsync reports what a delayed write could not store (network and quota file systems
     // report a full disk only here); close can report it too.
     int err = 0;
-    if (::fsync(fd_) != 0 && errno != EINVAL && errno != EROFS) err = errno;
+    if (sync_ && ::fsync(fd_) != 0 && errno != EINVAL && errno != EROFS) err = errno;
     if (::close(fd_) != 0 && err == 0 && errno != EINTR) err = errno;
     fd_ = -1;
     if (err == 0 && ::rename(tmp_.c_str(), target_.c_str()) != 0) {
@@ -117,9 +118,9 @@ void AtomicOutputFile::Commit() {
     tmp_.clear();
 }
 
-void WriteFileAtomically(const std::string &path, std::string_view contents) {
+void WriteFileAtomically(const std::string &path, std::string_view contents, bool sync) {
     try {
-        AtomicOutputFile f(path);
+        AtomicOutputFile f(path, sync);
         f.Write(contents);
         f.Commit();
     } catch (const std::runtime_error &e) {
