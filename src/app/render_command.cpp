@@ -289,7 +289,8 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                      "time: parse %.3fs, setup %.3fs, BVH build %.3fs, render %.3fs\n"
                      "rays: camera %llu, shadow %llu, reflection %llu, refraction %llu, "
                      "pass-through %llu, glossy %llu; %.2f Mrays/s\n",
-                     out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
+                     EscapeControlChars(out).c_str(),  // a Film "filename" is the scene's
+                     scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
                      scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, scene.spp, scene.maxDepth,
                      a.precision.c_str(), scene.integratorName.c_str(), s_->parseSeconds,
                      s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,

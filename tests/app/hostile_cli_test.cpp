@@ -229,6 +229,15 @@ TEST(Hostile, NulAndControlCharactersInNamesArePrintedEscaped) {
         << r.err;
     EXPECT_NE(r.err.find("unused parameter \"bo\\x1b]0;owned\\x07gus\""), std::string::npos)
         << r.err;
+    // The output's name from the Film, in the render's statistics line.
+    std::string film = kHead;
+    film.replace(film.find("Film \"image\""), 12,
+                 "Film \"image\" \"string filename\" \"o\x1b[1mut.png\"");
+    std::ofstream(dir / "film.pbrt") << film << "Shape \"sphere\"\n";
+    r = RunPrism("render film.pbrt --no-progress", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(HasRawControlChars(r.err)) << r.err;
+    EXPECT_NE(r.err.find("o\\x1b[1mut.png: 8x8"), std::string::npos) << r.err;
     std::ofstream(dir / "err.pbrt") << kHead << "NamedMaterial \"x\x1b[2J\"\n";
     r = RunPrism("render err.pbrt -o out.png", dir);
     EXPECT_EQ(r.exitCode, 2);
