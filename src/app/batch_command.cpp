@@ -3,6 +3,7 @@
 // that crashes or runs out of memory cannot take the batch or the finished images with it.
 // report.json and summary.txt are rewritten (atomically) after every scene. The parts that
 // `prism-mpi batch` shares are declared in app/batch_jobs.h.
+#include <fcntl.h>
 #include <fmt/core.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -27,9 +28,9 @@
 #include "app/batch_jobs.h"
 #include "app/commands.h"
 #include "app/common.h"
-#include "app/output_file.h"
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "core/output_file.h"
 #include "render/integrator.h"
 #include "scene/load_scene.h"
 
@@ -93,9 +94,46 @@ std::vector<std::string> OutputNames(const std::vector<std::string> &scenes,
     return names;
 }
 
+// The length of the well-formed UTF-8 sequence at s[i] (1-4), or 0 when the byte there does
+// not start one (a stray continuation byte, an overlong form, a surrogate, past U+10FFFF).
+size_t Utf8SequenceAt(const std::string &s, size_t i) {
+    auto byte = [&](size_t k) { return k < s.size() ? static_cast<unsigned char>(s[k]) : 0u; };
+    auto cont = [&](size_t k) { return (byte(k) & 0xc0) == 0x80; };
+    unsigned b = byte(i);
+    if (b < 0x80) return 1;
+    if (b >= 0xc2 && b <= 0xdf) return cont(i + 1) ? 2 : 0;
+    if (b >= 0xe0 && b <= 0xef) {
+        unsigned b1 = byte(i + 1);
+        if ((b == 0xe0 && b1 < 0xa0) || (b == 0xed && b1 >= 0xa0)) return 0;
+        return cont(i + 1) && cont(i + 2) ? 3 : 0;
+    }
+    if (b >= 0xf0 && b <= 0xf4) {
+        unsigned b1 = byte(i + 1);
+        if ((b == 0xf0 && b1 < 0x90) || (b == 0xf4 && b1 >= 0x90)) return 0;
+        return cont(i + 1) && cont(i + 2) && cont(i + 3) ? 4 : 0;
+    }
+    return 0;
+}
+
+// A JSON string's contents: quotes, backslashes and control characters escaped, and every
+// byte that is not part of well-formed UTF-8 (a file name in Latin-1, say) written as
+// \u00XX, so report.json is valid UTF-8 whatever the names hold.
 std::string JsonEscape(const std::string &s) {
     std::string o;
-    for (char c : s) {
+    for (size_t i = 0; i < s.size();) {
+        char c = s[i];
+        size_t n = Utf8SequenceAt(s, i);
+        if (n == 0) {
+            o += fmt::format("\\u{:04x}", int(static_cast<unsigned char>(c)));
+            ++i;
+            continue;
+        }
+        if (n > 1) {
+            o.append(s, i, n);
+            i += n;
+            continue;
+        }
+        ++i;
         switch (c) {
             case '"':
                 o += "\\\"";
@@ -110,7 +148,7 @@ std::string JsonEscape(const std::string &s) {
                 o += "\\t";
                 break;
             default:
-                if (static_cast<unsigned char>(c) < 0x20)
+                if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
                     o += fmt::format("\\u{:04x}", int(c));
                 else
                     o += c;
@@ -122,7 +160,7 @@ std::string JsonEscape(const std::string &s) {
 }  // namespace
 
 int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds) {
-    WriteReports(a.outDir, jobs, wallSeconds);
+    WriteReports(a.outDir, jobs, wallSeconds, /*sync=*/true);
     int failed = 0;
     for (const Job &j : jobs) failed += j.status == "failed";
     if (!a.quiet) {
@@ -134,7 +172,8 @@ int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallS
     return failed;
 }
 
-void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds) {
+void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds,
+                  bool sync) {
     std::map<std::string, int> counts;
     double renderSum = 0;
     for (const Job &j : jobs) {
@@ -171,14 +210,15 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
     }
     json += fmt::format("}},\n  \"wall_seconds\": {:.3f}, \"render_seconds\": {:.3f}\n}}\n",
                         wallSeconds, renderSum);
-    WriteFileAtomically((fs::path(outDir) / "report.json").string(), json);
+    WriteFileAtomically((fs::path(outDir) / "report.json").string(), json, sync);
 
     std::string txt =
         fmt::format("{:<11} {:>8}  {:>5}  {}\n", "status", "seconds", "warn", "scene");
     for (const Job &j : jobs) {
+        // Names from the scenes' folder: control characters escaped, as on the terminal.
         txt += fmt::format("{:<11} {:>8.2f}  {:>5}  {}\n", j.status, j.seconds, j.warnings.size(),
-                           j.scene);
-        if (!j.error.empty()) txt += "            error: " + j.error + "\n";
+                           EscapeControlChars(j.scene));
+        if (!j.error.empty()) txt += "            error: " + EscapeControlChars(j.error) + "\n";
     }
     txt += fmt::format("\n{} ok, {} skipped (up to date), {} failed, {} interrupted, {} not run\n",
                        counts["ok"], counts["skipped"], counts["failed"], counts["interrupted"],
@@ -186,7 +226,7 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
     txt +=
         fmt::format("batch {:.2f} s; the renders' render phases add up to {:.2f} s ({:.0f}%)\n",
                     wallSeconds, renderSum, wallSeconds > 0 ? 100 * renderSum / wallSeconds : 0.0);
-    WriteFileAtomically((fs::path(outDir) / "summary.txt").string(), txt);
+    WriteFileAtomically((fs::path(outDir) / "summary.txt").string(), txt, sync);
 }
 
 std::string RunningExecutable() {
@@ -198,7 +238,19 @@ std::string RunningExecutable() {
 
 void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
             bool dieWithParent) {
-    if (j.logPath.empty()) j.logPath = j.output + ".log.tmp";
+    // The log is a new file (O_EXCL | O_NOFOLLOW: core/output_file.h) in the output folder, or
+    // the path the caller chose (prism-mpi: the node's temporary folder), never followed
+    // through a symbolic link.
+    int logFd = -1;
+    if (j.logPath.empty()) {
+        logFd = CreateUniqueFile(fs::path(j.output).parent_path().string(), ".log.tmp", &j.logPath);
+    } else {
+        logFd =
+            ::open(j.logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (logFd < 0)
+            throw std::runtime_error("cannot create the render log " + Quote(j.logPath) + ": " +
+                                     std::strerror(errno));
+    }
     std::vector<std::string> args = {exe, "render", j.scene, "-o", j.output, "--no-progress"};
     if (a.spp > 0) {
         args.push_back("--spp");
@@ -237,11 +289,13 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     if (a.confine.Given()) args.push_back("--confine=" + ConfinementFolderFor(a.confine, j.scene));
     j.start = std::chrono::steady_clock::now();
     pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("cannot start a render process");
+    if (pid < 0) {
+        ::close(logFd);
+        throw std::runtime_error("cannot start a render process");
+    }
     if (pid == 0) {
         if (dieWithParent) prctl(PR_SET_PDEATHSIG, SIGTERM);
-        FILE *log = std::freopen(j.logPath.c_str(), "w", stderr);
-        (void)log;
+        if (::dup2(logFd, STDERR_FILENO) < 0) _exit(127);
         std::freopen("/dev/null", "w", stdout);
         std::vector<char *> argv;
         for (auto &s : args) argv.push_back(s.data());
@@ -249,6 +303,7 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
         execv(exe.c_str(), argv.data());
         _exit(127);
     }
+    ::close(logFd);
     j.pid = pid;
     j.status = "running";
 }
@@ -348,7 +403,8 @@ int RunBatch(const BatchArgs &a) {
         while (!g_interrupted && running < nJobs && next < jobs.size()) {
             Job &j = jobs[next++];
             if (j.status != "pending") continue;
-            if (!a.quiet) std::fprintf(stderr, "batch: rendering %s\n", j.scene.c_str());
+            if (!a.quiet)
+                std::fprintf(stderr, "batch: rendering %s\n", EscapeControlChars(j.scene).c_str());
             Launch(j, a, exe, threadsPerJob);
             ++running;
         }
@@ -372,8 +428,8 @@ int RunBatch(const BatchArgs &a) {
             --running;
             if (!a.quiet)
                 std::fprintf(stderr, "batch: %s %s (%.1fs)%s%s\n", j.status.c_str(),
-                             j.scene.c_str(), j.seconds, j.error.empty() ? "" : ": ",
-                             j.error.c_str());
+                             EscapeControlChars(j.scene).c_str(), j.seconds,
+                             j.error.empty() ? "" : ": ", EscapeControlChars(j.error).c_str());
             // A full disk must not stop the batch: the previous report stays (atomic
             // writes) and the next scene tries again; the final write below must succeed.
             try {

@@ -1,5 +1,5 @@
 // `prism batch`'s options, scene list, render processes and reports, shared by `prism batch`
-// and `prism-mpi batch` (src/mpi): each scene renders in its own child process (`prism
+// and `prism-mpi batch` (src/tools/mpi): each scene renders in its own child process (`prism
 // render`), so a scene that crashes or runs out of memory cannot take the batch or the finished
 // images with it; report.json and summary.txt are rewritten (atomically) after every scene.
 #pragma once
@@ -54,15 +54,17 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args);
 // Checks the options (UsageError), collects the scenes, creates the output directory and marks
 // the scenes whose output is up to date as skipped.
 std::vector<Job> PrepareBatch(const BatchArgs &a);
-// Rewrites report.json and summary.txt in a.outDir atomically.
-void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds);
+// Rewrites report.json and summary.txt in a.outDir atomically; `sync` (the final reports,
+// FinishReports) also fsyncs them (core/output_file.h).
+void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds,
+                  bool sync = false);
 // The end of a batch: the final reports, the summary on stderr (unless quiet); returns the
 // number of failed scenes.
 int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds);
 // The running executable (/proc/self/exe).
 std::string RunningExecutable();
-// Starts `exe render` for j in a child process (stderr to j.logPath, by default a log beside
-// the output).
+// Starts `exe render` for j in a child process (stderr to j.logPath, by default a new
+// `.prism-<pid>-XXXXXX.log.tmp` in the output's folder; never through a symbolic link).
 // dieWithParent: the child gets SIGTERM when this process dies (prism-mpi's ranks).
 void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
             bool dieWithParent = false);

@@ -1,5 +1,5 @@
 // prism bench: ceiling (render against Embree's traversal rate), knot (the benchmark scene),
-// suite (the whole performance table as Markdown). The work lives in src/bench.
+// suite (the whole performance table as Markdown). The work lives in src/tools/bench.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>

@@ -1,6 +1,7 @@
 #include "app/common.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -16,6 +17,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "core/output_file.h"
 #include "image/image_io.h"
 #include "image/tonemap.h"
 #include "scene/scene_description.h"
@@ -25,7 +27,9 @@ namespace prism {
 int RunGuarded(const std::function<int()> &fn) { return RunGuarded(fn, nullptr); }
 
 int RunGuarded(const std::function<int()> &fn, std::string *message) {
-    auto emit = [message](const std::string &line) {
+    // One line, whatever the message carries (a name with a newline or an escape sequence).
+    auto emit = [message](const std::string &text) {
+        std::string line = EscapeControlChars(text);
         if (message)
             *message = line;
         else
@@ -176,6 +180,8 @@ void CheckWritableDirectory(const std::string &dir) {
     std::error_code ec;
     if (!dir.empty() && !fs::is_directory(dir, ec))
         throw UsageError("output directory " + Quote(dir) + " does not exist");
+    // What killed writers left here long ago (core/output_file.h says when that is sure).
+    RemoveStaleTemporaries(dir);
     // access(W_OK) says yes to root on a read-only folder; creating a file tells the truth.
     fs::path probe =
         fs::path(dir.empty() ? "." : dir) / (".prism-write-test-" + std::to_string(::getpid()));
@@ -213,15 +219,29 @@ std::string ConfinementFolderFor(const ConfineOption &confine, const std::string
 }
 
 void CheckOutputConfinement(const std::string &out, const SceneEntity &film) {
+    namespace fs = std::filesystem;
     const std::string folder = ReadConfinementFolder();
     if (folder.empty()) return;
-    std::filesystem::path rel =
-        std::filesystem::path(CanonicalPath(out)).lexically_relative(folder);
-    if (!rel.empty() && *rel.begin() != "..") return;
     const Param *p = film.params.Find("filename");
-    throw SceneError(p ? p->loc : film.loc, "Film \"filename\" " + Quote(out) +
-                                                " is outside the confined folder " + Quote(folder) +
-                                                "; give the output with -o");
+    auto refuse = [&](const std::string &why) {
+        throw SceneError(p ? p->loc : film.loc, "Film \"filename\" " + Quote(out) + " " + why +
+                                                    "; give the output with -o");
+    };
+    // The folder the file goes into, with every symbolic link resolved, must lie inside the
+    // confined folder; the name itself must not be a link (nor anything but a regular file),
+    // even one pointing back inside: what the scene names is what gets replaced.
+    fs::path target(out);
+    fs::path dir =
+        CanonicalPath(target.parent_path().empty() ? "." : target.parent_path().string());
+    fs::path rel = (dir / target.filename()).lexically_relative(folder);
+    if (rel.empty() || *rel.begin() == ".." || target.filename().empty() ||
+        target.filename() == "." || target.filename() == "..")
+        refuse("is outside the confined folder " + Quote(folder));
+    struct stat st;
+    if (::lstat(out.c_str(), &st) == 0) {
+        if (S_ISLNK(st.st_mode)) refuse("is a symbolic link (confined outputs)");
+        if (!S_ISREG(st.st_mode)) refuse("exists and is not a regular file");
+    }
 }
 
 std::vector<std::string> NormalizeConfineArgs(int argc, char **argv) {

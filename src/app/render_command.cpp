@@ -210,6 +210,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     auto t1 = std::chrono::steady_clock::now();
     opts.estimateNoise = a.stats;
     s_->scene.emplace(BuildRenderScene(desc, opts, diag));
+    diag.Flush();  // "and N more warnings like ..." before the render's own lines
     const RenderScene &scene = *s_->scene;
     // Scene setup: meshes read (PLY), textures decoded, materials and lights built.
     s_->setupSeconds = SecondsSince(t1) - scene.buildSeconds;
@@ -308,7 +309,8 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                      "time: parse %.3fs, setup %.3fs, BVH build %.3fs, render %.3fs\n"
                      "rays: camera %llu, shadow %llu, reflection %llu, refraction %llu, "
                      "pass-through %llu, glossy %llu; %.2f Mrays/s\n",
-                     out.c_str(), scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
+                     EscapeControlChars(out).c_str(),  // a Film "filename" is the scene's
+                     scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
                      scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, stats.spp, scene.maxDepth,
                      a.precision.c_str(), scene.IntegratorName(), s_->parseSeconds,
                      s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,

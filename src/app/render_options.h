@@ -1,5 +1,5 @@
 // `prism render`'s options and the steps around the render loop, shared by `prism render` and
-// `prism-mpi render` (src/mpi), so both executables take the same options, load and build the
+// `prism-mpi render` (src/tools/mpi), so both executables take the same options, load and build the
 // scene the same way and write the same image.
 #pragma once
 

@@ -13,8 +13,8 @@
 
 #include "app/commands.h"
 #include "app/common.h"
-#include "app/output_file.h"
 #include "core/memory.h"
+#include "core/output_file.h"
 #include "scene/load_scene.h"
 #include "tools/study/study.h"
 #include "tools/study/study_report.h"

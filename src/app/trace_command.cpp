@@ -9,8 +9,8 @@
 
 #include "app/commands.h"
 #include "app/common.h"
-#include "app/output_file.h"
 #include "assembly/build_scene.h"
+#include "core/output_file.h"
 #include "scene/load_scene.h"
 
 namespace prism {

@@ -13,10 +13,10 @@
 
 #include "app/commands.h"
 #include "app/common.h"
-#include "app/output_file.h"
 #include "assembly/build_scene.h"
 #include "assembly/shape_factory.h"
 #include "core/file_io.h"
+#include "core/output_file.h"
 #include "image/image.h"
 #include "image/image_io.h"
 #include "render/renderer.h"

@@ -1,9 +1,6 @@
 // Atomic image writing: PNG through libpng, EXR through OpenEXR, PFM by hand, and the other
 // formats (HDR, TGA, BMP, JPEG) through the OpenImageIO module.
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/output_file.h"
 #include "image/image_io.h"
 #include "image/image_write_formats.h"
 #include "image/oiio_loader.h"
@@ -46,32 +44,10 @@ bool LookupOutputFormat(const std::string &ext, OutputFormat *f) {
     return true;
 }
 
-// Temporary name in the target's directory; the real extension stays last so OIIO picks the
-// same format. pid + counter keep concurrent writers (threads or processes) apart.
-fs::path TempPathFor(const fs::path &target) {
-    static std::atomic<uint64_t> counter{0};
-    std::string name = ".";
-    name += target.stem().string();
-    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
-    name += target.extension().string();
-    return target.parent_path() / name;
-}
-
-// Removes the temporary file unless released (after the rename succeeded).
-struct TempFileGuard {
-    fs::path path;
-    bool armed = true;
-    ~TempFileGuard() {
-        if (armed) {
-            std::error_code ec;
-            fs::remove(path, ec);
-        }
-    }
-};
-
-// Writes the image file `path` atomically: write(tmpName) fills a temporary file beside it,
-// which replaces `path` only once complete and is removed otherwise. Every failure (a missing
-// folder, the writer's std::runtime_error, the rename) is "cannot write image PATH: why".
+// Writes the image file `path` atomically: write(out) fills the temporary file beside it
+// (core/output_file.h), which replaces `path` only once complete and is removed otherwise.
+// Every failure (a missing folder, the writer's std::runtime_error, the fsync, close or
+// rename) is "cannot write image PATH: why".
 template <typename WriteFn>
 void WriteImageAtomically(const std::string &path, WriteFn &&write) {
     auto fail = [&](const std::string &why) -> std::runtime_error {
@@ -82,16 +58,13 @@ void WriteImageAtomically(const std::string &path, WriteFn &&write) {
     fs::path dir = target.parent_path();
     if (!dir.empty() && !fs::is_directory(dir, dirEc))
         throw fail("directory " + Quote(dir.string()) + " does not exist");
-    TempFileGuard tmp{TempPathFor(target)};
     try {
-        write(tmp.path.string());
+        AtomicOutputFile out(path);
+        write(out);
+        out.Commit();
     } catch (const std::runtime_error &e) {
         throw fail(e.what());
     }
-    std::error_code ec;
-    fs::rename(tmp.path, target, ec);
-    if (ec) throw fail(ec.message());
-    tmp.armed = false;
 }
 
 }  // namespace
@@ -161,24 +134,39 @@ void WriteImage(const std::string &path, const Image &img) {
         data = bytes.data();
     }
 
-    WriteImageAtomically(path, [&](const std::string &tmpName) {
+    WriteImageAtomically(path, [&](AtomicOutputFile &out) {
         if (ext == ".pfm") {
             // OIIO 2.4 reads PFM but cannot write it; the format is simple enough to write here.
-            WritePfm(tmpName, img.width, img.height, nOut, static_cast<const float *>(data));
+            WritePfm(out, img.width, img.height, nOut, static_cast<const float *>(data));
         } else if (ext == ".png") {
-            WritePng(tmpName, img.width, img.height, nOut, alpha,
-                     static_cast<const uint8_t *>(data));
+            WritePng(out, img.width, img.height, nOut, alpha, static_cast<const uint8_t *>(data));
         } else if (ext == ".exr") {
-            WriteExr(tmpName, img.width, img.height, nOut, alpha, static_cast<const float *>(data));
+            WriteExr(out, img.width, img.height, nOut, alpha, static_cast<const float *>(data));
         } else {
             const PrismOiioModule &module = OiioModule();
             bool isFloat = format.kind == OutKind::Float;
             const char *compression = ext == ".jpg" || ext == ".jpeg" ? "jpeg:95" : "";
             char err[512] = "";
-            if (!module.write(tmpName.c_str(), img.width, img.height, nOut, alpha ? nOut - 1 : -1,
-                              isFloat ? 1 : 0, data, isFloat ? "Linear" : "sRGB", compression, err,
-                              sizeof(err)))
-                throw std::runtime_error(err);
+            // Encoded in memory by OpenImageIO (which never opens a file here; `path` only
+            // names the format), then written through the checked temporary file.
+            struct Sink {
+                AtomicOutputFile *out;
+                std::string error;  // the write's failure (exceptions must not cross the module)
+            } sink{&out, {}};
+            auto write = [](void *ctx, const unsigned char *bytes, size_t size) -> int {
+                Sink *s = static_cast<Sink *>(ctx);
+                try {
+                    s->out->Write(bytes, size);
+                    return 1;
+                } catch (const std::runtime_error &e) {
+                    s->error = e.what();
+                    return 0;
+                }
+            };
+            if (!module.write(path.c_str(), img.width, img.height, nOut, alpha ? nOut - 1 : -1,
+                              isFloat ? 1 : 0, data, isFloat ? "Linear" : "sRGB", compression,
+                              write, &sink, err, sizeof(err)))
+                throw std::runtime_error(sink.error.empty() ? std::string(err) : sink.error);
         }
     });
 }
@@ -196,8 +184,8 @@ void WriteMultiChannelExr(const std::string &path, const Image &img,
         channels.push_back({img.channels >= 3 ? kNames[c] : (c == 0 ? "Y" : "A"),
                             img.pixels.data() + c, size_t(img.channels)});
     for (const NamedChannel &n : extra) channels.push_back({n.name, n.data, n.xStride});
-    WriteImageAtomically(path, [&](const std::string &tmpName) {
-        WriteExrChannels(tmpName, img.width, img.height, channels, attributes);
+    WriteImageAtomically(path, [&](AtomicOutputFile &out) {
+        WriteExrChannels(out, img.width, img.height, channels, attributes);
     });
 }
 

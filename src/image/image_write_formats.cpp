@@ -11,79 +11,56 @@
 #include <png.h>
 
 #include <bit>
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
-#include <fstream>
+#include <memory>
 #include <stdexcept>
 #include <vector>
+
+#include "core/output_file.h"
 
 namespace prism {
 
 namespace {
 
-std::string ErrnoText(const char *what, int err) {
-    return std::string(what) + ": " + std::strerror(err);
-}
-
-// Owns a FILE*; Close() reports a failed final flush (e.g. a full disk).
-class File {
-  public:
-    explicit File(const std::string &path) : f_(std::fopen(path.c_str(), "wb")) {
-        if (!f_) throw std::runtime_error(ErrnoText("could not create the file", errno));
-    }
-    ~File() {
-        if (f_) std::fclose(f_);
-    }
-    File(const File &) = delete;
-    File &operator=(const File &) = delete;
-    FILE *get() const { return f_; }
-    void Close() {
-        bool bad = std::ferror(f_) != 0;
-        int err = errno;
-        int rc = std::fclose(f_);
-        if (rc != 0) err = errno;
-        f_ = nullptr;
-        if (bad || rc != 0) throw std::runtime_error(ErrnoText("write error", err));
-    }
-
-  private:
-    FILE *f_;
-};
-
-// An OpenEXR output stream over a File that remembers a failed write, so that a failure inside
-// OutputFile's destructor (which writes the line offset table and swallows exceptions) is
-// still reported. It throws Iex exceptions, the only kind that destructor catches.
+// An OpenEXR output stream over the temporary file. AtomicOutputFile throws
+// std::runtime_error; OpenEXR's OutputFile destructor (which writes the line offset table)
+// catches only Iex exceptions, so failures are rethrown as IoExc and remembered, and still
+// reported after the destructor swallowed them.
 class ExrStream : public Imf::OStream {
   public:
-    ExrStream(FILE *f, const std::string &name) : Imf::OStream(name.c_str()), f_(f) {}
+    ExrStream(AtomicOutputFile &out, const std::string &name)
+        : Imf::OStream(name.c_str()), out_(out) {}
     void write(const char c[], int n) override {
-        if (std::fwrite(c, 1, size_t(n), f_) != size_t(n)) {
-            failed_ = true;
-            error_ = errno;
-            throw IEX_NAMESPACE::IoExc(ErrnoText("write error", error_));
-        }
+        Guard([&] { out_.Write(c, size_t(n)); });
     }
-    uint64_t tellp() override { return uint64_t(ftello(f_)); }
+    uint64_t tellp() override {
+        uint64_t pos = 0;
+        Guard([&] { pos = out_.Tell(); });
+        return pos;
+    }
     void seekp(uint64_t pos) override {
-        if (fseeko(f_, off_t(pos), SEEK_SET) != 0) {
-            failed_ = true;
-            error_ = errno;
-            throw IEX_NAMESPACE::IoExc(ErrnoText("seek error", error_));
-        }
+        Guard([&] { out_.Seek(pos); });
     }
-    bool failed() const { return failed_; }
-    int error() const { return error_; }
+    // The first failure, or "" when none.
+    const std::string &error() const { return error_; }
 
   private:
-    FILE *f_;
-    bool failed_ = false;
-    int error_ = 0;
+    template <typename F>
+    void Guard(F &&f) {
+        try {
+            f();
+        } catch (const std::runtime_error &e) {
+            if (error_.empty()) error_ = e.what();
+            throw IEX_NAMESPACE::IoExc(e.what());
+        }
+    }
+    AtomicOutputFile &out_;
+    std::string error_;
 };
 
 }  // namespace
 
-void WritePng(const std::string &path, int width, int height, int channels, bool alpha,
+void WritePng(AtomicOutputFile &out, int width, int height, int channels, bool alpha,
               const uint8_t *data) {
     png_image image;
     std::memset(&image, 0, sizeof(image));
@@ -96,28 +73,28 @@ void WritePng(const std::string &path, int width, int height, int channels, bool
     bool gray = channels - (alpha ? 1 : 0) == 1;
     image.format = gray ? (alpha ? PNG_FORMAT_GA : PNG_FORMAT_GRAY)
                         : (alpha ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB);
-    File file(path);
+    // Encoded in memory (at most the pixels' size plus zlib's overhead: the film's budget
+    // counts an encoded copy), then written through the checked temporary file. The buffer
+    // is left uninitialized so the pages the encoder does not reach are never touched.
+    png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(image);
+    std::unique_ptr<unsigned char[]> buffer(new unsigned char[size]);
     // The simplified API writes 8-bit values as sRGB-encoded, straight alpha, tagged sRGB.
-    if (!png_image_write_to_stdio(&image, file.get(), 0, data, png_int_32(width * channels),
-                                  nullptr)) {
-        int err = errno;
-        std::string msg = std::ferror(file.get()) ? ErrnoText("write error", err)
-                          : image.message[0]      ? std::string(image.message)
-                                                  : std::string("libpng error");
+    if (!png_image_write_to_memory(&image, buffer.get(), &size, 0, data,
+                                   png_int_32(width * channels), nullptr)) {
+        std::string msg = image.message[0] ? std::string(image.message) : "libpng error";
         png_image_free(&image);
         throw std::runtime_error(msg);
     }
-    file.Close();
+    out.Write(buffer.get(), size);
 }
 
-void WriteExr(const std::string &path, int width, int height, int channels, bool alpha,
+void WriteExr(AtomicOutputFile &out, int width, int height, int channels, bool alpha,
               const float *data) {
     static const char *const kGray[] = {"Y", "A"};
     static const char *const kColor[] = {"R", "G", "B", "A"};
     bool gray = channels - (alpha ? 1 : 0) == 1;
     const char *const *names = gray ? kGray : kColor;
-    File file(path);
-    ExrStream stream(file.get(), path);
+    ExrStream stream(out, out.TemporaryPath());
     try {
         Imf::Header header(width, height);
         header.compression() = Imf::ZIP_COMPRESSION;
@@ -134,22 +111,20 @@ void WriteExr(const std::string &path, int width, int height, int channels, bool
             char *base = reinterpret_cast<char *>(const_cast<float *>(data + c));
             fb.insert(names[c], Imf::Slice(Imf::FLOAT, base, xStride, xStride * size_t(width)));
         }
-        Imf::OutputFile out(stream, header);
-        out.setFrameBuffer(fb);
-        out.writePixels(height);
+        Imf::OutputFile file(stream, header);
+        file.setFrameBuffer(fb);
+        file.writePixels(height);
     } catch (const std::exception &e) {
-        if (stream.failed()) throw std::runtime_error(ErrnoText("write error", stream.error()));
+        if (!stream.error().empty()) throw std::runtime_error(stream.error());
         throw std::runtime_error(std::string("OpenEXR: ") + e.what());
     }
-    if (stream.failed()) throw std::runtime_error(ErrnoText("write error", stream.error()));
-    file.Close();
+    if (!stream.error().empty()) throw std::runtime_error(stream.error());
 }
 
-void WriteExrChannels(const std::string &path, int width, int height,
+void WriteExrChannels(AtomicOutputFile &out, int width, int height,
                       const std::vector<ExrChannel> &channels,
                       const std::vector<std::pair<std::string, std::string>> &attributes) {
-    File file(path);
-    ExrStream stream(file.get(), path);
+    ExrStream stream(out, out.TemporaryPath());
     try {
         Imf::Header header(width, height);
         header.compression() = Imf::ZIP_COMPRESSION;
@@ -163,32 +138,27 @@ void WriteExrChannels(const std::string &path, int width, int height,
             char *base = reinterpret_cast<char *>(const_cast<float *>(c.data));
             fb.insert(c.name, Imf::Slice(Imf::FLOAT, base, xStride, xStride * size_t(width)));
         }
-        Imf::OutputFile out(stream, header);
-        out.setFrameBuffer(fb);
-        out.writePixels(height);
+        Imf::OutputFile file(stream, header);
+        file.setFrameBuffer(fb);
+        file.writePixels(height);
     } catch (const std::exception &e) {
-        if (stream.failed()) throw std::runtime_error(ErrnoText("write error", stream.error()));
+        if (!stream.error().empty()) throw std::runtime_error(stream.error());
         throw std::runtime_error(std::string("OpenEXR: ") + e.what());
     }
-    if (stream.failed()) throw std::runtime_error(ErrnoText("write error", stream.error()));
-    file.Close();
+    if (!stream.error().empty()) throw std::runtime_error(stream.error());
 }
 
-void WritePfm(const std::string &path, int width, int height, int channels, const float *data) {
-    std::ofstream f(path, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error("could not create the file");
-    f << (channels == 1 ? "Pf" : "PF") << "\n" << width << " " << height << "\n-1.0\n";
+void WritePfm(AtomicOutputFile &out, int width, int height, int channels, const float *data) {
+    out.Write(std::string(channels == 1 ? "Pf" : "PF") + "\n" + std::to_string(width) + " " +
+              std::to_string(height) + "\n-1.0\n");
     size_t rowValues = size_t(width) * size_t(channels);
     std::vector<uint32_t> row(rowValues);
     for (int y = height - 1; y >= 0; --y) {
         std::memcpy(row.data(), data + size_t(y) * rowValues, rowValues * sizeof(float));
         if constexpr (std::endian::native == std::endian::big)
             for (uint32_t &v : row) v = __builtin_bswap32(v);
-        f.write(reinterpret_cast<const char *>(row.data()),
-                std::streamsize(rowValues * sizeof(float)));
+        out.Write(row.data(), rowValues * sizeof(float));
     }
-    f.close();
-    if (!f) throw std::runtime_error("write error");
 }
 
 }  // namespace prism

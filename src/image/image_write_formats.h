@@ -1,6 +1,7 @@
-// The encoders behind WriteImage that need no OpenImageIO. Each writes `path` (a temporary
-// file; WriteImage renames it) from interleaved pixels, top row first, and throws
-// std::runtime_error with a short reason on any failure, including a failed final flush.
+// The encoders behind WriteImage that need no OpenImageIO. Each writes into `out` (the
+// temporary file WriteImage commits; core/output_file.h) from interleaved pixels, top row
+// first, and throws std::runtime_error with a short reason on any failure (a failed write is
+// AtomicOutputFile's "write error: REASON").
 #pragma once
 
 #include <cstdint>
@@ -10,14 +11,16 @@
 
 namespace prism {
 
+class AtomicOutputFile;
+
 // 8-bit PNG through libpng: 1 (gray), 2 (gray + alpha), 3 (RGB) or 4 (RGBA) channels of
 // already sRGB-encoded values with straight alpha; tagged sRGB.
-void WritePng(const std::string &path, int width, int height, int channels, bool alpha,
+void WritePng(AtomicOutputFile &out, int width, int height, int channels, bool alpha,
               const uint8_t *data);
 
 // OpenEXR through the OpenEXR library: 32-bit float channels Y, YA, RGB or RGBA, ZIP
 // compression, scanlines, increasing y.
-void WriteExr(const std::string &path, int width, int height, int channels, bool alpha,
+void WriteExr(AtomicOutputFile &out, int width, int height, int channels, bool alpha,
               const float *data);
 
 // One float channel of a multi-channel EXR: `name` ("R", "P.X", "Z", ...), its first value and
@@ -28,12 +31,12 @@ struct ExrChannel {
     size_t xStride = 1;
 };
 // OpenEXR with any named float channels (ZIP, scanlines) and string attributes in the header.
-void WriteExrChannels(const std::string &path, int width, int height,
+void WriteExrChannels(AtomicOutputFile &out, int width, int height,
                       const std::vector<ExrChannel> &channels,
                       const std::vector<std::pair<std::string, std::string>> &attributes);
 
 // PFM: "PF" (RGB) or "Pf" (gray), size, scale (negative = little-endian), then float rows from
 // the bottom of the image to the top.
-void WritePfm(const std::string &path, int width, int height, int channels, const float *data);
+void WritePfm(AtomicOutputFile &out, int width, int height, int channels, const float *data);
 
 }  // namespace prism

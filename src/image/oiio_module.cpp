@@ -9,6 +9,7 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <vector>
 
 struct PrismOiioInput {
     std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;  // null when reading a file
@@ -120,8 +121,9 @@ void Close(PrismOiioInput *h) {
     delete h;
 }
 
-int Write(const char *path, int width, int height, int channels, int alphaChannel, int isFloat,
-          const void *data, const char *colorSpace, const char *compression, char *err,
+int Write(const char *name, int width, int height, int channels, int alphaChannel, int isFloat,
+          const void *data, const char *colorSpace, const char *compression,
+          int (*sink)(void *ctx, const unsigned char *bytes, size_t size), void *sinkCtx, char *err,
           size_t errSize) {
     try {
         OIIO::TypeDesc type = isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
@@ -130,12 +132,21 @@ int Write(const char *path, int width, int height, int channels, int alphaChanne
         spec.attribute("oiio:UnassociatedAlpha", 1);  // do not let OIIO un-premultiply
         spec.attribute("oiio:ColorSpace", colorSpace);
         if (compression && *compression) spec.attribute("Compression", compression);
-        auto out = OIIO::ImageOutput::create(path);
+        auto out = OIIO::ImageOutput::create(name);
         if (!out) {
             ReportError(static_cast<OIIO::ImageOutput *>(nullptr), err, errSize);
             return 0;
         }
-        if (!out->open(path, spec)) {
+        // Into memory: the writers Prism uses (HDR, TGA, BMP, JPEG) all take an IOProxy, so
+        // OpenImageIO never opens a file by name (Prism writes the bytes through its own
+        // checked temporary file) and a full disk cannot fail inside a codec library.
+        if (!out->supports("ioproxy")) {
+            CopyError("OpenImageIO cannot encode this format in memory", err, errSize);
+            return 0;
+        }
+        std::vector<unsigned char> bytes;
+        OIIO::Filesystem::IOVecOutput proxy(bytes);
+        if (!out->set_ioproxy(&proxy) || !out->open(name, spec)) {
             ReportError(out.get(), err, errSize);
             return 0;
         }
@@ -148,7 +159,7 @@ int Write(const char *path, int width, int height, int channels, int alphaChanne
             ReportError(out.get(), err, errSize);
             return 0;
         }
-        return 1;
+        return sink(sinkCtx, bytes.data(), bytes.size());
     } catch (const std::exception &e) {
         CopyError(e.what(), err, errSize);
         return 0;

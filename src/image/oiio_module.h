@@ -10,7 +10,7 @@
 extern "C" {
 
 // Bumped whenever this struct or a signature changes; the loader rejects other versions.
-#define PRISM_OIIO_MODULE_VERSION 1
+#define PRISM_OIIO_MODULE_VERSION 2
 
 struct PrismOiioSpec {
     int width, height, depth, nchannels;
@@ -35,12 +35,15 @@ struct PrismOiioModule {
     // Reads channels [0, nchannels) of the whole image as interleaved float. Returns 0 on failure.
     int (*readFloat)(PrismOiioInput *in, int nchannels, float *out, char *err, size_t errSize);
     void (*close)(PrismOiioInput *in);
-    // Writes width x height x channels values (float when isFloat, else uint8), top row first,
-    // straight alpha in channel `alphaChannel` (-1: none). The format follows the extension of
-    // `path`; `colorSpace` ("Linear" or "sRGB") and `compression` (may be empty) are passed to
-    // OpenImageIO as they are. Returns 0 on failure.
-    int (*write)(const char *path, int width, int height, int channels, int alphaChannel,
+    // Encodes width x height x channels values (float when isFloat, else uint8), top row
+    // first, straight alpha in channel `alphaChannel` (-1: none), in memory, and hands the
+    // encoded file to `sink` (which returns 0 when it could not store it). No file is opened:
+    // the format follows the extension of `name`. `colorSpace` ("Linear" or "sRGB") and
+    // `compression` (may be empty) are passed to OpenImageIO as they are. Returns 0 on
+    // failure (`err` filled unless the sink failed).
+    int (*write)(const char *name, int width, int height, int channels, int alphaChannel,
                  int isFloat, const void *data, const char *colorSpace, const char *compression,
+                 int (*sink)(void *ctx, const unsigned char *bytes, size_t size), void *sinkCtx,
                  char *err, size_t errSize);
 };
 

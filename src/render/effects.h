@@ -1,5 +1,5 @@
 // The effect set: which effects a scene calls for, each with the reason (and the location of
-// the directive) that turned it on. Built while the scene is built (build/), printed by
+// the directive) that turned it on. Built while the scene is assembled (assembly/), printed by
 // `prism info`, and used by the renderer to run a kernel specialized for exactly these effects.
 #pragma once
 

@@ -3,12 +3,16 @@
 // accessor is bounds-checked here because tinygltf does not validate them.
 #include "scene/gltf_reader.h"
 
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "core/file_io.h"
 #include "core/memory.h"
@@ -40,7 +44,30 @@ struct ReadBudget {
     std::optional<MemoryBudgetError> refused;
     // A buffer or image the read confinement (--confine) refused, and why.
     std::string confinedPath, confinedReason;
+    // The first buffer or image that could not be read otherwise (a FIFO, a device), and why.
+    std::string failedPath, failedReason;
+    // The glTF's JSON nests deeper than kMaxJsonDepth: refused before tinygltf parses it.
+    std::optional<SceneError> tooDeep;
 };
+
+// tinygltf's own FileExists probes every candidate path of a URI with fopen(path, "rb"): a
+// FIFO blocks there forever, and a file outside the --confine folder is opened before
+// ReadWholeFileWithinBudget could refuse it. This one opens nothing. A path the confinement
+// refuses "exists", so that the read below reports the refusal at the URI.
+bool FileExistsWithoutOpening(const std::string &path, void *) {
+    if (!ReadConfinementRefusal(path).empty()) return true;
+    struct stat st;
+    return ::stat(path.c_str(), &st) == 0;
+}
+
+// No expansion (tinygltf's default does none either: no `~`, no environment variables).
+std::string KeepFilePath(const std::string &path, void *) { return path; }
+
+bool RefuseToWrite(std::string *err, const std::string &, const std::vector<unsigned char> &,
+                   void *) {
+    if (err) *err += "Prism does not write glTF files\n";
+    return false;
+}
 
 // Replaces tinygltf's stb_image decoding: images without an external URI (data URIs and .glb
 // bufferViews) keep their encoded bytes in Image::image; external files are referenced by
@@ -53,6 +80,49 @@ bool KeepEncodedBytes(tinygltf::Image *image, const int, std::string *, std::str
         b->budget.Release(uint64_t(size));
     if (image->uri.empty() && bytes && size > 0) image->image.assign(bytes, bytes + size);
     return true;
+}
+
+// How deep JSON arrays and objects may nest in a glTF file. tinygltf turns JSON values (the
+// "extras" of anything) into its own Value recursively, so 20,000 nested brackets in a 40 KB
+// file overflowed the stack; real files nest about a dozen levels.
+constexpr int kMaxJsonDepth = 512;
+
+// The offset of the first '[' or '{' in `json` nested deeper than kMaxJsonDepth (brackets in
+// strings do not count), or npos.
+size_t TooDeepJson(std::string_view json) {
+    int depth = 0;
+    bool inString = false;
+    for (size_t i = 0; i < json.size(); ++i) {
+        char c = json[i];
+        if (inString) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth) return i;
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return std::string_view::npos;
+}
+
+// The JSON of a .gltf file (the whole file) or of a .glb (its first chunk, when it is JSON),
+// and where that JSON starts in the file.
+std::string_view JsonText(const std::vector<unsigned char> &file, bool glb, size_t *start) {
+    std::string_view all(reinterpret_cast<const char *>(file.data()), file.size());
+    *start = 0;
+    if (!glb) return all;
+    auto u32 = [&](size_t at) {
+        return uint32_t(file[at]) | uint32_t(file[at + 1]) << 8 | uint32_t(file[at + 2]) << 16 |
+               uint32_t(file[at + 3]) << 24;
+    };
+    if (file.size() < 20 || u32(16) != 0x4E4F534Au) return {};  // tinygltf reports it
+    *start = 20;
+    return all.substr(20, std::min<size_t>(u32(12), file.size() - 20));
 }
 
 // tinygltf reads the .gltf/.glb file, every external buffer and every external image whole.
@@ -70,10 +140,37 @@ bool ReadWholeFileWithinBudget(std::vector<unsigned char> *out, std::string *err
             if (error.tooLarge) b->budget.Check(error.size, what, FileLoc{b->topFile});
             if (error.refused && b->confinedPath.empty())
                 b->confinedPath = path, b->confinedReason = error.reason;
+            else if (!error.refused && !error.tooLarge && path != b->topFile &&
+                     b->failedPath.empty())
+                b->failedPath = path, b->failedReason = error.reason;
             if (err) *err += (error.tooLarge ? "file grew while read" : error.reason) + "\n";
             return false;
         }
         b->budget.Charge(out->size(), what, FileLoc{b->topFile});
+        if (path == b->topFile) {
+            const bool glb = LowerExtension(path) == ".glb";
+            size_t start = 0;
+            std::string_view json = JsonText(*out, glb, &start);
+            size_t at = TooDeepJson(json);
+            if (at != std::string_view::npos) {
+                // A .gltf is text: line and column; a .glb's JSON chunk is one long line.
+                FileLoc loc{path};
+                if (!glb) {
+                    loc.line = 1 + int(std::count(json.begin(), json.begin() + long(at), '\n'));
+                    size_t lineStart = json.rfind('\n', at);
+                    loc.column =
+                        int(at - (lineStart == std::string_view::npos ? 0 : lineStart + 1)) + 1;
+                }
+                b->tooDeep = SceneError(
+                    loc,
+                    "JSON arrays and objects nest deeper than " + std::to_string(kMaxJsonDepth) +
+                        " levels" +
+                        (glb ? " (at byte " + std::to_string(start + at) + ")" : std::string()));
+                if (err) *err += "JSON nested too deeply\n";
+                out->clear();
+                return false;
+            }
+        }
     } catch (const MemoryBudgetError &e) {
         if (!b->refused) b->refused = e;
         if (err) *err += e.Message() + "\n";
@@ -398,8 +495,10 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
     tinygltf::TinyGLTF ctx;
     ReadBudget budget{memory, path, std::nullopt};
     ctx.SetImageLoader(&KeepEncodedBytes, &budget);
-    ctx.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath,
-                        &ReadWholeFileWithinBudget, &tinygltf::WriteWholeFile, &budget});
+    // Every file tinygltf touches goes through Prism's reader (core/file_io.h): no FIFO or
+    // device is opened, and --confine holds before anything is opened.
+    ctx.SetFsCallbacks({&FileExistsWithoutOpening, &KeepFilePath, &ReadWholeFileWithinBudget,
+                        &RefuseToWrite, &budget});
     std::string err, warn;
     bool ok;
     try {
@@ -409,10 +508,15 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
         throw SceneError(loc, std::string("cannot parse glTF file: ") + e.what());
     }
     if (budget.refused) throw *budget.refused;
+    if (budget.tooDeep) throw *budget.tooDeep;
     if (!budget.confinedPath.empty())
         throw SceneError(
             gltf_internal::LocateUri(path, budget.confinedPath),
             "cannot read file " + Quote(budget.confinedPath) + ": " + budget.confinedReason);
+    if (!budget.failedPath.empty())
+        throw SceneError(
+            gltf_internal::LocateUri(path, budget.failedPath),
+            "cannot read file " + Quote(budget.failedPath) + ": " + budget.failedReason);
     for (const std::string &w : MessageLines(warn)) diag.Warn(loc, w);
     if (!ok) {
         std::vector<std::string> errs = MessageLines(err);

@@ -1,5 +1,6 @@
 #include "scene/scene_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -368,6 +369,31 @@ void SceneBuilder::Texture(const std::string &name, const std::string &kind,
     t.params = Params(std::move(params));
     t.loc = loc;
     t.worldFromTexture = ctm_;
+    // The textures it refers to are defined already (by name, in either namespace: the
+    // parameter decides which, and the larger cost is the safe one).
+    TextureCost cost;
+    for (const Param &p : t.params.Params()) {
+        if (p.type != ParamType::Texture) continue;
+        for (const std::string &ref : p.strings) {
+            for (const auto *names : {&floatTextures_, &spectrumTextures_}) {
+                auto it = names->find(ref);
+                if (it == names->end()) continue;
+                const TextureCost &c = textureCosts_[size_t(it->second)];
+                cost.depth = std::max(cost.depth, c.depth + 1);
+                cost.lookups = std::min(cost.lookups + c.lookups, kMaxTextureLookups + 1);
+            }
+        }
+    }
+    if (cost.depth > kMaxTextureDepth)
+        throw SceneError(loc, "texture " + Quote(t.name) +
+                                  ": textures refer to textures more than " +
+                                  std::to_string(kMaxTextureDepth) + " levels deep");
+    if (cost.lookups > kMaxTextureLookups)
+        throw SceneError(loc, "texture " + Quote(t.name) +
+                                  ": one lookup would evaluate more than " +
+                                  std::to_string(kMaxTextureLookups) +
+                                  " textures (textures referred to more than once multiply)");
+    textureCosts_.push_back(cost);
     Namespace ns = t.isFloat ? Namespace::FloatTexture : Namespace::SpectrumTexture;
     if (Names(ns).count(t.name)) diag_.Warn(loc, "texture " + Quote(t.name) + " redefined");
     DefineNamed(ns, t.name, int(scene_.textures.size()));
@@ -464,6 +490,10 @@ void SceneBuilder::CSGBegin(const std::string &op, const FileLoc &loc) {
     if (currentObject_)
         throw SceneError(loc, "CSGBegin inside ObjectBegin " + Quote(currentObject_->name) +
                                   " is not supported");
+    if (csgStack_.size() >= size_t(kMaxCsgDepth))
+        throw SceneError(loc, "CSG nodes nest more than " + std::to_string(kMaxCsgDepth) +
+                                  " levels deep (outermost CSGBegin at " +
+                                  csgStack_.front().loc.ToString() + ")");
     CsgDesc node;
     node.op = op;
     node.loc = loc;

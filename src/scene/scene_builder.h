@@ -5,6 +5,7 @@
 // ObjectBegin/End definitions; typed parameters are converted by MakeParamSet (paramset.h).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -13,6 +14,15 @@
 #include "scene/pbrt_parser.h"
 
 namespace prism {
+
+// How deep scenes may nest what is later walked recursively (the build, the destructors and
+// every ray's CSG crossings and texture lookups): each limit is a SceneError at the directive
+// that goes past it. Real scenes stay far below; a small file past them overflowed the stack.
+inline constexpr int kMaxCsgDepth = 256;      // CSGBegin inside CSGBegin
+inline constexpr int kMaxTextureDepth = 256;  // a texture referring to a texture referring ...
+// Textures one lookup may evaluate, counting a texture each time it is reached: a chain that
+// refers twice to the texture before it doubles at each step (2^100 evaluations per lookup).
+inline constexpr uint64_t kMaxTextureLookups = 65536;
 
 class SceneBuilder final : public PbrtTarget {
   public:
@@ -148,6 +158,13 @@ class SceneBuilder final : public PbrtTarget {
     std::unordered_map<std::string, std::pair<prism::Transform, prism::Transform>> namedCoordSys_;
     std::optional<ObjectDesc> currentObject_;
     std::vector<CsgDesc> csgStack_;  // open CSGBegin nodes, innermost last
+    // Per texture (scene_.textures' index): the longest chain of textures it refers to, itself
+    // included, and how many textures one lookup of it evaluates at most (kMaxTexture*).
+    struct TextureCost {
+        int depth = 1;
+        uint64_t lookups = 1;
+    };
+    std::vector<TextureCost> textureCosts_;
     std::unordered_map<std::string, RGB> spdCache_;
     // Named media are global, as in pbrt-v3 (not scoped by AttributeBegin/End).
     std::unordered_map<std::string, int> namedMedia_;

@@ -412,10 +412,19 @@ TEST(Batch, InterruptKeepsFinishedImagesAndReport) {
               (char *)nullptr);
         _exit(127);
     }
-    // The slow render has started once its log exists (the fast image is finished by then).
+    // The slow render has started once the fast one is reported finished (its log removed
+    // before that) and a render log exists again.
+    auto slowStarted = [&] {
+        std::error_code ec;
+        if (!HasStatus(out, "fast.pbrt", "ok")) return false;
+        for (const auto &e : fs::directory_iterator(out, ec)) {
+            const std::string name = e.path().filename().string();
+            if (name.size() > 8 && name.substr(name.size() - 8) == ".log.tmp") return true;
+        }
+        return false;
+    };
     auto start = std::chrono::steady_clock::now();
-    while (!fs::exists(out / "slow.png.log.tmp") &&
-           std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
+    while (!slowStarted() && std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     EXPECT_TRUE(fs::exists(out / "fast.png"));
     std::this_thread::sleep_for(std::chrono::milliseconds(500));

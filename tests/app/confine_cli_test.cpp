@@ -8,7 +8,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "app/run_prism.h"
@@ -239,6 +242,161 @@ TEST(Confine, FilmFilenameOutsideTheFolderIsRefused) {
     r = RunPrism("render scene/evil.pbrt -q", root);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(fs::exists(root / "stolen.png"));
+}
+
+// Every file in `dir` (recursively, links not followed) with its contents, or its link target
+// for a symbolic link: what a test compares before and after a run.
+std::map<std::string, std::string> Snapshot(const fs::path &dir) {
+    std::map<std::string, std::string> files;
+    for (const auto &e : fs::recursive_directory_iterator(dir)) {
+        std::string name = e.path().lexically_relative(dir).string();
+        if (e.is_symlink())
+            files[name] = "-> " + fs::read_symlink(e.path()).string();
+        else if (e.is_regular_file())
+            files[name] = ReadFile(e.path());
+    }
+    return files;
+}
+
+// An upload that ships symbolic links where Prism writes (issue 25): the temporary names the
+// old writers used (`.NAME.tmp-PID-N.EXT`, fopen "wb" following the link), the final name, the
+// batch's render log and its reports. Nothing outside the folder may change. The run is
+// `exec`ed from the shell that planted the links, so PID is the prism process's own.
+TEST(Confine, OutputSymlinksAreNeverWrittenThrough) {
+    fs::path root = TempDir("write_links");
+    fs::create_directories(root / "outside");
+    fs::create_directories(root / "scene");
+    std::ofstream(root / "outside/victim.txt") << "precious";
+    std::ofstream(root / "outside/other.txt") << "also precious";
+    const fs::path sc = root / "scene";
+    auto film = [](const std::string &name) {
+        std::string head = kPbrtHead;
+        head.replace(head.find("Film \"image\""), 12,
+                     "Film \"image\" \"string filename\" \"" + name + "\"");
+        return head + "Shape \"sphere\"\n";
+    };
+    const auto before = Snapshot(root / "outside");
+    // Links named as the old temporaries of this process, for the image and its counters.
+    const std::string plant =
+        "for n in 0 1 2 3; do ln -s ../outside/victim.txt .out.tmp-$$-$n.png; "
+        "ln -s ../outside/victim.txt .out.tmp-$$-$n.exr; done; exec";
+
+    // 1. The image's temporary name: the render succeeds and writes out.png itself.
+    std::ofstream(sc / "evil.pbrt") << film("out.png");
+    RunResult r = RunPrism("render evil.pbrt --confine -q", sc, plant);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(Snapshot(root / "outside"), before);
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(sc / "out.png")));
+    EXPECT_EQ(ReadFile(sc / "out.png").substr(1, 3), "PNG");
+    for (const auto &e : fs::directory_iterator(sc))  // no temporary of Prism's left
+        EXPECT_EQ(e.path().filename().string().rfind(".prism-", 0), std::string::npos) << e.path();
+    // The same through -o (not confined: the caller's name, still never written through).
+    r = RunPrism("render evil.pbrt -o out.exr -q", sc, plant);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(Snapshot(root / "outside"), before);
+
+    // 2. The final name is a link: refused at the parameter under --confine, whether it
+    // points outside or back inside the folder.
+    fs::create_symlink("../outside/victim.txt", sc / "away.png");
+    std::ofstream(sc / "keep.png") << "inside";
+    fs::create_symlink("keep.png", sc / "back.png");
+    for (const char *name : {"away.png", "back.png"}) {
+        SCOPED_TRACE(name);
+        std::ofstream(sc / "link.pbrt") << film(name);
+        r = RunPrism("render link.pbrt --confine -q", sc);
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_NE(r.err.find("link.pbrt:3:"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+        EXPECT_TRUE(fs::is_symlink(sc / name));
+    }
+    EXPECT_EQ(ReadFile(sc / "keep.png"), "inside");
+    EXPECT_EQ(Snapshot(root / "outside"), before);
+    // A folder on the way that is a link out of the upload.
+    fs::create_symlink("../outside", sc / "sub");
+    std::ofstream(sc / "sub.pbrt") << film("sub/out.png");
+    r = RunPrism("render sub.pbrt --confine -q", sc);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("sub.pbrt:3:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("outside the confined folder"), std::string::npos) << r.err;
+    EXPECT_EQ(Snapshot(root / "outside"), before);
+
+    // 3. A batch whose output folder lies in the upload: the render log's old name
+    // (`OUTPUT.log.tmp`, freopen "w") and the reports' temporaries are links out.
+    fs::create_directories(root / "up/out");
+    std::ofstream(root / "up/s.pbrt") << kPbrtHead << "Shape \"sphere\"\n";
+    fs::create_symlink("../../outside/other.txt", root / "up/out/up_s.png.log.tmp");
+    const std::string plantReports =
+        "for n in 0 1 2 3 4 5 6 7; do ln -s ../../outside/victim.txt "
+        "up/out/.report.json.tmp-$$-$n; "
+        "ln -s ../../outside/victim.txt up/out/.summary.txt.tmp-$$-$n; done; exec";
+    std::ofstream(root / "up/list.txt") << "s.pbrt\n";
+    r = RunPrism("batch up/list.txt -o up/out --confine -q", root, plantReports);
+    EXPECT_EQ(r.exitCode, 0) << r.err << ReadFile(root / "up/out/report.json");
+    EXPECT_EQ(Snapshot(root / "outside"), before);
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(root / "up/out/report.json")));
+    EXPECT_NE(ReadFile(root / "up/out/report.json").find("\"status\": \"ok\""), std::string::npos);
+}
+
+// The fault library (tests/app/fault_shim) with `faults` ("NAME=value ...").
+std::string Faults(const std::string &faults) {
+    return "ASAN_OPTIONS=\"${ASAN_OPTIONS}:verify_asan_link_order=0\" LD_PRELOAD='" +
+           std::string(PRISM_FAULT_SHIM) + "' " + faults;
+}
+
+// A glTF buffer or image URI naming a FIFO (issue 25): tinygltf's own file-exists probe
+// opened each candidate with fopen, which waits for a writer forever, in render, info,
+// validate and batch alike. Each command must fail at once with the URI's location. `timeout`
+// turns a regression into a failure (exit 124) instead of a hung test.
+TEST(Confine, GltfUriNamingAFifoFailsFastAtTheUri) {
+    fs::path dir = TempDir("gltf_fifo");
+    ASSERT_EQ(::mkfifo((dir / "fifo.bin").c_str(), 0600), 0);
+    ASSERT_EQ(::mkfifo((dir / "fifo.png").c_str(), 0600), 0);
+    std::ofstream(dir / "b.bin", std::ios::binary) << TriangleBuffer();
+    std::ofstream(dir / "buffer.gltf") << Gltf("fifo.bin");
+    std::ofstream(dir / "image.gltf") << Gltf("b.bin", "fifo.png");
+    const std::string timeout = "timeout -k 5 60";
+    for (const char *command : {"render", "info", "validate"}) {
+        for (auto [scene, at] : {std::pair{"buffer.gltf", "buffer.gltf:4:"},
+                                 std::pair{"image.gltf", "image.gltf:5:"}}) {
+            SCOPED_TRACE(std::string(command) + " " + scene);
+            const std::string quiet = std::string(command) == "info" ? "" : " -q";
+            RunResult r = RunPrism(std::string(command) + " " + scene + quiet, dir, timeout);
+            EXPECT_EQ(r.exitCode, 2) << r.err;
+            EXPECT_NE(r.err.find(std::string(at)), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+        }
+    }
+    std::ofstream(dir / "list.txt") << "buffer.gltf\nimage.gltf\n";
+    RunResult r = RunPrism("batch list.txt -o out -q", dir, timeout);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    std::string report = ReadFile(dir / "out/report.json");
+    EXPECT_NE(report.find("buffer.gltf:4:"), std::string::npos) << report;
+    EXPECT_NE(report.find("image.gltf:5:"), std::string::npos) << report;
+}
+
+// Under --confine a glTF URI outside the folder is refused before anything opens it: the
+// fault library ends the process (exit 99) if any open or fopen names the file.
+TEST(Confine, GltfUriOutsideTheFolderIsNeverOpened) {
+    fs::path root = TempDir("gltf_unopened");
+    fs::create_directories(root / "outside");
+    fs::create_directories(root / "scene");
+    std::ofstream(root / "outside/secret.bin", std::ios::binary) << TriangleBuffer();
+    fs::copy_file(Source + "/tests/golden/whitted_64x48.exr", root / "outside/secret.exr");
+    std::ofstream(root / "scene/b.bin", std::ios::binary) << TriangleBuffer();
+    std::ofstream(root / "scene/buffer.gltf") << Gltf("../outside/secret.bin");
+    std::ofstream(root / "scene/image.gltf") << Gltf("b.bin", "../outside/secret.exr");
+    for (auto [scene, at, file] : {std::tuple{"buffer.gltf", "buffer.gltf:4:", "secret.bin"},
+                                   std::tuple{"image.gltf", "image.gltf:5:", "secret.exr"}}) {
+        for (const char *command : {"render", "info", "validate"}) {
+            SCOPED_TRACE(std::string(command) + " " + scene);
+            const std::string quiet = std::string(command) == "info" ? "" : " -q";
+            RunResult r = RunPrism(std::string(command) + " scene/" + scene + " --confine" + quiet,
+                                   root, Faults("PRISM_FAULT_FORBID_OPEN=" + std::string(file)));
+            EXPECT_EQ(r.exitCode, 2) << r.err;
+            EXPECT_NE(r.err.find(std::string(at)), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find("outside the confined folder"), std::string::npos) << r.err;
+        }
+    }
 }
 
 TEST(Confine, BatchConfinesEachSceneToItsOwnFolder) {

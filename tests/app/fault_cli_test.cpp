@@ -122,29 +122,40 @@ void ExpectDiskFullKeepsOldImage(const fs::path &dir, const fs::path &outDir,
     EXPECT_EQ(OtherFiles(outDir, name) - (fs::exists(outDir / "filler") ? 1 : 0), 0);
 }
 
+// Every format Prism writes (issue 25: TGA and BMP exited 0 with an empty file in place of the
+// old one, JPEG exited from inside libjpeg leaving its temporary file).
+const char *const kOutputFormats[] = {"png", "exr", "pfm", "hdr", "tga", "bmp", "jpg", "jpeg"};
+
 TEST(Faults, DiskFullWhileWritingKeepsTheOldImage) {
     fs::path dir = TempDir("full");
     std::ofstream(dir / "s.pbrt") << kScene;
     // The LD_PRELOAD library: writes fail with ENOSPC after 100 bytes.
-    for (const char *fmt : {"png", "exr"}) {
+    for (const char *fmt : kOutputFormats) {
         const std::string format = fmt;
         SCOPED_TRACE(format);
         fs::create_directories(dir / format);
         ExpectDiskFullKeepsOldImage(dir, dir / format, Faults("PRISM_FAULT_ENOSPC_AFTER=100"),
                                     format);
     }
-    // A real full file system, where a tmpfs can be mounted.
+    // A real full file system, where a tmpfs can be mounted: one folder per format, each with
+    // its previous image, then filled up.
     fs::create_directories(dir / "tmpfs");
     Tmpfs full(dir / "tmpfs", "size=256k");
     if (!full.Mounted()) return;
-    std::ofstream(dir / "tmpfs/out.png") << "the previous image";
+    for (const char *fmt : kOutputFormats) {
+        fs::create_directories(dir / "tmpfs" / fmt);
+        std::ofstream(dir / "tmpfs" / fmt / ("out." + std::string(fmt))) << "the previous image";
+    }
     {
         std::ofstream filler(dir / "tmpfs/filler", std::ios::binary);
         std::string block(4096, 'x');
         while (filler.write(block.data(), std::streamsize(block.size())) && filler.flush()) {
         }
     }
-    ExpectDiskFullKeepsOldImage(dir, dir / "tmpfs", "", "png");
+    for (const char *fmt : kOutputFormats) {
+        SCOPED_TRACE(std::string("tmpfs ") + fmt);
+        ExpectDiskFullKeepsOldImage(dir, dir / "tmpfs" / fmt, "", fmt);
+    }
 }
 
 // A batch whose output disk fills up: renders that cannot write fail with the reason, reports

@@ -8,15 +8,27 @@
 //                                it is read (a copy in progress).
 //   PRISM_FAULT_KILL=TEXT        a `prism render` process whose arguments contain TEXT kills
 //                                itself with SIGKILL at start-up, as the OOM killer would.
+//   PRISM_FAULT_FORBID_OPEN=NAME opening (open, openat, fopen) a path whose last component is
+//                                NAME prints "fault_shim: NAME opened" and exits with status
+//                                99: proof that a file Prism must refuse is never opened.
 #include <dlfcn.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/types.h>
 #include <unistd.h>
+
+// The next definition of `name` (libc's), looked up once per call site.
+template <typename F>
+static F Next(const char *name) {
+    return reinterpret_cast<F>(dlsym(RTLD_NEXT, name));
+}
 
 extern "C" {
 
@@ -89,6 +101,64 @@ ssize_t read(int fd, void *buf, size_t n) {
     ssize_t r = real(fd, buf, n < half ? n : half);
     if (truncate(path, (off_t)half) != 0) return -1;
     return r;
+}
+
+static void ForbidOpen(const char *path) {
+    const char *name = getenv("PRISM_FAULT_FORBID_OPEN");
+    if (!name || !*name || !path) return;
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    if (strcmp(base, name) != 0) return;
+    static const char msg[] = "fault_shim: forbidden file opened\n";
+    ssize_t ignored = syscall(SYS_write, 2, msg, sizeof(msg) - 1);
+    (void)ignored;
+    _exit(99);
+}
+
+static mode_t ModeArg(int flags, va_list ap) {
+    return (flags & O_CREAT) || (flags & O_TMPFILE) == O_TMPFILE ? mode_t(va_arg(ap, int)) : 0;
+}
+
+int open(const char *path, int flags, ...) {
+    static auto real = Next<int (*)(const char *, int, ...)>("open");
+    ForbidOpen(path);
+    va_list ap;
+    va_start(ap, flags);
+    mode_t mode = ModeArg(flags, ap);
+    va_end(ap);
+    return real(path, flags, mode);
+}
+
+int open64(const char *path, int flags, ...) {
+    static auto real = Next<int (*)(const char *, int, ...)>("open64");
+    ForbidOpen(path);
+    va_list ap;
+    va_start(ap, flags);
+    mode_t mode = ModeArg(flags, ap);
+    va_end(ap);
+    return real(path, flags, mode);
+}
+
+int openat(int dirfd, const char *path, int flags, ...) {
+    static auto real = Next<int (*)(int, const char *, int, ...)>("openat");
+    ForbidOpen(path);
+    va_list ap;
+    va_start(ap, flags);
+    mode_t mode = ModeArg(flags, ap);
+    va_end(ap);
+    return real(dirfd, path, flags, mode);
+}
+
+FILE *fopen(const char *path, const char *mode) {
+    static auto real = Next<FILE *(*)(const char *, const char *)>("fopen");
+    ForbidOpen(path);
+    return real(path, mode);
+}
+
+FILE *fopen64(const char *path, const char *mode) {
+    static auto real = Next<FILE *(*)(const char *, const char *)>("fopen64");
+    ForbidOpen(path);
+    return real(path, mode);
 }
 
 __attribute__((constructor)) static void KillIfAsked(void) {
