@@ -56,7 +56,9 @@ struct SurfaceInteraction {
     Ray SpawnRay(const Vec3f &d, const RayOffset &off) const {
         return {SpawnOrigin(p, pError, n, d, off), d, Infinity, 0, time};
     }
-    Ray SpawnRayTo(const Vec3f &pTo, const RayOffset &off) const {
+    // (Always inlined: the kernels spawn a shadow ray per light and hit, and GCC 12 otherwise
+    // keeps it out of line in some of them.)
+    [[gnu::always_inline]] Ray SpawnRayTo(const Vec3f &pTo, const RayOffset &off) const {
         Vec3f o = SpawnOrigin(p, pError, n, pTo - p, off);
         return {o, pTo - o, 1 - ShadowEpsilon, 0, time};
     }

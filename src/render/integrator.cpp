@@ -9,7 +9,7 @@
 namespace prism {
 
 CameraSampler::CameraSampler(const RenderScene &scene, const SamplerSettings &sampler)
-    : scene_(scene),
+    : camera_(*scene.camera),
       spp_(uint32_t(sampler.spp)),
       seed_(sampler.seed),
       cmj_(uint32_t(sampler.spp)),
@@ -18,14 +18,6 @@ CameraSampler::CameraSampler(const RenderScene &scene, const SamplerSettings &sa
       motion_(scene.features.effects.Has(Effect::MotionBlur)),
       differentials_(scene.differentials),
       diffScale_(std::max(.125f, 1 / std::sqrt(float(sampler.spp)))) {}
-
-Ray CameraSampler::GenerateRay(const CameraSample &cs) const {
-    return scene_.camera->GenerateRay(cs.pFilm, cs.uLens, cs.time);
-}
-
-RayDifferential CameraSampler::GenerateDifferential(const Ray &ray, const CameraSample &cs) const {
-    return scene_.camera->GenerateDifferential(ray, cs.pFilm, cs.uLens, cs.time, diffScale_);
-}
 
 void TileSamples::Reset(const Bounds2i &b, uint32_t samples) {
     bounds = b;

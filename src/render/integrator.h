@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "geometry/ray.h"
 #include "image/bounds2.h"
+#include "render/camera.h"
 #include "render/ray_counters.h"
 #include "render/sampler.h"
 
@@ -58,10 +59,12 @@ class CameraSampler {
   public:
     CameraSampler(const RenderScene &scene, const SamplerSettings &sampler);
 
-    // The pattern seeds of pixel (x, y), computed once for all its samples.
+    // The pattern seeds of pixel (x, y), computed once for all its samples; none are needed
+    // without jitter, lens or motion (Seeded false: a sample is the pixel centre).
     struct Seeds {
         uint32_t film = 0, lens = 0, time = 0;
     };
+    bool Seeded() const { return jitter_ || lens_ || motion_; }
     Seeds PixelSeeds(int x, int y) const {
         Seeds s;
         if (jitter_) s.film = PatternSeed(x, y, FilmPurpose, seed_);
@@ -77,9 +80,13 @@ class CameraSampler {
         if (motion_) cs.time = cmj_.Sample(s, seeds.time).x;
         return cs;
     }
-    Ray GenerateRay(const CameraSample &cs) const;
+    Ray GenerateRay(const CameraSample &cs) const {
+        return camera_.GenerateRay(cs.pFilm, cs.uLens, cs.time);
+    }
     // The ray's differentials (pbrt-v3: scaled by max(1/8, 1/sqrt(spp))).
-    RayDifferential GenerateDifferential(const Ray &ray, const CameraSample &cs) const;
+    RayDifferential GenerateDifferential(const Ray &ray, const CameraSample &cs) const {
+        return camera_.GenerateDifferential(ray, cs.pFilm, cs.uLens, cs.time, diffScale_);
+    }
 
     uint32_t Spp() const { return spp_; }
     bool Lens() const { return lens_; }  // lens samples are drawn (depth of field)
@@ -88,7 +95,7 @@ class CameraSampler {
     bool Differentials() const { return differentials_; }
 
   private:
-    const RenderScene &scene_;
+    const Camera &camera_;
     uint32_t spp_, seed_;
     CMJPattern cmj_;
     bool jitter_, lens_, motion_, differentials_;

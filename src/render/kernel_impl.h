@@ -334,14 +334,16 @@ void RenderTileKernel(const TileContext &ctx, const KernelParams &params, TileSa
     size_t slot[16];
     int pixelX[16], pixelY[16];
     CameraSampler::Seeds seeds[16];
+    const bool seeded = camera.Seeded();
     for (int by = tb.pMin.y; by < tb.pMax.y; by += PacketH) {
         for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += PacketW) {
             const int ex = std::min(bx + PacketW, tb.pMax.x),
                       ey = std::min(by + PacketH, tb.pMax.y);
             // The packet's pattern seeds, once for all its samples.
             int m = 0;
-            for (int y = by; y < ey; ++y)
-                for (int x = bx; x < ex; ++x, ++m) seeds[m] = camera.PixelSeeds(x, y);
+            if (seeded)
+                for (int y = by; y < ey; ++y)
+                    for (int x = bx; x < ex; ++x, ++m) seeds[m] = camera.PixelSeeds(x, y);
             for (uint32_t s = 0; s < spp; ++s) {
                 m = 0;
                 for (int y = by; y < ey; ++y) {

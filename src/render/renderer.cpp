@@ -112,7 +112,8 @@ void TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
     // The film's scale, and pbrt's clamp of bright samples (Film "maxsampleluminance"); the
     // direct part is scaled as its sample is.
     const float scale = scene_.filmScale, maxLum = scene_.maxSampleLuminance;
-    const size_t n = buf.L.size();
+    // Scale 1 without a clamp changes no sample (x * 1 is x): no pass over them.
+    const size_t n = scale != 1 || maxLum < Infinity ? size_t(tb.Area()) * buf.spp : 0;
     for (size_t i = 0; i < n; ++i) {
         RGB L = buf.L[i] * scale;
         float clamp = 1;
@@ -126,18 +127,19 @@ void TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
         buf.L[i] = L;
         if (buf.wantDirect) buf.direct[i] = buf.direct[i] * (scale * clamp);
     }
-    const uint32_t spp = buf.spp;
+    // Pixel by pixel in the buffer's order (TileSamples::Index), each pixel's samples in turn.
+    const int spp = int(buf.spp);
+    size_t first = 0;
     for (int y = tb.pMin.y; y < tb.pMax.y; ++y)
-        for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
-            const size_t first = buf.Index(x, y, 0);
+        for (int x = tb.pMin.x; x < tb.pMax.x; ++x, first += size_t(spp)) {
             // pbrt's default box: each pixel's samples go to it at once (they lie in it:
             // FilmPosition).
             if (unitBox) {
-                tile->AddPixelSamples({x, y}, &buf.L[first], int(spp));
+                tile->AddPixelSamples({x, y}, buf.L.data() + first, spp);
                 continue;
             }
-            for (uint32_t s = 0; s < spp; ++s)
-                tile->AddSample(buf.pFilm[first + s], buf.L[first + s]);
+            for (int s = 0; s < spp; ++s)
+                tile->AddSample(buf.pFilm[first + size_t(s)], buf.L[first + size_t(s)]);
         }
     if (aovs_) aovs_->AddTile(context_, t, buf);
 }
