@@ -174,6 +174,22 @@ void BuildCamera(BuildContext &ctx) {
             AnimatedTransform(scene.renderFromWorld * moving->Start(), moving->StartTime(),
                               scene.renderFromWorld * moving->End(), moving->EndTime()));
     }
+    // Every ray handed to Embree must be finite and within its range (geometry/accel.h
+    // TraceableRay): the rays through the film's corners and centre, from the lens's corners
+    // and centre, at the shutter's open, middle and close bound what the camera makes (its
+    // rays are affine in the film position and lens sample). Finite but huge camera values
+    // (a lens radius of 1e30, Scale 1e38 before the Camera, a +-3e38 screen window) fail here.
+    const Vec2f film(float(scene.resolution.x), float(scene.resolution.y));
+    for (Vec2f f : {Vec2f(0, 0), Vec2f(film.x, 0), Vec2f(0, film.y), film, film * 0.5f})
+        for (Vec2f u : {Vec2f(0, 0), Vec2f(1, 0), Vec2f(0, 1), Vec2f(1, 1), Vec2f(0.5f, 0.5f)})
+            for (float time : {0.f, 0.5f, 1.f}) {
+                const Ray r = scene.camera->GenerateRay(f, u, time);
+                if (!TraceableRay(r) || !(LengthSquared(r.d) > 0))
+                    throw SceneError(cd.loc.Valid() ? cd.loc : desc.film.loc,
+                                     "the camera makes rays that cannot be traced (not finite, "
+                                     "or beyond 1e18 in render space): check its transform, "
+                                     "lensradius, focaldistance and screenwindow");
+            }
 }
 
 void BuildSampler(BuildContext &ctx) {

@@ -292,6 +292,7 @@ void Accel::Commit() {
 }
 
 bool Accel::IntersectRaw(const Ray &r, RawHit *hit) const {
+    if (!TraceableRay(r)) return false;
     HitContext hc;
     rtcInitIntersectContext(&hc.ctx);
     unsigned objectGeom = RTC_INVALID_GEOMETRY_ID;
@@ -409,6 +410,7 @@ bool Accel::Intersect(const Ray &r, SurfaceInteraction *si) const {
 bool Accel::Occluded(const Ray &r) const {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
+    if (!TraceableRay(r)) return false;
     alignas(16) RTCRay ray;
     InitRay(r, &ray, ShadowRays);
     rtcOccluded1(impl_->scene, &ctx, &ray);
@@ -422,7 +424,7 @@ void Accel::IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded
     unsigned objectGeom[16];
     ObjectHit objectHits[16];
     for (int i = 0; i < 16; ++i) {
-        valid[i] = i < n ? -1 : 0;
+        valid[i] = i < n && TraceableRay(rays[i]) ? -1 : 0;
         InitRay16(rays[i < n ? i : 0], i, CameraRays, &rh.ray);
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;

@@ -3,6 +3,7 @@
 // Only src/geometry includes Embree; this header keeps it out (pimpl).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -48,6 +49,18 @@ struct RawHit {
     bool hasObject = false;
     ObjectHit object;
 };
+
+// The largest origin or direction component Embree accepts in a ray (its FLT_LARGE, 1.844e18:
+// Embree asserts on larger ones); Prism's rays stay well below.
+inline constexpr float MaxRayComponent = 1e18f;
+// Whether Embree can trace `r`: finite, within MaxRayComponent, a non-negative tMin and a tMax
+// not below it. Accel's queries treat any other ray as a miss (and as unoccluded); the
+// assembly refuses a camera that would make one (assembly/camera_film.cpp).
+inline bool TraceableRay(const Ray &r) {
+    auto ok = [](float v) { return std::abs(v) <= MaxRayComponent; };
+    return ok(r.o.x) && ok(r.o.y) && ok(r.o.z) && ok(r.d.x) && ok(r.d.y) && ok(r.d.z) &&
+           r.tMin >= 0 && r.tMax >= r.tMin && !std::isnan(r.time);
+}
 
 class Accel {
   public:

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/rng.h"
 #include "core/transform.h"
 #include "geometry/sphere.h"
@@ -33,6 +35,33 @@ TEST(Accel, MeshAndSphereClosestHit) {
     // tMax limits the query.
     EXPECT_FALSE(accel.Occluded(Ray{{0, 0, 0}, {0, 0, 1}, 0.5f}));
     EXPECT_TRUE(accel.Occluded(Ray{{0, 0, 0}, {0, 0, 1}, 1.5f}));
+}
+
+// Rays Embree cannot trace (it asserts on components beyond its FLT_LARGE, 1.844e18) are
+// misses and unoccluded in every query, single and packet, instead of an abort.
+TEST(Accel, UntraceableRaysAreMissesNotAborts) {
+    Accel accel;
+    accel.AddAnalytic(std::make_unique<Sphere>(Transform(), false, 1, -1, 1, 360));
+    accel.Commit();
+    const Ray far{{1e30f, 0, 0}, {-1, 0, 0}, Infinity}, huge{{0, 0, -5}, {0, 0, 3e38f}, Infinity};
+    const Ray nan{{0, 0, -5}, {0, 0, std::nanf("")}, Infinity}, ok{{0, 0, -5}, {0, 0, 1}, Infinity};
+    for (const Ray &r : {far, huge, nan}) {
+        EXPECT_FALSE(TraceableRay(r));
+        RawHit h;
+        EXPECT_FALSE(accel.IntersectRaw(r, &h));
+        EXPECT_FALSE(accel.Occluded(r));
+    }
+    EXPECT_TRUE(TraceableRay(ok));
+    const Ray packet[4] = {far, ok, huge, nan};
+    RawHit hits[4];
+    bool occluded[4];
+    accel.IntersectPacket(packet, 4, hits, occluded);
+    EXPECT_EQ(hits[0].shape, -1);
+    EXPECT_EQ(hits[1].shape, 0);
+    EXPECT_EQ(hits[2].shape, -1);
+    EXPECT_EQ(hits[3].shape, -1);
+    EXPECT_FALSE(occluded[0]);
+    EXPECT_TRUE(occluded[1]);
 }
 
 TEST(Accel, IntersectAndOccludedAgree) {
