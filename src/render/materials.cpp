@@ -58,18 +58,12 @@ Fresnel Dielectric(float etaI, float etaT) {
 
 TexturePtr Constant(RGB v) { return std::make_shared<ConstantTexture>(v); }
 
-// pbrt-v3 "roughness" / "uroughness" / "vroughness" for the materials that have all three.
-struct ThreeRoughness {
-    TexturePtr roughness, u, v;
-    bool remap;
-};
-ThreeRoughness ReadThreeRoughness(const MaterialParams &p, float def) {
-    ThreeRoughness r;
-    r.roughness = p.FloatTex("roughness", def);
-    r.u = p.Has("uroughness") ? p.FloatTex("uroughness", def) : nullptr;
-    r.v = p.Has("vroughness") ? p.FloatTex("vroughness", def) : nullptr;
-    r.remap = p.Bool("remaproughness", true);
-    return r;
+// pbrt-v3 "roughness" / "uroughness" / "vroughness" of uber (and coateddiffuse as uber).
+void ReadUberRoughness(const MaterialParams &p, float def, UberMaterial::Params *u) {
+    u->roughness = p.FloatTex("roughness", def);
+    u->uRoughness = p.Has("uroughness") ? p.FloatTex("uroughness", def) : nullptr;
+    u->vRoughness = p.Has("vroughness") ? p.FloatTex("vroughness", def) : nullptr;
+    u->remap = p.Bool("remaproughness", true);
 }
 
 // pbrt-v4 remaps roughness r to alpha = sqrt(r) (v3 used a polynomial that never reaches 0):
@@ -357,11 +351,7 @@ std::shared_ptr<const MaterialModel> CreateUberMaterial(const MaterialParams &p,
     u.Ks = p.SpectrumTex("Ks", RGB(0.25f));
     u.Kr = p.SpectrumTex("Kr", RGB(0));
     u.Kt = p.SpectrumTex("Kt", RGB(0));
-    const ThreeRoughness r = ReadThreeRoughness(p, 0.1f);
-    u.roughness = r.roughness;
-    u.uRoughness = r.u;
-    u.vRoughness = r.v;
-    u.remap = r.remap;
+    ReadUberRoughness(p, 0.1f, &u);
     u.index = p.Has("eta") ? p.FloatTex("eta", 1.5f) : p.FloatTex("index", 1.5f);
     u.opacity = p.SpectrumTex("opacity", RGB(1));
     return std::make_shared<UberMaterial>(std::move(u));
@@ -376,11 +366,7 @@ std::shared_ptr<const MaterialModel> CreateCoatedDiffuseMaterial(const MaterialP
                                                                  const FileLoc &) {
     UberMaterial::Params u;
     u.Kd = p.SpectrumTex("reflectance", RGB(0.5f));
-    const ThreeRoughness r = ReadThreeRoughness(p, 0.f);
-    u.roughness = r.roughness;
-    u.uRoughness = r.u;
-    u.vRoughness = r.v;
-    u.remap = r.remap;
+    ReadUberRoughness(p, 0.f, &u);
     const ConstantTexture *c = AsConstant(u.uRoughness ? u.uRoughness : u.roughness);
     const bool smooth = c && c->Value().r == 0;
     u.Ks = Constant(RGB(smooth ? 0.f : 1.f));

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "assembly/build_scene.h"
+#include "gltf_test_scene.h"
 #include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
@@ -244,17 +245,7 @@ std::string GltfQuad(const std::string &material) {
     put(P, sizeof P);
     put(uv, sizeof uv);
     put(idx, sizeof idx);
-    static const char *b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string enc;
-    for (size_t i = 0; i < bin.size(); i += 3) {
-        uint32_t v = uint32_t(uint8_t(bin[i])) << 16;
-        if (i + 1 < bin.size()) v |= uint32_t(uint8_t(bin[i + 1])) << 8;
-        if (i + 2 < bin.size()) v |= uint32_t(uint8_t(bin[i + 2]));
-        enc += b64[(v >> 18) & 63];
-        enc += b64[(v >> 12) & 63];
-        enc += i + 1 < bin.size() ? b64[(v >> 6) & 63] : '=';
-        enc += i + 2 < bin.size() ? b64[v & 63] : '=';
-    }
+    const std::string enc = test::Base64(bin);
     return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
 "nodes": [{"mesh": 0}],
 "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2,
