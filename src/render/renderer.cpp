@@ -4,7 +4,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 #include <xmmintrin.h>
 
 #include <algorithm>
@@ -72,9 +71,7 @@ class TileMerger {
 
 }  // namespace
 
-int MaxTileWorkers() { return tbb::this_task_arena::max_concurrency(); }
-
-int ForEachTile(int begin, int end, const std::function<void(int t, int worker)> &body,
+int ForEachTile(int begin, int end, const std::function<void(int t)> &body,
                 const volatile int *cancel) {
     std::atomic<int> next{begin}, done{0};
     tbb::parallel_for(tbb::blocked_range<int>(begin, end, 1),
@@ -82,13 +79,12 @@ int ForEachTile(int begin, int end, const std::function<void(int t, int worker)>
                           // Flush denormals to zero, as Embree recommends, in every worker.
                           _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
                           _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-                          const int worker = tbb::this_task_arena::current_thread_index();
                           for (int i = r.begin(); i != r.end(); ++i) {
                               if (cancel && *cancel) return;
                               // Each body call takes as many tiles as its range holds, but in
                               // global order, so tiles finish nearly in index order and few wait
                               // for their merge.
-                              body(next.fetch_add(1), worker);
+                              body(next.fetch_add(1));
                               done.fetch_add(1);
                           }
                       });
@@ -185,7 +181,7 @@ Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats
 
     ForEachTile(
         0, nTiles,
-        [&](int t, int) {
+        [&](int t) {
             FilmTile *tile = inPlace ? &ownTile.local() : merger.Acquire();
             film.ResetTile(t, tile);
             driver.RenderTile(t, film.TilePixels(t), tile, scratch.local(), counters.local());
@@ -253,7 +249,7 @@ void FrameTiles::RenderTiles(int begin, int end, std::vector<FilmTile> *tiles,
     tiles->resize(size_t(end - begin));
     tbb::enumerable_thread_specific<RayCounters> counters;
     tbb::enumerable_thread_specific<TileSamples> scratch;
-    ForEachTile(begin, end, [&](int t, int) {
+    ForEachTile(begin, end, [&](int t) {
         FilmTile *tile = &(*tiles)[size_t(t - begin)];
         film_->ResetTile(t, tile);
         driver_.RenderTile(t, film_->TilePixels(t), tile, scratch.local(), counters.local());

@@ -70,12 +70,11 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
 
 // The one parallel loop over tiles [begin, end): TBB workers take tile indices in order from a
 // shared counter (so tiles finish nearly in index order), with denormals flushed to zero in
-// every worker as Embree recommends. body(t, worker) runs once per tile; `worker` is the
-// worker's slot, in [0, MaxTileWorkers()), for per-thread state. Stops taking tiles once
+// every worker as Embree recommends; per-thread state goes in the caller's
+// tbb::enumerable_thread_specific. body(t) runs once per tile. Stops taking tiles once
 // *cancel reads true; returns how many tiles ran.
-int ForEachTile(int begin, int end, const std::function<void(int t, int worker)> &body,
+int ForEachTile(int begin, int end, const std::function<void(int t)> &body,
                 const volatile int *cancel = nullptr);
-int MaxTileWorkers();
 
 // The per-tile work of one shading render: the scene's integrator fills the camera samples of
 // a tile, the film scale and clamp are applied, and the samples go to the film tile and the

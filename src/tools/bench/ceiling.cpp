@@ -65,7 +65,7 @@ PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) 
     const Accel &accel = *scene.accel;
     const CameraSampler camera(scene, scene.sampler);
     const uint32_t spp = camera.Spp();
-    ForEachTile(0, grid.NumTiles(), [&](int t, int) {
+    ForEachTile(0, grid.NumTiles(), [&](int t) {
         PassCounters &pc = counters.local();
         Scratch &sc = scratch.local();
         const Bounds2i tb = grid.TilePixels(t);
