@@ -22,12 +22,23 @@ namespace {
 
 using namespace reader;
 
+// The largest world-space coordinate of an OBJ, glTF or PLY model Prism frames and renders.
+constexpr double MaxModelCoordinate = 1e30;
+
 void ExpandMesh(const ShapeDesc &s, const Transform &worldFromObject, Bounds3f &b) {
     if (s.type != "trianglemesh") return;
     const Param *p = s.params.Find("P");
     if (!p || p->type != ParamType::Point3) return;
     for (size_t i = 0; i + 2 < p->numbers.size(); i += 3) {
         Vec3d w = worldFromObject.Point(Vec3d(p->numbers[i], p->numbers[i + 1], p->numbers[i + 2]));
+        // A transform (a glTF node scaled by 1e300, say) can take finite positions beyond what
+        // a float holds, and no camera can frame or render them.
+        if (!(std::abs(w.x) <= MaxModelCoordinate && std::abs(w.y) <= MaxModelCoordinate &&
+              std::abs(w.z) <= MaxModelCoordinate))
+            throw SceneError(s.loc, "the transform of this mesh puts vertex " +
+                                        std::to_string(i / 3) +
+                                        " beyond 1e30 (or at a non-finite position): it cannot "
+                                        "be rendered");
         b.Expand(Vec3f(w));
     }
 }
