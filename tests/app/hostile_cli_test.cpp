@@ -4,15 +4,20 @@
 // their size. Each case must end with one located error (or the documented cap) and exit 2,
 // never a signal.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <tuple>
+#include <vector>
 
 #include "app/run_prism.h"
 
@@ -307,6 +312,212 @@ TEST(Hostile, LongLegalOutputNamesAreWritten) {
     RunResult r = RunPrism("batch in -o out -q", dir);
     EXPECT_EQ(r.exitCode, 0) << r.err << ReadFile(dir / "out/report.json");
     EXPECT_TRUE(fs::exists(dir / "out" / ("in_" + std::string(249 - 8, 'b') + ".png")));
+}
+
+// A camera between two parallel mirrors, looking at one of them: every camera ray bounces
+// `depth` times (Kr 1, so no ray is cut off), each pixel costs n * n * depth rays (n * n spp).
+std::string MirrorHall(int w, int h, int n, int depth) {
+    const std::string quad = "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n";
+    return "LookAt 0 0 0  0 1 0  0 0 1\nCamera \"perspective\" \"float fov\" 1\n"
+           "Film \"image\" \"integer xresolution\" " +
+           std::to_string(w) + " \"integer yresolution\" " + std::to_string(h) +
+           "\nSampler \"stratified\" \"integer xsamples\" " + std::to_string(n) +
+           " \"integer ysamples\" " + std::to_string(n) +
+           "\nIntegrator \"whitted\" \"integer maxdepth\" " + std::to_string(depth) +
+           "\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n"
+           "Material \"mirror\" \"rgb Kr\" [1 1 1]\n" +
+           quad + "  \"point3 P\" [-100 1 -100  100 1 -100  100 1 100  -100 1 100]\n" + quad +
+           "  \"point3 P\" [-100 -1 -100  -100 -1 100  100 -1 100  100 -1 -100]\n";
+}
+
+// Forks `prism ARGS...` in dir with stderr to dir/err.txt; returns its pid.
+pid_t Spawn(const fs::path &dir, const std::vector<std::string> &args) {
+    pid_t pid = fork();
+    if (pid == 0) {
+        if (chdir(dir.c_str()) != 0) _exit(126);
+        if (!std::freopen("err.txt", "w", stderr) || !std::freopen("/dev/null", "w", stdout))
+            _exit(126);
+        std::vector<char *> argv{const_cast<char *>(PRISM_BINARY)};
+        for (const std::string &a : args) argv.push_back(const_cast<char *>(a.c_str()));
+        argv.push_back(nullptr);
+        execv(PRISM_BINARY, argv.data());
+        _exit(127);
+    }
+    return pid;
+}
+
+// Waits up to `seconds` for pid; kills it (SIGKILL) if it is still running then. Returns its
+// wait status, or -1 if it had to be killed.
+int WaitOrKill(pid_t pid, int seconds) {
+    int status = 0;
+    for (int i = 0; i < seconds * 50; ++i) {
+        if (waitpid(pid, &status, WNOHANG) == pid) return status;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    return -1;
+}
+
+// One 16x16 tile whose every camera packet (4x4 pixels) takes seconds: SIGINT used to be
+// read only between tiles, so the render went on to the end of the tile (about a minute and
+// a half here) before it stopped.
+TEST(Hostile, InterruptStopsARenderInsideItsOnlyTile) {
+    fs::path dir = TempDir("interrupt_tile");
+    std::ofstream(dir / "hall.pbrt") << MirrorHall(16, 16, 40, 1000);
+    pid_t pid = Spawn(dir, {"render", "hall.pbrt", "-o", "out.png", "-q", "--threads", "1"});
+    ASSERT_GT(pid, 0);
+    std::this_thread::sleep_for(std::chrono::seconds(2));  // loaded (a few ms), rendering
+    kill(pid, SIGINT);
+    // A hang guard, not a timing: one packet takes a few seconds, the tile minutes.
+    const int status = WaitOrKill(pid, 60);
+    const std::string err = ReadFile(dir / "err.txt");
+    ASSERT_NE(status, -1) << "the render went on after SIGINT: " << err;
+    ASSERT_TRUE(WIFEXITED(status)) << err;
+    EXPECT_EQ(WEXITSTATUS(status), 130) << err;
+    EXPECT_NE(err.find("interrupted: no image written"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
+// --time-limit used to let every started pass finish: a first pass of minutes ran to its end
+// whatever the limit. The deadline now stops it within a camera packet; with no pass done
+// there is no image.
+TEST(Hostile, TimeLimitStopsAPassThatDoesNotFit) {
+    fs::path dir = TempDir("time_limit_pass");
+    std::ofstream(dir / "hall.pbrt") << MirrorHall(1024, 1024, 1, 1000);  // 2 spp: minutes
+    RunResult r = RunPrism("render hall.pbrt -o out.png -q --threads 1 --time-limit 1", dir,
+                           "timeout -k 5 60");
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("error: the time limit of 1s (--time-limit) ran out before the first "
+                         "pass finished: no image written"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
+// The pid of a child process of `parent` (from /proc/*/stat), or -1.
+pid_t ChildOf(pid_t parent) {
+    std::error_code ec;
+    for (const auto &e : fs::directory_iterator("/proc", ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.empty() || !std::all_of(name.begin(), name.end(), ::isdigit)) continue;
+        const std::string stat = ReadFile(e.path() / "stat");
+        const size_t close = stat.rfind(')');
+        if (close == std::string::npos) continue;
+        char state = 0;
+        int ppid = 0;
+        if (std::sscanf(stat.c_str() + close + 1, " %c %d", &state, &ppid) == 2 && ppid == parent)
+            return pid_t(std::stoi(name));
+    }
+    return -1;
+}
+
+// Whether pid names a process that runs (not gone, not a zombie).
+bool Runs(pid_t pid) {
+    const std::string stat = ReadFile("/proc/" + std::to_string(pid) + "/stat");
+    const size_t close = stat.rfind(')');
+    if (close == std::string::npos) return false;
+    char state = 0;
+    return std::sscanf(stat.c_str() + close + 1, " %c", &state) == 1 && state != 'Z' &&
+           state != 'X';
+}
+
+// Waits (up to a minute) for the render child of batch `pid`; -1 if none appeared.
+pid_t WaitForRender(pid_t batch, const fs::path &dir, const std::string &scene) {
+    for (int i = 0; i < 3000; ++i) {
+        const pid_t child = ChildOf(batch);
+        if (child > 0 && ReadFile("/proc/" + std::to_string(child) + "/cmdline").find(scene) !=
+                             std::string::npos)
+            return child;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ADD_FAILURE() << "no render of " << scene << " started: " << ReadFile(dir / "err.txt");
+    return -1;
+}
+
+// report.json's entry for `scene` (its line), or "".
+std::string ReportEntry(const fs::path &report, const std::string &scene) {
+    const std::string json = ReadFile(report);
+    const size_t at = json.find("{\"scene\": \"" + scene + "\"");
+    return at == std::string::npos ? "" : json.substr(at, json.find('\n', at) - at);
+}
+
+// A batch had no time limit per scene: one scene that never finishes held the whole batch.
+// --scene-timeout stops it (SIGTERM; the render stops within a camera packet), reports it
+// "timeout" and renders the rest.
+TEST(Hostile, BatchStopsASceneAtItsTimeoutAndGoesOn) {
+    fs::path dir = TempDir("batch_timeout");
+    std::ofstream(dir / "a.pbrt") << kHead << "Shape \"sphere\"\n";
+    std::ofstream(dir / "hall.pbrt") << MirrorHall(256, 256, 8, 1000);  // an hour or so
+    std::ofstream(dir / "c.pbrt") << kHead << "Shape \"sphere\"\n";
+    std::ofstream(dir / "list.txt") << "a.pbrt\nhall.pbrt\nc.pbrt\n";
+    RunResult r =
+        RunPrism("batch list.txt -o out --threads 1 --scene-timeout 2", dir, "timeout -k 5 120");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    const fs::path report = dir / "out/report.json";
+    EXPECT_NE(ReportEntry(report, "a.pbrt").find("\"status\": \"ok\""), std::string::npos)
+        << ReadFile(report);
+    const std::string hall = ReportEntry(report, "hall.pbrt");
+    EXPECT_NE(hall.find("\"status\": \"timeout\""), std::string::npos) << ReadFile(report);
+    EXPECT_NE(hall.find("render still running after 2 s (--scene-timeout): stopped with SIGTERM"),
+              std::string::npos)
+        << hall;
+    EXPECT_NE(ReportEntry(report, "c.pbrt").find("\"status\": \"ok\""), std::string::npos)
+        << ReadFile(report);
+    EXPECT_NE(ReadFile(dir / "out/summary.txt").find("1 timed out"), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir / "out/a.png"));
+    EXPECT_TRUE(fs::exists(dir / "out/c.png"));
+    EXPECT_FALSE(fs::exists(dir / "out/hall.png"));
+}
+
+// SIGKILL of `prism batch` (the OOM killer, a job scheduler) left its render running, an hour
+// of a core and its memory, orphaned; the render now dies with the batch (PR_SET_PDEATHSIG).
+TEST(Hostile, KillingTheBatchEndsItsRender) {
+    fs::path dir = TempDir("batch_killed");
+    std::ofstream(dir / "hall.pbrt") << MirrorHall(256, 256, 8, 1000);
+    std::ofstream(dir / "list.txt") << "hall.pbrt\n";
+    pid_t batch = Spawn(dir, {"batch", "list.txt", "-o", "out", "--threads", "1", "-q"});
+    ASSERT_GT(batch, 0);
+    const pid_t render = WaitForRender(batch, dir, "hall.pbrt");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    kill(batch, SIGKILL);
+    int status = 0;
+    waitpid(batch, &status, 0);
+    ASSERT_GT(render, 0);
+    bool gone = false;
+    for (int i = 0; i < 500 && !(gone = !Runs(render)); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (!gone) kill(render, SIGKILL);  // clean up after the old code
+    EXPECT_TRUE(gone) << "render " << render << " outlived its batch";
+}
+
+// SIGTERM of `prism batch` killed it where it stood: report.json said the scene was still
+// "running" and its render went on. Now the batch stops its renders as on SIGINT and says why.
+TEST(Hostile, TerminatingTheBatchStopsItsRenderAndSaysSoInTheReport) {
+    fs::path dir = TempDir("batch_term");
+    std::ofstream(dir / "a.pbrt") << kHead << "Shape \"sphere\"\n";
+    std::ofstream(dir / "hall.pbrt") << MirrorHall(256, 256, 8, 1000);
+    std::ofstream(dir / "c.pbrt") << kHead << "Shape \"sphere\"\n";
+    std::ofstream(dir / "list.txt") << "a.pbrt\nhall.pbrt\nc.pbrt\n";
+    pid_t batch = Spawn(dir, {"batch", "list.txt", "-o", "out", "--threads", "1", "-q"});
+    ASSERT_GT(batch, 0);
+    const pid_t render = WaitForRender(batch, dir, "hall.pbrt");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    kill(batch, SIGTERM);
+    const int status = WaitOrKill(batch, 60);
+    if (render > 0 && Runs(render)) kill(render, SIGKILL);
+    const fs::path report = dir / "out/report.json";
+    ASSERT_NE(status, -1) << "the batch went on after SIGTERM";
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    EXPECT_NE(ReadFile(report).find("\"ended_by\": \"SIGTERM"), std::string::npos)
+        << ReadFile(report);
+    EXPECT_NE(ReportEntry(report, "a.pbrt").find("\"status\": \"ok\""), std::string::npos);
+    EXPECT_NE(ReportEntry(report, "hall.pbrt").find("\"status\": \"interrupted\""),
+              std::string::npos)
+        << ReadFile(report);
+    EXPECT_NE(ReportEntry(report, "c.pbrt").find("\"status\": \"pending\""), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir / "out/hall.png"));
 }
 
 // Temporary files left by writers that were killed are removed when Prism next writes into
