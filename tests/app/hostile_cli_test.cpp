@@ -5,6 +5,7 @@
 // never a signal.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -518,6 +519,89 @@ TEST(Hostile, TerminatingTheBatchStopsItsRenderAndSaysSoInTheReport) {
         << ReadFile(report);
     EXPECT_NE(ReportEntry(report, "c.pbrt").find("\"status\": \"pending\""), std::string::npos);
     EXPECT_FALSE(fs::exists(dir / "out/hall.png"));
+}
+
+// The largest peak resident memory of any child process waited for so far, in MiB (the
+// prism processes RunPrism runs, through their shell).
+double PeakChildMiB() {
+    struct rusage u {};
+    getrusage(RUSAGE_CHILDREN, &u);
+    return double(u.ru_maxrss) / 1024.0;
+}
+
+// --max-memory left what the parser holds uncharged: a million ObjectInstance lines (17 MB)
+// or a million nested AttributeBegin (15 MB) grew to many times a 64 MiB budget before
+// anything was refused. Each instance and each graphics-state frame is charged as it is
+// parsed; the error is at the directive that does not fit.
+TEST(Hostile, WhatTheParserHoldsIsChargedToTheBudget) {
+    fs::path dir = TempDir("parser_budget");
+    {
+        std::ofstream f(dir / "instances.pbrt");
+        f << kHead << "ObjectBegin \"a\"\nShape \"sphere\"\nObjectEnd\n";
+        for (int i = 0; i < 1000000; ++i) f << "ObjectInstance \"a\"\n";
+    }
+    {
+        std::ofstream f(dir / "nested.pbrt");
+        f << kHead;
+        for (int i = 0; i < 1000000; ++i) f << "AttributeBegin\n";
+    }
+    for (auto [scene, fragment] :
+         {std::pair{"instances.pbrt", "error: ObjectInstance \"a\" needs about"},
+          std::pair{"nested.pbrt", "error: AttributeBegin needs about"}}) {
+        SCOPED_TRACE(scene);
+        RunResult r = RunPrism(std::string("render ") + scene + " -o out.png -q --max-memory 64M",
+                               dir, "timeout -k 5 120");
+        EXPECT_EQ(r.exitCode, 2) << r.err.substr(0, 2000);
+        EXPECT_NE(r.err.find(std::string(scene) + ":"), std::string::npos) << r.err.substr(0, 2000);
+        EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err.substr(0, 2000);
+        EXPECT_NE(r.err.find("(--max-memory)"), std::string::npos) << r.err.substr(0, 2000);
+        EXPECT_FALSE(fs::exists(dir / "out.png"));
+        EXPECT_LT(PeakChildMiB(), 3 * 64.0);
+    }
+}
+
+// A .spd spectrum file was read whole, whatever --max-memory said; it is now size-checked
+// against the budget (reading and converting it takes about ten times its size) first.
+TEST(Hostile, SpectrumFilesAreCheckedAgainstTheBudget) {
+    fs::path dir = TempDir("spd_budget");
+    {
+        std::ofstream f(dir / "big.spd");
+        const std::string line = "400 1 500 1 600 1 700 1\n";
+        for (size_t n = 0; n < (size_t(8) << 20); n += line.size()) f << line;
+    }
+    std::ofstream(dir / "s.pbrt") << kHead
+                                  << "Material \"matte\" \"spectrum Kd\" \"big.spd\"\n"
+                                     "Shape \"sphere\"\n";
+    RunResult r = RunPrism("render s.pbrt -o out.png -q --max-memory 64M", dir, "timeout -k 5 120");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("s.pbrt:6:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("error: spectrum file \"big.spd\" needs about 80 MiB, more than the "
+                         "memory budget of 64 MiB (--max-memory)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+    // Within the budget it is read as before.
+    r = RunPrism("render s.pbrt -o out.png -q --max-memory 1G", dir, "timeout -k 5 120");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
+// `prism batch DIR` read every .pbrt in the folder whole to find the files they name, before
+// any render and whatever --max-memory said (a 150 MB scene: 150 MB in the batch process).
+// The scan now reads a line at a time.
+TEST(Hostile, BatchFolderScanDoesNotReadScenesWhole) {
+    fs::path dir = TempDir("batch_scan");
+    fs::create_directories(dir / "in");
+    {
+        std::ofstream f(dir / "in/big.pbrt");
+        const std::string line = "# " + std::string(98, 'x') + "\n";
+        for (int i = 0; i < 1500000; ++i) f << line;
+        f << kHead << "Shape \"sphere\"\n";
+    }
+    RunResult r = RunPrism("batch in -o out -q --max-memory 64M", dir, "timeout -k 5 120");
+    EXPECT_EQ(r.exitCode, 2) << r.err;  // the render refuses the 150 MB file itself
+    EXPECT_NE(ReadFile(dir / "out/report.json").find("memory budget"), std::string::npos)
+        << ReadFile(dir / "out/report.json");
+    EXPECT_LT(PeakChildMiB(), 100.0);
 }
 
 // Temporary files left by writers that were killed are removed when Prism next writes into
