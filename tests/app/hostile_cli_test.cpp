@@ -604,6 +604,35 @@ TEST(Hostile, BatchFolderScanDoesNotReadScenesWhole) {
     EXPECT_LT(PeakChildMiB(), 100.0);
 }
 
+// A 2 KB glTF whose 41 nodes each name the next one twice as their children: 2^41 - 1 node
+// instances. The reader expanded them one by one, a render that never ends; the expansion is
+// now counted per node before the graph is walked and checked against the budget.
+TEST(Hostile, GltfNodesSharingChildrenAreCountedBeforeTheyAreExpanded) {
+    fs::path dir = TempDir("gltf_dag");
+    std::string nodes;
+    for (int i = 0; i <= 40; ++i) {
+        nodes += i ? ", " : "";
+        nodes += i < 40 ? "{\"children\": [" + std::to_string(i + 1) + ", " +
+                              std::to_string(i + 1) + "]}"
+                        : std::string("{}");
+    }
+    std::ofstream(dir / "dag.gltf") << "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0,\n"
+                                       "\"scenes\": [{\"nodes\": [0]}],\n\"nodes\": ["
+                                    << nodes << "]}\n";
+    for (const char *budget : {" --max-memory 64M", ""}) {
+        SCOPED_TRACE(budget);
+        RunResult r =
+            RunPrism(std::string("render dag.gltf -o out.png -q") + budget, dir, "timeout -k 5 60");
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_NE(r.err.find("dag.gltf: error: the node graph (2199023255551 node instances, 0 "
+                             "of them meshes: nodes share children) needs about"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_NE(r.err.find("(--max-memory)"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir / "out.png"));
+    }
+}
+
 // Temporary files left by writers that were killed are removed when Prism next writes into
 // the folder, but only the surely stale ones.
 TEST(Hostile, StaleTemporariesOfDeadWritersAreRemoved) {
