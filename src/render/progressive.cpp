@@ -52,7 +52,10 @@ Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, Render
         options.sampler.spp = spp;
         // Pass 0 keeps seed 0: a budget of one pass renders what a plain render would.
         options.sampler.seed = pass * 0x9E3779B9u;
-        options.cancel = &stop;
+        // The AOVs take a pass's tiles as they finish (the variance merges them at once), so a
+        // pass cut short would leave part of itself in them: with AOVs only the first pass
+        // (no image without it) is cut at the deadline; later ones are sized to fit and finish.
+        options.cancel = aovs && done > 0 ? cancel : &stop;
         options.aovs = aovs;
         if (progress) {
             options.progress = [&, spp](double f) {

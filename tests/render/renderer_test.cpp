@@ -15,9 +15,10 @@ namespace prism {
 namespace {
 
 // A sphere over a floor, a mirror and an area light; 37x29 leaves partial tiles and packets.
-std::string Scene(const std::string &filter) {
+// Each test writes files of its own (`test`): ctest runs tests in parallel.
+std::string Scene(const std::string &filter, const std::string &test) {
     return test::WriteTestFile(
-        test::ScratchDir("renderer") / ("scene_" + filter + ".pbrt"),
+        test::ScratchDir("renderer") / (test + "_" + filter + ".pbrt"),
         "LookAt 0 1.5 -5  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 45 ]\n"
         "PixelFilter \"" +
             filter +
@@ -32,9 +33,10 @@ std::string Scene(const std::string &filter) {
             "Translate 0 0.6 0\nShape \"sphere\" \"float radius\" 0.6\nWorldEnd\n");
 }
 
-RenderScene Build(const std::string &filter, const std::string &integrator) {
+RenderScene Build(const std::string &filter, const std::string &integrator,
+                  const std::string &test) {
     Diagnostics diag(false);
-    SceneDescription desc = LoadScene(Scene(filter), diag);
+    SceneDescription desc = LoadScene(Scene(filter, test), diag);
     BuildSettings s;
     s.resolution = Vec2i(37, 29);
     s.spp = 3;
@@ -46,7 +48,7 @@ TEST(Renderer, ACancelFlagThatStaysDownChangesNoBit) {
     for (const char *filter : {"box", "gaussian"})
         for (const char *integrator : {"", "whitted", "path"}) {
             SCOPED_TRACE(std::string(filter) + " " + integrator);
-            RenderScene scene = Build(filter, integrator);
+            RenderScene scene = Build(filter, integrator, "flag_down");
             RenderStats plainStats, flagStats;
             Image plain = Render(scene, &plainStats);
             volatile int cancel = 0;
@@ -61,7 +63,7 @@ TEST(Renderer, ACancelFlagThatStaysDownChangesNoBit) {
 }
 
 TEST(Renderer, ARaisedCancelFlagRendersNothing) {
-    RenderScene scene = Build("box", "");
+    RenderScene scene = Build("box", "", "flag_up");
     RenderStats stats;
     volatile int cancel = 1;
     Render(scene, &stats, {}, &cancel);
