@@ -159,10 +159,11 @@ std::string JsonEscape(const std::string &s) {
 
 }  // namespace
 
-int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds) {
-    WriteReports(a.outDir, jobs, wallSeconds, /*sync=*/true);
+int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds,
+                  const std::string &endedBy) {
+    WriteReports(a.outDir, jobs, wallSeconds, /*sync=*/true, endedBy);
     int failed = 0;
-    for (const Job &j : jobs) failed += j.status == "failed";
+    for (const Job &j : jobs) failed += j.status == "failed" || j.status == "timeout";
     if (!a.quiet) {
         std::ifstream s(fs::path(a.outDir) / "summary.txt");
         std::stringstream ss;
@@ -173,7 +174,7 @@ int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallS
 }
 
 void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds,
-                  bool sync) {
+                  bool sync, const std::string &endedBy) {
     std::map<std::string, int> counts;
     double renderSum = 0;
     for (const Job &j : jobs) {
@@ -204,12 +205,14 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
     }
     json += "  ],\n  \"summary\": {";
     bool first = true;
-    for (const char *k : {"ok", "skipped", "failed", "interrupted", "pending"}) {
+    for (const char *k : {"ok", "skipped", "failed", "timeout", "interrupted", "pending"}) {
         json += fmt::format("{}\"{}\": {}", first ? "" : ", ", k, counts[k]);
         first = false;
     }
-    json += fmt::format("}},\n  \"wall_seconds\": {:.3f}, \"render_seconds\": {:.3f}\n}}\n",
-                        wallSeconds, renderSum);
+    json += "},\n";
+    if (!endedBy.empty()) json += fmt::format("  \"ended_by\": \"{}\",\n", JsonEscape(endedBy));
+    json += fmt::format("  \"wall_seconds\": {:.3f}, \"render_seconds\": {:.3f}\n}}\n", wallSeconds,
+                        renderSum);
     WriteFileAtomically((fs::path(outDir) / "report.json").string(), json, sync);
 
     std::string txt =
@@ -220,9 +223,11 @@ void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, doubl
                            EscapeControlChars(j.scene));
         if (!j.error.empty()) txt += "            error: " + EscapeControlChars(j.error) + "\n";
     }
-    txt += fmt::format("\n{} ok, {} skipped (up to date), {} failed, {} interrupted, {} not run\n",
-                       counts["ok"], counts["skipped"], counts["failed"], counts["interrupted"],
-                       counts["pending"]);
+    txt += fmt::format(
+        "\n{} ok, {} skipped (up to date), {} failed, {} timed out, {} interrupted, {} not run\n",
+        counts["ok"], counts["skipped"], counts["failed"], counts["timeout"], counts["interrupted"],
+        counts["pending"]);
+    if (!endedBy.empty()) txt += "batch stopped early: " + EscapeControlChars(endedBy) + "\n";
     txt +=
         fmt::format("batch {:.2f} s; the renders' render phases add up to {:.2f} s ({:.0f}%)\n",
                     wallSeconds, renderSum, wallSeconds > 0 ? 100 * renderSum / wallSeconds : 0.0);
@@ -288,13 +293,17 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     args.push_back(std::to_string(threadsPerJob));
     if (a.confine.Given()) args.push_back("--confine=" + ConfinementFolderFor(a.confine, j.scene));
     j.start = std::chrono::steady_clock::now();
+    const pid_t parent = getpid();
     pid_t pid = fork();
     if (pid < 0) {
         ::close(logFd);
         throw std::runtime_error("cannot start a render process");
     }
     if (pid == 0) {
-        if (dieWithParent) prctl(PR_SET_PDEATHSIG, SIGTERM);
+        // The render dies with the batch (SIGKILL of the batch, the OOM killer): set before
+        // exec, and the parent checked afterwards in case it died before this line.
+        prctl(PR_SET_PDEATHSIG, dieWithParent ? SIGTERM : SIGKILL);
+        if (getppid() != parent) _exit(127);
         if (::dup2(logFd, STDERR_FILENO) < 0) _exit(127);
         std::freopen("/dev/null", "w", stdout);
         std::vector<char *> argv;
@@ -308,7 +317,8 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
     j.status = "running";
 }
 
-void Finish(Job &j, int status, const struct rusage &usage, bool interrupted) {
+void Finish(Job &j, int status, const struct rusage &usage, bool interrupted,
+            double timeoutSeconds) {
     j.seconds = SecondsSince(j.start);
     j.peakRssKiB = usage.ru_maxrss;
     std::ifstream log(j.logPath);
@@ -327,7 +337,16 @@ void Finish(Job &j, int status, const struct rusage &usage, bool interrupted) {
     }
     std::error_code ec;
     fs::remove(j.logPath, ec);
-    if (WIFEXITED(status)) {
+    if (j.timedOut && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+        j.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        j.status = "timeout";
+        j.error =
+            "render still running after " + fmt::format("{:g}", timeoutSeconds) +
+            " s (--scene-timeout): stopped with SIGTERM" +
+            (j.killedAfterTimeout ? fmt::format(", then SIGKILL after {:g} s", kSceneTimeoutGrace)
+                                  : std::string()) +
+            "; no image written";
+    } else if (WIFEXITED(status)) {
         j.exitCode = WEXITSTATUS(status);
         j.status =
             j.exitCode == 0 ? "ok" : (j.exitCode == ExitInterrupted ? "interrupted" : "failed");
@@ -336,7 +355,7 @@ void Finish(Job &j, int status, const struct rusage &usage, bool interrupted) {
     } else if (WIFSIGNALED(status)) {
         int sig = WTERMSIG(status);
         j.exitCode = 128 + sig;
-        j.status = (sig == SIGINT && interrupted) ? "interrupted" : "failed";
+        j.status = ((sig == SIGINT || sig == SIGTERM) && interrupted) ? "interrupted" : "failed";
         if (j.status == "failed") {
             const char *abbrev = sigabbrev_np(sig);
             j.error = "render process killed by signal " +
@@ -379,8 +398,12 @@ std::vector<Job> PrepareBatch(const BatchArgs &a) {
 
 namespace {
 
-volatile sig_atomic_t g_interrupted = 0;
-void OnSigint(int) { g_interrupted = 1; }
+volatile sig_atomic_t g_interrupted = 0;  // SIGINT or SIGTERM: no new renders
+volatile sig_atomic_t g_signal = 0;       // the last of them
+void OnStopSignal(int sig) {
+    g_interrupted = 1;
+    g_signal = sig;
+}
 
 int RunBatch(const BatchArgs &a) {
     std::vector<Job> jobs = PrepareBatch(a);
@@ -390,13 +413,16 @@ int RunBatch(const BatchArgs &a) {
     int threadsPerJob = a.threads > 0 ? a.threads : std::max(1, cores / nJobs);
 
     struct sigaction sa {};
-    sa.sa_handler = OnSigint;
+    sa.sa_handler = OnStopSignal;
     sigemptyset(&sa.sa_mask);
-    struct sigaction old {};
-    sigaction(SIGINT, &sa, &old);
+    struct sigaction oldInt {
+    }, oldTerm{};
+    sigaction(SIGINT, &sa, &oldInt);
+    sigaction(SIGTERM, &sa, &oldTerm);
 
     size_t next = 0;
     int running = 0;
+    int forwarded = 0;  // the signal last passed on to the renders
     const auto batchStart = std::chrono::steady_clock::now();
     WriteReports(a.outDir, jobs, 0);
     while (true) {
@@ -411,19 +437,37 @@ int RunBatch(const BatchArgs &a) {
         if (running == 0) break;
         int status = 0;
         struct rusage usage {};
-        pid_t pid = wait4(-1, &status, 0, &usage);
-        if (pid < 0) {
-            if (errno == EINTR) {
-                // Forward the interrupt to running renders; they stop without writing.
+        // Polled, so that the scene timeouts are kept while renders run: the wake-ups cost
+        // nothing beside a render.
+        pid_t pid = wait4(-1, &status, WNOHANG, &usage);
+        if (pid == 0 || (pid < 0 && errno == EINTR)) {
+            // Pass SIGINT or SIGTERM on to the running renders; they stop without writing.
+            if (g_interrupted && g_signal != forwarded) {
+                forwarded = g_signal;
                 for (Job &j : jobs)
-                    if (j.pid > 0) kill(j.pid, SIGINT);
-                continue;
+                    if (j.pid > 0) kill(j.pid, forwarded);
             }
-            break;
+            const auto now = std::chrono::steady_clock::now();
+            for (Job &j : jobs) {
+                if (j.pid <= 0 || a.sceneTimeout <= 0) continue;
+                if (!j.timedOut && SecondsSince(j.start) > a.sceneTimeout) {
+                    j.timedOut = true;
+                    j.timeoutSent = now;
+                    kill(j.pid, SIGTERM);
+                } else if (j.timedOut && !j.killedAfterTimeout &&
+                           std::chrono::duration<double>(now - j.timeoutSent).count() >
+                               kSceneTimeoutGrace) {
+                    j.killedAfterTimeout = true;
+                    kill(j.pid, SIGKILL);
+                }
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            continue;
         }
+        if (pid < 0) break;
         for (Job &j : jobs) {
             if (j.pid != pid) continue;
-            Finish(j, status, usage, g_interrupted);
+            Finish(j, status, usage, g_interrupted, a.sceneTimeout);
             j.endSeconds = SecondsSince(batchStart);
             --running;
             if (!a.quiet)
@@ -439,8 +483,15 @@ int RunBatch(const BatchArgs &a) {
             }
         }
     }
-    sigaction(SIGINT, &old, nullptr);
-    int failed = FinishReports(a, jobs, SecondsSince(batchStart));
+    sigaction(SIGINT, &oldInt, nullptr);
+    sigaction(SIGTERM, &oldTerm, nullptr);
+    std::string endedBy;
+    if (g_interrupted)
+        endedBy = g_signal == SIGTERM ? "SIGTERM: the running renders were stopped, the scenes "
+                                        "not started are pending"
+                                      : "SIGINT: the running renders were stopped, the scenes "
+                                        "not started are pending";
+    int failed = FinishReports(a, jobs, SecondsSince(batchStart), endedBy);
     if (g_interrupted) return ExitInterrupted;
     return failed > 0 ? ExitBadInput : ExitOk;
 }
@@ -503,6 +554,11 @@ void AddBatchCommand(CLI::App &app, int *exitCode) {
     CLI::App *cmd = app.add_subcommand(
         "batch", "Render many scenes; keeps going past failures and writes a report");
     AddBatchOptions(cmd, args.get());
+    cmd->add_option("--scene-timeout", args->sceneTimeout,
+                    "Seconds each scene's render may take (default 3600; 0: no limit); one "
+                    "past it is stopped (SIGTERM, SIGKILL 5 s later), reported \"timeout\", "
+                    "and the batch goes on")
+        ->check(CLI::Range(0.0, 1e9));
     cmd->callback([args, exitCode] { *exitCode = RunGuarded([&] { return RunBatch(*args); }); });
 }
 

@@ -29,11 +29,17 @@ struct BatchArgs {
     ConfineOption confine;  // --confine [DIR]: each scene confined to DIR or its own folder
     // Passed on to every `prism render` (empty: not given).
     std::string exposure, toneMap, env, envRotate, envMode, timeLimit, integrator, textureFilter;
+    // `prism batch --scene-timeout S`: a render still running after S seconds is stopped
+    // (SIGTERM, then SIGKILL after kSceneTimeoutGrace) and reported "timeout"; 0: no limit.
+    double sceneTimeout = 3600;
 };
+
+// Seconds between the SIGTERM that ends a render past --scene-timeout and the SIGKILL.
+inline constexpr double kSceneTimeoutGrace = 5;
 
 struct Job {
     std::string scene, output;
-    std::string status = "pending";  // ok, failed, skipped, interrupted
+    std::string status = "pending";  // ok, failed, skipped, interrupted, timeout
     double seconds = 0;              // whole child process
     // The child's own phases, from its statistics line; negative when it printed none.
     double parseSeconds = -1, setupSeconds = -1, bvhSeconds = -1, renderSeconds = -1;
@@ -45,6 +51,9 @@ struct Job {
     std::string error;
     int rank = -1;  // prism-mpi: the rank that rendered it (-1: not written to the report)
     pid_t pid = -1;
+    // --scene-timeout: when the SIGTERM was sent (timedOut) and whether SIGKILL followed.
+    bool timedOut = false, killedAfterTimeout = false;
+    std::chrono::steady_clock::time_point timeoutSent;
     std::string logPath;
     std::chrono::steady_clock::time_point start;
 };
@@ -56,20 +65,27 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args);
 std::vector<Job> PrepareBatch(const BatchArgs &a);
 // Rewrites report.json and summary.txt in a.outDir atomically; `sync` (the final reports,
 // FinishReports) also fsyncs them (core/output_file.h).
+// `endedBy`, when not empty, says why the batch stopped early (e.g. "SIGTERM"): report.json's
+// "ended_by" and a line of summary.txt.
 void WriteReports(const std::string &outDir, const std::vector<Job> &jobs, double wallSeconds,
-                  bool sync = false);
+                  bool sync = false, const std::string &endedBy = "");
 // The end of a batch: the final reports, the summary on stderr (unless quiet); returns the
-// number of failed scenes.
-int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds);
+// number of failed (or timed-out) scenes.
+int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallSeconds,
+                  const std::string &endedBy = "");
 // The running executable (/proc/self/exe).
 std::string RunningExecutable();
 // Starts `exe render` for j in a child process (stderr to j.logPath, by default a new
 // `.prism-<pid>-XXXXXX.log.tmp` in the output's folder; never through a symbolic link).
-// dieWithParent: the child gets SIGTERM when this process dies (prism-mpi's ranks).
+// The child is killed when this process dies (PR_SET_PDEATHSIG: SIGTERM with dieWithParent,
+// prism-mpi's ranks, else SIGKILL), so no render outlives a batch that was killed.
 void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
             bool dieWithParent = false);
 // Records the child's end: status, phases and warnings from its log. `interrupted`: the batch
 // was interrupted (a render ended by SIGINT is then "interrupted", not "failed").
-void Finish(Job &j, int status, const struct rusage &usage, bool interrupted);
+// A render stopped for --scene-timeout (j.timedOut) is "timeout", with timeoutSeconds in its
+// error, unless it exited 0 (it finished writing as the limit came).
+void Finish(Job &j, int status, const struct rusage &usage, bool interrupted,
+            double timeoutSeconds = 0);
 
 }  // namespace prism

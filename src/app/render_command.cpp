@@ -374,7 +374,8 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
 
 namespace {
 
-// SIGINT during a render sets this flag: the renderer stops between tiles and nothing is
+// SIGINT during a render sets this flag: the renderer stops within a camera packet (it is
+// read between tiles and inside them, render/renderer.h TileDriver) and nothing is
 // written. During the final write the signal is deferred, so the output is either complete or
 // absent.
 volatile sig_atomic_t g_cancel = 0;
@@ -391,6 +392,13 @@ int RunRender(const RenderArgs &a) {
     sigaction(SIGINT, &sa, &old);
     sigaction(SIGTERM, &sa, nullptr);
     Image img = job.RenderImage(&stats, progress, &g_cancel);
+    if (stats.timedOut && !g_cancel) {
+        std::fprintf(stderr,
+                     "error: the time limit of %gs (--time-limit) ran out before the first "
+                     "pass finished: no image written\n",
+                     a.timeLimit);
+        return ExitInternal;
+    }
     if (stats.cancelled || g_cancel) {
         std::fprintf(stderr, "interrupted: no image written\n");
         return ExitInterrupted;
@@ -482,8 +490,9 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
         ->check(CLI::Range(1e-6, 1e6));
     cmd->add_option("--time-limit", args->timeLimit,
                     "Render in progressive passes until S seconds have passed since the start "
-                    "(loading included), or --spp samples are reached if given; a started pass "
-                    "finishes, so the image is always complete")
+                    "(loading included), or --spp samples are reached if given; a pass the "
+                    "deadline cuts off is dropped, and if none finished nothing is written "
+                    "(exit 1)")
         ->check(CLI::Range(1e-3, 1e9));
     cmd->add_flag("--stats", args->stats,
                   "Also print the image's noise: its relative standard error, estimated from "

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 namespace prism {
@@ -28,6 +31,18 @@ Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, Render
     int done = 0;
     // Per pass: its samples and its noise variance (negative: the pass had no estimate).
     std::vector<std::pair<int, double>> noise;
+    // The passes are stopped by this flag, raised by a watcher at the deadline or when the
+    // caller's flag is: a pass cut off by the deadline is dropped (the earlier ones are the
+    // image), so that no pass outlives the time limit by more than one camera packet.
+    volatile int stop = 0;
+    std::mutex mutex;
+    std::condition_variable cv;
+    bool finished = false;
+    std::thread watcher([&] {
+        std::unique_lock<std::mutex> lock(mutex);
+        while (!cv.wait_for(lock, std::chrono::milliseconds(10), [&] { return finished; }))
+            if ((cancel && *cancel) || elapsed() >= limit.seconds) stop = 1;
+    });
     for (uint32_t pass = 0;; ++pass) {
         const int spp = NextPassSpp(done, limit.maxSpp, limit.seconds - elapsed(),
                                     done > 0 ? total.renderSeconds / double(done) : 0.0);
@@ -37,7 +52,10 @@ Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, Render
         options.sampler.spp = spp;
         // Pass 0 keeps seed 0: a budget of one pass renders what a plain render would.
         options.sampler.seed = pass * 0x9E3779B9u;
-        options.cancel = cancel;
+        // The AOVs take a pass's tiles as they finish (the variance merges them at once), so a
+        // pass cut short would leave part of itself in them: with AOVs only the first pass
+        // (no image without it) is cut at the deadline; later ones are sized to fit and finish.
+        options.cancel = aovs && done > 0 ? cancel : &stop;
         options.aovs = aovs;
         if (progress) {
             options.progress = [&, spp](double f) {
@@ -58,7 +76,11 @@ Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, Render
             total.firstNonFinitePixel = ps.firstNonFinitePixel;
         total.kernelMask = ps.kernelMask;
         if (ps.cancelled) {
-            total.cancelled = true;
+            // The caller's cancel, or the deadline before any pass finished: no image.
+            if ((cancel && *cancel) || done == 0) {
+                total.cancelled = true;
+                total.timedOut = !(cancel && *cancel);
+            }
             break;
         }
         if (sum.empty()) {
@@ -71,6 +93,12 @@ Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, Render
         total.passSpp.push_back(spp);
         done += spp;
     }
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        finished = true;
+    }
+    cv.notify_all();
+    watcher.join();
     if (done > 0)
         for (size_t i = 0; i < sum.size(); ++i) img.pixels[i] = float(sum[i] / double(done));
     // The average of independent passes: variance sum over passes of (spp_k / N)^2 var_k. A

@@ -98,13 +98,46 @@ TileDriver::TileDriver(const RenderScene &scene, const SamplerSettings &sampler,
       context_{scene, sampler_, camera_, scene.integrator->KernelMask(scene)},
       aovs_(aovs) {}
 
-void TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSamples &buf,
-                            RayCounters &rc) const {
+bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSamples &buf,
+                            RayCounters &rc, const volatile int *cancel) const {
     const bool unitBox = tile->UnitBox();
     buf.wantDirect = aovs_ && aovs_->WantsDirect();
     buf.wantPositions = !unitBox || buf.wantDirect;
     buf.Reset(tb, uint32_t(sampler_.spp));
-    scene_.integrator->RenderTile(context_, buf, rc);
+    if (!cancel) {
+        scene_.integrator->RenderTile(context_, buf, rc);
+    } else {
+        // One camera packet at a time, the cancel flag read before each, so that a tile of
+        // expensive pixels stops within one packet. The packets are the ones the whole tile
+        // would trace (aligned to the tile's corner) and every sample depends only on its
+        // pixel and index (per-pixel seeds), so the samples are the same bits.
+        static thread_local TileSamples part;
+        part.wantDirect = buf.wantDirect;
+        part.wantPositions = buf.wantPositions;
+        const size_t spp = buf.spp;
+        for (int by = tb.pMin.y; by < tb.pMax.y; by += RenderPacketH)
+            for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += RenderPacketW) {
+                if (*cancel) return false;
+                const Bounds2i pb{{bx, by},
+                                  {std::min(bx + RenderPacketW, tb.pMax.x),
+                                   std::min(by + RenderPacketH, tb.pMax.y)}};
+                part.Reset(pb, buf.spp);
+                scene_.integrator->RenderTile(context_, part, rc);
+                for (int y = pb.pMin.y; y < pb.pMax.y; ++y)
+                    for (int x = pb.pMin.x; x < pb.pMax.x; ++x) {
+                        const size_t from = part.Index(x, y, 0), to = buf.Index(x, y, 0);
+                        std::copy_n(part.L.begin() + ptrdiff_t(from), spp,
+                                    buf.L.begin() + ptrdiff_t(to));
+                        if (buf.wantPositions)
+                            std::copy_n(part.pFilm.begin() + ptrdiff_t(from), spp,
+                                        buf.pFilm.begin() + ptrdiff_t(to));
+                        if (buf.wantDirect)
+                            std::copy_n(part.direct.begin() + ptrdiff_t(from), spp,
+                                        buf.direct.begin() + ptrdiff_t(to));
+                    }
+            }
+        if (*cancel) return false;
+    }
     // The film's scale, and pbrt's clamp of bright samples (Film "maxsampleluminance"); the
     // direct part is scaled as its sample is.
     const float scale = scene_.filmScale, maxLum = scene_.maxSampleLuminance;
@@ -138,6 +171,7 @@ void TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
                 tile->AddSample(buf.pFilm[first + size_t(s)], buf.L[first + size_t(s)]);
         }
     if (aovs_) aovs_->AddTile(context_, t, buf);
+    return true;
 }
 
 Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &progress,
@@ -184,7 +218,9 @@ Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats
         [&](int t) {
             FilmTile *tile = inPlace ? &ownTile.local() : merger.Acquire();
             film.ResetTile(t, tile);
-            driver.RenderTile(t, film.TilePixels(t), tile, scratch.local(), counters.local());
+            if (!driver.RenderTile(t, film.TilePixels(t), tile, scratch.local(), counters.local(),
+                                   options.cancel))
+                return;  // cancelled inside the tile: it stays unrendered
             if (inPlace)
                 film.ResolveTile(t, *tile);
             else

@@ -34,7 +34,10 @@ struct RenderStats {
     RayCounters rays;
     uint64_t nonFiniteSamples = 0;
     std::optional<Vec2i> firstNonFinitePixel;
-    bool cancelled = false;   // the cancel flag was raised: the image is incomplete
+    bool cancelled = false;  // the cancel flag was raised: the image is incomplete
+    // Progressive renders: the time limit ran out before the first pass finished (cancelled
+    // is set too: there is no image).
+    bool timedOut = false;
     uint32_t kernelMask = 0;  // the kernel that ran (render/kernel.h KernelMaskName)
     // With scene.estimateNoise: the estimated variance of the image, summed over its pixels
     // and channels (image/film.h FilmTile::NoiseVariance), and how many pixels it covers.
@@ -57,8 +60,8 @@ using ProgressFn = std::function<void(double fraction)>;
 struct RenderOptions {
     SamplerSettings sampler;  // usually the scene's (RenderScene::sampler)
     ProgressFn progress;
-    // Polled between tiles; once it reads true the remaining tiles are skipped and
-    // stats->cancelled is set.
+    // Polled between tiles and inside them before every camera packet (TileDriver::RenderTile);
+    // once it reads true the remaining work is skipped and stats->cancelled is set.
     const volatile int *cancel = nullptr;
     AovFrame *aovs = nullptr;  // the AOVs, computed from this render's own tiles
 };
@@ -84,8 +87,11 @@ class TileDriver {
     TileDriver(const RenderScene &scene, const SamplerSettings &sampler, AovFrame *aovs);
     uint32_t KernelMask() const { return context_.kernelMask; }
     // Renders tile t (pixels tb) into `tile` (reset by the caller), with buf as scratch.
-    void RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSamples &buf,
-                    RayCounters &rc) const;
+    // With a cancel flag it is read before every camera packet (RenderPacketW x
+    // RenderPacketH pixels, all their samples): once it reads true the tile is abandoned
+    // and false returned (`tile` is then incomplete and must not be merged).
+    bool RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSamples &buf, RayCounters &rc,
+                    const volatile int *cancel = nullptr) const;
 
   private:
     const RenderScene &scene_;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/memory.h"
 #include "core/transform.h"
 #include "scene/scene_description.h"
 
@@ -31,10 +32,18 @@ double ExtNumber(const tinygltf::ExtensionMap &ext, const char *extName, const c
 
 class GltfConverter {
   public:
+    // Each node instance (a node reached by one path from a root) and each mesh instance
+    // counted against the budget before the graph is expanded: nodes that share children
+    // can name 2^40 paths in 2 KB.
+    static constexpr uint64_t kBytesPerNodeInstance = 128;   // its world matrix, the visit
+    static constexpr uint64_t kBytesPerMeshInstance = 1024;  // a ShapeDesc and its parameters
+
     GltfConverter(const tinygltf::Model &model, const std::string &path, Diagnostics &diag,
                   SceneDescription &desc)
         : model_(model), loc_{path}, diag_(diag), desc_(desc) {}
 
+    // With a budget (--max-memory), Read refuses a node graph whose expansion does not fit.
+    void SetBudget(const MemoryBudget *budget) { budget_ = budget; }
     void Read();
 
   private:
@@ -44,6 +53,9 @@ class GltfConverter {
     std::vector<int> ReadIndices(int accessor, size_t vertexCount);
 
     void Traverse(int node, const Matrix4 &parent, std::vector<int> &path);
+    // Checks what traversing `roots` would expand (node and mesh instances, counted per node
+    // once, saturating) against budget_.
+    void CheckExpansion(const std::vector<int> &roots) const;
     void AddMesh(int meshIndex, const Transform &worldFromObject);
     void AddCamera(const tinygltf::Node &node, const Matrix4 &world);
     void AddLight(const tinygltf::Node &node, const Matrix4 &world);
@@ -66,6 +78,7 @@ class GltfConverter {
     [[noreturn]] void Fail(const std::string &msg) const { throw SceneError(loc_, msg); }
 
     const tinygltf::Model &model_;
+    const MemoryBudget *budget_ = nullptr;
     FileLoc loc_;
     Diagnostics &diag_;
     SceneDescription &desc_;

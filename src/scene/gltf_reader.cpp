@@ -447,6 +447,51 @@ void GltfConverter::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<i
     path.pop_back();
 }
 
+void GltfConverter::CheckExpansion(const std::vector<int> &roots) const {
+    if (!budget_) return;
+    static constexpr uint64_t kSaturated = uint64_t(1) << 62;
+    auto add = [](uint64_t a, uint64_t b) { return std::min(kSaturated, a + b); };
+    const size_t n = model_.nodes.size();
+    // Per node: the node instances and mesh instances below it (itself included); 0 = not yet
+    // counted. A cycle or a missing node counts nothing here (Traverse reports it).
+    std::vector<uint64_t> nodes(n, 0), meshes(n, 0);
+    std::vector<char> state(n, 0);  // 1: being counted, 2: done
+    auto count = [&](auto &self, int i, int depth) -> void {
+        if (i < 0 || size_t(i) >= n || state[size_t(i)] != 0 || depth > 1001) return;
+        state[size_t(i)] = 1;
+        const tinygltf::Node &node = model_.nodes[size_t(i)];
+        uint64_t total = 1, withMesh = node.mesh >= 0 ? 1 : 0;
+        for (int c : node.children) {
+            self(self, c, depth + 1);
+            if (c >= 0 && size_t(c) < n && state[size_t(c)] == 2) {
+                total = add(total, nodes[size_t(c)]);
+                withMesh = add(withMesh, meshes[size_t(c)]);
+            }
+        }
+        nodes[size_t(i)] = total;
+        meshes[size_t(i)] = withMesh;
+        state[size_t(i)] = 2;
+    };
+    uint64_t total = 0, withMesh = 0;
+    for (int r : roots) {
+        count(count, r, 0);
+        if (r >= 0 && size_t(r) < n && state[size_t(r)] == 2) {
+            total = add(total, nodes[size_t(r)]);
+            withMesh = add(withMesh, meshes[size_t(r)]);
+        }
+    }
+    auto mul = [&](uint64_t a, uint64_t b) { return a > kSaturated / b ? kSaturated : a * b; };
+    const uint64_t bytes = std::min(
+        kSaturated, mul(total, kBytesPerNodeInstance) + mul(withMesh, kBytesPerMeshInstance));
+    auto shown = [&](uint64_t v) {
+        return v >= kSaturated ? std::string("more than 2^62") : std::to_string(v);
+    };
+    budget_->Check(bytes,
+                   "the node graph (" + shown(total) + " node instances, " + shown(withMesh) +
+                       " of them meshes: nodes share children)",
+                   loc_);
+}
+
 void GltfConverter::Read() {
     static const std::set<std::string> supported = {
         "KHR_lights_punctual",    "KHR_materials_transmission",
@@ -466,13 +511,17 @@ void GltfConverter::Read() {
         for (const tinygltf::Node &n : model_.nodes)
             for (int c : n.children)
                 if (c >= 0 && size_t(c) < isChild.size()) isChild[size_t(c)] = true;
-        std::vector<int> path;
+        std::vector<int> roots;
         for (size_t i = 0; i < model_.nodes.size(); ++i)
-            if (!isChild[i]) Traverse(int(i), Matrix4::Identity(), path);
+            if (!isChild[i]) roots.push_back(int(i));
+        CheckExpansion(roots);
+        std::vector<int> path;
+        for (int r : roots) Traverse(r, Matrix4::Identity(), path);
         return;
     }
     int sceneIndex = model_.defaultScene;
     if (sceneIndex < 0 || size_t(sceneIndex) >= model_.scenes.size()) sceneIndex = 0;
+    CheckExpansion(model_.scenes[size_t(sceneIndex)].nodes);
     std::vector<int> path;
     for (int n : model_.scenes[size_t(sceneIndex)].nodes) Traverse(n, Matrix4::Identity(), path);
 }
@@ -530,7 +579,9 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
     desc.integrator.type = "distribution";
     desc.sourceFile = path;
     desc.baseDir = DirectoryOf(path);
-    GltfConverter(model, path, diag, desc).Read();
+    GltfConverter converter(model, path, diag, desc);
+    converter.SetBudget(&memory);
+    converter.Read();
     // What the description keeps after the model is freed: mesh parameters and embedded images.
     uint64_t geometry = 0, images = 0;
     for (const ShapeDesc &s : desc.shapes) geometry += ParamStorageBytes(s.params);

@@ -2,7 +2,12 @@
 // scenes need because those formats usually carry neither.
 #include "scene/load_scene.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -119,33 +124,70 @@ std::string SceneExtensionList() {
 std::vector<std::string> ReferencedFiles(const std::string &sceneFile) {
     std::vector<std::string> files;
     if (LowerExtension(sceneFile) != ".pbrt") return files;
-    std::string text;
-    FileReadError error;
-    if (!ReadFileContents(sceneFile, &text, &error)) return files;
+    // Read in chunks and tokenized a line at a time (no pbrt token spans lines: strings end
+    // before a newline, comments at it), so a scene file of any size takes a line's memory,
+    // at most kMaxLine: a longer line is cut there (a token cut in two is lost).
+    constexpr size_t kMaxLine = size_t(1) << 20;
+    const int fd = ::open(sceneFile.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return files;
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {  // a FIFO or device never ends
+        ::close(fd);
+        return files;
+    }
     const std::string dir = DirectoryOf(sceneFile);
     auto add = [&](const Token &t) {
         files.push_back(CanonicalPath(ResolveScenePath(dir, Tokenizer::StringValue(t))));
     };
-    try {
-        Tokenizer tok(std::move(text), sceneFile);
-        for (Token t = tok.Next(); t.kind != TokenKind::End; t = tok.Next()) {
-            if (t.kind == TokenKind::Word && (t.text == "Include" || t.text == "Import")) {
-                if (tok.Peek().kind == TokenKind::String) add(tok.Next());
-            } else if (t.kind == TokenKind::String) {
-                // "string filename" "x.ply" or "string filename" [ "x.ply" ]
-                std::string decl(t.text);
-                char type[16], name[16], extra;
-                if (decl.size() > 40 ||
-                    std::sscanf(decl.c_str(), " %15s %15s %c", type, name, &extra) != 2 ||
-                    std::strcmp(type, "string") != 0 || std::strcmp(name, "filename") != 0)
-                    continue;
-                if (tok.Peek().kind == TokenKind::LBracket) tok.Next();
-                if (tok.Peek().kind == TokenKind::String) add(tok.Next());
+    // What the tokens so far expect: Include/Import "FILE", "string filename" [ "FILE" ].
+    enum class Expect { Nothing, IncludedFile, Filename, FilenameInBrackets };
+    Expect expect = Expect::Nothing;
+    auto scanLine = [&](std::string line) {
+        try {
+            Tokenizer tok(std::move(line), sceneFile);
+            for (Token t = tok.Next(); t.kind != TokenKind::End; t = tok.Next()) {
+                const Expect was = expect;
+                expect = Expect::Nothing;
+                if (t.kind == TokenKind::Word && (t.text == "Include" || t.text == "Import")) {
+                    expect = Expect::IncludedFile;
+                } else if (t.kind == TokenKind::LBracket && was == Expect::Filename) {
+                    expect = Expect::FilenameInBrackets;
+                } else if (t.kind == TokenKind::String) {
+                    if (was != Expect::Nothing) {
+                        add(t);
+                        continue;
+                    }
+                    // "string filename" "x.ply" or "string filename" [ "x.ply" ]
+                    std::string decl(t.text);
+                    char type[16], name[16], extra;
+                    if (decl.size() <= 40 &&
+                        std::sscanf(decl.c_str(), " %15s %15s %c", type, name, &extra) == 2 &&
+                        std::strcmp(type, "string") == 0 && std::strcmp(name, "filename") == 0)
+                        expect = Expect::Filename;
+                }
             }
+        } catch (const SceneError &) {
+            // Malformed: keep what was found; the render of this scene reports the error.
+            expect = Expect::Nothing;
         }
-    } catch (const SceneError &) {
-        // Malformed: keep what was found; the render of this scene reports the error.
+    };
+    std::string line;
+    char chunk[1 << 16];
+    while (true) {
+        const ssize_t n = ::read(fd, chunk, sizeof chunk);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        for (ssize_t i = 0; i < n; ++i) {
+            if (chunk[i] == '\n' || line.size() >= kMaxLine) {
+                scanLine(std::move(line));
+                line.clear();
+                if (chunk[i] == '\n') continue;
+            }
+            line += chunk[i];
+        }
     }
+    ::close(fd);
+    scanLine(std::move(line));
     return files;
 }
 

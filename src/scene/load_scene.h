@@ -49,8 +49,10 @@ std::string SceneExtensionList();
 // targets of Include/Import and every "string filename" parameter (plymesh meshes, image
 // textures, ...), found with the pbrt tokenizer, not resolved recursively; other formats
 // return nothing. `prism batch DIR` uses it so that a mesh or an included file inside a scene
-// folder is not rendered as a scene of its own. Unreadable or malformed files give what was
-// found before the problem (the render reports the problem itself).
+// folder is not rendered as a scene of its own. The file is read in chunks and tokenized a
+// line at a time, so the scan holds at most one line (cut at 1 MiB), never the whole file;
+// only regular files are read. Unreadable or malformed files give what was found (the render
+// reports the problem itself).
 std::vector<std::string> ReferencedFiles(const std::string &sceneFile);
 
 // World-space bounds of the scene's "trianglemesh" shapes (P through worldFromObject, for

@@ -68,7 +68,7 @@ RGB SceneBuilder::SpectrumFile(const std::string &name, const FileLoc &loc) {
     if (opts_.confineIncludes && !IsInsideDirectory(CanonicalPath(path), scene_.baseDir)) {
         diag_.Warn(loc, "spectrum file " + Quote(name) +
                             " is outside the scene directory; using a constant 1");
-    } else if (std::optional<RGB> rgb = ReadSpdFile(path, name, &error)) {
+    } else if (std::optional<RGB> rgb = ReadSpdFile(path, name, &error, opts_.budget, loc)) {
         result = *rgb;
     } else {
         diag_.Warn(loc, error + "; using a constant 1");
@@ -122,9 +122,18 @@ void SceneBuilder::DefineNamed(Namespace ns, const std::string &name, int index)
     map[name] = index;
 }
 
+// What one frame of the graphics-state stack holds: charged at its Begin, given back at its
+// End, so a million nested AttributeBegin are refused at the one that does not fit.
+uint64_t SceneBuilder::FrameBytes(const FileLoc &loc) const {
+    return sizeof(Frame) + loc.file.size() + gs_.mediumInside.size() + gs_.mediumOutside.size() +
+           gs_.mediumLoc.file.size() + motionLoc_.file.size();
+}
+
 void SceneBuilder::PushFrame(FrameKind kind, const FileLoc &loc) {
-    frames_.push_back(
-        {kind, loc, ctm_, ctmEnd_, applyToStart_, applyToEnd_, motionLoc_, gs_, undo_.size()});
+    const uint64_t bytes = opts_.budget ? FrameBytes(loc) : 0;
+    if (opts_.budget) opts_.budget->Charge(bytes, FrameName(int(kind)), loc);
+    frames_.push_back({kind, loc, ctm_, ctmEnd_, applyToStart_, applyToEnd_, motionLoc_, gs_,
+                       undo_.size(), bytes});
 }
 
 void SceneBuilder::PopFrame(FrameKind kind, const char *directive, const FileLoc &loc) {
@@ -137,6 +146,7 @@ void SceneBuilder::PopFrame(FrameKind kind, const char *directive, const FileLoc
     }
     Frame f = std::move(frames_.back());
     frames_.pop_back();
+    if (opts_.budget) opts_.budget->Release(f.charged);
     ctm_ = f.ctm;
     ctmEnd_ = f.ctmEnd;
     applyToStart_ = f.applyToStart;
@@ -477,6 +487,11 @@ void SceneBuilder::ObjectInstance(const std::string &name, const FileLoc &loc) {
         throw SceneError(loc, "ObjectInstance cannot be a CSG operand (CSGBegin at " +
                                   csgStack_.back().loc.ToString() + ")");
     if (!FindObject(scene_, name)) throw SceneError(loc, "unknown object " + Quote(name));
+    // Each instance holds its transforms and names: a million ObjectInstance lines are
+    // refused at the one that does not fit.
+    if (opts_.budget)
+        opts_.budget->Charge(sizeof(InstanceDesc) + name.size() + loc.file.size(),
+                             "ObjectInstance " + Quote(name), loc);
     scene_.instances.push_back({name, ctm_, Motion(), loc});
 }
 

@@ -110,7 +110,8 @@ class SceneBuilder final : public PbrtTarget {
         bool applyToStart, applyToEnd;
         FileLoc motionLoc;
         GraphicsState gs;
-        size_t undoMark;  // size of the named-definition undo log when the frame was pushed
+        size_t undoMark;       // size of the named-definition undo log when the frame was pushed
+        uint64_t charged = 0;  // what PushFrame charged to the budget (FrameBytes)
     };
     // Named materials and textures are scoped by AttributeBegin/End. Instead of copying the
     // maps at every AttributeBegin (real scenes have tens of thousands), definitions are
@@ -122,6 +123,7 @@ class SceneBuilder final : public PbrtTarget {
         std::optional<int> previous;
     };
 
+    uint64_t FrameBytes(const FileLoc &loc) const;
     ParamSet Params(ParsedParameterVector params);
     SceneEntity Entity(const std::string &type, ParsedParameterVector params, const FileLoc &loc);
     RGB SpectrumFile(const std::string &name, const FileLoc &loc);

@@ -5,8 +5,10 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include "core/file_io.h"
+#include "core/memory.h"
 
 namespace prism {
 
@@ -116,10 +118,16 @@ RGB BlackbodyToRGB(double temperatureK, double scale) {
 }
 
 std::optional<RGB> ReadSpdFile(const std::string &path, const std::string &displayName,
-                               std::string *error) {
+                               std::string *error, const MemoryBudget *budget, const FileLoc &loc) {
     std::string text;
     FileReadError readError;
-    if (!ReadFileContents(path, &text, &readError)) {
+    const uint64_t maxBytes =
+        budget ? budget->Remaining() / kSpdBytesPerFileByte : std::numeric_limits<uint64_t>::max();
+    if (!ReadFileContents(path, &text, &readError, maxBytes)) {
+        if (readError.tooLarge && budget)
+            budget->Check(readError.size * kSpdBytesPerFileByte,
+                          "spectrum file " + Quote(displayName), loc);  // throws
+
         *error = "cannot open spectrum file " + Quote(displayName) + ": " + readError.reason;
         return std::nullopt;
     }

@@ -3,14 +3,18 @@
 // works in.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/color.h"
+#include "core/error.h"
 
 namespace prism {
+
+class MemoryBudget;
 
 // CIE 1931 2° colour matching functions, from the multi-lobe Gaussian fit of Wyman, Sloan and
 // Shirley 2013 ("Simple Analytic Approximations to the CIE XYZ Color Matching Functions").
@@ -39,7 +43,13 @@ RGB BlackbodyToRGB(double temperatureK, double scale = 1.0);
 // nothing and sets *error to what went wrong, naming the file as `displayName`:
 // `cannot open spectrum file "NAME": REASON` or
 // `cannot read spectrum file "NAME": expected (wavelength, value) pairs`.
+// With a budget (--max-memory) the file is size-checked before it is read: reading and
+// converting it takes up to kSpdBytesPerFileByte times its size for a moment (the text, then
+// a double for every two bytes, twice), and a file that would not fit in what remains is a
+// MemoryBudgetError at `loc`, `spectrum file "NAME" needs about ...` (nothing read).
+inline constexpr uint64_t kSpdBytesPerFileByte = 10;
 std::optional<RGB> ReadSpdFile(const std::string &path, const std::string &displayName,
-                               std::string *error);
+                               std::string *error, const MemoryBudget *budget = nullptr,
+                               const FileLoc &loc = {});
 
 }  // namespace prism
