@@ -40,9 +40,11 @@ Shape "sphere" "float radius" [ 0.35 ]
 WorldEnd
 )";
 
-RenderScene BuildRoom(const std::string &integrator, int spp) {
+// Each test and integrator writes a file of its own (ctest runs tests in parallel).
+RenderScene BuildRoom(const std::string &test, const std::string &integrator, int spp) {
     Diagnostics diag(false);
-    SceneDescription desc = LoadScene(WriteTestFile(ScratchDir("aov") / "room.pbrt", kRoom), diag);
+    SceneDescription desc = LoadScene(
+        WriteTestFile(ScratchDir("aov") / (test + "-" + integrator + ".pbrt"), kRoom), diag);
     BuildSettings s;
     s.resolution = Vec2i(12, 10);
     s.spp = spp;
@@ -54,7 +56,7 @@ TEST(Aov, VarianceIsThatOfTheBeautysOwnSamples) {
     for (const char *integrator : {"path", "volpath", "directlighting", "whitted"}) {
         SCOPED_TRACE(integrator);
         const int spp = 8;
-        RenderScene scene = BuildRoom(integrator, spp);
+        RenderScene scene = BuildRoom("variance", integrator, spp);
         AovFrame frame(scene, {Aov::Variance}, {});
         RenderOptions options;
         options.sampler = scene.sampler;
@@ -96,7 +98,7 @@ TEST(Aov, VarianceIsThatOfTheBeautysOwnSamples) {
 TEST(Aov, DirectPlusIndirectIsTheBeautyUnderThePathIntegrators) {
     for (const char *integrator : {"path", "volpath", "directlighting", "whitted"}) {
         SCOPED_TRACE(integrator);
-        RenderScene scene = BuildRoom(integrator, 4);
+        RenderScene scene = BuildRoom("split", integrator, 4);
         ASSERT_TRUE(scene.integrator->Traits().directAov);
         AovFrame frame(scene, {Aov::Direct, Aov::Indirect}, {});
         RenderOptions options;
