@@ -523,6 +523,15 @@ TEST(Hostile, TerminatingTheBatchStopsItsRenderAndSaysSoInTheReport) {
 
 // The largest peak resident memory of any child process waited for so far, in MiB (the
 // prism processes RunPrism runs, through their shell).
+// ASan's shadow memory and quarantine make a child's peak resident size no measure of what
+// Prism holds: the peak bounds are checked in the Release build only (the located errors in
+// both).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kPeakIsPrisms = false;
+#else
+constexpr bool kPeakIsPrisms = true;
+#endif
+
 double PeakChildMiB() {
     struct rusage u {};
     getrusage(RUSAGE_CHILDREN, &u);
@@ -556,7 +565,7 @@ TEST(Hostile, WhatTheParserHoldsIsChargedToTheBudget) {
         EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err.substr(0, 2000);
         EXPECT_NE(r.err.find("(--max-memory)"), std::string::npos) << r.err.substr(0, 2000);
         EXPECT_FALSE(fs::exists(dir / "out.png"));
-        EXPECT_LT(PeakChildMiB(), 3 * 64.0);
+        if (kPeakIsPrisms) EXPECT_LT(PeakChildMiB(), 3 * 64.0);
     }
 }
 
@@ -601,7 +610,7 @@ TEST(Hostile, BatchFolderScanDoesNotReadScenesWhole) {
     EXPECT_EQ(r.exitCode, 2) << r.err;  // the render refuses the 150 MB file itself
     EXPECT_NE(ReadFile(dir / "out/report.json").find("memory budget"), std::string::npos)
         << ReadFile(dir / "out/report.json");
-    EXPECT_LT(PeakChildMiB(), 100.0);
+    if (kPeakIsPrisms) EXPECT_LT(PeakChildMiB(), 100.0);
 }
 
 // A 2 KB glTF whose 41 nodes each name the next one twice as their children: 2^41 - 1 node
