@@ -48,7 +48,7 @@ void PrintEffects(const RenderScene &scene) {
     for (const LightShadows &l : e.lights)
         std::printf("  shadows of %s: %d shadow ray%s per shading point\n", l.light.c_str(),
                     l.shadowRays, l.shadowRays == 1 ? "" : "s");
-    std::printf("max useful depth: %d (maxdepth %d)\n", e.maxUsefulDepth, scene.maxDepth);
+    std::printf("max useful depth: %d (maxdepth %d)\n", e.maxUsefulDepth, scene.trace.maxDepth);
     if (scene.integrator->Traits().effectKernel)
         std::printf("kernel:     %s\n", KernelMaskName(KernelMaskFor(scene)).c_str());
     else  // the other integrators trace each camera sample through their Li

@@ -155,7 +155,7 @@ struct Picker {
                 Num(si.uv.x) + ", " + Num(si.uv.y) + "]\n";
         // The specular lobes, as the Whitted kernel follows them (depth + 1 < maxdepth).
         std::string next;
-        if (depth < maxBounces && depth + 1 < scene.maxDepth) {
+        if (depth < maxBounces && depth + 1 < scene.trace.maxDepth) {
             const Material &mat = scene.materials[size_t(info.material)];
             BSDF bsdf = mat.GetBSDF(si, TextureContext{si.uv, si.p, si.uv1});
             for (int part = 0; part < bsdf.NumParts(); ++part) {

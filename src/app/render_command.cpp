@@ -311,9 +311,9 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                      "pass-through %llu, glossy %llu; %.2f Mrays/s\n",
                      EscapeControlChars(out).c_str(),  // a Film "filename" is the scene's
                      scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
-                     scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, stats.spp, scene.maxDepth,
-                     a.precision.c_str(), scene.IntegratorName(), s_->parseSeconds,
-                     s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,
+                     scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, stats.spp,
+                     scene.trace.maxDepth, a.precision.c_str(), scene.IntegratorName(),
+                     s_->parseSeconds, s_->setupSeconds, scene.buildSeconds, stats.renderSeconds,
                      (unsigned long long)r.camera, (unsigned long long)r.shadow,
                      (unsigned long long)r.reflection, (unsigned long long)r.refraction,
                      (unsigned long long)r.passThrough, (unsigned long long)r.glossy,

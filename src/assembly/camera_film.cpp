@@ -318,7 +318,7 @@ void BuildIntegratorSettings(BuildContext &ctx) {
         throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) +
                                                   " out of range (0 to " +
                                                   std::to_string(MaxTraceDepth) + ")");
-    scene.maxDepth = maxDepth;
+    scene.trace.maxDepth = maxDepth;
     // The accuracy knobs are settings, not scene data; the command line checks them too.
     if (!(settings.rayCutoff >= 0) || !std::isfinite(settings.rayCutoff))
         throw SceneError("ray cutoff " + std::to_string(settings.rayCutoff) +
@@ -327,7 +327,7 @@ void BuildIntegratorSettings(BuildContext &ctx) {
         (!(settings.offset.epsilon > 0) || !std::isfinite(settings.offset.epsilon)))
         throw SceneError("offset epsilon " + std::to_string(settings.offset.epsilon) +
                          " must be a finite number > 0");
-    scene.rayCutoff = settings.rayCutoff;
+    scene.trace.rayCutoff = settings.rayCutoff;
     scene.offset = settings.offset;
 }
 

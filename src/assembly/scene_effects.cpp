@@ -53,7 +53,7 @@ void FinishEffects(BuildContext &ctx) {
     const bool bounces = e.Has(Effect::SpecularReflection) || e.Has(Effect::Refraction) ||
                          e.Has(Effect::GlossyReflection) || e.Has(Effect::GlossyTransmission) ||
                          e.Has(Effect::IndirectIllumination);
-    e.maxUsefulDepth = bounces ? std::max(scene.maxDepth, 1) : 1;
+    e.maxUsefulDepth = bounces ? std::max(scene.trace.maxDepth, 1) : 1;
 }
 
 }  // namespace prism

@@ -81,7 +81,7 @@ RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &rayIn, con
     }
     if (direct) *direct = L;
     // Delta reflection and transmission (pbrt-v3 SpecularReflect / SpecularTransmit).
-    if (depth + 1 < scene.maxDepth) {
+    if (depth + 1 < ps.trace.maxDepth) {
         Vec3f wi;
         RGB weight;
         for (int part = 0; part < bsdf.NumParts(); ++part) {

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/params.h"
+#include "render/render_scene.h"
 
 namespace prism {
 
@@ -20,16 +21,20 @@ std::unique_ptr<Integrator> CreateDistributionIntegrator(const IntegratorInputs 
     return std::make_unique<DistributionIntegrator>(n);
 }
 
+KernelParams DistributionTracer::Args() const {
+    KernelParams p{true, glossySamples_, 0};
+    p.trace = scene_.trace;
+    return p;
+}
+
 RGB DistributionTracer::Li(const Ray &ray, int depth, RayCounters &counters,
                            const SampleContext &sc, bool emitted) const {
-    return Kernel<KernelAll>(scene_, KernelParams{true, glossySamples_, 0})
-        .Li(ray, depth, counters, sc, emitted);
+    return Kernel<KernelGeneral>(scene_, Args()).Li(ray, depth, counters, sc, emitted);
 }
 
 RGB DistributionTracer::LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters,
                                  const SampleContext &sc) const {
-    return Kernel<KernelAll>(scene_, KernelParams{true, glossySamples_, 0})
-        .LiCamera(ray, hit, counters, sc);
+    return Kernel<KernelGeneral>(scene_, Args()).LiCamera(ray, hit, counters, sc);
 }
 
 }  // namespace prism

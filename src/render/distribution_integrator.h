@@ -54,6 +54,8 @@ class DistributionTracer {
                  const SampleContext &sc = {}) const;
 
   private:
+    KernelParams Args() const;  // glossy rays, the scene's trace settings
+
     const RenderScene &scene_;
     int glossySamples_;
 };

@@ -40,7 +40,7 @@ void Integrator::RenderTile(const TileContext &ctx, TileSamples &out, RayCounter
                 if (camera.Lens()) rc.lensSamples++;
                 const Ray ray = camera.GenerateRay(cs);
                 rc.camera++;
-                PixelSamples ps{x, y, s, spp, ctx.sampler.pattern, ctx.sampler.seed};
+                PixelSamples ps{x, y, s, spp, ctx.sampler.pattern, ctx.sampler.seed, ctx.trace};
                 RayDifferential rd;
                 if (camera.Differentials()) {
                     rd = camera.GenerateDifferential(ray, cs);

@@ -127,6 +127,7 @@ struct TileSamples {
 struct TileContext {
     const RenderScene &scene;
     const SamplerSettings &sampler;
+    const TraceSettings &trace;
     const CameraSampler &camera;
     uint32_t kernelMask = 0;  // Integrator::KernelMask, chosen once per render
 };
@@ -153,7 +154,9 @@ class Integrator {
     virtual void Prepare(const RenderScene &scene) {}
     // The effect kernel a render of `scene` runs (render/kernel.h), chosen once per render; 0
     // for integrators without one.
-    virtual uint32_t KernelMask(const RenderScene &scene) const { return 0; }
+    virtual uint32_t KernelMask(const RenderScene &scene, const TraceSettings &trace) const {
+        return 0;
+    }
 
     // The radiance along camera ray `ray` of camera sample ps. *direct, when not null, gets its
     // direct part: emission and direct lighting at the first surface (or medium) vertex.

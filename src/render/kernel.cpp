@@ -1,8 +1,5 @@
 #include "render/kernel.h"
 
-#include <array>
-#include <utility>
-
 #include "render/render_scene.h"
 
 namespace prism {
@@ -11,13 +8,13 @@ template <uint32_t K>
 void RenderTileKernel(const TileContext &ctx, const KernelParams &params, TileSamples &out,
                       RayCounters &rc);  // instantiated in kernel_*.cpp
 
-uint32_t KernelMaskFor(const RenderScene &scene) {
+uint32_t KernelMaskFor(const RenderScene &scene, const TraceSettings &trace) {
     const EffectSet &e = scene.features.effects;
     // Media: the one general kernel with media compiled in (kernel_media.cpp).
     if (e.Has(Effect::Media)) return KernelMediaMask;
     uint32_t mask = 0;
     // Recursion (specular or glossy) needs a second bounce.
-    const bool recursion = scene.maxDepth > 1;
+    const bool recursion = trace.maxDepth > 1;
     if (recursion && (e.Has(Effect::SpecularReflection) || e.Has(Effect::Refraction)))
         mask |= KernelSpecular;
     if (recursion && scene.integrator && scene.integrator->Traits().glossyRays &&
@@ -37,12 +34,14 @@ uint32_t KernelMaskFor(const RenderScene &scene) {
     return KernelCanonical(mask);
 }
 
+uint32_t KernelMaskFor(const RenderScene &scene) { return KernelMaskFor(scene, scene.trace); }
+
 RGB KernelDirectLiCamera(const RenderScene &scene, const KernelParams &params, const Ray &ray,
                          const RawHit &hit, RayCounters &rc, const SampleContext &sc) {
-    constexpr uint32_t DirectMask = KernelAll & ~(KernelSpecular | KernelGlossy);
     KernelParams p = params;
     p.glossyRays = false;
-    return Kernel<DirectMask>(scene, p).LiCamera(ray, hit, rc, sc);
+    p.effects = KernelAll & ~(KernelSpecular | KernelGlossy);
+    return Kernel<KernelBsdf>(scene, p).LiCamera(ray, hit, rc, sc);
 }
 
 uint32_t KernelAllFor(const RenderScene &scene) {
@@ -63,18 +62,17 @@ std::string KernelMaskName(uint32_t mask) {
     return s.empty() ? "Lambertian" : s;
 }
 
-namespace {
-template <size_t... M>
-constexpr std::array<KernelTileFn, sizeof...(M)> MakeTable(std::index_sequence<M...>) {
-    return {&RenderTileKernel<KernelCanonical(uint32_t(M))>...};
-}
-}  // namespace
-
 KernelTileFn KernelRenderTile(uint32_t mask) {
-    if (mask & KernelMedia) return &RenderTileKernel<KernelMediaMask>;
-    static const std::array<KernelTileFn, KernelAll + 1> table =
-        MakeTable(std::make_index_sequence<KernelAll + 1>());
-    return table[mask & KernelAll];
+    switch (KernelCompiled(mask)) {
+        case 0:
+            return &RenderTileKernel<0>;
+        case KernelBsdf:
+            return &RenderTileKernel<KernelBsdf>;
+        case KernelGeneral:
+            return &RenderTileKernel<KernelGeneral>;
+        default:
+            return &RenderTileKernel<KernelMediaMask>;
+    }
 }
 
 }  // namespace prism

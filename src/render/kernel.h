@@ -1,19 +1,17 @@
-// The render kernel, specialized per effect set. Kernel<K> is the Whitted/distribution shading
-// kernel compiled for one kernel mask K: the effects of the mask that are off are compiled out
-// (`if constexpr`), so a ray never branches on an effect its scene lacks. The renderer picks the
-// mask of the scene once per render (KernelMaskFor) and runs that instantiation; `--effects all`
-// runs Kernel<KernelAll>, which decides every effect at run time as the kernel did before it
-// was specialized. Both give bit-identical images (tests/render/kernel_test.cpp).
+// The render kernel of Integrator "whitted" and "distribution". Kernel<K> is the shading kernel
+// compiled for one of four masks K (KernelCompiled): the Lambertian kernel (f = kd/π, no BSDF
+// is built), the BSDF kernel without specular recursion, the general kernel, and the general
+// kernel with media. The other effects of a scene's kernel mask (KernelMaskFor: glossy rays,
+// light samples, pass-through surfaces, camera samples) are decided at run time from
+// KernelParams::effects, one predictable branch per hit: measured with their own
+// instantiations they paid nothing the machine could resolve (docs/EFFECTS.md, "Which effects
+// are compiled"), while the BSDF and specular bits pay 10-18%. `--effects all` runs the general
+// kernel with every effect on. All give bit-identical images (tests/render/kernel_test.cpp).
 //
-// Only the bits that change the work per ray are kernel bits (the 40 valid masks of
-// KernelBits bits are instantiated, compiled in parallel over kernel_*.cpp); textures, CSG and
-// instancing live below the kernel (in materials and in the BVH) and cost nothing where absent
-// without a bit of their own.
-//
-// Participating media are the one exception to "a kernel per mask": scenes with media run one
-// instantiation, KernelAll | KernelMedia (the general kernel with media compiled in; see
-// render/kernel_media.h), so media double no masks and media-free scenes run exactly the
-// kernels they ran before.
+// Textures, CSG and instancing live below the kernel (in materials and in the BVH) and cost
+// nothing where absent without a bit of their own. Participating media run one instantiation,
+// KernelMediaMask (render/kernel_media.h), so media-free scenes run exactly the kernels they
+// ran before.
 #pragma once
 
 #include <cstdint>
@@ -50,6 +48,10 @@ struct KernelParams {
     bool glossyRays = false;
     int glossySamples = 8;
     uint32_t seed = 0;
+    // The scene's kernel mask (KernelMaskFor; KernelAll: every effect): the effects outside
+    // the compiled mask that the kernel applies, decided at run time.
+    uint32_t effects = 0x3f;
+    TraceSettings trace;  // the render's (TileContext::trace)
 };
 
 enum KernelBit : uint32_t {
@@ -70,30 +72,46 @@ inline constexpr int KernelBits = 6;  // the bits of the per-effect masks (not K
 inline constexpr uint32_t KernelAll = (1u << KernelBits) - 1;
 // The one kernel of scenes with media.
 inline constexpr uint32_t KernelMediaMask = KernelAll | KernelMedia;
+// The bits that are compiled (the others are run-time flags): the general kernel is
+// KernelGeneral, the Lambertian kernel 0.
+inline constexpr uint32_t KernelGeneral = KernelSpecular | KernelBsdf;
+static_assert(KernelAll == 0x3f, "KernelParams::effects defaults to KernelAll");
 
 // The smallest kernel mask that renders `scene` exactly (from scene.features.effects);
 // KernelMediaMask for scenes with media.
+uint32_t KernelMaskFor(const RenderScene &scene, const TraceSettings &trace);
+// With the scene's own trace settings (RenderScene::trace).
 uint32_t KernelMaskFor(const RenderScene &scene);
 // The general kernel for `scene` (--effects all): KernelAll, or KernelMediaMask with media.
 uint32_t KernelAllFor(const RenderScene &scene);
 // "specular+light samples", "none" (the diffuse kernel), "all".
 std::string KernelMaskName(uint32_t mask);
 
+// The compiled mask that runs kernel mask `mask`.
+constexpr uint32_t KernelCompiled(uint32_t mask) {
+    if (mask & KernelMedia) return KernelMediaMask;
+    if (mask & (KernelSpecular | KernelGlossy | KernelBsdf))
+        return (mask & KernelSpecular) ? KernelGeneral : uint32_t(KernelBsdf);
+    return 0;
+}
+
 template <uint32_t K>
 class Kernel {
   public:
     static constexpr bool Specular = (K & KernelSpecular) != 0;
-    static constexpr bool Glossy = (K & KernelGlossy) != 0;
-    static constexpr bool LightSamples = (K & KernelLightSamples) != 0;
-    static constexpr bool CameraSamples = (K & KernelCameraSamples) != 0;
-    static constexpr bool PassThrough = (K & KernelPassThrough) != 0;
     static constexpr bool GeneralBsdf = (K & KernelBsdf) != 0;
     static constexpr bool Media = (K & KernelMedia) != 0;
-    static_assert(GeneralBsdf || !(Specular || Glossy), "a Lambertian kernel does not bounce");
-    static_assert(!Media || K == KernelMediaMask, "media run in the general kernel only");
+    static_assert(K == KernelCompiled(K), "Kernel<K> exists for the compiled masks only");
 
-    // params.glossyRays: trace glossy rays (Integrator "distribution"); read only when Glossy.
-    Kernel(const RenderScene &scene, const KernelParams &params) : scene_(scene), params_(params) {}
+    // params.effects: the glossy, light-sample and pass-through effects applied at run time
+    // (glossy ones need a BSDF kernel); params.glossyRays: trace glossy rays (Integrator
+    // "distribution").
+    Kernel(const RenderScene &scene, const KernelParams &params)
+        : scene_(scene),
+          params_(params),
+          glossy_(GeneralBsdf && (params.effects & KernelGlossy) != 0),
+          lightSamples_((params.effects & KernelLightSamples) != 0),
+          passThrough_((params.effects & KernelPassThrough) != 0) {}
     // Radiance along a ray; depth counts specular bounces (camera rays are depth 0). emitted
     // false (glossy rays only): the area light of the first hit is not added, because light
     // samples at the previous hit estimated it.
@@ -128,6 +146,11 @@ class Kernel {
     void AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f, GlossyRays glossy,
                    bool hasDiffuse, int depth, RayCounters &counters, const SampleContext &sc,
                    RGB &L, float ambient = 1) const;
+    template <class F>
+    [[gnu::noinline]] void AddDirectSampled(const SurfaceInteraction &si, const Vec3f &ns,
+                                            const F &f, GlossyRays glossy, bool hasDiffuse,
+                                            int depth, RayCounters &counters,
+                                            const SampleContext &sc, RGB &L, float ambient) const;
 
     // Media (render/kernel_media.h). The radiance along ray (in sc.medium) whose closest hit
     // is si (hit false: it escapes): single scattering along each segment plus the
@@ -142,19 +165,22 @@ class Kernel {
 
     const RenderScene &scene_;
     KernelParams params_;
+    // The run-time effects (params.effects).
+    bool glossy_, lightSamples_, passThrough_;
 };
 
-// Fills the camera samples of one tile with Kernel<mask> (packets of camera rays).
+// Fills the camera samples of one tile with Kernel<KernelCompiled(mask)> (packets of camera
+// rays); params.effects is the mask.
 using KernelTileFn = void (*)(const TileContext &ctx, const KernelParams &params, TileSamples &out,
                               RayCounters &rc);
-KernelTileFn KernelRenderTile(uint32_t mask);  // KernelMedia set: the media kernel
+KernelTileFn KernelRenderTile(uint32_t mask);
 // The direct part of a camera ray whose closest hit is known (the direct AOV): emission and
 // direct lighting at the first surface, by the kernel without specular or glossy rays.
 RGB KernelDirectLiCamera(const RenderScene &scene, const KernelParams &params, const Ray &ray,
                          const RawHit &hit, RayCounters &rc, const SampleContext &sc);
 
-// The instantiated mask that runs `mask`: KernelBsdf is added where the mask bounces (a
-// Lambertian kernel has no specular or glossy code).
+// The kernel mask with KernelBsdf added where the mask bounces (a Lambertian kernel has no
+// specular or glossy code).
 constexpr uint32_t KernelCanonical(uint32_t mask) {
     return (mask & (KernelSpecular | KernelGlossy)) ? mask | KernelBsdf : mask;
 }

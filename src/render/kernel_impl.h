@@ -32,7 +32,7 @@ RGB Kernel<K>::Escaped(const Ray &ray) const {
     RGB L;
     // Only infinite lights give radiance to escaping rays; without them (no light-sample bit)
     // the sum over the lights is 0.
-    if constexpr (LightSamples)
+    if (lightSamples_)
         for (const auto &light : scene_.lights) L += light->Le(ray);
     return L;
 }
@@ -66,7 +66,8 @@ RGB Kernel<K>::LiCamera(const Ray &ray, const RawHit &hit, RayCounters &counters
 
 template <uint32_t K>
 bool Kernel<K>::AboveCutoff(const RGB &beta) const {
-    return !(scene_.rayCutoff > 0 && !(beta.MaxComponent() * scene_.filmScale > scene_.rayCutoff));
+    return !(params_.trace.rayCutoff > 0 &&
+             !(beta.MaxComponent() * scene_.filmScale > params_.trace.rayCutoff));
 }
 
 template <uint32_t K>
@@ -75,7 +76,7 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
     const ShapeInfo *shape = &scene_.Info(si);
     const Material *mat = &scene_.materials[size_t(shape->material)];
     const RayDifferential *diff = sc.diff;
-    if constexpr (PassThrough) {
+    if (passThrough_) {
         Ray ray = rayIn;
         for (int pass = 0; mat->IsPassThrough(); ++pass) {
             if (pass >= MaxPassThrough) return RGB(0);
@@ -99,8 +100,8 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
     const Vec3f &wo = si.wo;
     RGB L;
     // Emission of an area light seen directly or through specular paths.
-    if constexpr (LightSamples)
-        if (shape->areaLight >= 0 && (!Glossy || emitted))
+    if (lightSamples_)
+        if (shape->areaLight >= 0 && (!glossy_ || emitted))
             L += static_cast<const DiffuseAreaLight &>(*scene_.lights[size_t(shape->areaLight)])
                      .L(si, wo);
     // Emission a material carries itself ("gltf" emissive in .pbrt files): seen by every ray.
@@ -124,8 +125,7 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
         // Distribution: rough glass becomes glossy, and glossy rays sample the glossy lobes; the
         // lights those rays bring back are not light-sampled through them (GlossyRays).
         GlossyRays glossy = GlossyRays::None;
-        if constexpr (Glossy)
-            if (params_.glossyRays) glossy = PrepareGlossy(bsdf, depth);
+        if (glossy_ && params_.glossyRays) glossy = PrepareGlossy(bsdf, depth);
         // glTF occlusion: scales the environment's light and the indirect paths (1 elsewhere).
         const float ambient = mat->AmbientOcclusion(tc);
         // Direct lighting through the non-specular lobes.
@@ -141,8 +141,7 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
         RGB indirect;
         RGB &Lind = ambient == 1 ? L : indirect;
         if constexpr (Specular) AddSpecular(si, tc, diff, bsdf, depth, counters, sc, Lind);
-        if constexpr (Glossy)
-            if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, Lind);
+        if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, Lind);
         if (ambient != 1) L += indirect * ambient;
         return L;
     }
@@ -155,10 +154,10 @@ template <class F>
 void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f,
                           GlossyRays glossy, bool hasDiffuse, int depth, RayCounters &counters,
                           const SampleContext &sc, RGB &L, float ambient) const {
-    for (size_t j = 0; j < scene_.lights.size(); ++j) {
-        const Light &light = *scene_.lights[j];
-        if constexpr (!LightSamples) {
-            // Only delta lights: one sample each, which ignores u.
+    if (!lightSamples_) {
+        // Only delta lights: one sample each, which ignores u.
+        for (size_t j = 0; j < scene_.lights.size(); ++j) {
+            const Light &light = *scene_.lights[j];
             LightSample ls;
             if (!light.SampleLi(si, Vec2f(0.5f, 0.5f), &ls) || ls.Li.IsBlack() || !(ls.pdf > 0))
                 continue;
@@ -169,51 +168,65 @@ void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F
             counters.shadow++;
             if (scene_.accel->Occluded(shadow)) continue;
             L += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
-        } else {
-            int n = light.NumSamples();
-            // Delta lights ignore u: the stratified pattern (a hash chain) only where it is used.
-            const bool usesSample = light.UsesSample();
-            // Whether this light reaches the glossy lobes through glossy rays only.
-            const bool byGlossyRays =
-                usesSample && (glossy == GlossyRays::AllLights ||
-                               (glossy == GlossyRays::Environment && !light.IsArea()));
-            if (byGlossyRays && !hasDiffuse) continue;
-            uint32_t seed =
-                usesSample ? PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919),
-                                         params_.seed)
-                           : 0;
-            RGB Lj;
-            for (int k = 0; k < n; ++k) {
-                Vec2f u = usesSample ? CMJSample(sc.sample * uint32_t(n) + uint32_t(k),
-                                                 sc.spp * uint32_t(n), seed)
-                                     : Vec2f(0.5f, 0.5f);
-                LightSample ls;
-                if (!light.SampleLi(si, u, &ls) || ls.Li.IsBlack() || !(ls.pdf > 0)) continue;
-                RGB fj = f(ls.wi, byGlossyRays);
-                if (fj.IsBlack()) continue;
-                Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene_.offset)
-                                         : si.SpawnRayTo(ls.pLight, scene_.offset);
-                counters.shadow++;
-                if constexpr (Media) {
-                    // Through the media and invisible boundaries toward the light.
-                    const int medium = MediumAfter(scene_.Info(si), si, ls.wi, sc.medium);
-                    MediumSampler sampler(MediumSeed(sc,
-                                                     uint32_t(MediumShadowPurpose + j * 131 +
-                                                              size_t(k) * 7 + size_t(depth) * 7919),
-                                                     params_.seed));
-                    const RGB tr =
-                        ShadowTransmittance(scene_, shadow, medium, ls.infinite, sampler, counters);
-                    if (tr.IsBlack()) continue;
-                    Lj += fj * ls.Li * tr * (AbsDot(ls.wi, ns) / ls.pdf);
-                } else {
-                    if (scene_.accel->Occluded(shadow)) continue;
-                    Lj += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
-                }
-            }
-            // The environment (sampled, not an area light) is scaled by the ambient occlusion.
-            if (usesSample && !light.IsArea() && ambient != 1) Lj = Lj * ambient;
-            L += n == 1 ? Lj : Lj / float(n);
         }
+    } else {
+        AddDirectSampled(si, ns, f, glossy, hasDiffuse, depth, counters, sc, L, ambient);
+    }
+}
+
+// The stratified light samples of AddDirect (lightSamples_), out of line so that the
+// delta-light loop stays small enough to inline.
+template <uint32_t K>
+template <class F>
+void Kernel<K>::AddDirectSampled(const SurfaceInteraction &si, const Vec3f &ns, const F &f,
+                                 GlossyRays glossy, bool hasDiffuse, int depth,
+                                 RayCounters &counters, const SampleContext &sc, RGB &L,
+                                 float ambient) const {
+    for (size_t j = 0; j < scene_.lights.size(); ++j) {
+        const Light &light = *scene_.lights[j];
+        int n = light.NumSamples();
+        // Delta lights ignore u: the stratified pattern (a hash chain) only where it is used.
+        const bool usesSample = light.UsesSample();
+        // Whether this light reaches the glossy lobes through glossy rays only.
+        const bool byGlossyRays =
+            usesSample && (glossy == GlossyRays::AllLights ||
+                           (glossy == GlossyRays::Environment && !light.IsArea()));
+        if (byGlossyRays && !hasDiffuse) continue;
+        uint32_t seed = usesSample
+                            ? PatternSeed(sc.x, sc.y, uint32_t(2 + j * 131 + size_t(depth) * 7919),
+                                          params_.seed)
+                            : 0;
+        RGB Lj;
+        for (int k = 0; k < n; ++k) {
+            Vec2f u = usesSample ? CMJSample(sc.sample * uint32_t(n) + uint32_t(k),
+                                             sc.spp * uint32_t(n), seed)
+                                 : Vec2f(0.5f, 0.5f);
+            LightSample ls;
+            if (!light.SampleLi(si, u, &ls) || ls.Li.IsBlack() || !(ls.pdf > 0)) continue;
+            RGB fj = f(ls.wi, byGlossyRays);
+            if (fj.IsBlack()) continue;
+            Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene_.offset)
+                                     : si.SpawnRayTo(ls.pLight, scene_.offset);
+            counters.shadow++;
+            if constexpr (Media) {
+                // Through the media and invisible boundaries toward the light.
+                const int medium = MediumAfter(scene_.Info(si), si, ls.wi, sc.medium);
+                MediumSampler sampler(MediumSeed(
+                    sc,
+                    uint32_t(MediumShadowPurpose + j * 131 + size_t(k) * 7 + size_t(depth) * 7919),
+                    params_.seed));
+                const RGB tr =
+                    ShadowTransmittance(scene_, shadow, medium, ls.infinite, sampler, counters);
+                if (tr.IsBlack()) continue;
+                Lj += fj * ls.Li * tr * (AbsDot(ls.wi, ns) / ls.pdf);
+            } else {
+                if (scene_.accel->Occluded(shadow)) continue;
+                Lj += fj * ls.Li * (AbsDot(ls.wi, ns) / ls.pdf);
+            }
+        }
+        // The environment (sampled, not an area light) is scaled by the ambient occlusion.
+        if (usesSample && !light.IsArea() && ambient != 1) Lj = Lj * ambient;
+        L += n == 1 ? Lj : Lj / float(n);
     }
 }
 
@@ -223,7 +236,7 @@ void Kernel<K>::AddSpecular(const SurfaceInteraction &si, const TextureContext &
                             RayCounters &counters, const SampleContext &sc, RGB &L) const {
     const Vec3f &wo = si.wo;
     // Specular recursion, for the delta lobes of every BSDF part (mix materials have several).
-    if (depth + 1 < scene_.maxDepth) {
+    if (depth + 1 < params_.trace.maxDepth) {
         Vec3f wi;
         RGB weight;
         // Traces the ray along wi unless the ray-weight cutoff drops it: the radiance it could
@@ -262,7 +275,8 @@ void Kernel<K>::AddSpecular(const SurfaceInteraction &si, const TextureContext &
 
 template <uint32_t K>
 GlossyRays Kernel<K>::PrepareGlossy(BSDF &bsdf, int depth) const {
-    if (!bsdf.MakeRoughSpecularGlossy() || depth + 1 >= scene_.maxDepth) return GlossyRays::None;
+    if (!bsdf.MakeRoughSpecularGlossy() || depth + 1 >= params_.trace.maxDepth)
+        return GlossyRays::None;
     for (int i = 0; i < bsdf.NumParts(); ++i) {
         const BxDFLobes &l = bsdf.Part(i);
         if (!bsdf.Weight(i).IsBlack() && l.HasGlossy() &&

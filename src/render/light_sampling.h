@@ -37,6 +37,7 @@ struct PixelSamples {
     uint32_t sample = 0, spp = 1;
     SamplePattern pattern = SamplePattern::Stratified;
     uint32_t passSeed = 0;  // SamplerSettings::seed: differs between progressive passes
+    TraceSettings trace;    // the render's (TileContext::trace)
     // The camera ray's differentials where a texture filters (RenderScene::differentials),
     // else null; read at the first hit only (pbrt-v3's path tracer drops them after it).
     const RayDifferential *diff = nullptr;

@@ -70,7 +70,7 @@ RGB PathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const Pix
         const ShapeInfo *info = found ? &scene.Info(si) : nullptr;
         if (bounces == 0 || path.specularBounce)
             AddUnsampledEmission(scene, ray, found ? &si : nullptr, info, path);
-        if (!found || bounces >= scene.maxDepth) break;
+        if (!found || bounces >= ps.trace.maxDepth) break;
         const Material &mat = scene.materials[size_t(info->material)];
         if (mat.IsPassThrough()) {
             // pbrt: a surface without a BSDF continues the ray without counting a bounce.

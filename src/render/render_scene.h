@@ -82,10 +82,10 @@ struct RenderScene {
     // --stats: the film also sums each pixel's even and odd samples apart, for the noise
     // estimate (RenderStats::noiseVariance).
     bool estimateNoise = false;
-    int maxDepth = 5;
-    // Accuracy knobs (BuildSettings): the ray-weight cutoff (0: every ray) and how spawned rays
-    // leave a surface.
-    float rayCutoff = 0;
+    // The file's maxdepth and the ray-weight cutoff (BuildSettings): a render's unless its
+    // RenderOptions say otherwise.
+    TraceSettings trace;
+    // Accuracy knob (BuildSettings): how spawned rays leave a surface.
     RayOffset offset;
     std::string outputFilename;  // Film "filename"
     // Film "exposure" (EV) and "tonemap" (Prism extensions, image/tonemap.h), the tone map

@@ -91,11 +91,13 @@ int ForEachTile(int begin, int end, const std::function<void(int t)> &body,
     return done.load();
 }
 
-TileDriver::TileDriver(const RenderScene &scene, const SamplerSettings &sampler, AovFrame *aovs)
+TileDriver::TileDriver(const RenderScene &scene, const SamplerSettings &sampler,
+                       const TraceSettings &trace, AovFrame *aovs)
     : scene_(scene),
       sampler_(sampler),
+      trace_(trace),
       camera_(scene, sampler_),
-      context_{scene, sampler_, camera_, scene.integrator->KernelMask(scene)},
+      context_{scene, sampler_, trace_, camera_, scene.integrator->KernelMask(scene, trace_)},
       aovs_(aovs) {}
 
 bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSamples &buf,
@@ -198,7 +200,8 @@ Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats
     tbb::enumerable_thread_specific<FilmTile> ownTile;
     std::atomic<int> done{0};
     if (options.aovs) options.aovs->BeginPass(nTiles);
-    const TileDriver driver(scene, options.sampler, options.aovs);
+    const TileDriver driver(scene, options.sampler, options.trace.value_or(scene.trace),
+                            options.aovs);
 
     // Progress is reported from a helper thread so worker threads never block on output.
     std::mutex mutex;
@@ -271,7 +274,7 @@ namespace prism {
 
 FrameTiles::FrameTiles(const RenderScene &scene)
     : scene_(scene),
-      driver_(scene, scene.sampler, nullptr),
+      driver_(scene, scene.sampler, scene.trace, nullptr),
       kernelMask_(driver_.KernelMask()),
       film_(std::make_unique<TiledFilm>(scene.resolution, scene.pixelBounds, scene.filter,
                                         RenderTileSize)) {}

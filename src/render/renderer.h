@@ -59,6 +59,9 @@ using ProgressFn = std::function<void(double fraction)>;
 // How one render runs, beside the scene.
 struct RenderOptions {
     SamplerSettings sampler;  // usually the scene's (RenderScene::sampler)
+    // Depth and cutoff (empty: the scene's, RenderScene::trace): the studies render their
+    // references deeper without touching the scene.
+    std::optional<TraceSettings> trace;
     ProgressFn progress;
     // Polled between tiles and inside them before every camera packet (TileDriver::RenderTile);
     // once it reads true the remaining work is skipped and stats->cancelled is set.
@@ -84,7 +87,8 @@ int ForEachTile(int begin, int end, const std::function<void(int t)> &body,
 // AOVs. Immutable: RenderTile runs on any worker.
 class TileDriver {
   public:
-    TileDriver(const RenderScene &scene, const SamplerSettings &sampler, AovFrame *aovs);
+    TileDriver(const RenderScene &scene, const SamplerSettings &sampler, const TraceSettings &trace,
+               AovFrame *aovs);
     uint32_t KernelMask() const { return context_.kernelMask; }
     // Renders tile t (pixels tb) into `tile` (reset by the caller), with buf as scratch.
     // With a cancel flag it is read before every camera packet (RenderPacketW x
@@ -96,6 +100,7 @@ class TileDriver {
   private:
     const RenderScene &scene_;
     SamplerSettings sampler_;
+    TraceSettings trace_;
     CameraSampler camera_;
     TileContext context_;
     AovFrame *aovs_;

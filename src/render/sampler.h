@@ -10,6 +10,14 @@
 
 namespace prism {
 
+// How far a render follows its paths: the longest path (Integrator "maxdepth", --maxdepth) and
+// the ray-weight cutoff (0: every ray; BuildSettings::rayCutoff). The scene holds the file's
+// (RenderScene::trace); a render may use others (RenderOptions::trace: the studies' references).
+struct TraceSettings {
+    int maxDepth = 5;
+    float rayCutoff = 0;
+};
+
 // A permutation length's parts that depend on it alone: the length, its bit mask w, and
 // whether it is a power of two (then the final modulo is a mask).
 struct PermutationLength {

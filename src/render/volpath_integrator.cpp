@@ -50,7 +50,7 @@ RGB VolPathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const 
         if (scattered) {
             // A scattering event in the medium: direct lighting through the phase function,
             // then a direction from it.
-            if (bounces >= scene.maxDepth) break;
+            if (bounces >= ps.trace.maxDepth) break;
             const Medium &m = *scene.media[size_t(medium)];
             SurfaceInteraction at;
             at.p = mi.p;
@@ -76,7 +76,7 @@ RGB VolPathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const 
             // bounce (beta holds the transmittance of the media on the way).
             if (bounces == 0 || path.specularBounce)
                 AddUnsampledEmission(scene, ray, found ? &si : nullptr, info, path);
-            if (!found || bounces >= scene.maxDepth) break;
+            if (!found || bounces >= ps.trace.maxDepth) break;
             const Material &mat = scene.materials[size_t(info->material)];
             if (mat.IsPassThrough()) {
                 // A boundary (or any surface without a BSDF): continue in the medium beyond it,

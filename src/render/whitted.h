@@ -16,7 +16,7 @@ class WhittedIntegrator : public Integrator {
     explicit WhittedIntegrator(const KernelParams &params = {}) : params_(params) {}
     const char *Name() const override { return "whitted"; }
     IntegratorTraits Traits() const override;
-    uint32_t KernelMask(const RenderScene &scene) const override;
+    uint32_t KernelMask(const RenderScene &scene, const TraceSettings &trace) const override;
     RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, RayCounters &rc,
            RGB *direct) const override;
     void RenderTile(const TileContext &ctx, TileSamples &out, RayCounters &rc) const override;

@@ -20,7 +20,7 @@ TEST(BuildScene, SettingsReplaceTheDescriptionsValues) {
     RenderScene plain = BuildRenderScene(d, s, diag);
     EXPECT_EQ(plain.resolution.x, 1280);  // pbrt-v3's default film
     EXPECT_EQ(plain.resolution.y, 720);
-    EXPECT_EQ(plain.maxDepth, 5);
+    EXPECT_EQ(plain.trace.maxDepth, 5);
     s.resolution = {32, 16};
     s.spp = 3;
     s.maxDepth = 2;
@@ -29,7 +29,7 @@ TEST(BuildScene, SettingsReplaceTheDescriptionsValues) {
     EXPECT_EQ(r.resolution.x, 32);
     EXPECT_EQ(r.resolution.y, 16);
     EXPECT_EQ(r.sampler.spp, 3);
-    EXPECT_EQ(r.maxDepth, 2);
+    EXPECT_EQ(r.trace.maxDepth, 2);
     // Camera-relative render space: the replaced camera's eye is the render-space origin.
     Vec3d eye = r.renderFromWorld.Point(Vec3d(1, 2, 3));
     EXPECT_NEAR(Length(eye), 0.0, 1e-12);

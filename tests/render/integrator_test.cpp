@@ -47,7 +47,7 @@ TEST(Integrator, AnUnknownIntegratorRendersWithWhittedAndSaysWhere) {
                         "LightSource \"point\"\nShape \"sphere\"\nWorldEnd\n",
                         4, 1);
     EXPECT_STREQ(b.scene.IntegratorName(), "whitted");
-    EXPECT_EQ(b.scene.maxDepth, 3);
+    EXPECT_EQ(b.scene.trace.maxDepth, 3);
     bool warned = false;
     for (const Warning &w : b.warnings)
         warned |= w.loc.line == 1 &&

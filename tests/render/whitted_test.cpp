@@ -28,7 +28,7 @@ struct TestScene {
     explicit TestScene(int maxDepth = 5) {
         scene.accel = std::make_unique<Accel>();
         scene.materials.push_back(Matte(RGB(0.5f, 0.25f, 0.125f)));
-        scene.maxDepth = maxDepth;
+        scene.trace.maxDepth = maxDepth;
         AddQuad({{-100, 0, -100}, {-100, 0, 100}, {100, 0, 100}, {100, 0, -100}}, 0);
     }
     void AddQuad(std::vector<Vec3f> P, int material) {

@@ -43,14 +43,18 @@ StudySetting Setting(StudyKnob knob, std::string value, std::function<void(Build
     return StudySetting{knob, std::move(value), std::move(f)};
 }
 
-// The render-time fields of the settings, copied into a built scene (KnobReusesScene). Every
-// knob KnobReusesScene names must be copied here.
-void ApplyRenderTimeSettings(const BuildSettings &s, int baseSpp, int baseMaxDepth,
-                             RenderScene *scene) {
-    scene->sampler.spp = s.spp > 0 ? s.spp : baseSpp;
-    scene->maxDepth = s.maxDepth >= 0 ? s.maxDepth : baseMaxDepth;
-    scene->rayCutoff = s.rayCutoff;
-    scene->offset = s.offset;
+// The render-time fields of the settings as a render of the built base scene runs them
+// (KnobReusesScene): the scene stays as built. Every knob KnobReusesScene names must be read
+// here.
+RenderOptions RenderTimeOptions(const BuildSettings &s, const RenderScene &scene) {
+    RenderOptions o;
+    o.sampler = scene.sampler;
+    if (s.spp > 0) o.sampler.spp = s.spp;
+    TraceSettings trace = scene.trace;
+    if (s.maxDepth >= 0) trace.maxDepth = s.maxDepth;
+    trace.rayCutoff = s.rayCutoff;
+    o.trace = trace;
+    return o;
 }
 
 struct Run {
@@ -58,6 +62,11 @@ struct Run {
     RenderStats stats;
 };
 
+Run RenderOnce(const RenderScene &scene, const RenderOptions &options) {
+    Run r;
+    r.image = Render(scene, options, &r.stats);
+    return r;
+}
 Run RenderOnce(const RenderScene &scene) {
     Run r;
     r.image = Render(scene, &r.stats);
@@ -195,9 +204,9 @@ std::vector<StudySetting> KnobSettings(StudyKnob knob, const StudyOptions &optio
 }
 
 bool KnobReusesScene(StudyKnob knob) {
-    // Light samples live in each light (built), so they rebuild.
-    return knob == StudyKnob::Spp || knob == StudyKnob::MaxDepth || knob == StudyKnob::Cutoff ||
-           knob == StudyKnob::Offset;
+    // Light samples live in each light and the ray offset in the scene (both built), so they
+    // rebuild; samples, depth and cutoff are render options (RenderTimeOptions).
+    return knob == StudyKnob::Spp || knob == StudyKnob::MaxDepth || knob == StudyKnob::Cutoff;
 }
 
 std::optional<std::string> KnobSkipReason(StudyKnob knob, const SceneFeatures &f) {
@@ -275,8 +284,8 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
     base.resolution = options.resolution;
     base.spp = options.baseSpp;
     base.budget = &budget;
-    RenderScene scene = BuildRenderScene(desc, base, diag);
-    const int baseSpp = scene.sampler.spp, baseMaxDepth = scene.maxDepth;
+    const RenderScene scene = BuildRenderScene(desc, base, diag);
+    const int baseSpp = scene.sampler.spp, baseMaxDepth = scene.trace.maxDepth;
 
     StudyResult result;
     result.scene = sceneName;
@@ -302,12 +311,13 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
 
     // The reference: the base scene (double precision, analytic shapes, error-bound offsets,
     // no cutoff are the defaults) at many samples and depth 16.
-    scene.sampler.spp = options.referenceSpp;
-    scene.maxDepth = std::max(ReferenceMaxDepth, baseMaxDepth);
-    Run ref = RenderOnce(scene);
+    RenderOptions refOptions;
+    refOptions.sampler = scene.sampler;
+    refOptions.sampler.spp = options.referenceSpp;
+    refOptions.trace = scene.trace;
+    refOptions.trace->maxDepth = std::max(ReferenceMaxDepth, baseMaxDepth);
+    const Run ref = RenderOnce(scene, refOptions);
     result.referenceSeconds = ref.stats.renderSeconds;
-    scene.sampler.spp = baseSpp;
-    scene.maxDepth = baseMaxDepth;
 
     // The shared scene's build time, as a median over as many builds as the others get.
     Diagnostics quiet(false);
@@ -329,12 +339,11 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
         std::vector<double> times, builds;
         Run last;
         if (KnobReusesScene(setting.knob)) {
-            ApplyRenderTimeSettings(s, baseSpp, baseMaxDepth, &scene);
+            const RenderOptions renderOptions = RenderTimeOptions(s, scene);
             for (int i = 0; i < options.repeats; ++i) {
-                last = RenderOnce(scene);
+                last = RenderOnce(scene, renderOptions);
                 times.push_back(last.stats.renderSeconds);
             }
-            ApplyRenderTimeSettings(base, baseSpp, baseMaxDepth, &scene);
             builds = sharedBuilds;
         } else {
             for (int i = 0; i < options.repeats; ++i) {

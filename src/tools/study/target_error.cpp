@@ -44,20 +44,26 @@ RenderScene BuildAt(const SceneDescription &desc, const BuildSettings &base, Vec
     return BuildRenderScene(desc, s, quiet);
 }
 
-int ReferenceDepth(const RenderScene &scene) { return std::max(ReferenceMaxDepth, scene.maxDepth); }
+// A render of the scene as built, at `spp` (0: the scene's) and with `cutoff`; the scene is
+// not changed.
+Image RenderAt(const RenderScene &scene, int spp, float cutoff = 0, RenderStats *stats = nullptr) {
+    RenderOptions o;
+    o.sampler = scene.sampler;
+    if (spp > 0) o.sampler.spp = spp;
+    o.trace = scene.trace;
+    o.trace->rayCutoff = cutoff;
+    return Render(scene, o, stats);
+}
 
-Image RenderReference(RenderScene &scene, int spp, double *seconds = nullptr) {
-    int spp0 = scene.sampler.spp, depth0 = scene.maxDepth;
-    float cutoff0 = scene.rayCutoff;
-    scene.sampler.spp = spp;
-    scene.maxDepth = ReferenceDepth(scene);
-    scene.rayCutoff = 0;
+// The reference: `spp` samples, the reference's depth, no cutoff.
+Image RenderReference(const RenderScene &scene, int spp, double *seconds = nullptr) {
+    RenderOptions o;
+    o.sampler = scene.sampler;
+    o.sampler.spp = spp;
+    o.trace = TraceSettings{std::max(ReferenceMaxDepth, scene.trace.maxDepth), 0.0f};
     RenderStats stats;
-    Image ref = Render(scene, &stats);
+    Image ref = Render(scene, o, &stats);
     if (seconds) *seconds = stats.renderSeconds;
-    scene.sampler.spp = spp0;
-    scene.maxDepth = depth0;
-    scene.rayCutoff = cutoff0;
     return ref;
 }
 
@@ -66,12 +72,11 @@ struct Series {
     std::vector<double> err2, seconds;
 };
 
-Series RenderSeries(RenderScene &scene, const std::vector<int> &spps, const Image &ref) {
+Series RenderSeries(const RenderScene &scene, const std::vector<int> &spps, const Image &ref) {
     Series s;
     for (int n : spps) {
-        scene.sampler.spp = n;
         RenderStats stats;
-        Image img = Render(scene, &stats);
+        Image img = RenderAt(scene, n, 0, &stats);
         double e = RelativeRmse(img, ref);
         s.err2.push_back(e * e);
         s.seconds.push_back(stats.renderSeconds);
@@ -248,15 +253,14 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
     Image pilotRef;
     for (int r = 0; r < 2; ++r) {
         MemoryBudget b(limit);
-        RenderScene scene = BuildAt(desc, base, r == 0 ? pilot : half, 0, b);
+        const RenderScene scene = BuildAt(desc, base, r == 0 ? pilot : half, 0, b);
         Image ref = RenderReference(scene, o.pilotRefSpp);
         own[r] = RenderSeries(scene, o.pilotSpp, ref);
         ErrorCurve c = FitErrorCurve(o.pilotSpp, own[r].err2);
         double n = c.noise(o.pilotRefSpp);
         refNoise2[r] = n * n;
         // The depth bias at this resolution: the same samples at the reference's depth.
-        scene.sampler.spp = ProbeSpp;
-        Image shallow = Render(scene, nullptr);
+        Image shallow = RenderAt(scene, ProbeSpp);
         double d = RelativeRmse(shallow, RenderReference(scene, ProbeSpp));
         depthBias2[r] = d * d;
         if (r == 0) pilotRef = std::move(ref);
@@ -272,27 +276,22 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
     std::vector<double> cutoffErr2(o.cutoffs.size()), cutoffRays(o.cutoffs.size());
     {
         MemoryBudget b(limit);
-        RenderScene scene = BuildAt(desc, base, choice.resolution, 0, b);
-        scene.sampler.spp = 1;
+        const RenderScene scene = BuildAt(desc, base, choice.resolution, 0, b);
         Image noCutoff;
         for (size_t c = 0; c < o.cutoffs.size(); ++c) {
-            scene.rayCutoff = o.cutoffs[c];
             RenderStats st;
-            Image img = Render(scene, &st);
+            Image img = RenderAt(scene, 1, o.cutoffs[c], &st);
             if (c == 0) noCutoff = img;
             double e = RelativeRmse(img, noCutoff);
             cutoffErr2[c] = e * e;
             cutoffRays[c] = double(st.rays.Total());
         }
-        scene.rayCutoff = 0;
         // The depth bias of a pixel's mean falls with the samples towards the bias of the
         // pixel's integral, as b^2(n) = B^2 + v / n (v: the deep paths' own sampling noise):
         // measured at 2 and 4 spp, B^2 = 2 b^2(4) - b^2(2) (at least b^2(4) / 2).
         double b2[2];
         for (int i = 0; i < 2; ++i) {
-            scene.sampler.spp = 2 << i;
-            double d =
-                RelativeRmse(Render(scene, nullptr), RenderReference(scene, scene.sampler.spp));
+            double d = RelativeRmse(RenderAt(scene, 2 << i), RenderReference(scene, 2 << i));
             b2[i] = d * d;
         }
         fullDepthBias2 = std::max(2 * b2[1] - b2[0], 0.5 * b2[1]);
@@ -337,7 +336,7 @@ TargetChoice ChooseTargetSettings(const SceneDescription &desc, const BuildSetti
         double perSpp = ownPerSpp;
         if (L != 0) {
             MemoryBudget b(limit);
-            RenderScene scene = BuildAt(desc, base, pilot, L, b);
+            const RenderScene scene = BuildAt(desc, base, pilot, L, b);
             Series s = RenderSeries(scene, o.lightSpp, pilotRef);
             std::vector<double> x, diff;
             double sum = 0;
@@ -421,7 +420,7 @@ TargetVerification VerifyTarget(const SceneDescription &desc, const BuildSetting
     // reference's own error small against the target.
     v.refSpp = NextWellStratifiedSampleCount(std::clamp(4 * choice.spp, 128, 1024));
     MemoryBudget b(base.budget ? base.budget->Limit() : 0);
-    RenderScene scene = BuildAt(desc, base, choice.resolution, 0, b);
+    const RenderScene scene = BuildAt(desc, base, choice.resolution, 0, b);
     Image ref = RenderReference(scene, v.refSpp, &v.refSeconds);
     v.measured = RelativeRmse(image, ref);
     // The reference's noise: the noise part of the predicted curve for the scene's light
