@@ -53,13 +53,15 @@ struct RawHit {
 // The largest origin or direction component Embree accepts in a ray (its FLT_LARGE, 1.844e18:
 // Embree asserts on larger ones); Prism's rays stay well below.
 inline constexpr float MaxRayComponent = 1e18f;
-// Whether Embree can trace `r`: finite, within MaxRayComponent, a non-negative tMin and a tMax
-// not below it. Accel's queries treat any other ray as a miss (and as unoccluded); the
-// assembly refuses a camera that would make one (assembly/camera_film.cpp).
+// Whether Embree can trace `r`: finite, its origin's and direction's magnitudes summing to at
+// most MaxRayComponent (a NaN or an infinity carries through the sum), a non-negative tMin and
+// a tMax not below it; no branches, since every ray Embree traces is checked. Accel's queries
+// treat any other ray as a miss (and as unoccluded); the assembly refuses a camera that would
+// make one (assembly/camera_film.cpp).
 inline bool TraceableRay(const Ray &r) {
-    auto ok = [](float v) { return std::abs(v) <= MaxRayComponent; };
-    return ok(r.o.x) && ok(r.o.y) && ok(r.o.z) && ok(r.d.x) && ok(r.d.y) && ok(r.d.z) &&
-           r.tMin >= 0 && r.tMax >= r.tMin && !std::isnan(r.time);
+    const float sum = std::abs(r.o.x) + std::abs(r.o.y) + std::abs(r.o.z) + std::abs(r.d.x) +
+                      std::abs(r.d.y) + std::abs(r.d.z);
+    return (sum <= MaxRayComponent) & (r.tMin >= 0) & (r.tMax >= r.tMin) & (r.time == r.time);
 }
 
 class Accel {

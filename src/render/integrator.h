@@ -130,6 +130,11 @@ struct TileContext {
     const TraceSettings &trace;
     const CameraSampler &camera;
     uint32_t kernelMask = 0;  // Integrator::KernelMask, chosen once per render
+    // The render's cancel flag (or null): a RenderTile reads it at least once per camera
+    // packet (RenderPacketW x RenderPacketH pixels) or pixel and returns once it reads true,
+    // leaving the tile incomplete (the driver then drops it). Cancelled() reads it.
+    const volatile int *cancel = nullptr;
+    bool Cancelled() const { return cancel && *cancel; }
 };
 
 // What the rest of Prism asks of an integrator, beside rendering.
@@ -163,7 +168,7 @@ class Integrator {
     virtual RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps,
                    RayCounters &rc, RGB *direct) const = 0;
     // Fills out's radiance for every camera sample of tile out.bounds: by default each
-    // sample's camera ray (CameraSampler) through Li.
+    // sample's camera ray (CameraSampler) through Li. Stops early once ctx.Cancelled().
     virtual void RenderTile(const TileContext &ctx, TileSamples &out, RayCounters &rc) const;
 };
 

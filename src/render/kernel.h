@@ -143,9 +143,10 @@ class Kernel {
     // Direct lighting through f(wi, byGlossyRays) (a BSDF, or kd/π in Lambertian kernels).
     // `ambient` scales the environment lights' share (Material::AmbientOcclusion).
     template <class F>
-    void AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f, GlossyRays glossy,
-                   bool hasDiffuse, int depth, RayCounters &counters, const SampleContext &sc,
-                   RGB &L, float ambient = 1) const;
+    [[gnu::always_inline]] void AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f,
+                                          GlossyRays glossy, bool hasDiffuse, int depth,
+                                          RayCounters &counters, const SampleContext &sc, RGB &L,
+                                          float ambient = 1) const;
     template <class F>
     [[gnu::noinline]] void AddDirectSampled(const SurfaceInteraction &si, const Vec3f &ns,
                                             const F &f, GlossyRays glossy, bool hasDiffuse,

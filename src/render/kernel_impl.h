@@ -151,9 +151,10 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
 // area or environment light (distribution ray tracing). f(wi, byGlossyRays) is the BSDF.
 template <uint32_t K>
 template <class F>
-void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f,
-                          GlossyRays glossy, bool hasDiffuse, int depth, RayCounters &counters,
-                          const SampleContext &sc, RGB &L, float ambient) const {
+inline void Kernel<K>::AddDirect(const SurfaceInteraction &si, const Vec3f &ns, const F &f,
+                                 GlossyRays glossy, bool hasDiffuse, int depth,
+                                 RayCounters &counters, const SampleContext &sc, RGB &L,
+                                 float ambient) const {
     if (!lightSamples_) {
         // Only delta lights: one sample each, which ignores u.
         for (size_t j = 0; j < scene_.lights.size(); ++j) {
@@ -351,6 +352,7 @@ void RenderTileKernel(const TileContext &ctx, const KernelParams &params, TileSa
     const bool seeded = camera.Seeded();
     for (int by = tb.pMin.y; by < tb.pMax.y; by += PacketH) {
         for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += PacketW) {
+            if (ctx.Cancelled()) return;
             const int ex = std::min(bx + PacketW, tb.pMax.x),
                       ey = std::min(by + PacketH, tb.pMax.y);
             // The packet's pattern seeds, once for all its samples.

@@ -109,35 +109,11 @@ bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
     if (!cancel) {
         scene_.integrator->RenderTile(context_, buf, rc);
     } else {
-        // One camera packet at a time, the cancel flag read before each, so that a tile of
-        // expensive pixels stops within one packet. The packets are the ones the whole tile
-        // would trace (aligned to the tile's corner) and every sample depends only on its
-        // pixel and index (per-pixel seeds), so the samples are the same bits.
-        static thread_local TileSamples part;
-        part.wantDirect = buf.wantDirect;
-        part.wantPositions = buf.wantPositions;
-        const size_t spp = buf.spp;
-        for (int by = tb.pMin.y; by < tb.pMax.y; by += RenderPacketH)
-            for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += RenderPacketW) {
-                if (*cancel) return false;
-                const Bounds2i pb{{bx, by},
-                                  {std::min(bx + RenderPacketW, tb.pMax.x),
-                                   std::min(by + RenderPacketH, tb.pMax.y)}};
-                part.Reset(pb, buf.spp);
-                scene_.integrator->RenderTile(context_, part, rc);
-                for (int y = pb.pMin.y; y < pb.pMax.y; ++y)
-                    for (int x = pb.pMin.x; x < pb.pMax.x; ++x) {
-                        const size_t from = part.Index(x, y, 0), to = buf.Index(x, y, 0);
-                        std::copy_n(part.L.begin() + ptrdiff_t(from), spp,
-                                    buf.L.begin() + ptrdiff_t(to));
-                        if (buf.wantPositions)
-                            std::copy_n(part.pFilm.begin() + ptrdiff_t(from), spp,
-                                        buf.pFilm.begin() + ptrdiff_t(to));
-                        if (buf.wantDirect)
-                            std::copy_n(part.direct.begin() + ptrdiff_t(from), spp,
-                                        buf.direct.begin() + ptrdiff_t(to));
-                    }
-            }
+        // The integrator reads the flag before every camera packet or pixel, so that a tile
+        // of expensive pixels stops within one packet; a tile it stopped is dropped.
+        TileContext ctx = context_;
+        ctx.cancel = cancel;
+        scene_.integrator->RenderTile(ctx, buf, rc);
         if (*cancel) return false;
     }
     // The film's scale, and pbrt's clamp of bright samples (Film "maxsampleluminance"); the
