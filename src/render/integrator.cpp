@@ -26,6 +26,7 @@ void TileSamples::Reset(const Bounds2i &b, uint32_t samples) {
     if (L.size() < n) L.resize(n);
     if (wantPositions && pFilm.size() < n) pFilm.resize(n);
     if (wantDirect && direct.size() < n) direct.resize(n);
+    splats.clear();
 }
 
 void Integrator::RenderTile(const TileContext &ctx, TileSamples &out, RayCounters &rc) const {

@@ -135,8 +135,14 @@ bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
                             std::copy_n(part.direct.begin() + ptrdiff_t(from), spp,
                                         buf.direct.begin() + ptrdiff_t(to));
                     }
+                buf.splats.insert(buf.splats.end(), part.splats.begin(), part.splats.end());
             }
         if (*cancel) return false;
+        // The splats in the whole tile's order (pixel by pixel, row-major), as without packets.
+        std::stable_sort(
+            buf.splats.begin(), buf.splats.end(), [](const SampleSplat &a, const SampleSplat &b) {
+                return a.from.y != b.from.y ? a.from.y < b.from.y : a.from.x < b.from.x;
+            });
     }
     // The film's scale, and pbrt's clamp of bright samples (Film "maxsampleluminance"); the
     // direct part is scaled as its sample is.
@@ -170,6 +176,13 @@ bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
             for (int s = 0; s < spp; ++s)
                 tile->AddSample(buf.pFilm[first + size_t(s)], buf.L[first + size_t(s)]);
         }
+    // Splats, with the film scale and clamp of a sample, divided by the samples per pixel.
+    for (const SampleSplat &sp : buf.splats) {
+        RGB L = sp.L * scale;
+        if (maxLum < Infinity && L.IsFinite() && L.Luminance() > maxLum)
+            L *= maxLum / L.Luminance();
+        tile->AddSplat(sp.pixel, L / float(spp));
+    }
     if (aovs_) aovs_->AddTile(context_, t, buf);
     return true;
 }
@@ -194,7 +207,8 @@ Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats
     tbb::enumerable_thread_specific<TileSamples> scratch;
     // pbrt's default box filter: each worker resolves its tiles straight into the image
     // (TiledFilm::ResolvesTiles), in a tile buffer of its own; other filters merge in order.
-    const bool inPlace = film.EnableResolveInPlace();
+    // Splats reach any pixel: their tiles merge in order.
+    const bool inPlace = !scene.integrator->Traits().splats && film.EnableResolveInPlace();
     tbb::enumerable_thread_specific<FilmTile> ownTile;
     std::atomic<int> done{0};
     if (options.aovs) options.aovs->BeginPass(nTiles);
