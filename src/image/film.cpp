@@ -181,6 +181,16 @@ void FilmTile::AddPixelSamples(Vec2i p, const RGB *L, int n) {
     }
 }
 
+void FilmTile::AddSplat(Vec2i p, const RGB &v) {
+    if (p.x < crop_.pMin.x || p.x >= crop_.pMax.x || p.y < crop_.pMin.y || p.y >= crop_.pMax.y)
+        return;
+    if (!v.IsFinite()) {
+        nonFinite_.Add(p);
+        return;
+    }
+    splats_.push_back({p.x, p.y, v.r, v.g, v.b});
+}
+
 void FilmTile::AddNoiseSample(Vec2f pFilm, const RGB &v) {
     double cx = ClampCoord(pFilm.x), cy = ClampCoord(pFilm.y);
     int x = int(std::floor(cx)), y = int(std::floor(cy));
@@ -255,6 +265,8 @@ void Film::ResetTileBounds(const Bounds2i &bounds, FilmTile *tile, bool noise) c
     tile->bounds_ = bounds;
     tile->kernel_ = kernel_;
     tile->nonFinite_ = NonFiniteRecord();
+    tile->splats_.clear();
+    tile->crop_ = cropPixels_;
     // assign() keeps the capacity: after the first tiles no allocation.
     tile->pixels_.assign(size_t(tile->bounds_.Area()), FilmPixel());
     tile->noise_ = noise;
@@ -330,7 +342,8 @@ void TiledFilm::ResetTile(int t, FilmTile *tile) const {
 }
 
 void TiledFilm::ResolveTile(int t, const FilmTile &tile) {
-    PRISM_CHECK(ResolvesTiles() && next_ == 0 && tile.bounds_ == TilePixels(t));
+    PRISM_CHECK(ResolvesTiles() && next_ == 0 && tile.bounds_ == TilePixels(t) &&
+                tile.splats_.empty());
     {
         std::lock_guard<std::mutex> lock(resolveMutex_);
         if (image_.pixels.empty()) {
@@ -399,6 +412,18 @@ void TiledFilm::MergeNext(const FilmTile *tile) {
     OpenRowsBelow(f.pMax.y);
     if (!tile) return;
     nonFinite_.Merge(tile->nonFinite_);
+    if (!tile->splats_.empty()) {
+        const Bounds2i &crop = film_.cropPixels_;
+        if (splat_.empty()) splat_.assign(size_t(crop.Area()) * 3, 0.0);
+        for (const FilmSplat &sp : tile->splats_) {
+            PRISM_CHECK(sp.x >= crop.pMin.x && sp.x < crop.pMax.x && sp.y >= crop.pMin.y &&
+                        sp.y < crop.pMax.y);
+            double *d =
+                &splat_[(size_t(sp.y - crop.pMin.y) * size_t(width_) + size_t(sp.x - crop.pMin.x)) *
+                        3];
+            d[0] += double(sp.r), d[1] += double(sp.g), d[2] += double(sp.b);
+        }
+    }
     if (noise_) {
         uint64_t n = 0;
         noiseVariance_ += tile->NoiseVariance(&n);
@@ -437,6 +462,9 @@ Image TiledFilm::Finish() {
     }
     while (next_ < NumTiles()) MergeNext(nullptr);
     FinalizeRowsBelow(film_.cropPixels_.pMax.y);
+    // The splats, unfiltered, over the filtered samples (pbrt-v3 Film::WriteImage).
+    for (size_t i = 0; i < splat_.size(); ++i)
+        image_.pixels[i] = float(double(image_.pixels[i]) + splat_[i]);
     return std::move(image_);
 }
 

@@ -65,6 +65,13 @@ struct NoiseHalves {
     uint32_t na = 0, nb = 0;
 };
 
+// Radiance added to one pixel unfiltered, beside the filtered samples (light tracing: pbrt-v3
+// Film::AddSplat); the caller has already divided it by the samples per pixel.
+struct FilmSplat {
+    int32_t x = 0, y = 0;  // the pixel, in full-image coordinates
+    float r = 0, g = 0, b = 0;
+};
+
 // Record of samples with NaN/Inf radiance; the reported pixel is the smallest in (y, x) order
 // so that it does not depend on the order in which tiles finish.
 struct NonFiniteRecord {
@@ -92,6 +99,13 @@ class FilmTile {
     // With UnitBox(): adds n samples that all lie in pixel p (render/sampler.h FilmPosition
     // keeps them there), in order: the same sums as AddSample of each, without locating each.
     void AddPixelSamples(Vec2i p, const RGB *L, int n);
+    // A splat onto pixel p of the crop window, which may lie outside this tile: kept in order
+    // and summed into the image when the tile is merged (TiledFilm::MergeNext). A splat with
+    // a NaN/Inf component is counted (at p) and dropped; one outside the crop is dropped.
+    void AddSplat(Vec2i p, const RGB &v);
+    // The splats in the order they were added (prism-mpi ships them with the sums).
+    std::vector<FilmSplat> &Splats() { return splats_; }
+    const std::vector<FilmSplat> &Splats() const { return splats_; }
 
     // Pixels this tile accumulates into (within the film's crop window).
     const Bounds2i &PixelBounds() const { return bounds_; }
@@ -131,6 +145,8 @@ class FilmTile {
     NonFiniteRecord nonFinite_;
     bool noise_ = false;
     std::vector<NoiseHalves> halves_;  // over bounds_, when noise_
+    std::vector<FilmSplat> splats_;
+    Bounds2i crop_;  // the film's crop window (where splats may land)
 };
 
 class Film {
@@ -240,6 +256,9 @@ class TiledFilm {
     int tileSize_, nx_ = 0, ny_ = 0;
     int width_ = 0, ringRows_ = 1;
     std::vector<FilmPixel> ring_;
+    // The merged tiles' splats, 3 doubles per crop pixel (allocated at the first splat) and
+    // added to the image by Finish: splats reach any pixel, also rows already finalized.
+    std::vector<double> splat_;
     int next_ = 0;
     int finalY_ = 0, openY_ = 0;  // crop rows: [finalY_, openY_) are live in the ring
     Image image_;

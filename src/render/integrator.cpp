@@ -26,6 +26,7 @@ void TileSamples::Reset(const Bounds2i &b, uint32_t samples) {
     if (L.size() < n) L.resize(n);
     if (wantPositions && pFilm.size() < n) pFilm.resize(n);
     if (wantDirect && direct.size() < n) direct.resize(n);
+    splats.clear();
 }
 
 void Integrator::RenderTile(const TileContext &ctx, TileSamples &out, RayCounters &rc) const {
@@ -48,7 +49,8 @@ void Integrator::RenderTile(const TileContext &ctx, TileSamples &out, RayCounter
                     ps.diff = &rd;
                 }
                 const size_t i = out.Index(x, y, s);
-                out.L[i] = Li(ctx.scene, ray, ps, rc, out.wantDirect ? &out.direct[i] : nullptr);
+                out.L[i] = TileSample(ctx.scene, ray, ps, rc,
+                                      out.wantDirect ? &out.direct[i] : nullptr, &out.splats);
                 if (out.wantPositions) out.pFilm[i] = cs.pFilm;
             }
         }

@@ -102,6 +102,15 @@ class CameraSampler {
     float diffScale_;
 };
 
+// Radiance a camera sample adds to some pixel of the film other than through its own film
+// position: light tracing (the bidirectional integrator's t = 1 strategies). The film adds it
+// unfiltered, divided by the samples per pixel (pbrt-v3 Film::AddSplat).
+struct SampleSplat {
+    Vec2i pixel;  // the pixel it lands in (in the crop window)
+    Vec2i from;   // the pixel of the camera sample that traced it
+    RGB L;
+};
+
 // The camera samples of one tile as an integrator fills them, pixel by pixel, each pixel's
 // samples in order (Index).
 struct TileSamples {
@@ -112,6 +121,9 @@ struct TileSamples {
     std::vector<RGB> direct;     // its direct part (Integrator::Li), when wantDirect
     bool wantPositions = false;  // the film's filter reaches beyond a sample's pixel
     bool wantDirect = false;     // the direct/indirect AOVs are rendered
+    // Splats (Traits().splats), in the order the tile's samples made them: pixel by pixel,
+    // each pixel's samples in order. Reset empties it.
+    std::vector<SampleSplat> splats;
 
     size_t Index(int x, int y, uint32_t s) const {
         return (size_t(y - bounds.pMin.y) * size_t(bounds.pMax.x - bounds.pMin.x) +
@@ -147,6 +159,9 @@ struct IntegratorTraits {
     bool directAov = false;     // Li's direct part is exact (the direct and indirect AOVs)
     bool effectKernel = false;  // runs the kernel specialized per effect set (render/kernel.h)
     bool glossyRays = false;    // traces glossy rays (Integrator "distribution")
+    // Its tiles splat radiance onto other pixels (TileSamples::splats): the film then merges
+    // tiles in order (their splats reach any pixel), never resolves them in place.
+    bool splats = false;
 };
 
 class Integrator {
@@ -167,8 +182,15 @@ class Integrator {
     // direct part: emission and direct lighting at the first surface (or medium) vertex.
     virtual RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps,
                    RayCounters &rc, RGB *direct) const = 0;
+    // One camera sample of a tile, the default RenderTile's step: Li. An integrator whose
+    // samples also land on other pixels (light tracing) adds those to *splats.
+    virtual RGB TileSample(const RenderScene &scene, const Ray &ray, const PixelSamples &ps,
+                           RayCounters &rc, RGB *direct, std::vector<SampleSplat> *splats) const {
+        return Li(scene, ray, ps, rc, direct);
+    }
     // Fills out's radiance for every camera sample of tile out.bounds: by default each
-    // sample's camera ray (CameraSampler) through Li. Stops early once ctx.Cancelled().
+    // sample's camera ray (CameraSampler) through TileSample. Stops early once
+    // ctx.Cancelled().
     virtual void RenderTile(const TileContext &ctx, TileSamples &out, RayCounters &rc) const;
 };
 

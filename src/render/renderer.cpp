@@ -148,6 +148,13 @@ bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
             for (int s = 0; s < spp; ++s)
                 tile->AddSample(buf.pFilm[first + size_t(s)], buf.L[first + size_t(s)]);
         }
+    // Splats, with the film scale and clamp of a sample, divided by the samples per pixel.
+    for (const SampleSplat &sp : buf.splats) {
+        RGB L = sp.L * scale;
+        if (maxLum < Infinity && L.IsFinite() && L.Luminance() > maxLum)
+            L *= maxLum / L.Luminance();
+        tile->AddSplat(sp.pixel, L / float(spp));
+    }
     if (aovs_) aovs_->AddTile(context_, t, buf);
     return true;
 }
@@ -172,7 +179,8 @@ Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats
     tbb::enumerable_thread_specific<TileSamples> scratch;
     // pbrt's default box filter: each worker resolves its tiles straight into the image
     // (TiledFilm::ResolvesTiles), in a tile buffer of its own; other filters merge in order.
-    const bool inPlace = film.EnableResolveInPlace();
+    // Splats reach any pixel: their tiles merge in order.
+    const bool inPlace = !scene.integrator->Traits().splats && film.EnableResolveInPlace();
     tbb::enumerable_thread_specific<FilmTile> ownTile;
     std::atomic<int> done{0};
     if (options.aovs) options.aovs->BeginPass(nTiles);

@@ -35,15 +35,15 @@ Built BuildText(const std::string &name, const std::string &text, int res, int s
 
 TEST(Integrator, TheRegistryNamesEachIntegratorOnce) {
     std::vector<std::string> names = IntegratorNames();
-    for (const char *n :
-         {"whitted", "distribution", "directlighting", "path", "volpath", "ambientocclusion", "ao"})
+    for (const char *n : {"whitted", "distribution", "directlighting", "path", "volpath",
+                          "ambientocclusion", "ao", "bdpt"})
         EXPECT_EQ(std::count(names.begin(), names.end(), n), 1) << n;
-    EXPECT_EQ(names.size(), 7u);
+    EXPECT_EQ(names.size(), 8u);
 }
 
 TEST(Integrator, AnUnknownIntegratorRendersWithWhittedAndSaysWhere) {
-    Built b = BuildText("bdpt.pbrt",
-                        "Integrator \"bdpt\" \"integer maxdepth\" [ 3 ]\nWorldBegin\n"
+    Built b = BuildText("mlt.pbrt",
+                        "Integrator \"mlt\" \"integer maxdepth\" [ 3 ]\nWorldBegin\n"
                         "LightSource \"point\"\nShape \"sphere\"\nWorldEnd\n",
                         4, 1);
     EXPECT_STREQ(b.scene.IntegratorName(), "whitted");
@@ -51,7 +51,7 @@ TEST(Integrator, AnUnknownIntegratorRendersWithWhittedAndSaysWhere) {
     bool warned = false;
     for (const Warning &w : b.warnings)
         warned |= w.loc.line == 1 &&
-                  w.message.find("\"bdpt\" is rendered with Whitted") != std::string::npos;
+                  w.message.find("\"mlt\" is rendered with Whitted") != std::string::npos;
     EXPECT_TRUE(warned);
 }
 

@@ -85,6 +85,7 @@ class Reader {
     void GetBytes(void *p, size_t n);  // throws std::runtime_error past the end
     std::string GetString();
     bool AtEnd() const { return pos_ == b_.size(); }
+    size_t Remaining() const { return b_.size() - pos_; }
 
   private:
     const std::vector<uint8_t> &b_;

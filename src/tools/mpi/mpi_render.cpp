@@ -39,6 +39,10 @@ void PutTile(Writer &w, const FilmTile &tile) {
     w.Put(int32_t(nf.firstPixel.has_value()));
     w.Put(nf.firstPixel.value_or(Vec2i(0, 0)));
     w.PutBytes(sums.data(), sums.size_bytes());
+    // Light tracing's splats (render/integrator.h SampleSplat), in order.
+    const std::vector<FilmSplat> &splats = tile.Splats();
+    w.Put(uint64_t(splats.size()));
+    if (!splats.empty()) w.PutBytes(splats.data(), splats.size() * sizeof(FilmSplat));
 }
 
 void GetTile(Reader &r, FilmTile *tile) {
@@ -54,6 +58,12 @@ void GetTile(Reader &r, FilmTile *tile) {
     if (has) nf.firstPixel = p;
     tile->SetNonFinite(nf);
     r.GetBytes(sums.data(), sums.size_bytes());
+    const uint64_t n = r.Get<uint64_t>();
+    std::vector<FilmSplat> &splats = tile->Splats();
+    if (n > r.Remaining() / sizeof(FilmSplat))
+        throw std::runtime_error("a tile from another rank holds more splats than it sent");
+    splats.resize(size_t(n));
+    if (n > 0) r.GetBytes(splats.data(), splats.size() * sizeof(FilmSplat));
 }
 
 // A worker keeps two requests out: while it renders one run, the next is already on its way,

@@ -77,6 +77,12 @@ TEST_F(MpiTest, RenderIsBitIdenticalWithGaussianFilterAndGlossyRays) {
                        "--res 40x24 --spp 1");
 }
 
+TEST_F(MpiTest, RenderIsBitIdenticalWithBdptSplats) {
+    // Light tracing's splats land on other ranks' tiles: they travel with the tile sums.
+    ExpectBitIdentical(dir_, std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/bdpt-gap.pbrt",
+                       "--res 40x30 --spp 2");
+}
+
 TEST_F(MpiTest, TargetErrorIsRefusedOnce) {
     std::string scene = std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt";
     RunResult r = RunMpi(2, "render '" + scene + "' -o t.png --target-error 0.1", dir_);

@@ -1,0 +1,42 @@
+// pbrt-v3's "bdpt" integrator (Veach's bidirectional path tracing): per camera sample a camera
+// subpath and a light subpath, every connection strategy (s, t) of their prefixes — s = 0 the
+// camera path hitting a light, s = 1 a light sample (next-event estimation), t = 1 light
+// tracing onto the film (TileSamples splats) — weighted by multiple importance sampling
+// (the balance heuristic, as pbrt-v3). Subpaths and connections: render/bdpt_vertex.h.
+// Participating media are not rendered (a warning, Traits().media false). docs/BDPT.md.
+#pragma once
+
+#include "render/bdpt_camera.h"
+#include "render/integrator.h"
+#include "render/light.h"
+#include "render/light_sampling.h"
+
+namespace prism {
+
+class BdptIntegrator : public Integrator {
+  public:
+    BdptIntegrator(LightChoice choice, const FileLoc &loc) : choice_(choice), loc_(loc) {}
+    const char *Name() const override { return "bdpt"; }
+    IntegratorTraits Traits() const override;
+    void Prepare(const RenderScene &scene) override;
+    // One camera sample without light tracing (t = 1), which lands on other pixels: only
+    // TileSample gives those (as splats).
+    RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, RayCounters &rc,
+           RGB *direct) const override;
+    RGB TileSample(const RenderScene &scene, const Ray &ray, const PixelSamples &ps,
+                   RayCounters &rc, RGB *direct, std::vector<SampleSplat> *splats) const override;
+
+  private:
+    // The radiance of one camera sample; light tracing's contributions go to *splats (none
+    // when it is null).
+    RGB Sample(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, RayCounters &rc,
+               std::vector<SampleSplat> *splats) const;
+
+    LightChoice choice_;
+    FileLoc loc_;
+    LightChooser chooser_;
+    CameraImportance camera_;
+    SceneSphere sphere_;
+};
+
+}  // namespace prism

@@ -1,0 +1,76 @@
+// The vertices of the bidirectional integrator's subpaths (render/bdpt_integrator.h) and the
+// steps that make and join them: the camera and light random walks (bdpt_walk.cpp) and the
+// connection of a light subpath's prefix with a camera subpath's, weighted by multiple
+// importance sampling over every strategy that could have made the same path
+// (bdpt_connect.cpp). Veach's thesis, chapter 10; pbrt-v3 16.3 (no code copied).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "geometry/interaction.h"
+#include "render/bdpt_camera.h"
+#include "render/bsdf.h"
+#include "render/light.h"
+#include "render/light_sampling.h"
+
+namespace prism {
+
+struct RenderScene;
+struct RayCounters;
+
+enum class BdptVertexType : uint8_t { Camera, Light, Surface };
+
+// One vertex of a subpath. Densities are per unit area of the vertex (per unit solid angle
+// for a vertex at infinity, an infinite light's); 0 for a delta bounce, whose strategies MIS
+// skips.
+struct BdptVertex {
+    BdptVertexType type = BdptVertexType::Surface;
+    RGB beta;     // the subpath's throughput up to this vertex
+    Vec3f p, ng;  // position and geometric normal (zero for point lights and the camera)
+    Vec3f ns;     // surface vertices: the shading normal
+    Vec3f wo;     // surface vertices: unit direction back to the previous vertex
+    float pdfFwd = 0, pdfRev = 0;  // the density of its own subpath, and of the other's
+    bool delta = false;            // a delta lobe was sampled here (or a delta light)
+    bool infinite = false;         // an infinite or distant light: p is a direction (wo)
+    int light = -1;                // light vertices: the light; surfaces: the area light hit
+    SurfaceInteraction si;         // surfaces (and area-light origins): for spawned rays
+    std::optional<BSDF> bsdf;      // surfaces
+    RGB emitted;                   // surfaces: emission the material carries (glTF)
+
+    // Light paths can connect here: a surface with non-delta lobes, or a light.
+    bool Connectible() const {
+        return type != BdptVertexType::Surface || (bsdf && bsdf->HasNonSpecular());
+    }
+};
+
+// What a subpath's steps share: the scene, its light choice and the camera as light tracing
+// sees it.
+struct BdptContext {
+    const RenderScene &scene;
+    const LightChooser &chooser;
+    const CameraImportance &camera;
+    const SceneSphere &sphere;
+    int maxDepth;
+};
+
+// The dimensions a camera sample draws (PixelSamples), per subpath vertex.
+uint32_t BdptCameraDim(int vertex, uint32_t d);  // d < 8
+uint32_t BdptLightDim(int vertex, uint32_t d);   // d < 8
+
+// The camera subpath of a camera ray: the camera vertex and up to maxDepth + 1 surfaces (or
+// an escape to the infinite lights). diff: the camera ray's differentials (first hit only).
+void CameraSubpath(const BdptContext &ctx, const Ray &ray, const PixelSamples &ps,
+                   const RayDifferential *diff, std::vector<BdptVertex> &path, RayCounters &rc);
+// The light subpath: a light chosen by power, its emitted ray and up to maxDepth surfaces.
+void LightSubpath(const BdptContext &ctx, const PixelSamples &ps, std::vector<BdptVertex> &path,
+                  RayCounters &rc);
+
+// The contribution of strategy (s, t): the first s light vertices joined to the first t camera
+// vertices, times its MIS weight. t = 1 gives the radiance onto *raster (a splat) instead of
+// the camera sample's own pixel.
+RGB ConnectStrategy(const BdptContext &ctx, const std::vector<BdptVertex> &light,
+                    const std::vector<BdptVertex> &camera, int s, int t, const PixelSamples &ps,
+                    Vec2f *raster, RayCounters &rc);
+
+}  // namespace prism
