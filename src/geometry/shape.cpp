@@ -86,6 +86,35 @@ bool AnalyticShape::Sample(const Vec3f &ref, Vec2f u, ShapeSample *ss) const {
     return std::isfinite(ss->pdf) && ss->pdf > 0;
 }
 
+bool AnalyticShape::SampleArea(Vec2f u, ShapeSample *ss) const {
+    Vec3d pObj, nObj;
+    double pdfObj;
+    if (!SampleObjectArea(u, &pObj, &nObj, &pdfObj)) return false;
+    const double nLen = Length(nObj);
+    if (!(nLen > 0) || !(pdfObj > 0)) return false;
+    Vec3d nW = renderFromObject_.Normal(nObj / nLen);
+    const double jac = std::abs(renderFromObject_.Matrix().Determinant3x3()) * Length(nW);
+    nW = Normalize(nW);
+    if (flipNormals_) nW = -nW;
+    ss->p = Vec3f(renderFromObject_.Point(pObj));
+    ss->n = Vec3f(nW);
+    ss->pdf = float(pdfObj / jac);
+    return std::isfinite(ss->pdf) && ss->pdf > 0;
+}
+
+float AnalyticShape::PdfArea(const Vec3f &n) const {
+    Vec3d pObj, nObj;
+    double pdfObj;
+    if (!SampleObjectArea(Vec2f(0.5f, 0.5f), &pObj, &nObj, &pdfObj) || !(pdfObj > 0)) return 0;
+    const Vec3d nO = renderFromObject_.Inverse().Normal(Vec3d(n));
+    const double lenO = Length(nO);
+    if (!(lenO > 0)) return 0;
+    const double jac = std::abs(renderFromObject_.Matrix().Determinant3x3()) *
+                       Length(renderFromObject_.Normal(nO / lenO));
+    const double pdf = pdfObj / jac;
+    return std::isfinite(pdf) ? float(pdf) : 0.f;
+}
+
 float AnalyticShape::Pdf(const Vec3f &ref, const Vec3f &p, const Vec3f &n) const {
     // Uniform area sampling: the object-space density (one value for the whole surface)
     // through the area Jacobian at p's normal, then to solid angle at ref.

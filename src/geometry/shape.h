@@ -108,6 +108,11 @@ class AnalyticShape {
     // The solid-angle density with which Sample(ref, ...) gives the surface point p (unit
     // normal n, render space), e.g. a point a ray from ref hit: multiple importance sampling.
     virtual float Pdf(const Vec3f &ref, const Vec3f &p, const Vec3f &n) const;
+    // Uniform area sampling in render space (light tracing): the point, its unit normal and
+    // ss->pdf the density per unit render-space area; PdfArea is that density at a point with
+    // unit normal n (it depends on n alone, through the area Jacobian).
+    bool SampleArea(Vec2f u, ShapeSample *ss) const;
+    float PdfArea(const Vec3f &n) const;
     bool CanSample() const {
         Vec3d p, n;
         double pdf;

@@ -87,6 +87,7 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
     Vec3f p, n;
     float pdf;
     RGB Le = Lemit_;
+    ls->prim = 0;
     if (analytic_) {
         ShapeSample ss;
         if (!analytic_->Sample(si.p, u, &ss)) return false;
@@ -100,6 +101,7 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
         double prob;
         int tri = triangleWeights_.SampleDiscrete(u.x, &prob);
         if (!(prob > 0)) return false;
+        ls->prim = tri;
         // Remap u.x within the chosen triangle's CDF interval to keep stratification.
         double uxr = Clamp((u.x - triangleWeights_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1);
         double su0 = std::sqrt(uxr);
@@ -135,7 +137,78 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
     ls->pLight = p;
     ls->infinite = false;
     ls->pdf = pdf;
+    ls->n = n;
     return true;
+}
+
+float DiffuseAreaLight::PdfPosition(const Vec3f &n, int prim) const {
+    return analytic_ ? analytic_->PdfArea(n) : float(PdfArea(prim));
+}
+
+bool DiffuseAreaLight::SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &,
+                                LightLeSample *ls) const {
+    Vec3f p, n;
+    float pdfPos;
+    RGB Le = Lemit_;
+    if (analytic_) {
+        ShapeSample ss;
+        if (!analytic_->SampleArea(uPos, &ss)) return false;
+        p = ss.p, n = ss.n, pdfPos = ss.pdf;
+    } else {
+        if (!(meshArea_ > 0)) return false;
+        // As SampleLi: a triangle by weight, uPos.x reused within it, a uniform point on it.
+        double prob;
+        const int tri = triangleWeights_.SampleDiscrete(uPos.x, &prob);
+        if (!(prob > 0)) return false;
+        const double ux =
+            Clamp((uPos.x - triangleWeights_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1);
+        const double su0 = std::sqrt(ux), b0 = 1 - su0, b1 = uPos.y * su0;
+        const uint32_t *v = mesh_->Triangle(size_t(tri));
+        Vec3d p0(mesh_->Position(v[0])), p1(mesh_->Position(v[1])), p2(mesh_->Position(v[2]));
+        p = Vec3f(p0 * b0 + p1 * b1 + p2 * (1 - b0 - b1));
+        n = mesh_->GeometricNormal(size_t(tri));
+        pdfPos = float(PdfArea(tri));
+        if (n == Vec3f(0, 0, 0) || !(pdfPos > 0)) return false;
+        if (radiance_) {
+            const float eu = float(b1), ev = float(1 - b0 - b1);
+            TextureContext tc{mesh_->UVAt(size_t(tri), eu, ev, 0), p,
+                              mesh_->UVAt(size_t(tri), eu, ev, 1)};
+            Le = Lemit_ * radiance_->Evaluate(tc).Clamped(0.f);
+        }
+    }
+    // A cosine-weighted direction about n (about -n for the back of a two-sided light).
+    Vec3f axis = n;
+    float share = 1;
+    if (twoSided_) {
+        share = 0.5f;
+        if (uDir.x < 0.5f) {
+            uDir.x = std::min(uDir.x * 2, 0x1.fffffep-1f);
+        } else {
+            uDir.x = std::min((uDir.x - 0.5f) * 2, 0x1.fffffep-1f);
+            axis = -n;
+        }
+    }
+    const float r = std::sqrt(uDir.x), phi = float(2 * Pi) * uDir.y;
+    const float z = std::sqrt(std::max(0.f, 1 - uDir.x));
+    if (!(z > 0)) return false;
+    Vec3f s, t;
+    CoordinateSystem(axis, &s, &t);
+    const Vec3f w = Normalize(s * (r * std::cos(phi)) + t * (r * std::sin(phi)) + axis * z);
+    ls->ray = Ray{p, w};
+    ls->n = n;
+    ls->Le = Le;
+    ls->pdfPos = pdfPos;
+    ls->pdfDir = share * z * float(InvPi);
+    return true;
+}
+
+void DiffuseAreaLight::PdfLe(const Vec3f &, const Vec3f &n, const Vec3f &w, const SceneSphere &,
+                             float *pdfPos, float *pdfDir) const {
+    // Callers pass the point's triangle through PdfPosition; here the position density of an
+    // analytic shape, or the mesh's by area (exact for untextured meshes).
+    *pdfPos = analytic_ ? analytic_->PdfArea(n) : (meshArea_ > 0 ? float(1 / meshArea_) : 0.f);
+    const float c = Dot(n, w);
+    *pdfDir = twoSided_ ? 0.5f * std::abs(c) * float(InvPi) : std::max(c, 0.f) * float(InvPi);
 }
 
 double DiffuseAreaLight::Power(double) const {

@@ -43,6 +43,17 @@ class DiffuseAreaLight final : public Light {
                          : Lemit_;
     }
     bool IsArea() const override { return true; }
+    // Emission: a point by SampleLi's distribution over the surface (per unit area), a
+    // cosine-weighted direction on its emitting side (either side, half and half, when
+    // two-sided).
+    bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
+                  LightLeSample *ls) const override;
+    void PdfLe(const Vec3f &p, const Vec3f &n, const Vec3f &w, const SceneSphere &sphere,
+               float *pdfPos, float *pdfDir) const override;
+    // The density per unit area with which SampleLe picks the point with unit normal n on
+    // triangle prim (meshes) or on the analytic shape.
+    float PdfPosition(const Vec3f &n, int prim) const;
+    bool TwoSided() const { return twoSided_; }
     bool Textured() const { return radiance_ != nullptr; }
     // Meshes: the density (per unit area) with which SampleLi picks points of triangle `prim`
     // (0 for a triangle never sampled), for integrators that weigh light samples against

@@ -177,8 +177,9 @@ struct BSDF {
     // direction for delta lobes). For a non-delta choice, f and pdf cover every non-delta lobe
     // (pbrt-v3 BSDF::Sample_f). withSpecular false: delta lobes are never chosen.
     bool Sample_f(const Vec3f &woWorld, Vec2f u, float uc, bool withSpecular, BSDFSample *s) const;
-    // The density with which Sample_f(withSpecular false) gives wi (multiple importance sampling).
-    float Pdf(const Vec3f &woWorld, const Vec3f &wiWorld) const;
+    // The density with which Sample_f(withSpecular) gives the non-delta direction wi (multiple
+    // importance sampling; with delta lobes it includes the probability of not choosing them).
+    float Pdf(const Vec3f &woWorld, const Vec3f &wiWorld, bool withSpecular = false) const;
 
   private:
     int n_ = 0;

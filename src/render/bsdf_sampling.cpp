@@ -135,11 +135,11 @@ float MixturePdf(const BSDF &b, const Choices &ch, const Vec3f &wo, const Vec3f 
 
 }  // namespace
 
-float BSDF::Pdf(const Vec3f &woW, const Vec3f &wiW) const {
+float BSDF::Pdf(const Vec3f &woW, const Vec3f &wiW, bool withSpecular) const {
     const Vec3f wo = ToLocal(woW), wi = ToLocal(wiW);
     if (wo.z == 0) return 0;
     Choices ch;
-    Collect(*this, wo, false, &ch);
+    Collect(*this, wo, withSpecular, &ch);
     return MixturePdf(*this, ch, wo, wi);
 }
 

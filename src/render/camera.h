@@ -37,6 +37,18 @@ class Camera {
     void SetMotion(const AnimatedTransform &renderFromCamera);
     // Camera space to render space at time 0 (the AOVs' depth axis, render/aov.h).
     const Transform &RenderFromCamera() const { return renderFromCamera_; }
+    // The projection, for light tracing's importance (render/bdpt_camera.h): raster (x, y)
+    // looks along camera-space (sx tanHalf, sy tanHalf, 1), sx = sx0 + x/res.x (sx1 - sx0),
+    // sy = sy1 - y/res.y (sy1 - sy0); a thin lens of lensRadius focuses at focalDistance.
+    struct Projection {
+        bool orthographic;
+        double sx0, sx1, sy0, sy1, tanHalf, lensRadius, focalDistance;
+        Vec2i resolution;
+    };
+    Projection GetProjection() const {
+        return {ortho_, sx0_, sx1_, sy0_, sy1_, tanHalf_, lensRadius_, focalDistance_, res_};
+    }
+    bool Moves() const { return motion_ != nullptr; }
 
   private:
     std::shared_ptr<const AnimatedTransform> motion_;

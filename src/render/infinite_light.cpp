@@ -102,12 +102,48 @@ float InfiniteLight::PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
         float c = Dot(FaceForward(ref.ns, ref.wo), wi);
         return c > 0 ? c * float(InvPi) : 0.f;
     }
+    return DirectionPdf(wi);
+}
+
+float InfiniteLight::DirectionPdf(const Vec3f &wi) const {
+    if (!map_) return float(1 / (4 * Pi));
     Vec3d wl = Normalize(renderFromLight_.Inverse().Vector(Vec3d(wi)));
     double theta = SafeACos(wl.z), phi = std::atan2(wl.y, wl.x);
     if (phi < 0) phi += 2 * Pi;
     double sinTheta = std::sin(theta);
     if (sinTheta == 0) return 0;
     return float(distribution_.Pdf(Vec2d(phi / (2 * Pi), theta / Pi)) / (2 * Pi * Pi * sinTheta));
+}
+
+bool InfiniteLight::SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
+                             LightLeSample *ls) const {
+    Vec3f wi;
+    float pdf;
+    if (!map_) {
+        wi = UniformSphereDirection(uDir);
+        pdf = float(1 / (4 * Pi));
+    } else {
+        // The map's own distribution, as SampleLi draws it.
+        SurfaceInteraction any;
+        any.ns = Vec3f(0, 0, 1);
+        LightSample s;
+        if (!SampleLi(any, uDir, &s)) return false;
+        wi = s.wi;
+        pdf = s.pdf;
+    }
+    if (!(pdf > 0)) return false;
+    ls->ray = Ray{DiskOrigin(sphere, -wi, uPos), -wi};
+    ls->n = Vec3f(0, 0, 0);
+    ls->Le = Lookup(wi);
+    ls->pdfPos = float(1 / (Pi * double(sphere.radius) * sphere.radius));
+    ls->pdfDir = pdf;
+    return true;
+}
+
+void InfiniteLight::PdfLe(const Vec3f &, const Vec3f &, const Vec3f &w, const SceneSphere &sphere,
+                          float *pdfPos, float *pdfDir) const {
+    *pdfPos = float(1 / (Pi * double(sphere.radius) * sphere.radius));
+    *pdfDir = DirectionPdf(-w);
 }
 
 // The most samples an infinite light may take per shading point.

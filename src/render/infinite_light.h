@@ -24,8 +24,17 @@ class InfiniteLight final : public Light {
     float PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
                 const SurfaceInteraction *hit) const override;
     int NumSamples() const override { return nSamples_; }
+    // Emission: the direction by the map (uniform over the sphere without one), the origin on
+    // the scene sphere's disk facing it.
+    bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
+                  LightLeSample *ls) const override;
+    void PdfLe(const Vec3f &p, const Vec3f &n, const Vec3f &w, const SceneSphere &sphere,
+               float *pdfPos, float *pdfDir) const override;
+    bool IsInfinite() const override { return true; }
 
   private:
+    // The density of the direction toward the light wi as SampleLe draws it (solid angle).
+    float DirectionPdf(const Vec3f &wi) const;
     RGB Lookup(const Vec3f &wRender) const;
     Transform renderFromLight_;
     RGB L_;

@@ -1,8 +1,100 @@
 #include "render/light.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace prism {
+
+Vec3f UniformSphereDirection(Vec2f u) {
+    const float z = 1 - 2 * u.x, r = std::sqrt(std::max(0.f, 1 - z * z));
+    const float phi = float(2 * Pi) * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+Vec3f UniformConeDirection(Vec2f u, float cosMax) {
+    const float z = (1 - u.x) + u.x * cosMax, r = std::sqrt(std::max(0.f, 1 - z * z));
+    const float phi = float(2 * Pi) * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+Vec2f ConcentricDisk(Vec2f u) {
+    // Shirley and Chiu's concentric map of the square onto the disk.
+    const float ux = 2 * u.x - 1, uy = 2 * u.y - 1;
+    if (ux == 0 && uy == 0) return {0, 0};
+    float r, theta;
+    if (std::abs(ux) > std::abs(uy)) {
+        r = ux;
+        theta = float(Pi / 4) * (uy / ux);
+    } else {
+        r = uy;
+        theta = float(Pi / 2) - float(Pi / 4) * (ux / uy);
+    }
+    return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+Vec3f DiskOrigin(const SceneSphere &sphere, const Vec3f &d, Vec2f u) {
+    Vec3f s, t;
+    CoordinateSystem(d, &s, &t);
+    const Vec2f c = ConcentricDisk(u);
+    return sphere.center + (s * c.x + t * c.y - d) * sphere.radius;
+}
+
+namespace {
+
+// A point or spot light's emitted ray.
+void PointEmission(const Vec3f &pos, const Vec3f &w, const RGB &Le, float pdfDir,
+                   LightLeSample *ls) {
+    ls->ray = Ray{pos, w};
+    ls->n = Vec3f(0, 0, 0);
+    ls->Le = Le;
+    ls->pdfPos = 1;
+    ls->pdfDir = pdfDir;
+}
+
+}  // namespace
+
+bool PointLight::SampleLe(Vec2f, Vec2f uDir, const SceneSphere &, LightLeSample *ls) const {
+    PointEmission(pos_, UniformSphereDirection(uDir), I_, float(1 / (4 * Pi)), ls);
+    return true;
+}
+
+void PointLight::PdfLe(const Vec3f &, const Vec3f &, const Vec3f &, const SceneSphere &,
+                       float *pdfPos, float *pdfDir) const {
+    *pdfPos = 0;
+    *pdfDir = float(1 / (4 * Pi));
+}
+
+bool SpotLight::SampleLe(Vec2f, Vec2f uDir, const SceneSphere &, LightLeSample *ls) const {
+    const Vec3f wl = UniformConeDirection(uDir, cosTotalWidth_);
+    Vec3f s, t;
+    CoordinateSystem(dir_, &s, &t);
+    const Vec3f w = Normalize(s * wl.x + t * wl.y + dir_ * wl.z);
+    PointEmission(pos_, w, I_ * Falloff(w), float(1 / (2 * Pi * (1 - double(cosTotalWidth_)))), ls);
+    return true;
+}
+
+void SpotLight::PdfLe(const Vec3f &, const Vec3f &, const Vec3f &w, const SceneSphere &,
+                      float *pdfPos, float *pdfDir) const {
+    *pdfPos = 0;
+    *pdfDir =
+        Dot(w, dir_) >= cosTotalWidth_ ? float(1 / (2 * Pi * (1 - double(cosTotalWidth_)))) : 0.f;
+}
+
+bool DistantLight::SampleLe(Vec2f uPos, Vec2f, const SceneSphere &sphere, LightLeSample *ls) const {
+    const Vec3f d = -w_;
+    ls->ray = Ray{DiskOrigin(sphere, d, uPos), d};
+    ls->n = Vec3f(0, 0, 0);
+    ls->Le = L_;
+    ls->pdfPos = float(1 / (Pi * double(sphere.radius) * sphere.radius));
+    ls->pdfDir = 1;
+    return true;
+}
+
+void DistantLight::PdfLe(const Vec3f &, const Vec3f &, const Vec3f &, const SceneSphere &sphere,
+                         float *pdfPos, float *pdfDir) const {
+    *pdfPos = float(1 / (Pi * double(sphere.radius) * sphere.radius));
+    *pdfDir = 0;
+}
 
 bool PointLight::SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const {
     Vec3f d = pos_ - si.p;

@@ -21,6 +21,24 @@ struct LightSample {
     Vec3f pLight;           // for finite lights: the point to reach
     bool infinite = false;  // distant/infinite: the shadow ray is unbounded along wi
     float pdf = 1;
+    Vec3f n;       // area lights: the unit surface normal at pLight (zero for the others)
+    int prim = 0;  // mesh area lights: the triangle of pLight
+};
+
+// The sphere that bounds the scene, where distant and infinite lights start the rays they emit.
+struct SceneSphere {
+    Vec3f center;
+    float radius = 1;
+};
+
+// A ray leaving a light (light tracing: the bidirectional integrator's light subpaths),
+// pbrt-v3's Light::Sample_Le.
+struct LightLeSample {
+    Ray ray;       // from the light (distant and infinite: from a disk outside the scene)
+    Vec3f n;       // the unit surface normal at ray.o (area lights; zero for the others)
+    RGB Le;        // the radiance (point and spot: intensity) along the ray
+    float pdfPos;  // the origin's density: per unit area (1 for point and spot lights)
+    float pdfDir;  // the direction's, per unit solid angle (1 for distant lights)
 };
 
 class Light {
@@ -48,6 +66,18 @@ class Light {
     // The emitted power's luminance (pbrt-v3 Light::Power().y()), for choosing lights in
     // proportion to it; sceneRadius bounds the scene (distant and infinite lights).
     virtual double Power(double sceneRadius) const = 0;
+
+    // Light tracing (pbrt-v3 Sample_Le and Pdf_Le). SampleLe draws an emitted ray from two
+    // samples in [0,1)^2 (uPos: the origin, uDir: the direction; infinite lights draw their
+    // direction from uDir and the disk point from uPos). PdfLe gives the densities SampleLe
+    // draws a ray from p with unit normal n (area lights) in direction w with; distant and
+    // infinite lights read only w (their pdfPos is the disk's).
+    virtual bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
+                          LightLeSample *ls) const = 0;
+    virtual void PdfLe(const Vec3f &p, const Vec3f &n, const Vec3f &w, const SceneSphere &sphere,
+                       float *pdfPos, float *pdfDir) const = 0;
+    // Distant and infinite lights: light arriving from infinitely far along a direction.
+    virtual bool IsInfinite() const { return false; }
 };
 
 class PointLight final : public Light {
@@ -57,6 +87,10 @@ class PointLight final : public Light {
     bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
     double Power(double) const override { return 4 * Pi * I_.Luminance(); }
+    bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
+                  LightLeSample *ls) const override;
+    void PdfLe(const Vec3f &p, const Vec3f &n, const Vec3f &w, const SceneSphere &sphere,
+               float *pdfPos, float *pdfDir) const override;
 
   private:
     Vec3f pos_;
@@ -74,6 +108,10 @@ class SpotLight final : public Light {
     double Power(double) const override {
         return 2 * Pi * I_.Luminance() * (1 - 0.5 * (cosFalloffStart_ + cosTotalWidth_));
     }
+    bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
+                  LightLeSample *ls) const override;
+    void PdfLe(const Vec3f &p, const Vec3f &n, const Vec3f &w, const SceneSphere &sphere,
+               float *pdfPos, float *pdfDir) const override;
 
   private:
     Vec3f pos_, dir_;
@@ -89,11 +127,24 @@ class DistantLight final : public Light {
     bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
     double Power(double r) const override { return Pi * r * r * L_.Luminance(); }
+    bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
+                  LightLeSample *ls) const override;
+    void PdfLe(const Vec3f &p, const Vec3f &n, const Vec3f &w, const SceneSphere &sphere,
+               float *pdfPos, float *pdfDir) const override;
+    bool IsInfinite() const override { return true; }
 
   private:
     Vec3f w_;
     RGB L_;
 };
+
+// Light tracing's shared steps: a uniform direction on the unit sphere and in a cone about z
+// (cosMax: the cone's half angle), a concentric point on the unit disk, and the origin of a ray
+// entering the scene sphere in direction d through the disk sample u (density 1 / (pi r^2)).
+Vec3f UniformSphereDirection(Vec2f u);
+Vec3f UniformConeDirection(Vec2f u, float cosMax);
+Vec2f ConcentricDisk(Vec2f u);
+Vec3f DiskOrigin(const SceneSphere &sphere, const Vec3f &d, Vec2f u);
 
 // A LightSource directive's parameters as a light's Create reads them: core/params.h's plus
 // spectra (rgb, blackbody, spectrum: as RGB), points, and images (relative to the scene).

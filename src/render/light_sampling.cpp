@@ -13,8 +13,7 @@ namespace prism {
 
 namespace {
 
-// The scene's bounding sphere radius (for the power of distant and infinite lights).
-double SceneRadius(const RenderScene &scene) {
+Bounds3f SceneBounds(const RenderScene &scene) {
     Bounds3f b;
     for (int s = 0; s < scene.accel->NumShapes(); ++s) {
         if (const TriangleMesh *m = scene.accel->Mesh(s)) {
@@ -23,11 +22,26 @@ double SceneRadius(const RenderScene &scene) {
             b.Expand(a->RenderBounds());
         }
     }
+    return b;
+}
+
+// The scene's bounding sphere radius (for the power of distant and infinite lights).
+double SceneRadius(const RenderScene &scene) {
+    const Bounds3f b = SceneBounds(scene);
     if (b.IsEmpty()) return 1;
     return std::max(0.5 * double(Length(b.Diagonal())), 1e-3);
 }
 
 }  // namespace
+
+SceneSphere BoundingSphere(const RenderScene &scene) {
+    SceneSphere s;
+    if (!scene.accel) return s;
+    const Bounds3f b = SceneBounds(scene);
+    s.radius = float(SceneRadius(scene));
+    if (!b.IsEmpty()) s.center = (b.pMin + b.pMax) * 0.5f;
+    return s;
+}
 
 void ComputeLightPower(RenderScene &scene) {
     scene.lightPower.clear();
@@ -69,6 +83,12 @@ int LightChooser::Choose(float u, float *prob) const {
     while (i < n_ - 1 && cdf_[size_t(i)] == (i > 0 ? cdf_[size_t(i) - 1] : 0.0)) ++i;
     *prob = float(cdf_[size_t(i)] - (i > 0 ? cdf_[size_t(i) - 1] : 0.0));
     return i;
+}
+
+float LightChooser::Prob(int i) const {
+    if (i < 0 || i >= n_) return 0;
+    if (cdf_.empty()) return 1.f / float(n_);
+    return float(cdf_[size_t(i)] - (i > 0 ? cdf_[size_t(i) - 1] : 0.0));
 }
 
 RGB EstimateDirect(const RenderScene &scene, const SurfaceInteraction &si, const BSDF &bsdf,

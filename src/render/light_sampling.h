@@ -109,6 +109,10 @@ bool SampleNextDirection(const BSDF &bsdf, const Vec3f &wo, const PixelSamples &
 // Fills scene.lightPower (each light's power, for LightChoice::Power) once the lights and
 // shapes are built.
 void ComputeLightPower(RenderScene &scene);
+// The sphere bounding the scene's shapes (the radius ComputeLightPower uses), where distant
+// and infinite lights start the rays they emit (render/light.h Light::SampleLe).
+struct SceneSphere;
+SceneSphere BoundingSphere(const RenderScene &scene);
 
 // Chooses a light for a one-light direct-lighting sample (uniformly, or by power).
 // How the path and directlighting integrators choose the light of a one-light direct-lighting
@@ -124,6 +128,8 @@ class LightChooser {
     LightChooser(const RenderScene &scene, LightChoice choice);
     // The light index for u in [0,1) and its probability; -1 when there are no lights.
     int Choose(float u, float *prob) const;
+    // The probability with which Choose picks light i.
+    float Prob(int i) const;
 
   private:
     std::vector<double> cdf_;  // empty: uniform
