@@ -4,6 +4,10 @@
 # compared with oiiotool --diff (RMSE, PSNR, max error) and by their relative L1 error
 # (mean |a - b| / mean |b| over the RGB channels, from oiiotool --absdiff and --printstats).
 # Side-by-side PNGs go to OUTDIR. ONLY="cornell-path cornell-direct" renders just those scenes.
+# A scene with NAME.quarter.exr beside its reference (pbrt-v3 at a quarter of the scene's
+# samples, or of its sppm iterations: sppm-caustic) is rendered by Prism at that quarter too,
+# and the last column gives pbrt-v3's own quarter-vs-full relative L1: Prism is within
+# pbrt-v3's noise when its rel L1 is about that.
 # Usage: tools/compare_pbrt3.sh [OUTDIR] [FACTOR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,8 +22,8 @@ trap 'rm -rf "$WORK"' EXIT
 cp "$REF"/*.pbrt "$WORK/"
 # The texture the spheres scene needs sits with the original scene.
 cp -r "$SCENES/pbrt-spheres-differentials-texfilt/textures" "$WORK/"
-echo "| scene | Prism render (s) | RMSE | PSNR (dB) | max abs error | mean of reference | rel L1 |"
-echo "|---|---|---|---|---|---|---|"
+echo "| scene | Prism render (s) | RMSE | PSNR (dB) | max abs error | mean of reference | rel L1 | pbrt-v3 at Prism's spp: rel L1 |"
+echo "|---|---|---|---|---|---|---|---|"
 # The mean over R, G and B of oiiotool --printstats' "Stats Avg".
 avg3() {
     sed -n 's/.*Stats Avg: \([0-9.e+-]*\) \([0-9.e+-]*\) \([0-9.e+-]*\).*/\1 \2 \3/p' |
@@ -30,7 +34,19 @@ for f in "$WORK"/*.pbrt; do
     ref="$REF/$name.exr"
     [ -f "$ref" ] || continue
     if [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]]; then continue; fi
-    out=$("$PRISM" render "$f" -o "$WORK/$name.exr" --no-progress 2>&1)
+    quarter="$REF/$name.quarter.exr"
+    sppArgs=()
+    if [ -f "$quarter" ]; then
+        iters=$(grep -o 'numiterations" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$' || true)
+        if [ -n "$iters" ]; then
+            # sppm: a quarter of the iterations (its --spp is not the iteration count).
+            sed -i "s/numiterations\" *\[ *$iters/numiterations\" [$((iters / 4))/" "$f"
+        else
+            spp=$(grep -o 'pixelsamples" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$')
+            sppArgs=(--spp $((spp / 4)))
+        fi
+    fi
+    out=$("$PRISM" render "$f" -o "$WORK/$name.exr" --no-progress "${sppArgs[@]}" 2>&1)
     secs=$(echo "$out" | grep -o 'render [0-9.]*s' | head -1 | sed 's/render \(.*\)s/\1/')
     w=$(oiiotool --info "$ref" | sed -n 's/.* \([0-9]*\) x *\([0-9]*\),.*/\1/p')
     h=$(oiiotool --info "$ref" | sed -n 's/.* \([0-9]*\) x *\([0-9]*\),.*/\2/p')
@@ -46,7 +62,14 @@ for f in "$WORK"/*.pbrt; do
     l1=$(oiiotool "$WORK/a.exr" --ch R,G,B "$WORK/b.exr" --ch R,G,B --absdiff --printstats 2>&1 |
         avg3)
     rel=$(awk -v d="$l1" -v m="$meanb" 'BEGIN{printf "%.2f%%", 100 * d / m}')
-    echo "| $name | $secs | $rmse | $psnr | $maxe | $mean | $rel |"
+    own="-"
+    if [ -f "$quarter" ]; then
+        oiiotool "$quarter" --resize:filter=box "${sw}x${sh}" -d float -o "$WORK/q.exr"
+        ql1=$(oiiotool "$WORK/q.exr" --ch R,G,B "$WORK/b.exr" --ch R,G,B --absdiff --printstats \
+            2>&1 | avg3)
+        own=$(awk -v d="$ql1" -v m="$meanb" 'BEGIN{printf "%.2f%%", 100 * d / m}')
+    fi
+    echo "| $name | $secs | $rmse | $psnr | $maxe | $mean | $rel | $own |"
     oiiotool "$WORK/$name.exr" --colorconvert linear sRGB -d uint8 -o "$WORK/p.png"
     oiiotool "$ref" --colorconvert linear sRGB -d uint8 -o "$WORK/r.png"
     oiiotool "$WORK/p.png" "$WORK/r.png" --mosaic 2x1 --resize 50% -o "$OUT/$name-prism-vs-pbrt3.png"
