@@ -35,10 +35,10 @@ Built BuildText(const std::string &name, const std::string &text, int res, int s
 
 TEST(Integrator, TheRegistryNamesEachIntegratorOnce) {
     std::vector<std::string> names = IntegratorNames();
-    for (const char *n :
-         {"whitted", "distribution", "directlighting", "path", "volpath", "ambientocclusion", "ao"})
+    for (const char *n : {"whitted", "distribution", "directlighting", "path", "volpath",
+                          "ambientocclusion", "ao", "sppm"})
         EXPECT_EQ(std::count(names.begin(), names.end(), n), 1) << n;
-    EXPECT_EQ(names.size(), 7u);
+    EXPECT_EQ(names.size(), 8u);
 }
 
 TEST(Integrator, AnUnknownIntegratorRendersWithWhittedAndSaysWhere) {
