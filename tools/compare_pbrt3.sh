@@ -5,9 +5,9 @@
 # (mean |a - b| / mean |b| over the RGB channels, from oiiotool --absdiff and --printstats).
 # Side-by-side PNGs go to OUTDIR. ONLY="cornell-path cornell-direct" renders just those scenes.
 # A scene with NAME.quarter.exr beside its reference (pbrt-v3 at a quarter of the scene's
-# samples, e.g. bdpt-gap) is rendered by Prism at that quarter too, and the last column gives
-# pbrt-v3's own quarter-vs-full relative L1: Prism is within pbrt-v3's noise when its rel L1
-# is about that.
+# samples, or of its sppm iterations: e.g. bdpt-gap, sppm-caustic) is rendered by Prism at
+# that quarter too, and the last column gives pbrt-v3's own quarter-vs-full relative L1: Prism
+# is within pbrt-v3's noise when its rel L1 is about that.
 # Usage: tools/compare_pbrt3.sh [OUTDIR] [FACTOR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -37,8 +37,14 @@ for f in "$WORK"/*.pbrt; do
     quarter="$REF/$name.quarter.exr"
     sppArgs=()
     if [ -f "$quarter" ]; then
-        spp=$(grep -o 'pixelsamples" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$')
-        sppArgs=(--spp $((spp / 4)))
+        iters=$(grep -o 'numiterations" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$' || true)
+        if [ -n "$iters" ]; then
+            # sppm: a quarter of the iterations (its --spp is not the iteration count).
+            sed -i "s/numiterations\" *\[ *$iters/numiterations\" [$((iters / 4))/" "$f"
+        else
+            spp=$(grep -o 'pixelsamples" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$')
+            sppArgs=(--spp $((spp / 4)))
+        fi
     fi
     out=$("$PRISM" render "$f" -o "$WORK/$name.exr" --no-progress "${sppArgs[@]}" 2>&1)
     secs=$(echo "$out" | grep -o 'render [0-9.]*s' | head -1 | sed 's/render \(.*\)s/\1/')

@@ -47,6 +47,15 @@ std::vector<Aov> ChooseAovs(const std::string &aovOption, const RenderScene &sce
                   " gets the beauty alone");
         return {};
     }
+    if (scene.integrator->RendersWholeFrame()) {
+        // Its frame is not made of camera samples the AOVs could share (render/integrator.h).
+        if (!aovOption.empty())
+            throw UsageError("--aov: Integrator " + Quote(scene.IntegratorName()) +
+                             " renders the frame as a whole and writes no AOVs");
+        diag.Warn("Film \"aovs\" are not written: Integrator " + Quote(scene.IntegratorName()) +
+                  " renders the frame as a whole");
+        return {};
+    }
     if (!scene.integrator->Traits().directAov && AovsNeedDirect(aovs)) {
         if (list != "all")
             throw UsageError(

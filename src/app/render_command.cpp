@@ -242,6 +242,9 @@ Image RenderJob::RenderImage(RenderStats *stats, const ProgressFn &progress,
         options.progress = progress;
         options.cancel = cancel;
         options.aovs = aovs;
+        // Whole-frame integrators' intermediate images (sppm "imagewritefrequency"), written
+        // as the final image is: atomically, with the same exposure and tone map.
+        options.intermediate = [this](const Image &img) { Write(img); };
         return Render(*s_->scene, options, stats);
     }
     TimeLimit limit;

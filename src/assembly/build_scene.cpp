@@ -38,6 +38,8 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     scene.allEffects = settings.allEffects;
     scene.estimateNoise = settings.estimateNoise;
     scene.integrator->Prepare(scene);  // the lights exist: e.g. the light choice
+    scene.memoryLimit = budget.Limit();
+    scene.memoryCommitted = budget.Used();
     if (scene.lights.empty())
         diag.Warn(desc.sourceFile.empty() ? FileLoc{} : FileLoc{desc.sourceFile, 0, 0},
                   "the scene has no light sources");

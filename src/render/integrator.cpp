@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
+#include "image/image.h"
 #include "render/light_sampling.h"
 #include "render/render_scene.h"
 
@@ -54,6 +56,11 @@ void Integrator::RenderTile(const TileContext &ctx, TileSamples &out, RayCounter
                 if (out.wantPositions) out.pFilm[i] = cs.pFilm;
             }
         }
+}
+
+Image Integrator::RenderFrame(const FrameContext &) const {
+    // Render() calls it only when RendersWholeFrame() says so: a programming error.
+    throw std::logic_error(std::string("integrator ") + Name() + " renders tiles, not frames");
 }
 
 // The Create functions of integrator_list.inc, each defined beside its class.

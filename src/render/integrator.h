@@ -29,7 +29,9 @@ namespace prism {
 inline constexpr int MaxPassThrough = 256;
 
 class EffectSet;
+class FrameContext;
 class Params;
+struct Image;
 struct PixelSamples;
 struct RenderScene;
 
@@ -192,6 +194,16 @@ class Integrator {
     // sample's camera ray (CameraSampler) through TileSample. Stops early once
     // ctx.Cancelled().
     virtual void RenderTile(const TileContext &ctx, TileSamples &out, RayCounters &rc) const;
+
+    // Whole-frame integrators (sppm; later mlt) are not a sum of independent camera samples:
+    // their passes share state across the frame (photons, visible points, Markov chains).
+    // For them Render() calls RenderFrame instead of its tile loop, and RenderFrame makes the
+    // image, running its parallel loops through frame.ForEach (render/renderer.h
+    // FrameContext: the film's tiles, the cancel flag, progress, ray counters, intermediate
+    // images). Such an integrator's Li and RenderTile are not called by Render.
+    virtual bool RendersWholeFrame() const { return false; }
+    // The crop window's image (FrameContext::MakeImage applies the film scale).
+    virtual Image RenderFrame(const FrameContext &frame) const;
 };
 
 // What an integrator's Create reads.

@@ -43,7 +43,21 @@ Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, Render
         while (!cv.wait_for(lock, std::chrono::milliseconds(10), [&] { return finished; }))
             if ((cancel && *cancel) || elapsed() >= limit.seconds) stop = 1;
     });
-    for (uint32_t pass = 0;; ++pass) {
+    // A whole-frame integrator (sppm) is one render stopped at the deadline: its own passes
+    // (iterations) done by then make the image.
+    const bool wholeFrame = scene.integrator->RendersWholeFrame();
+    if (wholeFrame) {
+        RenderOptions options;
+        options.sampler = scene.sampler;
+        options.cancel = &stop;
+        options.progress = progress;
+        img = Render(scene, options, &total);
+        const bool userCancel = cancel && *cancel;
+        total.cancelled = userCancel || total.spp == 0;
+        total.timedOut = !userCancel && total.spp == 0;
+        if (!total.cancelled) total.passSpp.push_back(total.spp);
+    }
+    for (uint32_t pass = 0; !wholeFrame; ++pass) {
         const int spp = NextPassSpp(done, limit.maxSpp, limit.seconds - elapsed(),
                                     done > 0 ? total.renderSeconds / double(done) : 0.0);
         if (spp == 0) break;
@@ -99,6 +113,10 @@ Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, Render
     }
     cv.notify_all();
     watcher.join();
+    if (wholeFrame) {
+        if (stats) *stats = total;
+        return img;
+    }
     if (done > 0)
         for (size_t i = 0; i < sum.size(); ++i) img.pixels[i] = float(sum[i] / double(done));
     // The average of independent passes: variance sum over passes of (spp_k / N)^2 var_k. A

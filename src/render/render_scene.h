@@ -118,6 +118,10 @@ struct RenderScene {
     // features.effects (render/kernel.h; same image, for comparison).
     bool allEffects = false;
     double buildSeconds = 0;  // BVH build only
+    // The build's memory budget (core/memory.h): its limit and what the scene charged to it,
+    // so that a render's own large buffers (sppm's visible points and photon grid) are
+    // checked against what is left.
+    uint64_t memoryLimit = 0, memoryCommitted = 0;
 };
 
 }  // namespace prism

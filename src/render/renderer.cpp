@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -68,6 +69,69 @@ class TileMerger {
     std::vector<std::unique_ptr<FilmTile>> pool_;
     std::vector<FilmTile *> free_;
 };
+
+// Reports progress from a helper thread (every 250 ms, then 1 at the end), so worker threads
+// never block on output; fraction() is read on that thread.
+class ProgressReporter {
+  public:
+    ProgressReporter(const ProgressFn &progress, std::function<double()> fraction)
+        : progress_(progress), fraction_(std::move(fraction)) {
+        if (!progress_) return;
+        thread_ = std::thread([this] {
+            std::unique_lock<std::mutex> lock(mutex_);
+            while (!cv_.wait_for(lock, std::chrono::milliseconds(250), [&] { return finished_; }))
+                progress_(fraction_());
+        });
+    }
+    // Stops the thread and reports 1.
+    void Finish() {
+        if (!Stop()) return;
+        progress_(1.0);
+    }
+    ~ProgressReporter() { Stop(); }
+
+  private:
+    const ProgressFn &progress_;
+    std::function<double()> fraction_;
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    bool finished_ = false;
+    std::thread thread_;
+
+    bool Stop() {
+        if (!thread_.joinable()) return false;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            finished_ = true;
+        }
+        cv_.notify_all();
+        thread_.join();
+        return true;
+    }
+};
+
+// A whole-frame integrator's render (Integrator::RendersWholeFrame).
+Image RenderWholeFrame(const RenderScene &scene, const RenderOptions &options, RenderStats *stats) {
+    const auto start = std::chrono::steady_clock::now();
+    const FrameContext frame(scene, options);
+    Image img;
+    {
+        ProgressReporter reporter(options.progress, [&] { return frame.Progress(); });
+        img = scene.integrator->RenderFrame(frame);
+        reporter.Finish();
+    }
+    if (stats) {
+        stats->renderSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->spp = frame.SamplesPerPixel();
+        stats->rays = frame.Rays();
+        stats->nonFiniteSamples = frame.NonFinitePixels();
+        stats->firstNonFinitePixel = frame.FirstNonFinitePixel();
+        stats->cancelled = frame.Cancelled();
+        stats->kernelMask = 0;
+    }
+    return img;
+}
 
 }  // namespace
 
@@ -169,6 +233,7 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
 }
 
 Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats *stats) {
+    if (scene.integrator->RendersWholeFrame()) return RenderWholeFrame(scene, options, stats);
     auto start = std::chrono::steady_clock::now();
     const ProgressFn &progress = options.progress;
     TiledFilm film(scene.resolution, scene.pixelBounds, scene.filter, RenderTileSize);
@@ -187,18 +252,7 @@ Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats
     const TileDriver driver(scene, options.sampler, options.trace.value_or(scene.trace),
                             options.aovs);
 
-    // Progress is reported from a helper thread so worker threads never block on output.
-    std::mutex mutex;
-    std::condition_variable cv;
-    bool finished = false;
-    std::thread reporter;
-    if (progress) {
-        reporter = std::thread([&] {
-            std::unique_lock<std::mutex> lock(mutex);
-            while (!cv.wait_for(lock, std::chrono::milliseconds(250), [&] { return finished; }))
-                progress(double(done.load()) / nTiles);
-        });
-    }
+    ProgressReporter reporter(progress, [&] { return double(done.load()) / nTiles; });
 
     ForEachTile(
         0, nTiles,
@@ -215,15 +269,7 @@ Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats
             done.fetch_add(1);
         },
         options.cancel);
-    if (progress) {
-        {
-            std::lock_guard<std::mutex> lock(mutex);
-            finished = true;
-        }
-        cv.notify_all();
-        reporter.join();
-        progress(1.0);
-    }
+    reporter.Finish();
     bool cancelled = inPlace ? done.load() < nTiles : !merger.Flush();
     if (options.aovs && !cancelled) options.aovs->EndPass(options.sampler.spp);
     Image img = film.Finish();
@@ -256,8 +302,18 @@ std::optional<double> RelativeStandardError(const Image &img, const RenderStats 
 
 namespace prism {
 
+namespace {
+const RenderScene &TiledScene(const RenderScene &scene) {
+    if (scene.integrator->RendersWholeFrame())
+        throw SceneError(std::string("Integrator ") + Quote(scene.IntegratorName()) +
+                         " renders the frame as a whole, which cannot be split into tiles "
+                         "rendered apart (render it on one process)");
+    return scene;
+}
+}  // namespace
+
 FrameTiles::FrameTiles(const RenderScene &scene)
-    : scene_(scene),
+    : scene_(TiledScene(scene)),
       driver_(scene, scene.sampler, scene.trace, nullptr),
       kernelMask_(driver_.KernelMask()),
       film_(std::make_unique<TiledFilm>(scene.resolution, scene.pixelBounds, scene.filter,
@@ -295,6 +351,88 @@ Image FrameTiles::Finish(RenderStats *stats) {
         stats->spp = scene_.sampler.spp;
     }
     return img;
+}
+
+}  // namespace prism
+
+namespace prism {
+
+struct FrameContext::Workers {
+    tbb::enumerable_thread_specific<RayCounters> rays;
+    std::atomic<double> progress{0};
+};
+
+FrameContext::FrameContext(const RenderScene &s, const RenderOptions &options)
+    : scene(s),
+      sampler(options.sampler),
+      trace(options.trace.value_or(s.trace)),
+      options_(options),
+      workers_(std::make_unique<Workers>()) {
+    const Bounds2i &pb = s.pixelBounds;
+    nx_ = (pb.Width() + RenderTileSize - 1) / RenderTileSize;
+    ny_ = (pb.Height() + RenderTileSize - 1) / RenderTileSize;
+}
+
+FrameContext::~FrameContext() = default;
+
+Bounds2i FrameContext::TilePixels(int t) const {
+    const Bounds2i &pb = scene.pixelBounds;
+    Bounds2i tb;
+    tb.pMin = {pb.pMin.x + (t % nx_) * RenderTileSize, pb.pMin.y + (t / nx_) * RenderTileSize};
+    tb.pMax = {std::min(tb.pMin.x + RenderTileSize, pb.pMax.x),
+               std::min(tb.pMin.y + RenderTileSize, pb.pMax.y)};
+    return tb;
+}
+
+void FrameContext::ForEach(int begin, int end,
+                           const std::function<void(int i, RayCounters &rays)> &body) const {
+    Workers &w = *workers_;
+    ForEachTile(
+        begin, end, [&](int i) { body(i, w.rays.local()); }, options_.cancel);
+}
+
+void FrameContext::SetProgress(double fraction) const {
+    workers_->progress.store(std::clamp(fraction, 0.0, 1.0), std::memory_order_relaxed);
+}
+
+double FrameContext::Progress() const { return workers_->progress.load(std::memory_order_relaxed); }
+
+RayCounters FrameContext::Rays() const {
+    RayCounters sum;
+    for (const RayCounters &c : workers_->rays) sum += c;
+    return sum;
+}
+
+Image FrameContext::MakeImage(const std::function<RGB(int x, int y)> &pixel) const {
+    const Bounds2i &pb = scene.pixelBounds;
+    Image img = Image::Uninitialized(pb.Width(), pb.Height(), 3);
+    const float scale = scene.filmScale;
+    // Rows in parallel; the non-finite pixels counted per row and summed in row order.
+    std::vector<uint32_t> bad(size_t(pb.Height()), 0);
+    std::vector<int> firstBadX(size_t(pb.Height()), -1);
+    tbb::parallel_for(pb.pMin.y, pb.pMax.y, [&](int y) {
+        const size_t row = size_t(y - pb.pMin.y);
+        for (int x = pb.pMin.x; x < pb.pMax.x; ++x) {
+            RGB L = pixel(x, y) * scale;
+            if (!L.IsFinite()) {
+                if (bad[row]++ == 0) firstBadX[row] = x;
+                L = RGB(0);
+            }
+            for (int c = 0; c < 3; ++c) img.At(x - pb.pMin.x, y - pb.pMin.y, c) = L[c];
+        }
+    });
+    nonFinite_ = 0;
+    firstNonFinite_.reset();
+    for (size_t row = 0; row < bad.size(); ++row) {
+        if (bad[row] && !firstNonFinite_)
+            firstNonFinite_ = Vec2i{firstBadX[row], pb.pMin.y + int(row)};
+        nonFinite_ += bad[row];
+    }
+    return img;
+}
+
+void FrameContext::Intermediate(const Image &img) const {
+    if (options_.intermediate) options_.intermediate(img);
 }
 
 }  // namespace prism

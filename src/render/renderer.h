@@ -67,6 +67,10 @@ struct RenderOptions {
     // once it reads true the remaining work is skipped and stats->cancelled is set.
     const volatile int *cancel = nullptr;
     AovFrame *aovs = nullptr;  // the AOVs, computed from this render's own tiles
+    // Whole-frame integrators (FrameContext::Intermediate): an image of the frame so far, to
+    // be written as the output is (sppm's "imagewritefrequency"). Called from the rendering
+    // thread between passes; empty: none are written.
+    std::function<void(const Image &)> intermediate;
 };
 
 Image Render(const RenderScene &scene, const RenderOptions &options, RenderStats *stats);
@@ -81,6 +85,58 @@ Image Render(const RenderScene &scene, RenderStats *stats, const ProgressFn &pro
 // *cancel reads true; returns how many tiles ran.
 int ForEachTile(int begin, int end, const std::function<void(int t)> &body,
                 const volatile int *cancel = nullptr);
+
+// What Render() hands a whole-frame integrator (Integrator::RendersWholeFrame): the scene,
+// the render's sampler and trace settings, and the conventions of the tile path. Its
+// parallel loops run through ForEach (ForEachTile with the render's cancel flag and a ray
+// counter per worker); the film's tiles (TilePixels) are the tile driver's, so work per tile
+// is the same partition whatever the thread count. Thread-safe where marked.
+class FrameContext {
+  public:
+    FrameContext(const RenderScene &scene, const RenderOptions &options);
+    ~FrameContext();
+
+    const RenderScene &scene;
+    const SamplerSettings &sampler;
+    const TraceSettings trace;  // RenderOptions::trace, else the scene's
+
+    // The crop window and its RenderTileSize tiles, row by row.
+    const Bounds2i &Pixels() const { return scene.pixelBounds; }
+    int NumTiles() const { return nx_ * ny_; }
+    Bounds2i TilePixels(int t) const;
+    // body(i, rays) for every i in [begin, end), in parallel (ForEachTile), with the calling
+    // worker's ray counters; stops taking work once the render is cancelled.
+    void ForEach(int begin, int end,
+                 const std::function<void(int i, RayCounters &rays)> &body) const;
+    bool Cancelled() const { return options_.cancel && *options_.cancel; }
+    // The fraction done (0..1), reported to RenderOptions::progress. Any thread.
+    void SetProgress(double fraction) const;
+    // The samples per pixel stats report (sppm: its iterations done).
+    void SetSamplesPerPixel(int spp) const { spp_ = spp; }
+    int SamplesPerPixel() const { return spp_; }
+    // The crop window's image with pixel(x, y) (crop pixel coordinates of the full image) times
+    // the film scale, filled in parallel; non-finite pixels are counted for the stats and
+    // written as 0, as the film does.
+    Image MakeImage(const std::function<RGB(int x, int y)> &pixel) const;
+    // RenderOptions::intermediate, when there is one.
+    bool WantsIntermediate() const { return bool(options_.intermediate); }
+    void Intermediate(const Image &img) const;
+
+    // For Render(): the counters summed, and the non-finite pixels of the last MakeImage.
+    RayCounters Rays() const;
+    uint64_t NonFinitePixels() const { return nonFinite_; }
+    std::optional<Vec2i> FirstNonFinitePixel() const { return firstNonFinite_; }
+    double Progress() const;
+
+  private:
+    struct Workers;
+    const RenderOptions &options_;
+    int nx_ = 0, ny_ = 0;
+    std::unique_ptr<Workers> workers_;
+    mutable int spp_ = 0;
+    mutable uint64_t nonFinite_ = 0;
+    mutable std::optional<Vec2i> firstNonFinite_;
+};
 
 // The per-tile work of one shading render: the scene's integrator fills the camera samples of
 // a tile, the film scale and clamp are applied, and the samples go to the film tile and the

@@ -36,9 +36,9 @@ Built BuildText(const std::string &name, const std::string &text, int res, int s
 TEST(Integrator, TheRegistryNamesEachIntegratorOnce) {
     std::vector<std::string> names = IntegratorNames();
     for (const char *n : {"whitted", "distribution", "directlighting", "path", "volpath",
-                          "ambientocclusion", "ao", "bdpt"})
+                          "ambientocclusion", "ao", "bdpt", "sppm"})
         EXPECT_EQ(std::count(names.begin(), names.end(), n), 1) << n;
-    EXPECT_EQ(names.size(), 8u);
+    EXPECT_EQ(names.size(), 9u);
 }
 
 TEST(Integrator, AnUnknownIntegratorRendersWithWhittedAndSaysWhere) {
