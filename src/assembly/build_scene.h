@@ -40,7 +40,10 @@ struct BuildSettings {
     float fovDeg = 0;                          // 0: the Camera's; degrees on the shorter axis
     int lightSamples = 0;                      // 0: each area/infinite light's own nsamples
     std::string integrator;  // a name of render/integrator_list.inc; "": the scene's
-    int glossySamples = 0;   // 0: the Integrator's "glossysamples"
+    // The integrator of a pbrt scene without an Integrator directive ("": pbrt-v3's default,
+    // "path"); tests written for Whitted set "whitted".
+    std::string defaultIntegrator;
+    int glossySamples = 0;  // 0: the Integrator's "glossysamples"
     // Image-texture lookups: "point", "bilinear", "trilinear" or "ewa" for every imagemap
     // (--texture-filter); "": each texture's own "filter" (pbrt-v3's default, EWA).
     std::string textureFilter;

@@ -276,13 +276,17 @@ void BuildIntegratorSettings(BuildContext &ctx) {
     RenderScene &scene = ctx.scene;
     Diagnostics &diag = ctx.diag;
     const ParamSet &ip = desc.integrator.params;
-    // --integrator replaces the scene's choice (its parameters still apply).
-    const std::string type =
-        settings.integrator.empty() ? desc.integrator.type : settings.integrator;
-    // A pbrt scene without an Integrator directive keeps rendering with Whitted (pbrt's default
-    // would be "path"); OBJ and glTF scenes name "distribution" themselves.
-    const bool named = !settings.integrator.empty() || desc.integrator.loc.Valid();
-    std::string name = named || type != "path" ? type : "whitted";
+    // --integrator replaces the scene's choice (its parameters still apply). A pbrt file
+    // without an Integrator directive leaves the directive's default type, pbrt-v3's "path"
+    // (maxdepth 5), unless the settings name another default; OBJ and glTF scenes set theirs
+    // ("distribution") without a location.
+    const bool unnamed = settings.integrator.empty() && !desc.integrator.loc.Valid() &&
+                         desc.integrator.type == "path";
+    const std::string type = !settings.integrator.empty() ? settings.integrator
+                             : unnamed && !settings.defaultIntegrator.empty()
+                                 ? settings.defaultIntegrator
+                                 : desc.integrator.type;
+    std::string name = type;
     if (!settings.integrator.empty())
         scene.integratorWhy = "--integrator " + settings.integrator;
     else if (desc.integrator.loc.Valid())
@@ -290,7 +294,7 @@ void BuildIntegratorSettings(BuildContext &ctx) {
     else if (type != "path")
         scene.integratorWhy = "default of the scene's format";
     else
-        scene.integratorWhy = "default: the scene names no Integrator";
+        scene.integratorWhy = "pbrt-v3's default: the scene names no Integrator";
     int maxDepth = ip.GetInt("maxdepth", 5);
     const bool known = std::find(IntegratorNames().begin(), IntegratorNames().end(), name) !=
                        IntegratorNames().end();

@@ -223,7 +223,7 @@ TEST(Cli, InfoDescribesScene) {
               std::string::npos)
         << r.out;
     // Which integrator runs, and why: the default, the scene's line, or --integrator.
-    EXPECT_NE(r.out.find("integrator: whitted (default: the scene names no Integrator)"),
+    EXPECT_NE(r.out.find("integrator: path (pbrt-v3's default: the scene names no Integrator)"),
               std::string::npos)
         << r.out;
     std::ofstream(dir / "path.pbrt") << "Integrator \"path\"\n" << SphereScene(8, 8, 4);

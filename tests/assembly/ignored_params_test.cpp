@@ -33,6 +33,7 @@ std::vector<Warning> BuildWarnings(const std::string &name, const std::string &t
     SceneDescription desc = LoadScene(path.string(), diag);
     BuildSettings settings;
     settings.resolution = {8, 8};
+    settings.defaultIntegrator = "whitted";
     BuildRenderScene(desc, settings, diag);
     return diag.Warnings();
 }

@@ -25,6 +25,7 @@ RenderScene Build(const std::string &path, const std::string &integrator = "") {
     BuildSettings s;
     s.buildBvh = false;
     s.integrator = integrator;
+    s.defaultIntegrator = "whitted";
     return BuildRenderScene(desc, s, diag);
 }
 

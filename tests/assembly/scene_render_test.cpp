@@ -29,6 +29,7 @@ struct Rendered {
 };
 
 Rendered RenderFile(const std::string &path, BuildSettings opts = {}) {
+    if (opts.defaultIntegrator.empty()) opts.defaultIntegrator = "whitted";  // closed forms
     Diagnostics diag;
     SceneDescription desc = LoadScene(path, diag);
     RenderScene scene = BuildRenderScene(desc, opts, diag);

@@ -27,6 +27,7 @@ struct Built {
 
 Built BuildFile(const std::string &path, BuildSettings opts = {}) {
     opts.spp = 1;
+    if (opts.defaultIntegrator.empty()) opts.defaultIntegrator = "whitted";
     Diagnostics diag;
     SceneDescription desc = LoadScene(path, diag);
     Built b{BuildRenderScene(desc, opts, diag), {}};

@@ -33,6 +33,7 @@ RenderScene Build(const std::string &path, int w = 48, int h = 36, int spp = 2,
     s.resolution = Vec2i(w, h);
     s.spp = spp;
     s.allEffects = allEffects;
+    s.defaultIntegrator = "whitted";  // the kernel's scenes name none
     return BuildRenderScene(desc, s, diag);
 }
 

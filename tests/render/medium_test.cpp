@@ -40,6 +40,7 @@ Rendered RenderText(const std::string &name, const std::string &text, int w = 1,
     s.resolution = Vec2i(w, h);
     s.spp = spp;
     s.integrator = integrator;
+    s.defaultIntegrator = "whitted";  // the media kernel's
     Rendered r;
     r.scene = BuildRenderScene(desc, s, diag);
     r.image = Render(r.scene, &r.stats);

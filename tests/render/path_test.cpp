@@ -350,9 +350,12 @@ TEST(PathIntegrator, IntegratorOverrideAndReason) {
     EXPECT_STREQ(s.IntegratorName(), "path");
     EXPECT_EQ(s.integratorWhy, "--integrator path");
     EXPECT_TRUE(s.features.effects.Has(Effect::IndirectIllumination));
+    // No Integrator: pbrt-v3's default, path with maxdepth 5.
     RenderScene d = BuildText("why2", DiffuseRoom("", 1));
-    EXPECT_STREQ(d.IntegratorName(), "whitted");  // no Integrator: Whitted, as before
-    EXPECT_FALSE(d.features.effects.Has(Effect::IndirectIllumination));
+    EXPECT_STREQ(d.IntegratorName(), "path");
+    EXPECT_EQ(d.integratorWhy, "pbrt-v3's default: the scene names no Integrator");
+    EXPECT_EQ(d.trace.maxDepth, 5);
+    EXPECT_TRUE(d.features.effects.Has(Effect::IndirectIllumination));
     RenderScene n = BuildText("why3", DiffuseRoom("Integrator \"directlighting\"", 1));
     EXPECT_STREQ(n.IntegratorName(), "directlighting");
     EXPECT_NE(n.integratorWhy.find("Integrator \"directlighting\" at "), std::string::npos);
