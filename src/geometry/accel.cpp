@@ -417,14 +417,15 @@ bool Accel::Occluded(const Ray &r) const {
     return ray.tfar < 0;
 }
 
-void Accel::IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded) const {
+void Accel::Packet(const Ray *rays, int n, RawHit *hits, bool *occluded, bool check) const {
     PRISM_CHECK(n >= 0 && n <= 16);
     alignas(64) int valid[16];
     alignas(64) RTCRayHit16 rh;
     unsigned objectGeom[16];
     ObjectHit objectHits[16];
     for (int i = 0; i < 16; ++i) {
-        valid[i] = i < n && TraceableRay(rays[i]) ? -1 : 0;
+        PRISM_DCHECK(i >= n || check || TraceableRay(rays[i]));
+        valid[i] = i < n && (!check || TraceableRay(rays[i])) ? -1 : 0;
         InitRay16(rays[i < n ? i : 0], i, CameraRays, &rh.ray);
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;

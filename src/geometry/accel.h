@@ -101,7 +101,16 @@ class Accel {
     // Up to 16 rays at once through Embree's packet path (rtcIntersect16/rtcOccluded16 with
     // a valid mask), which exercises the N-wide user-geometry callbacks. hits[i].shape is -1
     // for a miss; occluded[i] (if given) receives the occlusion answer.
-    void IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded = nullptr) const;
+    void IntersectPacket(const Ray *rays, int n, RawHit *hits, bool *occluded = nullptr) const {
+        Packet(rays, n, hits, occluded, true);
+    }
+    // The same for camera rays, which are not checked one by one (TraceableRay): the assembly
+    // proved every ray the camera makes traceable (assembly/camera_film.cpp: its rays are
+    // affine in the film and lens positions, and the extreme ones are checked). Checked in
+    // debug builds.
+    void IntersectCameraPacket(const Ray *rays, int n, RawHit *hits) const {
+        Packet(rays, n, hits, nullptr, false);
+    }
     // Full interaction for a raw hit (same ray). extraNeeds: surface data computed for a hit on
     // a top-level shape beyond its SurfaceNeeds (the AOVs' uv and tangents), without changing
     // what the render's own hits compute.
@@ -121,6 +130,7 @@ class Accel {
     bool Robust() const;                // whether Embree's scene has RTC_SCENE_FLAG_ROBUST
 
   private:
+    void Packet(const Ray *rays, int n, RawHit *hits, bool *occluded, bool check) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

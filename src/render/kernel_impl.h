@@ -374,7 +374,7 @@ void RenderTileKernel(const TileContext &ctx, const KernelParams &params, TileSa
                     }
                 }
                 if (lens) rc.lensSamples += uint64_t(m);
-                scene.accel->IntersectPacket(rays, m, hits);
+                scene.accel->IntersectCameraPacket(rays, m, hits);
                 scene.accel->PrefetchHits(hits, m);
                 rc.camera += uint64_t(m);
                 for (int i = 0; i < m; ++i) {

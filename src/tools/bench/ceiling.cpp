@@ -100,7 +100,7 @@ PassCounters TraceCeiling(const RenderScene &scene, CeilingTraversal traversal) 
             // Each packet's shadow rays right after it, as the render shades a packet.
             size_t first = 0;
             for (int m : sc.packets) {
-                accel.IntersectPacket(&sc.rays[first], m, &sc.hits[first]);
+                accel.IntersectCameraPacket(&sc.rays[first], m, &sc.hits[first]);
                 for (size_t i = first; i < first + size_t(m); ++i) {
                     if (sc.hits[i].shape < 0) continue;
                     pc.hits++;
