@@ -87,7 +87,7 @@ TEST(TimeLimitCli, BatchPassesTheLimitToEachScene) {
     ASSERT_EQ(RunPrism("batch in -o w --quiet --spp 4", dir).exitCode, 0);
     ASSERT_EQ(RunPrism("batch in -o p --quiet --spp 4 --integrator path", dir).exitCode, 0);
     EXPECT_NE(test::ReadFile(dir / "w/in_a.png"), test::ReadFile(dir / "p/in_a.png"));
-    r = RunPrism("batch in -o bad --quiet --integrator mlt", dir);
+    r = RunPrism("batch in -o bad --quiet --integrator nosuchintegrator", dir);
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_FALSE(fs::exists(dir / "bad/in_a.png"));
 }
