@@ -178,7 +178,7 @@ RGB HitEmitter(const BdptContext &ctx, const std::vector<BdptVertex> &camera, in
 }  // namespace
 
 RGB ConnectStrategy(const BdptContext &ctx, const std::vector<BdptVertex> &light,
-                    const std::vector<BdptVertex> &camera, int s, int t, const PixelSamples &ps,
+                    const std::vector<BdptVertex> &camera, int s, int t, const BdptSamples &ps,
                     Vec2f *raster, RayCounters &rc) {
     const RenderScene &scene = ctx.scene;
     if (s == 0) return HitEmitter(ctx, camera, t);

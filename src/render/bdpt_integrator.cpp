@@ -66,8 +66,9 @@ RGB BdptIntegrator::Sample(const RenderScene &scene, const Ray &ray, const Pixel
     if (cameraPath.capacity() < capacity) cameraPath.reserve(capacity);
     if (lightPath.capacity() < capacity) lightPath.reserve(capacity);
     const BdptContext ctx{scene, chooser_, camera_, sphere_, ps.trace.maxDepth};
-    CameraSubpath(ctx, ray, ps, ps.diff, cameraPath, rc);
-    LightSubpath(ctx, ps, lightPath, rc);
+    const BdptPixelSamples samples(ps);
+    CameraSubpath(ctx, ray, samples, ps.diff, cameraPath, rc);
+    LightSubpath(ctx, samples, lightPath, rc);
     RGB L;
     const int nc = int(cameraPath.size()), nl = int(lightPath.size());
     for (int t = 1; t <= nc; ++t) {
@@ -76,7 +77,7 @@ RGB BdptIntegrator::Sample(const RenderScene &scene, const Ray &ray, const Pixel
             const int depth = s + t - 2;
             if (depth < 0 || depth > ps.trace.maxDepth) continue;
             Vec2f raster;
-            const RGB c = ConnectStrategy(ctx, lightPath, cameraPath, s, t, ps, &raster, rc);
+            const RGB c = ConnectStrategy(ctx, lightPath, cameraPath, s, t, samples, &raster, rc);
             if (c.IsBlack()) continue;
             if (t > 1) {
                 L += c;

@@ -54,23 +54,46 @@ struct BdptContext {
     int maxDepth;
 };
 
-// The dimensions a camera sample draws (PixelSamples), per subpath vertex.
+// Where a path's subpaths and connections draw their random numbers, by dimension
+// (BdptCameraDim, BdptLightDim): a camera sample's PixelSamples (bdpt) or a state of a
+// primary-sample-space Markov chain (mlt, render/mlt_sampler.h).
+class BdptSamples {
+  public:
+    virtual float Get1D(uint32_t dim) const = 0;
+    virtual Vec2f Get2D(uint32_t dim) const = 0;
+
+  protected:
+    ~BdptSamples() = default;
+};
+
+// A camera sample's PixelSamples as BdptSamples.
+class BdptPixelSamples final : public BdptSamples {
+  public:
+    explicit BdptPixelSamples(const PixelSamples &ps) : ps_(ps) {}
+    float Get1D(uint32_t dim) const override { return ps_.Get1D(dim); }
+    Vec2f Get2D(uint32_t dim) const override { return ps_.Get2D(dim); }
+
+  private:
+    const PixelSamples &ps_;
+};
+
+// The dimensions a path draws, per subpath vertex.
 uint32_t BdptCameraDim(int vertex, uint32_t d);  // d < 8
 uint32_t BdptLightDim(int vertex, uint32_t d);   // d < 8
 
 // The camera subpath of a camera ray: the camera vertex and up to maxDepth + 1 surfaces (or
 // an escape to the infinite lights). diff: the camera ray's differentials (first hit only).
-void CameraSubpath(const BdptContext &ctx, const Ray &ray, const PixelSamples &ps,
+void CameraSubpath(const BdptContext &ctx, const Ray &ray, const BdptSamples &ps,
                    const RayDifferential *diff, std::vector<BdptVertex> &path, RayCounters &rc);
 // The light subpath: a light chosen by power, its emitted ray and up to maxDepth surfaces.
-void LightSubpath(const BdptContext &ctx, const PixelSamples &ps, std::vector<BdptVertex> &path,
+void LightSubpath(const BdptContext &ctx, const BdptSamples &ps, std::vector<BdptVertex> &path,
                   RayCounters &rc);
 
 // The contribution of strategy (s, t): the first s light vertices joined to the first t camera
 // vertices, times its MIS weight. t = 1 gives the radiance onto *raster (a splat) instead of
 // the camera sample's own pixel.
 RGB ConnectStrategy(const BdptContext &ctx, const std::vector<BdptVertex> &light,
-                    const std::vector<BdptVertex> &camera, int s, int t, const PixelSamples &ps,
+                    const std::vector<BdptVertex> &camera, int s, int t, const BdptSamples &ps,
                     Vec2f *raster, RayCounters &rc);
 
 }  // namespace prism

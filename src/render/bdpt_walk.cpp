@@ -47,7 +47,7 @@ bool HasInfiniteLight(const RenderScene &scene) {
 // its BSDF for the next (importance: the adjoint BSDF, for light paths). pdfDir: the density
 // of ray's direction at path.back(). Camera paths that escape end at the infinite lights.
 void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importance, int surfaces,
-          const PixelSamples &ps, const RayDifferential *diff, std::vector<BdptVertex> &path,
+          const BdptSamples &ps, const RayDifferential *diff, std::vector<BdptVertex> &path,
           RayCounters &rc) {
     const RenderScene &scene = ctx.scene;
     int passes = 0, made = 0;
@@ -126,7 +126,7 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
 
 }  // namespace
 
-void CameraSubpath(const BdptContext &ctx, const Ray &ray, const PixelSamples &ps,
+void CameraSubpath(const BdptContext &ctx, const Ray &ray, const BdptSamples &ps,
                    const RayDifferential *diff, std::vector<BdptVertex> &path, RayCounters &rc) {
     path.clear();
     BdptVertex &z0 = path.emplace_back();
@@ -139,7 +139,7 @@ void CameraSubpath(const BdptContext &ctx, const Ray &ray, const PixelSamples &p
     Walk(ctx, ray, RGB(1), pdfDir, false, ctx.maxDepth + 1, ps, diff, path, rc);
 }
 
-void LightSubpath(const BdptContext &ctx, const PixelSamples &ps, std::vector<BdptVertex> &path,
+void LightSubpath(const BdptContext &ctx, const BdptSamples &ps, std::vector<BdptVertex> &path,
                   RayCounters &rc) {
     path.clear();
     const RenderScene &scene = ctx.scene;

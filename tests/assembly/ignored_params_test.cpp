@@ -130,10 +130,11 @@ TEST(IgnoredParams, IntegratorParametersOtherThanMaxdepth) {
 
     // An integrator Prism does not have renders with Whitted; its parameters are named.
     text = std::string(
-               "Integrator \"mlt\" \"integer maxdepth\" 3 \"bool visualizestrategies\" true\n"
+               "Integrator \"nosuchintegrator\" \"integer maxdepth\" 3 \"bool "
+               "visualizestrategies\" true\n"
                "    \"string lightsamplestrategy\" \"spatial\"\n") +
            World + "Shape \"sphere\"\n";
-    w = BuildWarnings("integrator_mlt", text, &file);
+    w = BuildWarnings("integrator_unknown", text, &file);
     ExpectOneWarning(w, file, text, "is rendered with Whitted", "Integrator");
     ExpectOneWarning(w, file, text, "\"visualizestrategies\"", "\"bool visualizestrategies\"");
     ExpectOneWarning(w, file, text, "\"lightsamplestrategy\"", "\"string lightsamplestrategy\"");

@@ -36,22 +36,23 @@ Built BuildText(const std::string &name, const std::string &text, int res, int s
 TEST(Integrator, TheRegistryNamesEachIntegratorOnce) {
     std::vector<std::string> names = IntegratorNames();
     for (const char *n : {"whitted", "distribution", "directlighting", "path", "volpath",
-                          "ambientocclusion", "ao", "bdpt", "sppm"})
+                          "ambientocclusion", "ao", "bdpt", "sppm", "mlt"})
         EXPECT_EQ(std::count(names.begin(), names.end(), n), 1) << n;
-    EXPECT_EQ(names.size(), 9u);
+    EXPECT_EQ(names.size(), 10u);
 }
 
 TEST(Integrator, AnUnknownIntegratorRendersWithWhittedAndSaysWhere) {
-    Built b = BuildText("mlt.pbrt",
-                        "Integrator \"mlt\" \"integer maxdepth\" [ 3 ]\nWorldBegin\n"
+    Built b = BuildText("nosuchintegrator.pbrt",
+                        "Integrator \"nosuchintegrator\" \"integer maxdepth\" [ 3 ]\nWorldBegin\n"
                         "LightSource \"point\"\nShape \"sphere\"\nWorldEnd\n",
                         4, 1);
     EXPECT_STREQ(b.scene.IntegratorName(), "whitted");
     EXPECT_EQ(b.scene.trace.maxDepth, 3);
     bool warned = false;
     for (const Warning &w : b.warnings)
-        warned |= w.loc.line == 1 &&
-                  w.message.find("\"mlt\" is rendered with Whitted") != std::string::npos;
+        warned |=
+            w.loc.line == 1 &&
+            w.message.find("\"nosuchintegrator\" is rendered with Whitted") != std::string::npos;
     EXPECT_TRUE(warned);
 }
 
