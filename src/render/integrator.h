@@ -195,7 +195,7 @@ class Integrator {
     // ctx.Cancelled().
     virtual void RenderTile(const TileContext &ctx, TileSamples &out, RayCounters &rc) const;
 
-    // Whole-frame integrators (sppm; later mlt) are not a sum of independent camera samples:
+    // Whole-frame integrators (sppm; mlt) are not a sum of independent camera samples:
     // their passes share state across the frame (photons, visible points, Markov chains).
     // For them Render() calls RenderFrame instead of its tile loop, and RenderFrame makes the
     // image, running its parallel loops through frame.ForEach (render/renderer.h
