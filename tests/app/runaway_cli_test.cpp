@@ -294,6 +294,30 @@ TEST(Hostile, WhatTheParserHoldsIsChargedToTheBudget) {
     }
 }
 
+// An Include fan-out of parameterless shapes: 3 small files (top, 64 x mid, 64 x leaf, each
+// leaf 256 `Shape "sphere"` lines) make a million shapes. Only the shapes' parameters were
+// charged, none here, so the parser held ~700 MB at a 64 MiB budget before the BVH estimate
+// refused the scene; each shape's description is now charged as it is parsed.
+TEST(Hostile, IncludeFanOutOfShapesIsChargedAsItIsParsed) {
+    fs::path dir = TempDir("include_fanout");
+    {
+        std::ofstream top(dir / "top.pbrt"), mid(dir / "mid.pbrt"), leaf(dir / "leaf.pbrt");
+        top << kHead;
+        for (int i = 0; i < 64; ++i) top << "Include \"mid.pbrt\"\n";
+        for (int i = 0; i < 64; ++i) mid << "Include \"leaf.pbrt\"\n";
+        for (int i = 0; i < 256; ++i) leaf << "Shape \"sphere\"\n";
+    }
+    RunResult r =
+        RunPrism("render top.pbrt -o out.png -q --max-memory 64M", dir, "timeout -k 5 120");
+    EXPECT_EQ(r.exitCode, 2) << r.err.substr(0, 2000);
+    EXPECT_NE(r.err.find("leaf.pbrt:"), std::string::npos) << r.err.substr(0, 2000);
+    EXPECT_NE(r.err.find("error: shape \"sphere\" needs about"), std::string::npos)
+        << r.err.substr(0, 2000);
+    EXPECT_NE(r.err.find("(--max-memory)"), std::string::npos) << r.err.substr(0, 2000);
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+    if (kPeakIsPrisms) EXPECT_LT(PeakChildMiB(), 3 * 64.0);
+}
+
 // A .spd spectrum file was read whole, whatever --max-memory said; it is now size-checked
 // against the budget (reading and converting it takes about ten times its size) first.
 TEST(Hostile, SpectrumFilesAreCheckedAgainstTheBudget) {
