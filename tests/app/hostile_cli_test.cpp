@@ -157,6 +157,29 @@ TEST(Hostile, LongTextureChainsAreRefusedAtTheTexture) {
     ExpectRefused(dir, "twice.pbrt",
                   "twice.pbrt:22:1: error: texture \"t16\": one lookup would evaluate more than "
                   "65536 textures");
+    // The issue's own form: 40 `mix` textures, each mixing its predecessor with itself (and
+    // float ones whose amount is the predecessor too: three references a level).
+    std::string mix = kHead, mixFloat = kHead;
+    mix += "Texture \"t0\" \"spectrum\" \"constant\" \"rgb value\" [0.5 0.5 0.5]\n";
+    mixFloat += "Texture \"t0\" \"float\" \"constant\" \"float value\" 0.5\n";
+    for (int i = 1; i < 40; ++i) {
+        const std::string prev = "\"t" + std::to_string(i - 1) + "\"";
+        mix += "Texture \"t" + std::to_string(i) + "\" \"spectrum\" \"mix\" \"texture tex1\" " +
+               prev + " \"texture tex2\" " + prev + " \"float amount\" 0.5\n";
+        mixFloat += "Texture \"t" + std::to_string(i) + "\" \"float\" \"mix\" \"texture tex1\" " +
+                    prev + " \"texture tex2\" " + prev + " \"texture amount\" " + prev + "\n";
+    }
+    std::ofstream(dir / "mix.pbrt") << mix << "Material \"matte\" \"texture Kd\" \"t39\"\n"
+                                    << "Shape \"sphere\"\n";
+    ExpectRefused(dir, "mix.pbrt",
+                  "mix.pbrt:22:1: error: texture \"t16\": one lookup would evaluate more than "
+                  "65536 textures");
+    std::ofstream(dir / "mix_float.pbrt")
+        << mixFloat << "Material \"matte\" \"texture sigma\" \"t39\"\nShape \"sphere\"\n";
+    // 3^11 > 65536 > 3^10: t10 would evaluate (3^11 - 1) / 2 = 88573 textures.
+    ExpectRefused(dir, "mix_float.pbrt",
+                  "mix_float.pbrt:16:1: error: texture \"t10\": one lookup would evaluate more "
+                  "than 65536 textures");
 }
 
 int WarningLines(const std::string &err) {
