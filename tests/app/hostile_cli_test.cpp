@@ -277,6 +277,27 @@ TEST(Hostile, NulAndControlCharactersInNamesArePrintedEscaped) {
     EXPECT_EQ(ErrorLines(r.err), 1) << r.err;
 }
 
+// `prism info` printed the scene's names (its file name, shape, material and light types,
+// texture filters, the effects' reasons) on standard output as they were; only its
+// warning lines were escaped. Everything it prints from the scene is escaped now.
+TEST(Hostile, InfoPrintsTheScenesNamesEscaped) {
+    fs::path dir = TempDir("info_escapes");
+    const std::string scene = "i\x1b[2Jnfo.pbrt";
+    std::ofstream(dir / scene)
+        << "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n"
+           "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n"
+           "LightSource \"po\x1b]0;owned\x07int\"\n"
+           "Texture \"c\" \"spectrum\" \"checkerboard\" \"string aamode\" \"n\x1b[1mone\"\n"
+           "Material \"pla\x1b[5mstic\"\nShape \"sph\x1b[7mere\"\nShape \"sphere\"\n";
+    RunResult r = RunPrism("info '" + scene + "'", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(HasRawControlChars(r.out)) << r.out;
+    EXPECT_FALSE(HasRawControlChars(r.err)) << r.err;
+    for (const char *escaped : {"i\\x1b[2Jnfo.pbrt", "po\\x1b]0;owned\\x07int", "n\\x1b[1mone",
+                                "pla\\x1b[5mstic", "sph\\x1b[7mere"})
+        EXPECT_NE(r.out.find(escaped), std::string::npos) << escaped << "\n" << r.out;
+}
+
 // Whether `s` is well-formed UTF-8.
 bool ValidUtf8(const std::string &s) {
     for (size_t i = 0; i < s.size();) {
