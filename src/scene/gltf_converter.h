@@ -4,6 +4,7 @@
 
 #include <tiny_gltf.h>
 
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
@@ -99,7 +100,7 @@ class GltfConverter {
     Diagnostics &diag_;
     SceneDescription &desc_;
     std::vector<int> areaLightOfMaterial_;
-    std::map<int, std::string> textureNames_;
+    std::map<int64_t, std::string> textureNames_;  // by index, linear ones at -2 - index
     std::map<int, std::string> imageFilenames_;
     std::map<int, std::string> alphaTextures_;  // material → its alpha texture ("" if none)
     std::set<int> warnedModes_;

@@ -190,7 +190,8 @@ std::string GltfConverter::ImageFilename(int imageIndex) {
 // texture has no usable image. `linear`: the image holds data (metallicRoughness, occlusion),
 // not sRGB colours.
 std::string GltfConverter::TextureFor(int textureIndex, bool linear) {
-    const int key = linear ? -2 - textureIndex : textureIndex;
+    // In 64 bits: the index is the file's (2^31 - 1 would overflow an int's -2 - index).
+    const int64_t key = linear ? -2 - int64_t(textureIndex) : int64_t(textureIndex);
     auto it = textureNames_.find(key);
     if (it != textureNames_.end()) return it->second;
     std::string name;
