@@ -2,7 +2,8 @@
 # Runs each libFuzzer target for a bounded time, one after the other (one core), and prints the
 # executions per target and in total. Crashing inputs are saved under
 # $BUILD/fuzz-work/artifacts/<target>/; the run goes on past a crash until the time is used.
-#   tools/fuzz.sh [SECONDS_PER_TARGET=60] [TARGET...]      (targets: pbrt ply obj gltf image)
+#   tools/fuzz.sh [SECONDS_PER_TARGET=60] [TARGET...]
+#   (targets: pbrt ply obj gltf image gltf_json texture)
 # Builds into $PRISM_FUZZ_BUILD_DIR (default build-fuzz) with clang++-14 and PRISM_FUZZ=ON.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,7 +11,7 @@ SRC="$PWD"
 SECONDS_PER_TARGET="${1:-60}"
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(pbrt ply obj gltf image)
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(pbrt ply obj gltf image gltf_json texture)
 BUILD="${PRISM_FUZZ_BUILD_DIR:-build-fuzz}"
 CXX_FUZZ="${CXX_FUZZ:-clang++-14}"
 CC_FUZZ="${CC_FUZZ:-clang-14}"
@@ -23,7 +24,9 @@ cmake --build "$BUILD" -j "${PRISM_FUZZ_JOBS:-2}" --target $(printf 'fuzz_%s ' "
 
 # Seeds: the checked-in corpus plus matching files from the shared scenes (not copied into the
 # repository; the working corpus lives in the build directory and grows across runs).
-declare -A EXTS=([pbrt]="pbrt" [ply]="ply" [obj]="obj" [gltf]="gltf glb" [image]="png jpg tga exr hdr pfm bmp")
+# The structure-aware targets (gltf_json, texture) read generator choices, not files: no
+# shared seeds.
+declare -A EXTS=([pbrt]="pbrt" [ply]="ply" [obj]="obj" [gltf]="gltf glb" [image]="png jpg tga exr hdr pfm bmp" [gltf_json]="" [texture]="")
 SHARED="$SRC/../shared/scenes"
 WORK="$BUILD/fuzz-work"
 export LSAN_OPTIONS="suppressions=$SRC/tools/lsan.supp:print_suppressions=0"

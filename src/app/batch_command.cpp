@@ -243,19 +243,11 @@ std::string RunningExecutable() {
 
 void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,
             bool dieWithParent) {
-    // The log is a new file (O_EXCL | O_NOFOLLOW: core/output_file.h) in the output folder, or
-    // the path the caller chose (prism-mpi: the node's temporary folder), never followed
-    // through a symbolic link.
-    int logFd = -1;
-    if (j.logPath.empty()) {
-        logFd = CreateUniqueFile(fs::path(j.output).parent_path().string(), ".log.tmp", &j.logPath);
-    } else {
-        logFd =
-            ::open(j.logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666);
-        if (logFd < 0)
-            throw std::runtime_error("cannot create the render log " + Quote(j.logPath) + ": " +
-                                     std::strerror(errno));
-    }
+    // The log is a new file with a random name (O_EXCL | O_NOFOLLOW: core/output_file.h) in
+    // the folder the caller chose or the output's.
+    const int logFd =
+        CreateUniqueFile(j.logDir.empty() ? fs::path(j.output).parent_path().string() : j.logDir,
+                         ".log.tmp", &j.logPath);
     std::vector<std::string> args = {exe, "render", j.scene, "-o", j.output, "--no-progress"};
     if (a.spp > 0) {
         args.push_back("--spp");

@@ -54,7 +54,10 @@ struct Job {
     // --scene-timeout: when the SIGTERM was sent (timedOut) and whether SIGKILL followed.
     bool timedOut = false, killedAfterTimeout = false;
     std::chrono::steady_clock::time_point timeoutSent;
-    std::string logPath;
+    std::string logPath;  // set by Launch
+    // The folder of the render log: "" for the output's folder (prism-mpi: the node's
+    // temporary folder, so a rank that dies leaves nothing among the images).
+    std::string logDir;
     std::chrono::steady_clock::time_point start;
 };
 
@@ -75,8 +78,9 @@ int FinishReports(const BatchArgs &a, const std::vector<Job> &jobs, double wallS
                   const std::string &endedBy = "");
 // The running executable (/proc/self/exe).
 std::string RunningExecutable();
-// Starts `exe render` for j in a child process (stderr to j.logPath, by default a new
-// `.prism-<pid>-XXXXXX.log.tmp` in the output's folder; never through a symbolic link).
+// Starts `exe render` for j in a child process (stderr to j.logPath, a new
+// `.prism-<pid>-XXXXXX.log.tmp` with a random suffix in j.logDir or else the output's folder,
+// created O_EXCL | O_NOFOLLOW: neither guessable nor followed through a symbolic link).
 // The child is killed when this process dies (PR_SET_PDEATHSIG: SIGTERM with dieWithParent,
 // prism-mpi's ranks, else SIGKILL), so no render outlives a batch that was killed.
 void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJob,

@@ -236,7 +236,7 @@ void CheckOutputConfinement(const std::string &out, const SceneEntity &film) {
     fs::path rel = (dir / target.filename()).lexically_relative(folder);
     if (rel.empty() || *rel.begin() == ".." || target.filename().empty() ||
         target.filename() == "." || target.filename() == "..")
-        refuse("is outside the confined folder " + Quote(folder));
+        refuse("is outside the confined folder");
     struct stat st;
     if (::lstat(out.c_str(), &st) == 0) {
         if (S_ISLNK(st.st_mode)) refuse("is a symbolic link (confined outputs)");

@@ -23,9 +23,13 @@ struct InfoArgs {
     ConfineOption confine;
 };
 
+// Names from the scene (types, filter names) reach the terminal escaped, as every error and
+// warning does (EscapeControlChars, core/error.h): an escape sequence in a name could clear the
+// screen or set the window title.
 std::string Counts(const std::map<std::string, int> &m) {
     std::string s;
-    for (const auto &[k, v] : m) s += (s.empty() ? "" : ", ") + k + " " + std::to_string(v);
+    for (const auto &[k, v] : m)
+        s += (s.empty() ? "" : ", ") + EscapeControlChars(k) + " " + std::to_string(v);
     return s.empty() ? "none" : s;
 }
 
@@ -37,7 +41,8 @@ void PrintEffects(const RenderScene &scene) {
     for (size_t i = 0; i < size_t(Effect::Count); ++i) {
         const Effect eff = Effect(i);
         if (e.Has(eff))
-            std::printf("  %s: on (%s)\n", EffectName(eff), e.reasons[i].c_str());
+            std::printf("  %s: on (%s)\n", EffectName(eff),
+                        EscapeControlChars(e.reasons[i]).c_str());
         else if ((eff == Effect::GlossyReflection || eff == Effect::GlossyTransmission) &&
                  !scene.integrator->Traits().roughGlass)
             std::printf("  %s: off (Integrator \"%s\" traces no glossy rays)\n", EffectName(eff),
@@ -46,8 +51,9 @@ void PrintEffects(const RenderScene &scene) {
             std::printf("  %s: off\n", EffectName(eff));
     }
     for (const LightShadows &l : e.lights)
-        std::printf("  shadows of %s: %d shadow ray%s per shading point\n", l.light.c_str(),
-                    l.shadowRays, l.shadowRays == 1 ? "" : "s");
+        std::printf("  shadows of %s: %d shadow ray%s per shading point\n",
+                    EscapeControlChars(l.light).c_str(), l.shadowRays,
+                    l.shadowRays == 1 ? "" : "s");
     std::printf("max useful depth: %d (maxdepth %d)\n", e.maxUsefulDepth, scene.trace.maxDepth);
     if (scene.integrator->Traits().effectKernel)
         std::printf("kernel:     %s\n", KernelMaskName(KernelMaskFor(scene)).c_str());
@@ -117,8 +123,8 @@ int RunInfo(const InfoArgs &a) {
     int areaShapes = 0;
     for (const ShapeDesc &s : desc.shapes) areaShapes += s.areaLight >= 0;
 
-    std::printf("scene:      %s (%s), loaded in %.3f s\n", a.scene.c_str(), desc.format.c_str(),
-                loadSeconds);
+    std::printf("scene:      %s (%s), loaded in %.3f s\n", EscapeControlChars(a.scene).c_str(),
+                desc.format.c_str(), loadSeconds);
     int operandShapes = 0;  // CSG operands
     for (const auto &[k, v] : csgOperands) operandShapes += v;
     std::printf("shapes:     %zu (%s)\n", desc.shapes.size() + size_t(operandShapes),
@@ -158,7 +164,7 @@ int RunInfo(const InfoArgs &a) {
     Transform worldFromCamera = cam.cameraFromWorld.Inverse();
     std::printf(
         "camera:     %s, eye %s, looking along %s%s\n",
-        cam.specified ? cam.type.c_str() : "perspective (default)",
+        cam.specified ? EscapeControlChars(cam.type).c_str() : "perspective (default)",
         ToString(worldFromCamera.Point(Vec3d(0, 0, 0))).c_str(),
         ToString(Normalize(worldFromCamera.Vector(Vec3d(0, 0, 1)))).c_str(),
         cam.params.Has("fov")
@@ -167,7 +173,8 @@ int RunInfo(const InfoArgs &a) {
     std::printf("film:       %dx%d\n",
                 desc.film.params.GetInt("xresolution", PbrtDefaultXResolution),
                 desc.film.params.GetInt("yresolution", PbrtDefaultYResolution));
-    std::printf("integrator: %s (%s)\n", built.IntegratorName(), built.integratorWhy.c_str());
+    std::printf("integrator: %s (%s)\n", built.IntegratorName(),
+                EscapeControlChars(built.integratorWhy).c_str());
     PrintEffects(built);
     std::vector<Warning> w = diag.Warnings();
     std::printf("warnings:   %zu\n", w.size());

@@ -21,6 +21,7 @@
 #include "render/integrator.h"
 #include "render/kernel.h"
 #include "render/progressive.h"
+#include "render/ray_tree.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "tools/study/target_error.h"
@@ -305,6 +306,15 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
         TargetVerification v = VerifyTarget(desc, opts, *s_->target, img, s_->diag);
         std::fprintf(stderr, "%s\n", DescribeVerification(*s_->target, v).c_str());
     }
+    // The ray tree's budget (render/ray_tree.h) cut some trees short: the image is not what
+    // an unbounded render would make, so say so even when quiet.
+    if (stats.rays.treeBudget > 0)
+        std::fprintf(stderr,
+                     "warning: %llu secondary rays not traced: ray trees reached their budget of "
+                     "%llu rays per camera sample (surfaces that split every ray, such as nested "
+                     "glass, at maxdepth %d)\n",
+                     (unsigned long long)stats.rays.treeBudget, (unsigned long long)kRayTreeBudget,
+                     scene.trace.maxDepth);
     if (!a.quiet) {
         const RayCounters &r = stats.rays;
         std::fprintf(stderr,

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "assembly/directive_params.h"
+#include "core/file_io.h"
 #include "core/memory.h"
 #include "render/gltf_material.h"
 #include "render/mipmap.h"
@@ -74,6 +75,8 @@ struct TextureBuilder : BuildStep {
         ro.encoding = enc;
         // The decoder refuses images larger than what remains of the budget before allocating.
         ro.maxPixels = int64_t(std::min<uint64_t>(budget.Remaining() / sizeof(float), INT64_MAX));
+        // Refused under --confine with the name as the scene wrote it.
+        if (embedded < 0) CheckReadConfinement(path, loc, "image file", file);
         std::shared_ptr<const Image> img;
         try {
             if (embedded >= 0) {

@@ -36,9 +36,9 @@ bool InsideFolder(const std::string &canonicalPath, const std::string &folder) {
                                        canonicalPath[folder.size()] == '/');
 }
 
-std::string OutsideReason(const std::string &resolved, const std::string &folder) {
-    return "it resolves to " + Quote(resolved) + ", outside the confined folder " + Quote(folder);
-}
+// Refusals name neither where the file resolves nor the confined folder: an upload learns
+// nothing of the server's paths from them (the caller names the file as the scene wrote it).
+std::string OutsideReason() { return "it lies outside the confined folder"; }
 
 // The confinement check on an opened descriptor: the file it really is (the kernel's name for
 // it), so a path whose symlinks changed after ReadConfinementRefusal is caught. "" if allowed.
@@ -49,7 +49,7 @@ std::string RefusalOfOpenFile(int fd, const std::string &folder) {
     std::filesystem::path real = std::filesystem::read_symlink(link, ec);
     if (ec) return {};  // no /proc: the path check before opening stands
     if (!InsideFolder(real.string(), folder) && !OperatorFile(real.string()))
-        return OutsideReason(real.string(), folder);
+        return OutsideReason();
     return {};
 }
 
@@ -216,11 +216,10 @@ std::string ReadConfinementRefusal(const std::string &path) {
     const std::string folder = ReadConfinementFolder();
     if (folder.empty()) return {};
     std::string resolved = CanonicalPath(path);
-    if (!InsideFolder(resolved, folder) && !OperatorFile(resolved))
-        return OutsideReason(resolved, folder);
+    if (!InsideFolder(resolved, folder) && !OperatorFile(resolved)) return OutsideReason();
     struct stat st;
     if (::stat(resolved.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
-        return "it is not a regular file (" + Quote(resolved) + ")";
+        return "it is not a regular file";
     return {};
 }
 

@@ -50,10 +50,11 @@ class ScopedReadConfinement {
 
 // The confinement folder (canonical), or "" when reads are not confined.
 std::string ReadConfinementFolder();
-// "" when `path` may be read under the current confinement; otherwise why not, e.g.
-// `it resolves to "/etc/passwd", outside the confined folder "/scenes/a"` or
-// `it is not a regular file (confined reads)`. A path that does not exist is allowed (opening
-// it then fails as usual).
+// "" when `path` may be read under the current confinement; otherwise why not:
+// `it lies outside the confined folder` or `it is not a regular file`. Neither names where
+// the path resolves or the folder (an upload must not learn the server's paths); callers
+// name the file as the scene wrote it. A path that does not exist is allowed (opening it then
+// fails as usual).
 std::string ReadConfinementRefusal(const std::string &path);
 // Throws SceneError at `loc`, `WHAT "NAME": REFUSAL`, when ReadConfinementRefusal(path) is
 // not empty. `what` is e.g. "texture file", `name` the file as the scene writes it.

@@ -4,6 +4,7 @@
 #include "render/area_light.h"
 #include "render/bsdf.h"
 #include "render/differentials.h"
+#include "render/ray_tree.h"
 #include "render/render_scene.h"
 
 namespace prism {
@@ -37,11 +38,12 @@ void DirectLightingIntegrator::Prepare(const RenderScene &scene) {
 
 RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps,
                                  RayCounters &rc, RGB *direct) const {
-    return Li(scene, ray, ps, 0, rc, direct);
+    return Li(scene, ray, ps, 0, kRayTreeBudget, rc, direct);
 }
 
 RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &rayIn, const PixelSamples &ps,
-                                 int depth, RayCounters &counters, RGB *direct) const {
+                                 int depth, uint64_t treeRays, RayCounters &counters,
+                                 RGB *direct) const {
     Ray ray = rayIn;
     SurfaceInteraction si;
     const ShapeInfo *info = nullptr;
@@ -81,20 +83,32 @@ RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &rayIn, con
     }
     if (direct) *direct = L;
     // Delta reflection and transmission (pbrt-v3 SpecularReflect / SpecularTransmit).
+    // The rays of the delta lobes share the ray tree's budget evenly (render/ray_tree.h).
     if (depth + 1 < ps.trace.maxDepth) {
-        Vec3f wi;
-        RGB weight;
+        struct SpecularRay {
+            Vec3f wi;
+            RGB weight;
+            bool reflect;
+        };
+        SpecularRay rays[2 * BSDF::MaxParts];
+        int n = 0;
         for (int part = 0; part < bsdf.NumParts(); ++part) {
-            if (bsdf.SampleSpecularReflection(part, si.wo, &wi, &weight)) {
-                counters.reflection++;
-                L += weight *
-                     Li(scene, si.SpawnRay(wi, scene.offset), ps, depth + 1, counters, nullptr);
+            Vec3f wi;
+            RGB weight;
+            if (bsdf.SampleSpecularReflection(part, si.wo, &wi, &weight))
+                rays[n++] = {wi, weight, true};
+            if (bsdf.SampleSpecularTransmission(part, si.wo, &wi, &weight))
+                rays[n++] = {wi, weight, false};
+        }
+        const RayTreeShare share = ShareRayTree(treeRays, uint64_t(n));
+        for (int i = 0; i < n; ++i) {
+            if (uint64_t(i) >= share.traced) {
+                counters.treeBudget += uint64_t(n - i);
+                break;
             }
-            if (bsdf.SampleSpecularTransmission(part, si.wo, &wi, &weight)) {
-                counters.refraction++;
-                L += weight *
-                     Li(scene, si.SpawnRay(wi, scene.offset), ps, depth + 1, counters, nullptr);
-            }
+            (rays[i].reflect ? counters.reflection : counters.refraction)++;
+            L += rays[i].weight * Li(scene, si.SpawnRay(rays[i].wi, scene.offset), ps, depth + 1,
+                                     share.each, counters, nullptr);
         }
     }
     return L;

@@ -21,9 +21,10 @@ class DirectLightingIntegrator : public Integrator {
            RGB *direct) const override;
 
   private:
-    // Radiance along a ray; depth counts delta bounces (camera rays are depth 0).
+    // Radiance along a ray; depth counts delta bounces (camera rays are depth 0), treeRays
+    // is what the ray tree below the ray may still trace (render/ray_tree.h).
     RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, int depth,
-           RayCounters &counters, RGB *direct) const;
+           uint64_t treeRays, RayCounters &counters, RGB *direct) const;
 
     bool allLights_;
     LightChooser chooser_;

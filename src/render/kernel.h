@@ -21,6 +21,7 @@
 #include "geometry/accel.h"
 #include "image/bounds2.h"
 #include "render/integrator.h"
+#include "render/ray_tree.h"
 
 namespace prism {
 
@@ -40,6 +41,8 @@ struct SampleContext {
     // The ray's differentials (RenderScene::differentials), or null: unfiltered lookups.
     const RayDifferential *diff = nullptr;
     int medium = -1;  // the medium the ray starts in (RenderScene::media; -1: none)
+    // The secondary rays the tree below this ray may still trace (render/ray_tree.h).
+    uint64_t treeRays = kRayTreeBudget;
 };
 
 // What the kernel reads beside the scene: whether it traces glossy rays (Integrator
@@ -127,17 +130,24 @@ class Kernel {
     // Radiance along ray given its closest hit si (continues through pass-through surfaces).
     RGB Shade(const Ray &ray, SurfaceInteraction si, int depth, RayCounters &counters,
               const SampleContext &sc, bool emitted) const;
-    // Adds the specular reflection and transmission of every BSDF part to L.
-    // tc holds the hit's footprint where the ray carries differentials (diff not null).
-    void AddSpecular(const SurfaceInteraction &si, const TextureContext &tc,
-                     const RayDifferential *diff, const BSDF &bsdf, int depth,
-                     RayCounters &counters, const SampleContext &sc, RGB &L) const;
+    // Adds the specular reflection and transmission of every BSDF part to L; returns how many
+    // rays it spawned (traced or left out by the ray tree's budget, which they share with the
+    // hit's `glossyRays` glossy rays). tc holds the hit's footprint where the ray carries
+    // differentials (diff not null).
+    uint64_t AddSpecular(const SurfaceInteraction &si, const TextureContext &tc,
+                         const RayDifferential *diff, const BSDF &bsdf, int depth,
+                         RayCounters &counters, const SampleContext &sc, uint64_t glossyRays,
+                         RGB &L) const;
     // Turns rough glass glossy; says how glossy rays are traced from this hit.
     GlossyRays PrepareGlossy(BSDF &bsdf, int depth) const;
     // Adds the glossy reflection and transmission of every BSDF part to L: the scene's
     // glossySamples rays per part at the first glossy bounce of a path, 1 deeper down.
+    // `specularRays`: the hit's specular rays, which come first in its share of the ray tree.
     void AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, GlossyRays mode, int depth,
-                   RayCounters &counters, const SampleContext &sc, RGB &L) const;
+                   RayCounters &counters, const SampleContext &sc, uint64_t specularRays,
+                   RGB &L) const;
+    // The most glossy rays AddGlossy spawns at a hit.
+    uint64_t GlossyRayCount(const BSDF &bsdf, const SampleContext &sc) const;
     // The ray-weight cutoff: true when a secondary ray of throughput beta is traced.
     bool AboveCutoff(const RGB &beta) const;
     // Direct lighting through f(wi, byGlossyRays) (a BSDF, or kd/π in Lambertian kernels).

@@ -140,8 +140,13 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
         // in the same order as always).
         RGB indirect;
         RGB &Lind = ambient == 1 ? L : indirect;
-        if constexpr (Specular) AddSpecular(si, tc, diff, bsdf, depth, counters, sc, Lind);
-        if (glossy != GlossyRays::None) AddGlossy(si, bsdf, glossy, depth, counters, sc, Lind);
+        // The specular and glossy rays share the hit's ray-tree budget (render/ray_tree.h).
+        uint64_t glossyRays = 0, specularRays = 0;
+        if (glossy != GlossyRays::None) glossyRays = GlossyRayCount(bsdf, sc);
+        if constexpr (Specular)
+            specularRays = AddSpecular(si, tc, diff, bsdf, depth, counters, sc, glossyRays, Lind);
+        if (glossy != GlossyRays::None)
+            AddGlossy(si, bsdf, glossy, depth, counters, sc, specularRays, Lind);
         if (ambient != 1) L += indirect * ambient;
         return L;
     }
@@ -232,46 +237,64 @@ void Kernel<K>::AddDirectSampled(const SurfaceInteraction &si, const Vec3f &ns, 
 }
 
 template <uint32_t K>
-void Kernel<K>::AddSpecular(const SurfaceInteraction &si, const TextureContext &tc,
-                            const RayDifferential *diff, const BSDF &bsdf, int depth,
-                            RayCounters &counters, const SampleContext &sc, RGB &L) const {
+uint64_t Kernel<K>::AddSpecular(const SurfaceInteraction &si, const TextureContext &tc,
+                                const RayDifferential *diff, const BSDF &bsdf, int depth,
+                                RayCounters &counters, const SampleContext &sc, uint64_t glossyRays,
+                                RGB &L) const {
     const Vec3f &wo = si.wo;
     // Specular recursion, for the delta lobes of every BSDF part (mix materials have several).
-    if (depth + 1 < params_.trace.maxDepth) {
+    if (depth + 1 >= params_.trace.maxDepth) return 0;
+    // The rays of the lobes, in lobe order, that the ray-weight cutoff leaves: a ray "can
+    // change the pixel by more than the cutoff" when its throughput (max RGB component, times
+    // the Film's scale) exceeds the cutoff, as if it brought back radiance 1 (pbrt-style ray
+    // weights; the pixel filter's share of the sample is ignored). Cutoff 0 traces every ray,
+    // exactly as without the cutoff.
+    struct SpecularRay {
         Vec3f wi;
         RGB weight;
-        // Traces the ray along wi unless the ray-weight cutoff drops it: the radiance it could
-        // bring back is unknown, so a ray "can change the pixel by more than the cutoff" when its
-        // throughput (max RGB component, times the Film's scale) exceeds the cutoff, as if it
-        // brought back radiance 1 (pbrt-style ray weights; the pixel filter's share of the
-        // sample is ignored). Cutoff 0 traces every ray, exactly as without the cutoff.
-        // The reflected or refracted ray's differentials (pbrt-v3 SpecularReflect/Transmit);
-        // eta 0: reflection.
-        auto trace = [&](uint64_t &kind, float eta) {
-            SampleContext next = sc;
-            next.beta = sc.beta * weight;
-            if (!AboveCutoff(next.beta)) {
-                counters.cutoff++;
-                return;
-            }
-            if constexpr (Media) next.medium = MediumAfter(scene_.Info(si), si, wi, sc.medium);
-            kind++;
-            RayDifferential rd;
-            next.diff = nullptr;
-            if (diff) {
-                rd = eta == 0 ? ReflectDifferential(si, tc, *diff, bsdf.ns, wi)
-                              : RefractDifferential(si, tc, *diff, bsdf.ns, wi, eta);
-                next.diff = &rd;
-            }
-            L += weight * Li(si.SpawnRay(wi, scene_.offset), depth + 1, counters, next);
-        };
-        for (int part = 0; part < bsdf.NumParts(); ++part) {
-            if (bsdf.SampleSpecularReflection(part, wo, &wi, &weight))
-                trace(counters.reflection, 0.f);
-            if (bsdf.SampleSpecularTransmission(part, wo, &wi, &weight))
-                trace(counters.refraction, bsdf.Part(part).eta);
+        float eta;  // the part's eta (refraction)
+        bool reflect;
+    };
+    SpecularRay rays[2 * BSDF::MaxParts];
+    int n = 0;
+    auto keep = [&](const Vec3f &wi, const RGB &weight, float eta, bool reflect) {
+        if (!AboveCutoff(sc.beta * weight)) {
+            counters.cutoff++;
+            return;
         }
+        rays[n++] = {wi, weight, eta, reflect};
+    };
+    for (int part = 0; part < bsdf.NumParts(); ++part) {
+        Vec3f wi;
+        RGB weight;
+        if (bsdf.SampleSpecularReflection(part, wo, &wi, &weight)) keep(wi, weight, 0.f, true);
+        if (bsdf.SampleSpecularTransmission(part, wo, &wi, &weight))
+            keep(wi, weight, bsdf.Part(part).eta, false);
     }
+    // The first rays of the hit within its ray-tree budget, each with an even share of it.
+    const RayTreeShare share = ShareRayTree(sc.treeRays, uint64_t(n) + glossyRays);
+    for (int i = 0; i < n; ++i) {
+        if (uint64_t(i) >= share.traced) {
+            counters.treeBudget += uint64_t(n - i);
+            break;
+        }
+        const SpecularRay &r = rays[i];
+        SampleContext next = sc;
+        next.beta = sc.beta * r.weight;
+        next.treeRays = share.each;
+        if constexpr (Media) next.medium = MediumAfter(scene_.Info(si), si, r.wi, sc.medium);
+        (r.reflect ? counters.reflection : counters.refraction)++;
+        // The reflected or refracted ray's differentials (pbrt-v3 SpecularReflect/Transmit).
+        RayDifferential rd;
+        next.diff = nullptr;
+        if (diff) {
+            rd = r.reflect ? ReflectDifferential(si, tc, *diff, bsdf.ns, r.wi)
+                           : RefractDifferential(si, tc, *diff, bsdf.ns, r.wi, r.eta);
+            next.diff = &rd;
+        }
+        L += r.weight * Li(si.SpawnRay(r.wi, scene_.offset), depth + 1, counters, next);
+    }
+    return uint64_t(n);
 }
 
 template <uint32_t K>
@@ -288,10 +311,22 @@ GlossyRays Kernel<K>::PrepareGlossy(BSDF &bsdf, int depth) const {
 }
 
 template <uint32_t K>
+uint64_t Kernel<K>::GlossyRayCount(const BSDF &bsdf, const SampleContext &sc) const {
+    uint64_t parts = 0;
+    for (int part = 0; part < bsdf.NumParts(); ++part)
+        if (!bsdf.Weight(part).IsBlack() && bsdf.Part(part).HasGlossy()) ++parts;
+    return parts * (sc.afterGlossy ? 1u : uint64_t(params_.glossySamples));
+}
+
+template <uint32_t K>
 void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, GlossyRays mode,
-                          int depth, RayCounters &counters, const SampleContext &sc, RGB &L) const {
+                          int depth, RayCounters &counters, const SampleContext &sc,
+                          uint64_t specularRays, RGB &L) const {
     const bool emitted = mode == GlossyRays::AllLights;
     const uint32_t n = sc.afterGlossy ? 1u : uint32_t(params_.glossySamples);
+    // The hit's share of the ray tree (render/ray_tree.h): its specular rays came first.
+    const RayTreeShare share = ShareRayTree(sc.treeRays, specularRays + GlossyRayCount(bsdf, sc));
+    uint64_t nth = specularRays;  // this ray's place among the hit's rays
     // The rays below sample the pixel's samples × n further: the hits they reach stratify
     // their own samples over that larger set (while the count stays small).
     const bool refine = uint64_t(sc.spp) * n <= (1u << 24);
@@ -322,6 +357,11 @@ void Kernel<K>::AddGlossy(const SurfaceInteraction &si, const BSDF &bsdf, Glossy
                 counters.cutoff++;
                 continue;
             }
+            if (nth++ >= share.traced) {
+                counters.treeBudget++;
+                continue;
+            }
+            next.treeRays = share.each;
             counters.glossy++;
             L += weight * Li(si.SpawnRay(wi, scene_.offset), depth + 1, counters, next, emitted);
         }

@@ -98,6 +98,8 @@ RGB MIPMap::Bilerp(int level, Vec2f st) const {
     // The same operations as the unfiltered ImageTexture lookup.
     float s = st.x * Width(level) - 0.5f, t = st.y * Height(level) - 0.5f;
     if (!std::isfinite(s) || !std::isfinite(t)) return RGB(0);
+    s = ClampTexelCoord(s);
+    t = ClampTexelCoord(t);
     int s0 = int(std::floor(s)), t0 = int(std::floor(t));
     float ds = s - s0, dt = t - t0;
     return Texel(level, s0, t0) * ((1 - ds) * (1 - dt)) +
@@ -108,7 +110,7 @@ RGB MIPMap::Bilerp(int level, Vec2f st) const {
 RGB MIPMap::Nearest(Vec2f st) const {
     float s = st.x * Width(0), t = st.y * Height(0);
     if (!std::isfinite(s) || !std::isfinite(t)) return RGB(0);
-    return Texel(0, int(std::floor(s)), int(std::floor(t)));
+    return Texel(0, int(std::floor(ClampTexelCoord(s))), int(std::floor(ClampTexelCoord(t))));
 }
 
 RGB MIPMap::Trilinear(Vec2f st, float width) const {
@@ -140,7 +142,9 @@ RGB MIPMap::EWA(Vec2f st, Vec2f dst0, Vec2f dst1, float maxAnisotropy) const {
     // the EWA average fades in.
     const float texels = 2 * major * maxRes_;
     if (!(texels > 1)) return Bilerp(0, st);
-    float lod = std::max(0.f, std::log2(minor * maxRes_));
+    // At most the coarsest level (EWALevel reads its one texel): a footprint of 1e20 makes
+    // minor infinite, whose floor is no int.
+    float lod = std::min(std::max(0.f, std::log2(minor * maxRes_)), float(Levels()));
     int i = int(std::floor(lod));
     float delta = lod - float(i);
     RGB v = delta == 0 ? EWALevel(i, st, dst0, dst1)
@@ -171,7 +175,11 @@ RGB MIPMap::EWALevel(int level, Vec2f st, Vec2f dst0, Vec2f dst1) const {
     const float det = -B * B + 4 * A * C, invDet = 1 / det;
     const float uSqrt = std::sqrt(det * C), vSqrt = std::sqrt(A * det);
     const float su = 2 * invDet * uSqrt, sv = 2 * invDet * vSqrt;
-    if (!std::isfinite(su) || !std::isfinite(sv)) return Bilerp(level, st);
+    // The ellipse spans at most about maxanisotropy texels (the level is chosen for its minor
+    // axis); anything wider (coordinates so large that s - su rounds) is read bilinearly.
+    if (!std::isfinite(su) || !std::isfinite(sv) || !(std::abs(s) < 1073741824.f) ||
+        !(std::abs(t) < 1073741824.f) || su > 4096 || sv > 4096)
+        return Bilerp(level, st);
     const int s0 = int(std::ceil(s - su)), s1 = int(std::floor(s + su));
     const int t0 = int(std::ceil(t - sv)), t1 = int(std::floor(t + sv));
     const auto &lut = WeightLUT();

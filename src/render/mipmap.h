@@ -9,6 +9,8 @@
 // powers of two up to the next power of two (Lanczos); Prism keeps the image as it is.
 #pragma once
 
+#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -19,6 +21,23 @@
 namespace prism {
 
 struct Image;
+
+// Texture coordinates are user data: a mapping's "uscale" 1e30 puts them far beyond the range
+// of int, where converting floor(x) is undefined. Texel coordinates are clamped to +-2^30
+// first (at that size a float is a multiple of 128, no texel is told from the next anyway):
+// exact for every coordinate inside, any finite x gives a valid index.
+inline float ClampTexelCoord(float x) {
+    constexpr float limit = 1073741824.f;  // 2^30
+    return x < -limit ? -limit : x > limit ? limit : x;
+}
+// The largest "maxanisotropy" an image texture takes (an EWA lookup reads about its square).
+inline constexpr float kMaxAnisotropy = 64;
+// Whether floor(x) is odd (checkerboard squares), for any x: beyond 2^53 every double is an
+// even integer, and a value that is not finite counts as even.
+inline bool OddFloor(double x) {
+    if (!(std::abs(x) < 9007199254740992.0)) return false;  // 2^53; NaN too
+    return (static_cast<int64_t>(std::floor(x)) & 1) != 0;
+}
 
 class MIPMap {
   public:

@@ -13,6 +13,9 @@ struct RayCounters {
     uint64_t glossy = 0;
     // Secondary rays not traced because of the ray-weight cutoff (not part of Total()).
     uint64_t cutoff = 0;
+    // Secondary rays not traced because their camera sample's ray tree reached its budget
+    // (render/ray_tree.h; not part of Total()).
+    uint64_t treeBudget = 0;
     // Lens samples drawn for camera rays (depth of field; not rays, not part of Total()).
     uint64_t lensSamples = 0;
     uint64_t Total() const {
@@ -26,6 +29,7 @@ struct RayCounters {
         passThrough += o.passThrough;
         glossy += o.glossy;
         cutoff += o.cutoff;
+        treeBudget += o.treeBudget;
         lensSamples += o.lensSamples;
         return *this;
     }

@@ -323,17 +323,24 @@ FrameTiles::~FrameTiles() = default;
 
 int FrameTiles::NumTiles() const { return film_->NumTiles(); }
 
-void FrameTiles::RenderTiles(int begin, int end, std::vector<FilmTile> *tiles,
-                             RayCounters *rays) const {
+bool FrameTiles::RenderTiles(int begin, int end, std::vector<FilmTile> *tiles, RayCounters *rays,
+                             const volatile int *cancel) const {
     tiles->resize(size_t(end - begin));
     tbb::enumerable_thread_specific<RayCounters> counters;
     tbb::enumerable_thread_specific<TileSamples> scratch;
-    ForEachTile(begin, end, [&](int t) {
-        FilmTile *tile = &(*tiles)[size_t(t - begin)];
-        film_->ResetTile(t, tile);
-        driver_.RenderTile(t, film_->TilePixels(t), tile, scratch.local(), counters.local());
-    });
+    std::atomic<bool> stopped{false};
+    const int ran = ForEachTile(
+        begin, end,
+        [&](int t) {
+            FilmTile *tile = &(*tiles)[size_t(t - begin)];
+            film_->ResetTile(t, tile);
+            if (!driver_.RenderTile(t, film_->TilePixels(t), tile, scratch.local(),
+                                    counters.local(), cancel))
+                stopped = true;
+        },
+        cancel);
     for (const RayCounters &c : counters) *rays += c;
+    return !stopped && ran == end - begin;
 }
 
 void FrameTiles::ResetTile(int t, FilmTile *tile) const { film_->ResetTile(t, tile); }

@@ -174,8 +174,11 @@ class FrameTiles {
     int NumTiles() const;
     uint32_t KernelMask() const { return kernelMask_; }
     // Renders tiles [begin, end) in parallel (TBB) into tiles[0 .. end - begin), adding their
-    // rays to *rays; the vector is resized and its buffers reused.
-    void RenderTiles(int begin, int end, std::vector<FilmTile> *tiles, RayCounters *rays) const;
+    // rays to *rays; the vector is resized and its buffers reused. With a cancel flag it is
+    // read as Render reads it (between tiles and before every camera packet): returns false
+    // once it read true, the tiles incomplete.
+    bool RenderTiles(int begin, int end, std::vector<FilmTile> *tiles, RayCounters *rays,
+                     const volatile int *cancel = nullptr) const;
     // Prepares `tile` (bounds, filter, zeroed sums) for tile t: a receiver fills its sums with
     // FilmTile::Sums() before merging.
     void ResetTile(int t, FilmTile *tile) const;

@@ -99,7 +99,7 @@ float BumpInt(float x) {
 float CheckerboardTexture::OddFraction(float s, float t, float ds, float dt) {
     // Per axis, the fraction of [x - d, x + d] on odd squares (the indicator itself for d = 0).
     auto axis = [](float x, float d) {
-        if (!(d > 0)) return (long(std::floor(x)) & 1) ? 1.f : 0.f;
+        if (!(d > 0)) return OddFloor(x) ? 1.f : 0.f;
         return (BumpInt(x + d) - BumpInt(x - d)) / (2 * d);
     };
     const float sint = axis(s, ds), tint = axis(t, dt);
@@ -110,8 +110,9 @@ float CheckerboardTexture::OddFraction(float s, float t, float ds, float dt) {
 RGB CheckerboardTexture::Evaluate(const TextureContext &c) const {
     if (dim_ == 3) {
         Vec3d p = mapping_.textureFromRender.Point(Vec3d(c.p));
-        long s = long(std::floor(p.x)) + long(std::floor(p.y)) + long(std::floor(p.z));
-        return (s % 2 == 0) ? tex1_->Evaluate(c) : tex2_->Evaluate(c);
+        // The parity of floor(x) + floor(y) + floor(z), for coordinates of any size.
+        const bool odd = OddFloor(p.x) != OddFloor(p.y) ? !OddFloor(p.z) : OddFloor(p.z);
+        return !odd ? tex1_->Evaluate(c) : tex2_->Evaluate(c);
     }
     if (aa_ == AAMode::ClosedForm) {
         Vec2f dstdx, dstdy;
@@ -129,8 +130,7 @@ RGB CheckerboardTexture::Evaluate(const TextureContext &c) const {
         }
     }
     Vec2f st = mapping_.Map(c);
-    long s = long(std::floor(st.x)) + long(std::floor(st.y));
-    return (s % 2 == 0) ? tex1_->Evaluate(c) : tex2_->Evaluate(c);
+    return OddFloor(st.x) == OddFloor(st.y) ? tex1_->Evaluate(c) : tex2_->Evaluate(c);
 }
 
 ImageTexture::ImageTexture(TextureMapping mapping, std::shared_ptr<const Image> image,
@@ -184,6 +184,8 @@ RGB ImageTexture::Evaluate(const TextureContext &c) const {
         Vec2f st = mapping_.Map(c);
         float s = st.x * image_->width, t = st.y * image_->height;
         if (!std::isfinite(s) || !std::isfinite(t)) return RGB(0);
+        s = ClampTexelCoord(s);
+        t = ClampTexelCoord(t);
         if (filter_ == TextureFilter::Point) {
             v = Texel(int(std::floor(s)), int(std::floor(t)));
         } else {
@@ -368,6 +370,14 @@ TexturePtr CreateImageTexture(const TextureParams &p, const FileLoc &loc) {
     if (!(maxAniso >= 1)) {
         p.Warn(p.Loc("maxanisotropy"), "maxanisotropy below 1; using 1");
         maxAniso = 1;
+    }
+    // An EWA lookup reads about maxanisotropy^2 texels around its minor axis: a huge value would
+    // make one lookup read millions.
+    if (maxAniso > kMaxAnisotropy) {
+        p.Warn(p.Loc("maxanisotropy"), "maxanisotropy above " +
+                                           std::to_string(int(kMaxAnisotropy)) + "; using " +
+                                           std::to_string(int(kMaxAnisotropy)));
+        maxAniso = kMaxAnisotropy;
     }
     std::shared_ptr<const Image> img = p.LoadImage("filename", file, enc);
     // Prism extension for cut-outs (glTF baseColor alpha, OBJ map_d): a float texture of the

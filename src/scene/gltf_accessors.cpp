@@ -53,6 +53,7 @@ int ComponentCount(int type) {
 AccessorView GltfConverter::View(int index, const std::string &what) {
     if (index < 0 || size_t(index) >= model_.accessors.size())
         Fail(what + " refers to accessor " + std::to_string(index) + ", which does not exist");
+    const Where where(*this, "/accessors/" + std::to_string(index));
     const tinygltf::Accessor &a = model_.accessors[size_t(index)];
     std::string name = "accessor " + std::to_string(index) + " (" + what + ")";
     if (a.sparse.isSparse) Fail(name + " is sparse, which is not supported");
@@ -141,6 +142,7 @@ double Component(const AccessorView &v, size_t i, int c) {
 
 std::vector<Vec3f> GltfConverter::ReadVec3(int accessor, const std::string &what) {
     AccessorView v = View(accessor, what);
+    const Where where(*this, "/accessors/" + std::to_string(accessor));
     if (v.components != 3) Fail(what + " accessor must be VEC3");
     if (v.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
         Fail(what + " accessor must have float components");
@@ -156,6 +158,7 @@ std::vector<Vec3f> GltfConverter::ReadVec3(int accessor, const std::string &what
 
 std::vector<Vec2f> GltfConverter::ReadTexcoords(int accessor, const std::string &name) {
     AccessorView v = View(accessor, name);
+    const Where where(*this, "/accessors/" + std::to_string(accessor));
     if (v.components != 2) Fail(name + " accessor must be VEC2");
     bool ok = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
               (v.normalized && (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
@@ -170,6 +173,7 @@ std::vector<Vec2f> GltfConverter::ReadTexcoords(int accessor, const std::string 
 
 std::vector<int> GltfConverter::ReadIndices(int accessor, size_t vertexCount) {
     AccessorView v = View(accessor, "indices");
+    const Where where(*this, "/accessors/" + std::to_string(accessor));
     if (v.components != 1) Fail("indices accessor must be SCALAR");
     if (v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
         v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&

@@ -4,6 +4,7 @@
 
 #include <tiny_gltf.h>
 
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
@@ -75,7 +76,23 @@ class GltfConverter {
     void AddSurfaceParams(const tinygltf::Primitive &prim, size_t vertices, ParamSet &shapeParams);
     std::string AlphaTextureFor(int material);
 
-    [[noreturn]] void Fail(const std::string &msg) const { throw SceneError(loc_, msg); }
+    // A SceneError at the JSON value being converted (where_: its line and column in a .gltf,
+    // and its JSON pointer in the message), else at the file.
+    [[noreturn]] void Fail(const std::string &msg) const;
+    // Sets where_ (a JSON pointer such as "/meshes/2/primitives/0") for the guard's scope.
+    class Where {
+      public:
+        Where(const GltfConverter &c, std::string pointer) : c_(c), saved_(std::move(c.where_)) {
+            c_.where_ = std::move(pointer);
+        }
+        ~Where() { c_.where_ = std::move(saved_); }
+        Where(const Where &) = delete;
+        Where &operator=(const Where &) = delete;
+
+      private:
+        const GltfConverter &c_;
+        std::string saved_;
+    };
 
     const tinygltf::Model &model_;
     const MemoryBudget *budget_ = nullptr;
@@ -83,7 +100,7 @@ class GltfConverter {
     Diagnostics &diag_;
     SceneDescription &desc_;
     std::vector<int> areaLightOfMaterial_;
-    std::map<int, std::string> textureNames_;
+    std::map<int64_t, std::string> textureNames_;  // by index, linear ones at -2 - index
     std::map<int, std::string> imageFilenames_;
     std::map<int, std::string> alphaTextures_;  // material → its alpha texture ("" if none)
     std::set<int> warnedModes_;
@@ -92,10 +109,18 @@ class GltfConverter {
     std::set<int> materialsUsingTexCoord1_;  // their primitives read TEXCOORD_1 ("uv1")
     bool warnedMissingTexCoord1_ = false;
     bool haveCamera_ = false;
+    mutable std::string where_;  // the JSON pointer of what is being converted ("": the file)
 };
 
+// The line and column of the value the JSON pointer `pointer` names in the .gltf file
+// `gltfPath` (the whole file for a .glb or a pointer that names nothing).
+FileLoc LocateJsonPointer(const std::string &gltfPath, const std::string &pointer);
+
 // The location of the "uri" in the glTF file `gltfPath` that names the file `path` (as
-// tinygltf resolved it), or the whole file when none does: for --confine errors.
-FileLoc LocateUri(const std::string &gltfPath, const std::string &path);
+// tinygltf resolved it), or the whole file when none does: for --confine errors. *written
+// (if given) is set to the URI as the file writes it (else the file name of `path`), which
+// is what the error names: never where the path resolves.
+FileLoc LocateUri(const std::string &gltfPath, const std::string &path,
+                  std::string *written = nullptr);
 
 }  // namespace prism::gltf_internal

@@ -1,6 +1,8 @@
 // glTF materials, textures and images → pbrt-v3 materials and "imagemap" textures.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <string_view>
 
 #include "core/file_io.h"
 #include "scene/gltf_converter.h"
@@ -31,7 +33,9 @@ std::string DecodeUri(const std::string &uri) {
 
 // The location of the "uri" in the glTF file `gltfPath` whose file is `path` (as tinygltf
 // resolved it against the glTF's folder), or the whole file: for confinement errors.
-FileLoc LocateUri(const std::string &gltfPath, const std::string &path) {
+FileLoc LocateUri(const std::string &gltfPath, const std::string &path, std::string *written) {
+    // Not found: the file's name alone, never the folders it was resolved in.
+    if (written) *written = std::filesystem::path(path).filename().string();
     std::string text;
     FileReadError error;
     if (!ReadFileContents(gltfPath, &text, &error, 64u << 20)) return FileLoc{gltfPath};
@@ -48,10 +52,119 @@ FileLoc LocateUri(const std::string &gltfPath, const std::string &path) {
             int line = 1 + int(std::count(text.begin(), text.begin() + long(open), '\n'));
             size_t lineStart = text.rfind('\n', open);
             int col = int(open - (lineStart == std::string::npos ? 0 : lineStart + 1)) + 1;
+            if (written) *written = text.substr(open + 1, close - open - 1);
             return FileLoc{gltfPath, line, col};
         }
     }
     return FileLoc{gltfPath};
+}
+
+namespace {
+
+size_t SkipSpace(std::string_view j, size_t i) {
+    while (i < j.size() && (j[i] == ' ' || j[i] == '\t' || j[i] == '\n' || j[i] == '\r')) ++i;
+    return i;
+}
+
+// The end of the string starting at the quote j[i] (one past its closing quote).
+size_t SkipString(std::string_view j, size_t i) {
+    for (++i; i < j.size(); ++i) {
+        if (j[i] == '\\')
+            ++i;
+        else if (j[i] == '"')
+            return i + 1;
+    }
+    return j.size();
+}
+
+// One past the JSON value starting at j[i]; brackets are counted, not recursed into.
+size_t SkipValue(std::string_view j, size_t i) {
+    if (i >= j.size()) return i;
+    if (j[i] == '"') return SkipString(j, i);
+    if (j[i] != '[' && j[i] != '{') {
+        while (i < j.size() && j[i] != ',' && j[i] != '}' && j[i] != ']') ++i;
+        return i;
+    }
+    int depth = 0;
+    while (i < j.size()) {
+        const char c = j[i];
+        if (c == '"') {
+            i = SkipString(j, i);
+            continue;
+        }
+        if (c == '[' || c == '{') ++depth;
+        if ((c == ']' || c == '}') && --depth == 0) return i + 1;
+        ++i;
+    }
+    return i;
+}
+
+// The offset in `json` of the value the JSON pointer `pointer` ("/nodes/3/mesh") names, or
+// npos. Object keys are compared as written (glTF's keys need no escapes).
+size_t FindJsonPointer(std::string_view json, const std::string &pointer) {
+    size_t i = SkipSpace(json, 0);
+    size_t from = 1;
+    while (from <= pointer.size() && pointer.size() > 0) {
+        size_t to = pointer.find('/', from);
+        if (to == std::string::npos) to = pointer.size();
+        const std::string_view token = std::string_view(pointer).substr(from, to - from);
+        from = to + 1;
+        if (i >= json.size()) return std::string_view::npos;
+        if (json[i] == '{') {
+            i = SkipSpace(json, i + 1);
+            while (true) {
+                if (i >= json.size() || json[i] != '"') return std::string_view::npos;
+                const size_t keyEnd = SkipString(json, i);
+                const std::string_view key = json.substr(i + 1, keyEnd - i - 2);
+                i = SkipSpace(json, keyEnd);
+                if (i >= json.size() || json[i] != ':') return std::string_view::npos;
+                i = SkipSpace(json, i + 1);
+                if (key == token) break;
+                i = SkipSpace(json, SkipValue(json, i));
+                if (i >= json.size() || json[i] != ',') return std::string_view::npos;
+                i = SkipSpace(json, i + 1);
+            }
+        } else if (json[i] == '[') {
+            if (token.empty() || token.size() > 9 ||
+                !std::all_of(token.begin(), token.end(),
+                             [](char c) { return c >= '0' && c <= '9'; }))
+                return std::string_view::npos;
+            const long index = std::stol(std::string(token));
+            i = SkipSpace(json, i + 1);
+            for (long k = 0; k < index; ++k) {
+                if (i >= json.size() || json[i] == ']') return std::string_view::npos;
+                i = SkipSpace(json, SkipValue(json, i));
+                if (i >= json.size() || json[i] != ',') return std::string_view::npos;
+                i = SkipSpace(json, i + 1);
+            }
+            if (i >= json.size() || json[i] == ']') return std::string_view::npos;
+        } else {
+            return std::string_view::npos;
+        }
+    }
+    return i;
+}
+
+}  // namespace
+
+FileLoc LocateJsonPointer(const std::string &gltfPath, const std::string &pointer) {
+    FileLoc loc{gltfPath};
+    // A .glb's JSON is one line inside a binary file: the pointer in the message says where.
+    if (pointer.empty() || LowerExtension(gltfPath) == ".glb") return loc;
+    std::string text;
+    FileReadError error;
+    if (!ReadFileContents(gltfPath, &text, &error, 64u << 20)) return loc;
+    const size_t at = FindJsonPointer(text, pointer);
+    if (at == std::string_view::npos || at >= text.size()) return loc;
+    loc.line = 1 + int(std::count(text.begin(), text.begin() + long(at), '\n'));
+    const size_t lineStart = text.rfind('\n', at);
+    loc.column = int(at - (lineStart == std::string::npos ? 0 : lineStart + 1)) + 1;
+    return loc;
+}
+
+void GltfConverter::Fail(const std::string &msg) const {
+    if (where_.empty()) throw SceneError(loc_, msg);
+    throw SceneError(LocateJsonPointer(loc_.file, where_), msg + " (at " + where_ + ")");
 }
 
 std::string GltfConverter::ImageFilename(int imageIndex) {
@@ -77,7 +190,8 @@ std::string GltfConverter::ImageFilename(int imageIndex) {
 // texture has no usable image. `linear`: the image holds data (metallicRoughness, occlusion),
 // not sRGB colours.
 std::string GltfConverter::TextureFor(int textureIndex, bool linear) {
-    const int key = linear ? -2 - textureIndex : textureIndex;
+    // In 64 bits: the index is the file's (2^31 - 1 would overflow an int's -2 - index).
+    const int64_t key = linear ? -2 - int64_t(textureIndex) : int64_t(textureIndex);
     auto it = textureNames_.find(key);
     if (it != textureNames_.end()) return it->second;
     std::string name;
@@ -183,6 +297,7 @@ bool GltfConverter::AddMap(ParamSet &ps, const std::string &param, int textureIn
 // and every ray that hits it sees it (docs/MATERIALS.md).
 void GltfConverter::ConvertMaterials() {
     for (size_t mi = 0; mi < model_.materials.size(); ++mi) {
+        const Where where(*this, "/materials/" + std::to_string(mi));
         const tinygltf::Material &m = model_.materials[mi];
         const auto &pbr = m.pbrMetallicRoughness;
         currentMaterial_ = int(mi);

@@ -227,10 +227,15 @@ Matrix4 NodeLocalMatrix(const tinygltf::Node &n, const FileLoc &loc) {
 }  // namespace
 
 void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
-    if (meshIndex < 0 || size_t(meshIndex) >= model_.meshes.size())
+    if (meshIndex < 0 || size_t(meshIndex) >= model_.meshes.size()) {
+        const Where where(*this, where_ + "/mesh");  // the node's
         Fail("node refers to mesh " + std::to_string(meshIndex) + ", which does not exist");
+    }
     const tinygltf::Mesh &mesh = model_.meshes[size_t(meshIndex)];
-    for (const tinygltf::Primitive &prim : mesh.primitives) {
+    for (size_t primIndex = 0; primIndex < mesh.primitives.size(); ++primIndex) {
+        const tinygltf::Primitive &prim = mesh.primitives[primIndex];
+        const Where where(*this, "/meshes/" + std::to_string(meshIndex) + "/primitives/" +
+                                     std::to_string(primIndex));
         int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES) {
             if (warnedModes_.insert(mode).second)
@@ -324,8 +329,11 @@ Matrix4 RigidPart(const Matrix4 &m) {
 }
 
 void GltfConverter::AddCamera(const tinygltf::Node &node, const Matrix4 &world) {
-    if (node.camera < 0 || size_t(node.camera) >= model_.cameras.size())
+    if (node.camera < 0 || size_t(node.camera) >= model_.cameras.size()) {
+        const Where where(*this, where_ + "/camera");  // the node's
         Fail("node refers to camera " + std::to_string(node.camera) + ", which does not exist");
+    }
+    const Where where(*this, "/cameras/" + std::to_string(node.camera));
     const tinygltf::Camera &cam = model_.cameras[size_t(node.camera)];
     Matrix4 rigid = RigidPart(world);
     for (int r = 0; r < 3; ++r)
@@ -428,8 +436,15 @@ void GltfConverter::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<i
     for (int p : path)
         if (p == nodeIndex) Fail("node " + std::to_string(nodeIndex) + " is its own ancestor");
     if (path.size() > 1000) Fail("node hierarchy is deeper than 1000 levels");
+    const Where where(*this, "/nodes/" + std::to_string(nodeIndex));
     const tinygltf::Node &node = model_.nodes[size_t(nodeIndex)];
-    Matrix4 world = parent * NodeLocalMatrix(node, loc_);
+    Matrix4 local;
+    try {
+        local = NodeLocalMatrix(node, loc_);
+    } catch (const SceneError &e) {
+        Fail(e.Message());
+    }
+    Matrix4 world = parent * local;
     if (node.mesh >= 0) {
         Transform t;
         bool ok = true;
@@ -522,6 +537,7 @@ void GltfConverter::Read() {
     int sceneIndex = model_.defaultScene;
     if (sceneIndex < 0 || size_t(sceneIndex) >= model_.scenes.size()) sceneIndex = 0;
     CheckExpansion(model_.scenes[size_t(sceneIndex)].nodes);
+    const Where where(*this, "/scenes/" + std::to_string(sceneIndex) + "/nodes");
     std::vector<int> path;
     for (int n : model_.scenes[size_t(sceneIndex)].nodes) Traverse(n, Matrix4::Identity(), path);
 }
@@ -558,14 +574,14 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
     }
     if (budget.refused) throw *budget.refused;
     if (budget.tooDeep) throw *budget.tooDeep;
-    if (!budget.confinedPath.empty())
-        throw SceneError(
-            gltf_internal::LocateUri(path, budget.confinedPath),
-            "cannot read file " + Quote(budget.confinedPath) + ": " + budget.confinedReason);
-    if (!budget.failedPath.empty())
-        throw SceneError(
-            gltf_internal::LocateUri(path, budget.failedPath),
-            "cannot read file " + Quote(budget.failedPath) + ": " + budget.failedReason);
+    // A buffer or image that could not be read, named by its URI as the file writes it.
+    for (auto [failed, reason] : {std::pair{&budget.confinedPath, &budget.confinedReason},
+                                  std::pair{&budget.failedPath, &budget.failedReason}}) {
+        if (failed->empty()) continue;
+        std::string uri;
+        const FileLoc at = gltf_internal::LocateUri(path, *failed, &uri);
+        throw SceneError(at, "cannot read file " + Quote(uri) + ": " + *reason);
+    }
     for (const std::string &w : MessageLines(warn)) diag.Warn(loc, w);
     if (!ok) {
         std::vector<std::string> errs = MessageLines(err);

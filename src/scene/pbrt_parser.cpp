@@ -270,6 +270,8 @@ void PbrtParser::Include(const Token &dir, const std::string &name) {
     if (opts_.confineIncludes && !IsInsideDirectory(canonical, baseDir_))
         throw SceneError(dir.Loc(),
                          "included file " + Quote(name) + " is outside the scene directory");
+    // Refused under --confine with the name as the scene wrote it, not where it resolves.
+    CheckReadConfinement(path, dir.Loc(), "included file", name);
     std::string text = opts_.budget ? ReadFileOrThrow(path, dir.Loc(), *opts_.budget,
                                                       "included file " + Quote(name))
                                     : ReadFileOrThrow(path, dir.Loc());

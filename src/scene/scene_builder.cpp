@@ -433,9 +433,10 @@ void SceneBuilder::Shape(const std::string &type, ParsedParameterVector params,
     CheckWorld("Shape", loc);
     ShapeDesc s;
     static_cast<SceneEntity &>(s) = Entity(type, std::move(params), loc);
-    // Meshes given inline ("trianglemesh" arrays) live in the description until the render.
-    if (opts_.budget)
-        opts_.budget->Charge(ParamStorageBytes(s.params), "shape " + Quote(type), loc);
+    // The shape's description (its transforms, names and locations, about 600 bytes) and its
+    // parameters (meshes given inline as "trianglemesh" arrays) live until the render: an
+    // Include fan-out of parameterless shapes is refused at the shape that does not fit.
+    if (opts_.budget) opts_.budget->Charge(ShapeDescBytes(s), "shape " + Quote(type), loc);
     s.worldFromObject = ctm_;
     s.motion = Motion();
     s.reverseOrientation = gs_.reverseOrientation;

@@ -6,6 +6,11 @@
 
 namespace prism {
 
+uint64_t ShapeDescBytes(const ShapeDesc &s) {
+    return sizeof(ShapeDesc) + s.type.size() + s.loc.file.size() + s.name.size() +
+           s.mediumLoc.file.size() + ParamStorageBytes(s.params);
+}
+
 const ObjectDesc *FindObject(const SceneDescription &desc, const std::string &name) {
     for (auto it = desc.objects.rbegin(); it != desc.objects.rend(); ++it)
         if (it->name == name) return &*it;

@@ -79,6 +79,10 @@ struct ShapeDesc : SceneEntity {
     FileLoc mediumLoc;
 };
 
+// What a ShapeDesc holds in memory, for the memory budget: the struct, its strings and its
+// parameters (ParamStorageBytes).
+uint64_t ShapeDescBytes(const ShapeDesc &s);
+
 // ObjectBegin/ObjectEnd: shapes recorded with the CTM at their declaration.
 struct ObjectDesc {
     std::string name;

@@ -70,7 +70,7 @@ std::string TriangleBuffer() {
 struct EscapeCase {
     std::string scene;     // under scene/
     std::string location;  // "scene/FILE:LINE:" of the directive naming the file
-    std::string names;     // a fragment of the refused file's name in the message
+    std::string names;     // a fragment of the refused file's name (as written) in the message
     bool readable;         // whether an unconfined render succeeds
 };
 
@@ -102,10 +102,10 @@ std::vector<EscapeCase> WriteCorpus(const fs::path &root) {
     pbrt("include_dotdot.pbrt", "Include \"../outside/secret.pbrt\"", "secret.pbrt", true);
     pbrt("include_absolute.pbrt", "Include \"" + abs + "/secret.pbrt\"", "secret.pbrt", true);
     fs::create_symlink("../outside/secret.pbrt", sc / "link.pbrt");
-    pbrt("include_symlink.pbrt", "Include \"link.pbrt\"", "secret.pbrt", true);
+    pbrt("include_symlink.pbrt", "Include \"link.pbrt\"", "link.pbrt", true);
     pbrt("include_dev_zero.pbrt", "Include \"/dev/zero\"", "/dev/zero", false);
     fs::create_symlink("/dev/zero", sc / "zero.pbrt");
-    pbrt("include_symlink_dev_zero.pbrt", "Include \"zero.pbrt\"", "/dev/zero", false);
+    pbrt("include_symlink_dev_zero.pbrt", "Include \"zero.pbrt\"", "zero.pbrt", false);
     pbrt("include_environ.pbrt", "Include \"/proc/self/environ\"", "environ", false);
     pbrt("import_dotdot.pbrt", "Import \"../outside/secret.pbrt\"", "secret.pbrt", true);
     pbrt("plymesh_dotdot.pbrt", "Shape \"plymesh\" \"string filename\" \"../outside/m.ply\"",
@@ -128,7 +128,7 @@ std::vector<EscapeCase> WriteCorpus(const fs::path &root) {
     cases.push_back({"mtllib_dotdot.obj", "scene/mtllib_dotdot.obj:1:", "out.mtl", true});
     fs::create_symlink("../outside/out.mtl", sc / "link.mtl");
     obj("mtllib_symlink.obj", "link.mtl");
-    cases.push_back({"mtllib_symlink.obj", "scene/mtllib_symlink.obj:1:", "out.mtl", true});
+    cases.push_back({"mtllib_symlink.obj", "scene/mtllib_symlink.obj:1:", "link.mtl", true});
     obj("mtllib_dev_zero.obj", "../../../../../../../../../../dev/zero");
     cases.push_back({"mtllib_dev_zero.obj", "scene/mtllib_dev_zero.obj:1:", "/dev/zero", false});
     obj("mtllib_environ.obj", "../../../../../../../../../../proc/self/environ");
@@ -147,7 +147,7 @@ std::vector<EscapeCase> WriteCorpus(const fs::path &root) {
     cases.push_back({"buffer_dotdot.gltf", "scene/buffer_dotdot.gltf:4:", "b.bin", true});
     fs::create_symlink("../outside/b.bin", sc / "link.bin");
     std::ofstream(sc / "buffer_symlink.gltf") << Gltf("link.bin");
-    cases.push_back({"buffer_symlink.gltf", "scene/buffer_symlink.gltf:4:", "b.bin", true});
+    cases.push_back({"buffer_symlink.gltf", "scene/buffer_symlink.gltf:4:", "link.bin", true});
     std::ofstream(sc / "buffer_dev_zero.gltf") << Gltf("../../../../../../../../../../dev/zero");
     cases.push_back({"buffer_dev_zero.gltf", "scene/buffer_dev_zero.gltf:4:", "zero", false});
     std::ofstream(sc / "buffer_environ.gltf")
@@ -186,6 +186,52 @@ TEST(Confine, EscapingScenesAreRefusedWithTheDirectiveLocation) {
         EXPECT_EQ(u.err.find("confined"), std::string::npos) << u.err;
         fs::remove(root / "free.png");
     }
+}
+
+// Refusals used to say where the path resolves and name the confined folder, both absolute
+// (`it resolves to "/srv/.../outside/secret.pbrt", outside the confined folder
+// "/srv/.../scene"`): an upload learnt the server's folders from its own errors. They name the
+// file as the scene wrote it, and nothing else.
+TEST(Confine, RefusalsNameTheFileAsTheSceneWroteIt) {
+    fs::path root = TempDir("said");
+    std::vector<EscapeCase> cases = WriteCorpus(root);
+    const std::string server = fs::canonical(root).string();
+    for (const EscapeCase &c : cases) {
+        if (c.scene.find("absolute") != std::string::npos) continue;  // the scene wrote it
+        SCOPED_TRACE(c.scene);
+        RunResult r = RunPrism(
+            "render scene/" + c.scene + " --confine --res 8x8 --spp 1 -o confined.png -q", root);
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_EQ(r.err.find(server), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("resolves"), std::string::npos) << r.err;
+    }
+    for (auto [scene, said] :
+         {std::pair{"include_dotdot.pbrt",
+                    "included file \"../outside/secret.pbrt\": it lies "
+                    "outside the confined folder"},
+          std::pair{"include_symlink.pbrt", "included file \"link.pbrt\": it lies outside"},
+          std::pair{"imagemap_absolute.pbrt", "/outside/tex.exr\": it lies outside"},
+          std::pair{"buffer_dotdot.gltf",
+                    "cannot read file \"../outside/b.bin\": it lies outside the confined folder"},
+          std::pair{"image_dotdot.gltf", "\"../outside/tex.exr\": it lies outside"}}) {
+        SCOPED_TRACE(scene);
+        RunResult r = RunPrism(std::string("render scene/") + scene +
+                                   " --confine --res 8x8 --spp 1 -o confined.png -q",
+                               root);
+        EXPECT_NE(r.err.find(said), std::string::npos) << r.err;
+    }
+    // The Film's "filename" outside the folder: the folder is not named either.
+    std::string film = kPbrtHead;
+    film.replace(film.find("Film \"image\""), 12,
+                 "Film \"image\" \"string filename\" \"../stolen.png\"");
+    std::ofstream(root / "scene/film.pbrt") << film << "Shape \"sphere\"\n";
+    RunResult r = RunPrism("render scene/film.pbrt --confine -q", root);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("Film \"filename\" \"../stolen.png\" is outside the confined folder; "
+                         "give the output with -o"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find(server), std::string::npos) << r.err;
 }
 
 TEST(Confine, InfoAndValidateAreConfinedToo) {

@@ -157,6 +157,29 @@ TEST(Hostile, LongTextureChainsAreRefusedAtTheTexture) {
     ExpectRefused(dir, "twice.pbrt",
                   "twice.pbrt:22:1: error: texture \"t16\": one lookup would evaluate more than "
                   "65536 textures");
+    // The issue's own form: 40 `mix` textures, each mixing its predecessor with itself (and
+    // float ones whose amount is the predecessor too: three references a level).
+    std::string mix = kHead, mixFloat = kHead;
+    mix += "Texture \"t0\" \"spectrum\" \"constant\" \"rgb value\" [0.5 0.5 0.5]\n";
+    mixFloat += "Texture \"t0\" \"float\" \"constant\" \"float value\" 0.5\n";
+    for (int i = 1; i < 40; ++i) {
+        const std::string prev = "\"t" + std::to_string(i - 1) + "\"";
+        mix += "Texture \"t" + std::to_string(i) + "\" \"spectrum\" \"mix\" \"texture tex1\" " +
+               prev + " \"texture tex2\" " + prev + " \"float amount\" 0.5\n";
+        mixFloat += "Texture \"t" + std::to_string(i) + "\" \"float\" \"mix\" \"texture tex1\" " +
+                    prev + " \"texture tex2\" " + prev + " \"texture amount\" " + prev + "\n";
+    }
+    std::ofstream(dir / "mix.pbrt") << mix << "Material \"matte\" \"texture Kd\" \"t39\"\n"
+                                    << "Shape \"sphere\"\n";
+    ExpectRefused(dir, "mix.pbrt",
+                  "mix.pbrt:22:1: error: texture \"t16\": one lookup would evaluate more than "
+                  "65536 textures");
+    std::ofstream(dir / "mix_float.pbrt")
+        << mixFloat << "Material \"matte\" \"texture sigma\" \"t39\"\nShape \"sphere\"\n";
+    // 3^11 > 65536 > 3^10: t10 would evaluate (3^11 - 1) / 2 = 88573 textures.
+    ExpectRefused(dir, "mix_float.pbrt",
+                  "mix_float.pbrt:16:1: error: texture \"t10\": one lookup would evaluate more "
+                  "than 65536 textures");
 }
 
 int WarningLines(const std::string &err) {
@@ -252,6 +275,27 @@ TEST(Hostile, NulAndControlCharactersInNamesArePrintedEscaped) {
               std::string::npos)
         << r.err;
     EXPECT_EQ(ErrorLines(r.err), 1) << r.err;
+}
+
+// `prism info` printed the scene's names (its file name, shape, material and light types,
+// texture filters, the effects' reasons) on standard output as they were; only its
+// warning lines were escaped. Everything it prints from the scene is escaped now.
+TEST(Hostile, InfoPrintsTheScenesNamesEscaped) {
+    fs::path dir = TempDir("info_escapes");
+    const std::string scene = "i\x1b[2Jnfo.pbrt";
+    std::ofstream(dir / scene)
+        << "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n"
+           "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n"
+           "LightSource \"po\x1b]0;owned\x07int\"\n"
+           "Texture \"c\" \"spectrum\" \"checkerboard\" \"string aamode\" \"n\x1b[1mone\"\n"
+           "Material \"pla\x1b[5mstic\"\nShape \"sph\x1b[7mere\"\nShape \"sphere\"\n";
+    RunResult r = RunPrism("info '" + scene + "'", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(HasRawControlChars(r.out)) << r.out;
+    EXPECT_FALSE(HasRawControlChars(r.err)) << r.err;
+    for (const char *escaped : {"i\\x1b[2Jnfo.pbrt", "po\\x1b]0;owned\\x07int", "n\\x1b[1mone",
+                                "pla\\x1b[5mstic", "sph\\x1b[7mere"})
+        EXPECT_NE(r.out.find(escaped), std::string::npos) << escaped << "\n" << r.out;
 }
 
 // Whether `s` is well-formed UTF-8.

@@ -294,6 +294,30 @@ TEST(Hostile, WhatTheParserHoldsIsChargedToTheBudget) {
     }
 }
 
+// An Include fan-out of parameterless shapes: 3 small files (top, 64 x mid, 64 x leaf, each
+// leaf 256 `Shape "sphere"` lines) make a million shapes. Only the shapes' parameters were
+// charged, none here, so the parser held ~700 MB at a 64 MiB budget before the BVH estimate
+// refused the scene; each shape's description is now charged as it is parsed.
+TEST(Hostile, IncludeFanOutOfShapesIsChargedAsItIsParsed) {
+    fs::path dir = TempDir("include_fanout");
+    {
+        std::ofstream top(dir / "top.pbrt"), mid(dir / "mid.pbrt"), leaf(dir / "leaf.pbrt");
+        top << kHead;
+        for (int i = 0; i < 64; ++i) top << "Include \"mid.pbrt\"\n";
+        for (int i = 0; i < 64; ++i) mid << "Include \"leaf.pbrt\"\n";
+        for (int i = 0; i < 256; ++i) leaf << "Shape \"sphere\"\n";
+    }
+    RunResult r =
+        RunPrism("render top.pbrt -o out.png -q --max-memory 64M", dir, "timeout -k 5 120");
+    EXPECT_EQ(r.exitCode, 2) << r.err.substr(0, 2000);
+    EXPECT_NE(r.err.find("leaf.pbrt:"), std::string::npos) << r.err.substr(0, 2000);
+    EXPECT_NE(r.err.find("error: shape \"sphere\" needs about"), std::string::npos)
+        << r.err.substr(0, 2000);
+    EXPECT_NE(r.err.find("(--max-memory)"), std::string::npos) << r.err.substr(0, 2000);
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+    if (kPeakIsPrisms) EXPECT_LT(PeakChildMiB(), 3 * 64.0);
+}
+
 // A .spd spectrum file was read whole, whatever --max-memory said; it is now size-checked
 // against the budget (reading and converting it takes about ten times its size) first.
 TEST(Hostile, SpectrumFilesAreCheckedAgainstTheBudget) {
@@ -364,6 +388,51 @@ TEST(Hostile, GltfNodesSharingChildrenAreCountedBeforeTheyAreExpanded) {
             << r.err;
         EXPECT_NE(r.err.find("(--max-memory)"), std::string::npos) << r.err;
         EXPECT_FALSE(fs::exists(dir / "out.png"));
+    }
+}
+
+// Nested glass at maxdepth 1000: every interface splits a ray in two (reflection and
+// refraction), so a camera sample's ray tree grew about 1.8 times per level, a render that
+// never ends. Each camera sample's tree now has a budget (render/ray_tree.h) shared evenly
+// down the tree; the rays it leaves out are counted and the render says so.
+TEST(Hostile, NestedGlassRayTreesStayWithinTheirBudget) {
+    fs::path dir = TempDir("nested_glass");
+    {
+        std::ofstream f(dir / "glass.pbrt");
+        f << "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 10\n"
+             "Film \"image\" \"integer xresolution\" 2 \"integer yresolution\" 1\n"
+             "Integrator \"whitted\" \"integer maxdepth\" 1000\nWorldBegin\n"
+             "LightSource \"point\" \"rgb I\" [10 10 10] \"point from\" [0 2 5]\n"
+             "Material \"glass\"\n";
+        for (int i = 0; i < 8; ++i)
+            f << "Shape \"sphere\" \"float radius\" " << 1.0 - 0.1 * i << "\n";
+    }
+    for (const char *integrator : {"whitted", "directlighting", "distribution"}) {
+        SCOPED_TRACE(integrator);
+        RunResult r = RunPrism(std::string("render glass.pbrt -o out.png --integrator ") +
+                                   integrator + " --spp 1 --threads 2",
+                               dir, "timeout -k 5 60");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.err.find("secondary rays not traced: ray trees reached their budget of "
+                             "1048576 rays per camera sample"),
+                  std::string::npos)
+            << r.err;
+        // Two camera samples: at most twice the budget of reflected and refracted rays.
+        unsigned long long camera = 0, shadow = 0, reflection = 0, refraction = 0;
+        const size_t at = r.err.find("rays: camera ");
+        ASSERT_NE(at, std::string::npos) << r.err;
+        ASSERT_EQ(std::sscanf(r.err.c_str() + at,
+                              "rays: camera %llu, shadow %llu, reflection %llu, refraction %llu",
+                              &camera, &shadow, &reflection, &refraction),
+                  4)
+            << r.err;
+        EXPECT_EQ(camera, 2u);
+        EXPECT_LE(reflection + refraction, 2u * 1048576u);
+        // Deeper than a full binary tree of depth 16 everywhere: rays that end early (they
+        // leave the spheres) leave their share unused, so the tree stays well under the bound.
+        EXPECT_GT(reflection + refraction, 2u * 65536u);
+        EXPECT_TRUE(fs::exists(dir / "out.png"));
+        fs::remove(dir / "out.png");
     }
 }
 

@@ -155,6 +155,10 @@ bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
         FuzzGltf(data, size, rejected);
     else if (target == "image")
         FuzzImage(data, size, rejected);
+    else if (target == "gltf_json")
+        FuzzGltfJson(data, size, rejected);
+    else if (target == "texture")
+        FuzzTextureGraph(data, size, rejected);
     else
         return false;
     return true;

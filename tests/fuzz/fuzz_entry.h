@@ -22,7 +22,17 @@ void FuzzGltf(const uint8_t *data, size_t size,
 void FuzzImage(const uint8_t *data, size_t size,
                std::string *rejected = nullptr);  // ReadImageFromMemory
 
-// Dispatch by target name ("pbrt", "ply", "obj", "gltf", "image"); false if unknown.
+// Structure-aware (fuzz_structured.cpp): the bytes are a generator's choices, not the file.
+void FuzzGltfJson(const uint8_t *data, size_t size,
+                  std::string *rejected = nullptr);  // a well-formed glTF → ReadGltfFile
+void FuzzTextureGraph(const uint8_t *data, size_t size,
+                      std::string *rejected = nullptr);  // a texture graph → build and render
+// The files those two make of `data` (to read or reproduce a finding).
+std::string GltfJsonScene(const uint8_t *data, size_t size);
+std::string TextureGraphScene(const uint8_t *data, size_t size);
+
+// Dispatch by target name ("pbrt", "ply", "obj", "gltf", "image", "gltf_json", "texture");
+// false if unknown.
 bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
                 std::string *rejected = nullptr);
 

@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "assembly/build_scene.h"
 #include "scene/load_scene.h"
@@ -69,6 +70,32 @@ TEST(Renderer, ARaisedCancelFlagRendersNothing) {
     Render(scene, &stats, {}, &cancel);
     EXPECT_TRUE(stats.cancelled);
     EXPECT_EQ(stats.rays.camera, 0u);
+}
+
+// prism-mpi's tile runs (FrameTiles) read the cancel flag as Render does: a raised flag stops
+// a run within one camera packet (its workers used to render every tile they were handed to
+// the end after SIGINT), and a flag that stays down changes no tile.
+TEST(Renderer, FrameTilesHonourTheCancelFlag) {
+    RenderScene scene = Build("box", "", "frame_tiles");
+    FrameTiles frame(scene);
+    const int n = frame.NumTiles();
+    ASSERT_GT(n, 1);
+    std::vector<FilmTile> plain, flagged;
+    RayCounters plainRays, flagRays, upRays;
+    EXPECT_TRUE(frame.RenderTiles(0, n, &plain, &plainRays));
+    volatile int cancel = 0;
+    EXPECT_TRUE(frame.RenderTiles(0, n, &flagged, &flagRays, &cancel));
+    EXPECT_EQ(plainRays.camera, flagRays.camera);
+    ASSERT_EQ(plain.size(), flagged.size());
+    for (size_t t = 0; t < plain.size(); ++t) {
+        const auto a = plain[t].Sums(), b = flagged[t].Sums();
+        ASSERT_EQ(a.size_bytes(), b.size_bytes());
+        EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size_bytes()), 0) << "tile " << t;
+    }
+    cancel = 1;
+    std::vector<FilmTile> stopped;
+    EXPECT_FALSE(frame.RenderTiles(0, n, &stopped, &upRays, &cancel));
+    EXPECT_EQ(upRays.camera, 0u);
 }
 
 }  // namespace

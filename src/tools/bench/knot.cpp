@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
+
+#include "core/output_file.h"
 
 namespace prism {
 
@@ -67,11 +68,10 @@ std::string Printf(const char *fmt, double a, double b, double c) {
     return buf;
 }
 
+// Through AtomicOutputFile (core/output_file.h), as every output: a new temporary file beside
+// `path` (never through a symbolic link), renamed over it once complete.
 void WriteFile(const std::string &path, const std::string &data) {
-    std::ofstream out(path, std::ios::binary);
-    out.write(data.data(), std::streamsize(data.size()));
-    out.close();
-    if (!out) throw std::runtime_error("cannot write " + path);
+    WriteFileAtomically(path, data);
 }
 
 double HFov() {

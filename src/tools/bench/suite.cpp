@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/output_file.h"
 #include "tools/bench/process.h"
 #include "tools/bench/suite_internal.h"
 
@@ -55,11 +56,10 @@ std::string GitCommit(const std::string &sourceDir) {
     return dirty.empty() ? c : c + " (with uncommitted changes)";
 }
 
+// Through AtomicOutputFile (core/output_file.h), as every output: a new temporary file beside
+// `path` (never through a symbolic link), renamed over it once complete.
 void WriteText(const std::string &path, const std::string &text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error("cannot write " + path);
+    WriteFileAtomically(path, text);
 }
 
 std::string FormatValue(double v) {

@@ -84,9 +84,9 @@ void RunWorker(const BatchArgs &a, const std::string &exe) {
             j.output = r.GetString();
             // The render's log stays on this node, so a rank that dies leaves nothing in the
             // output folder but finished images.
-            j.logPath =
-                (fs::temp_directory_path() / fmt::format("prism-mpi-{}-{}.log", getpid(), index))
-                    .string();
+            // Its name is random (CreateUniqueFile): no other user of the folder can guess it
+            // and plant a link or a file there first.
+            j.logDir = fs::temp_directory_path().string();
             Launch(j, a, exe, threadsPerJob, /*dieWithParent=*/true);
             running.emplace(j.pid, std::pair{index, std::move(j)});
         }

@@ -90,7 +90,9 @@ void RunWorker(const RenderJob &job) {
         int32_t begin = r.Get<int32_t>(), end = r.Get<int32_t>();
         if (begin >= end) continue;  // no tiles left
         auto t0 = std::chrono::steady_clock::now();
-        frame.RenderTiles(begin, end, &tiles, &rays);
+        // SIGINT/SIGTERM stop the run within a camera packet, as they stop `prism render`;
+        // its unfinished tiles are not sent (rank 0 is stopping too).
+        if (!frame.RenderTiles(begin, end, &tiles, &rays, &g_stop)) break;
         busy += SecondsSince(t0);
         Writer w;
         w.Put(begin), w.Put(end), w.Put(int32_t(threads));

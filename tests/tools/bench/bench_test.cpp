@@ -82,6 +82,26 @@ TEST(Knot, PlyReadableAndSceneBuilds) {
     EXPECT_EQ(scene.resolution, Vec2i(800, 600));
 }
 
+// bench's files were written with std::ofstream, which follows a symbolic link at the target
+// and truncates whatever it points to; they go through AtomicOutputFile now (a new temporary
+// beside the target, renamed over it): a link there is replaced, its target left alone.
+TEST(Knot, OutputsReplaceLinksInsteadOfWritingThroughThem) {
+    fs::path dir = TempDir("knot_links");
+    fs::create_directories(dir / "out");
+    std::ofstream(dir / "victim.txt") << "keep";
+    for (const char *name : {"knot.ply", "knot.pbrt", "knot.pov", "knot_mesh.inc", "empty.pbrt"})
+        fs::create_symlink("../victim.txt", dir / "out" / name);
+    WriteKnotScene((dir / "out").string(), 8, 4, true);
+    WriteEmptyScene((dir / "out").string());
+    EXPECT_EQ(ReadFile(dir / "victim.txt"), "keep");
+    for (const char *name : {"knot.ply", "knot.pbrt", "knot.pov", "knot_mesh.inc", "empty.pbrt"}) {
+        EXPECT_FALSE(fs::is_symlink(dir / "out" / name)) << name;
+        EXPECT_GT(fs::file_size(dir / "out" / name), 0u) << name;
+    }
+    for (const auto &e : fs::directory_iterator(dir / "out"))
+        EXPECT_NE(e.path().extension(), ".tmp") << e.path();  // no temporary left
+}
+
 TEST(Knot, EmptySceneRenders) {
     fs::path dir = TempDir("empty");
     std::string empty = WriteEmptyScene(dir.string());

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -235,12 +236,46 @@ TEST_F(MpiTest, KilledRankEndsTheBatchAndKeepsFinishedImages) {
     // No half-written file is left behind: the renders' logs are in the temporary folder.
     for (const auto &e : fs::directory_iterator(dir_ / "out"))
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
-    // The logs of the renders the job cut short (mpi_batch.cpp names them by rank pid).
+    // The logs of the renders the job cut short (`.prism-<rank pid>-XXXXXX.log.tmp`).
     for (const auto &e : fs::directory_iterator(fs::temp_directory_path())) {
         std::string name = e.path().filename();
         for (pid_t p : {victim, other})
-            if (name.rfind("prism-mpi-" + std::to_string(p) + "-", 0) == 0) fs::remove(e.path());
+            if (name.rfind(".prism-" + std::to_string(p) + "-", 0) == 0 && name.size() > 8 &&
+                name.compare(name.size() - 8, 8, ".log.tmp") == 0)
+                fs::remove(e.path());
     }
+}
+
+// The render logs a batch's ranks keep in the node's temporary folder had guessable names
+// (`prism-mpi-<pid>-<index>.log`): another user of /tmp could plant a link or a file there
+// first. They are created as every temporary is (CreateUniqueFile: a random suffix,
+// O_EXCL | O_NOFOLLOW), and removed once read.
+TEST_F(MpiTest, BatchRenderLogsHaveUnguessableNames) {
+    fs::create_directories(dir_ / "in");
+    fs::create_directories(dir_ / "tmp");
+    for (int k = 0; k < 4; ++k)
+        WriteTestFile(dir_ / "in" / ("s" + std::to_string(k) + ".pbrt"), Sphere(320, 240));
+    std::string cmd = "cd '" + dir_.string() + "' && (TMPDIR='" + (dir_ / "tmp").string() + "' " +
+                      Mpirun(2) +
+                      "batch in -o out --spp 16 --threads 1 --quiet; echo $? >rc.txt) "
+                      ">mpi_stdout.txt 2>mpi_stderr.txt </dev/null &";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    std::set<std::string> seen;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!fs::exists(dir_ / "rc.txt") && std::chrono::steady_clock::now() < deadline) {
+        std::error_code ec;
+        for (const auto &e : fs::directory_iterator(dir_ / "tmp", ec))
+            if (e.path().filename().string().find("prism") != std::string::npos)  // not Open MPI's
+                seen.insert(e.path().filename().string());
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_TRUE(fs::exists(dir_ / "rc.txt")) << ReadFile(dir_ / "mpi_stderr.txt");
+    EXPECT_EQ(std::stoi(ReadFile(dir_ / "rc.txt")), 0) << ReadFile(dir_ / "mpi_stderr.txt");
+    EXPECT_FALSE(seen.empty());
+    const std::regex unique(R"(\.prism-[0-9]+-[A-Za-z0-9]{6}\.log\.tmp)");
+    for (const std::string &name : seen) EXPECT_TRUE(std::regex_match(name, unique)) << name;
+    for (const auto &e : fs::directory_iterator(dir_ / "tmp"))  // every log removed
+        EXPECT_EQ(e.path().filename().string().find("prism"), std::string::npos) << e.path();
 }
 
 }  // namespace

@@ -1,0 +1,7 @@
+// libFuzzer target for the texture-graph generator (see fuzz_entry.h, fuzz_structured.cpp).
+#include "fuzz_entry.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    prism::fuzz::FuzzTextureGraph(data, size);
+    return 0;
+}
