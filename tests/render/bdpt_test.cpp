@@ -11,32 +11,20 @@
 
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
+#include "render/scene_text.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
 
 namespace prism {
 namespace {
 
 RenderScene BuildText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
-    const std::string file = test::WriteTestFile(test::ScratchDir("bdpt") / (name + ".pbrt"), text);
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(file, diag);
-    return BuildRenderScene(desc, opts, diag);
+    return test::BuildSceneText("bdpt", name, text, opts);
 }
 
 Image RenderSeed(const RenderScene &scene, uint32_t seed) {
-    RenderOptions o;
-    o.sampler = scene.sampler;
-    o.sampler.seed = seed;
-    RenderStats stats;
-    return Render(scene, o, &stats);
+    return test::RenderWithSeed(scene, seed);
 }
-
-double Mean(const Image &img) {
-    double s = 0;
-    for (float v : img.pixels) s += v;
-    return s / double(img.pixels.size());
-}
+double Mean(const Image &img) { return test::MeanValue(img); }
 
 // Mean |a - b| over mean |b| (all channels).
 double RelL1(const Image &a, const Image &b) {

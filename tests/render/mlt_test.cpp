@@ -10,32 +10,20 @@
 #include "assembly/build_scene.h"
 #include "core/error.h"
 #include "render/renderer.h"
+#include "render/scene_text.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
 
 namespace prism {
 namespace {
 
 RenderScene BuildText(const std::string &name, const std::string &text) {
-    const std::string file = test::WriteTestFile(test::ScratchDir("mlt") / (name + ".pbrt"), text);
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(file, diag);
-    return BuildRenderScene(desc, {}, diag);
+    return test::BuildSceneText("mlt", name, text);
 }
 
 Image RenderSeed(const RenderScene &scene, uint32_t seed) {
-    RenderOptions o;
-    o.sampler = scene.sampler;
-    o.sampler.seed = seed;
-    RenderStats stats;
-    return Render(scene, o, &stats);
+    return test::RenderWithSeed(scene, seed);
 }
-
-double Mean(const Image &img) {
-    double s = 0;
-    for (float v : img.pixels) s += v;
-    return s / double(img.pixels.size());
-}
+double Mean(const Image &img) { return test::MeanValue(img); }
 
 std::string Mlt(int mutations, int bootstrap = 4096, int chains = 64, int maxDepth = 5) {
     return "Integrator \"mlt\" \"integer maxdepth\" [" + std::to_string(maxDepth) +

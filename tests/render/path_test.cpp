@@ -16,6 +16,7 @@
 #include "render/light_sampling.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
+#include "render/scene_text.h"
 #include "scene/load_scene.h"
 
 namespace fs = std::filesystem;
@@ -24,13 +25,7 @@ namespace prism {
 namespace {
 
 RenderScene BuildText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
-    fs::path dir = fs::path(::testing::TempDir()) / "prism_path";
-    fs::create_directories(dir);
-    fs::path file = dir / (name + ".pbrt");
-    std::ofstream(file) << text;
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(file.string(), diag);
-    return BuildRenderScene(desc, opts, diag);
+    return test::BuildSceneText("prism_path", name, text, opts);
 }
 
 Image RenderText(const std::string &name, const std::string &text, BuildSettings opts = {}) {

@@ -11,6 +11,7 @@
 
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
+#include "render/scene_text.h"
 #include "scene/load_scene.h"
 
 namespace fs = std::filesystem;
@@ -19,13 +20,7 @@ namespace prism {
 namespace {
 
 RenderScene BuildText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
-    fs::path dir = fs::path(::testing::TempDir()) / "prism_sppm";
-    fs::create_directories(dir);
-    fs::path file = dir / (name + ".pbrt");
-    std::ofstream(file) << text;
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(file.string(), diag);
-    return BuildRenderScene(desc, opts, diag);
+    return test::BuildSceneText("prism_sppm", name, text, opts);
 }
 
 Image RenderText(const std::string &name, const std::string &text, RenderStats *stats = nullptr,
