@@ -48,6 +48,8 @@ struct ReadBudget {
     std::string failedPath, failedReason;
     // The glTF's JSON nests deeper than kMaxJsonDepth: refused before tinygltf parses it.
     std::optional<SceneError> tooDeep;
+    // The model tinygltf is filling (its buffers and views are read before its images).
+    const tinygltf::Model *model = nullptr;
 };
 
 // tinygltf's own FileExists probes every candidate path of a URI with fopen(path, "rb"): a
@@ -73,9 +75,29 @@ bool RefuseToWrite(std::string *err, const std::string &, const std::vector<unsi
 // bufferViews) keep their encoded bytes in Image::image; external files are referenced by
 // path and decoded later by the renderer (which charges the decoded texture), so the bytes
 // tinygltf read for them are given back to the budget.
-bool KeepEncodedBytes(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
-                      const unsigned char *bytes, int size, void *user) {
+bool KeepEncodedBytes(tinygltf::Image *image, const int index, std::string *err, std::string *, int,
+                      int, const unsigned char *bytes, int size, void *user) {
     auto *b = static_cast<ReadBudget *>(user);
+    // tinygltf 2.7 hands an image's buffer view over without checking it against its buffer
+    // (found by fuzz_gltf_json: a view past the end was read out of bounds). Checked here,
+    // before a byte is read.
+    if (image->uri.empty() && image->bufferView >= 0 && b->model) {
+        const auto &views = b->model->bufferViews;
+        const auto &buffers = b->model->buffers;
+        bool ok = size_t(image->bufferView) < views.size();
+        if (ok) {
+            const tinygltf::BufferView &v = views[size_t(image->bufferView)];
+            ok = v.buffer >= 0 && size_t(v.buffer) < buffers.size() &&
+                 v.byteOffset <= buffers[size_t(v.buffer)].data.size() &&
+                 v.byteLength <= buffers[size_t(v.buffer)].data.size() - v.byteOffset;
+        }
+        if (!ok) {
+            if (err)
+                *err += "image " + std::to_string(index) + ": buffer view " +
+                        std::to_string(image->bufferView) + " reaches past the end of its buffer\n";
+            return false;
+        }
+    }
     if (!image->uri.empty() && image->uri.compare(0, 5, "data:") != 0 && size > 0)
         b->budget.Release(uint64_t(size));
     if (image->uri.empty() && bytes && size > 0) image->image.assign(bytes, bytes + size);
@@ -342,12 +364,21 @@ void GltfConverter::AddCamera(const tinygltf::Node &node, const Matrix4 &world) 
                 diag_.Warn(loc_, "camera node has a degenerate transform; camera ignored");
                 return;
             }
+    // A rigid part that is finite but singular (found by fuzz_gltf_json: std::invalid_argument
+    // escaped) frames no camera either.
+    Transform worldFromCamera;
+    try {
+        worldFromCamera = Transform(rigid);
+    } catch (const std::invalid_argument &) {
+        diag_.Warn(loc_, "camera node has a degenerate transform; camera ignored");
+        return;
+    }
     CameraDesc &cd = desc_.camera;
     cd.loc = loc_;
     // glTF cameras look down -z with +y up (right-handed); pbrt's look down +z with +y up and
     // +x to the right of the image (left-handed). Flipping z maps glTF-camera right to pbrt
     // right and "in front" to z > 0 without mirroring the image.
-    cd.cameraFromWorld = Scale(1, 1, -1) * Transform(rigid).Inverse();
+    cd.cameraFromWorld = Scale(1, 1, -1) * worldFromCamera.Inverse();
     if (cam.type == "orthographic") {
         const auto &o = cam.orthographic;
         if (!(o.xmag != 0 && o.ymag != 0)) Fail("orthographic camera needs non-zero xmag and ymag");
@@ -559,6 +590,7 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
     tinygltf::Model model;
     tinygltf::TinyGLTF ctx;
     ReadBudget budget{memory, path, std::nullopt};
+    budget.model = &model;
     ctx.SetImageLoader(&KeepEncodedBytes, &budget);
     // Every file tinygltf touches goes through Prism's reader (core/file_io.h): no FIFO or
     // device is opened, and --confine holds before anything is opened.
