@@ -26,15 +26,7 @@ Image RenderSeed(const RenderScene &scene, uint32_t seed) {
 }
 double Mean(const Image &img) { return test::MeanValue(img); }
 
-// Mean |a - b| over mean |b| (all channels).
-double RelL1(const Image &a, const Image &b) {
-    double d = 0, m = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        d += std::abs(double(a.pixels[i]) - double(b.pixels[i]));
-        m += std::abs(double(b.pixels[i]));
-    }
-    return d / m;
-}
+using test::RelL1;
 
 // The camera inside a closed sphere of albedo a whose inside emits 1: Le (1 + a + ... +
 // a^maxdepth).

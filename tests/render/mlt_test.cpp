@@ -65,15 +65,7 @@ std::string Room(const std::string &integrator, int spp) {
            "Translate -0.6 0.6 -0.9\nShape \"sphere\" \"float radius\" [0.6]\nAttributeEnd\n";
 }
 
-// Mean |a - b| over mean |b| (all channels).
-double RelL1(const Image &a, const Image &b) {
-    double d = 0, m = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        d += std::abs(double(a.pixels[i]) - double(b.pixels[i]));
-        m += std::abs(double(b.pixels[i]));
-    }
-    return d / m;
-}
+using test::RelL1;
 
 TEST(Mlt, AgreesWithPathOnADiffuseRoom) {
     // The means agree (within 0.2% when written), and the image converges on the path

@@ -43,15 +43,7 @@ RGB Mean(const Image &img) {
     return RGB(float(s[0] / n), float(s[1] / n), float(s[2] / n));
 }
 
-// Mean |a - b| over mean |b| (all channels).
-double RelL1(const Image &a, const Image &b) {
-    double d = 0, m = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        d += std::abs(double(a.pixels[i]) - double(b.pixels[i]));
-        m += std::abs(double(b.pixels[i]));
-    }
-    return d / m;
-}
+using test::RelL1;
 
 // The camera inside a closed sphere of albedo a whose inside emits Le everywhere: the radiance
 // is Le (1 + a + ... + a^maxdepth) (Le / (1 - a) as maxdepth grows).

@@ -1,6 +1,8 @@
 // Helpers of the render tests that build scenes from pbrt text and render them.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -37,6 +39,16 @@ inline double MeanValue(const Image &img) {
     double s = 0;
     for (float v : img.pixels) s += v;
     return s / double(img.pixels.size());
+}
+
+// Mean |a - b| over mean |b| (all channels).
+inline double RelL1(const Image &a, const Image &b) {
+    double d = 0, m = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        d += std::abs(double(a.pixels[i]) - double(b.pixels[i]));
+        m += std::abs(double(b.pixels[i]));
+    }
+    return d / m;
 }
 
 }  // namespace prism::test
