@@ -308,8 +308,13 @@ void BuildIntegratorSettings(BuildContext &ctx) {
         name = "whitted";
     }
     const DirectiveParams params(ip, diag, "integrator " + Quote(type), desc.integrator.loc);
-    IntegratorInputs in{
-        params, desc.integrator.loc, settings.glossySamples, scene.features.effects, {}, {}};
+    IntegratorInputs in{params,
+                        desc.integrator.loc,
+                        settings.glossySamples,
+                        settings.spp,
+                        scene.features.effects,
+                        {},
+                        {}};
     if (!settings.integrator.empty()) {
         in.why = "--integrator " + type;
     } else {

@@ -211,6 +211,9 @@ struct IntegratorInputs {
     const Params &params;   // the Integrator directive's (or none's: every default)
     FileLoc loc;            // the directive (invalid: the scene names no Integrator)
     int glossySamples = 0;  // --glossy-samples (0: the file's)
+    // --spp (0: the file's). Integrators whose effort per pixel is not a sample count read it
+    // as theirs: sppm's iterations, mlt's mutations per pixel.
+    int spp = 0;
     // The scene's effects: an integrator enables what it simulates of its own (path: indirect
     // illumination), with `why` (at whyLoc) as the reason.
     EffectSet &effects;

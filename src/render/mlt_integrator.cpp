@@ -22,7 +22,7 @@ namespace prism {
 //                                          estimate the mean luminance and pick the chains'
 //                                          starts
 //   chains                integer  1000    Markov chains
-//   mutationsperpixel     integer  100     proposals per pixel, over all chains
+//   mutationsperpixel     integer  100     proposals per pixel, over all chains (--spp wins)
 //   largestepprobability  float    0.3     the share of proposals that draw a new state
 //   sigma                 float    0.01    the standard deviation of the small steps
 std::unique_ptr<Integrator> CreateMltIntegrator(const IntegratorInputs &in) {
@@ -38,6 +38,7 @@ std::unique_ptr<Integrator> CreateMltIntegrator(const IntegratorInputs &in) {
         throw SceneError(p.Loc("chains"),
                          "chains " + std::to_string(mp.chains) + " out of range (1 to 16777216)");
     mp.mutationsPerPixel = p.Int("mutationsperpixel", 100);
+    if (in.spp > 0) mp.mutationsPerPixel = in.spp;
     if (mp.mutationsPerPixel < 1 || mp.mutationsPerPixel > (1 << 20))
         throw SceneError(p.Loc("mutationsperpixel"), "mutationsperpixel " +
                                                          std::to_string(mp.mutationsPerPixel) +

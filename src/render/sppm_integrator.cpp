@@ -13,7 +13,8 @@
 namespace prism {
 
 // Integrator "sppm" (integrator_list.inc). Parameters (pbrt-v3's):
-//   numiterations        integer  64         camera and photon passes
+//   numiterations        integer  64         camera and photon passes (--spp wins, as in
+//                                            pbrt-v4, whose iterations are the spp)
 //   maxdepth             integer  5          the longest camera path to a visible point and
 //                                            the most bounces of a photon (--maxdepth wins)
 //   photonsperiteration  integer  -1         photons per iteration (-1: the crop window's
@@ -25,6 +26,7 @@ std::unique_ptr<Integrator> CreateSppmIntegrator(const IntegratorInputs &in) {
     const Params &p = in.params;
     SppmParams sp;
     sp.iterations = p.Int("numiterations", 64);
+    if (in.spp > 0) sp.iterations = in.spp;
     if (sp.iterations < 1 || sp.iterations > (1 << 24))
         throw SceneError(p.Loc("numiterations"), "numiterations " + std::to_string(sp.iterations) +
                                                      " out of range (1 to 16777216)");

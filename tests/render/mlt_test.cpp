@@ -94,6 +94,16 @@ TEST(Mlt, SameImageForAnyThreadCount) {
     EXPECT_FALSE(RenderSeed(scene, 1).pixels == one.pixels);
 }
 
+// --spp (BuildSettings::spp) is mlt's mutations per pixel: it wins over mutationsperpixel.
+TEST(Mlt, SppSetsTheMutationsPerPixel) {
+    BuildSettings opts;
+    opts.spp = 3;
+    RenderScene scene = test::BuildSceneText("mlt", "spp", Room(Mlt(8, 1024, 16), 1), opts);
+    RenderStats stats;
+    Render(scene, &stats);
+    EXPECT_EQ(stats.spp, 3);
+}
+
 TEST(Mlt, ParametersOutOfRangeAreRefused) {
     for (const char *bad : {"\"integer chains\" [0]", "\"integer mutationsperpixel\" [-1]",
                             "\"integer bootstrapsamples\" [0]", "\"float sigma\" [0]",

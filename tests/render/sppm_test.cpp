@@ -240,6 +240,19 @@ TEST(SppmIntegrator, IntermediateImagesAndCancel) {
     EXPECT_EQ(MeanOf(none, 0, 8, 0, 8), 0.0);
 }
 
+// --spp (BuildSettings::spp) is sppm's iteration count, as in pbrt-v4: it wins over
+// numiterations, and the render reports it as its spp.
+TEST(SppmIntegrator, SppSetsTheIterations) {
+    BuildSettings opts;
+    opts.spp = 3;
+    RenderScene scene = BuildText("spp", DiffuseRoom(Sppm(5, 2000, 0.2f), 8), opts);
+    RenderOptions options;
+    options.sampler = scene.sampler;
+    RenderStats stats;
+    Render(scene, options, &stats);
+    EXPECT_EQ(stats.spp, 3);
+}
+
 TEST(SppmIntegrator, ParameterErrorsAreLocated) {
     for (const char *bad : {"\"integer numiterations\" [0]", "\"float radius\" [-1]",
                             "\"integer photonsperiteration\" [0]"}) {
