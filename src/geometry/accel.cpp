@@ -291,7 +291,7 @@ void Accel::Commit() {
     impl_->committed = true;
 }
 
-bool Accel::IntersectRaw(const Ray &r, RawHit *hit) const {
+bool Accel::IntersectRaw(const Ray &r, RawHit *hit, unsigned mask) const {
     if (!TraceableRay(r)) return false;
     HitContext hc;
     rtcInitIntersectContext(&hc.ctx);
@@ -300,7 +300,7 @@ bool Accel::IntersectRaw(const Ray &r, RawHit *hit) const {
     hc.objectGeom = &objectGeom;
     hc.numRays = 1;
     alignas(16) RTCRayHit rh;
-    InitRay(r, &rh.ray, CameraRays);
+    InitRay(r, &rh.ray, mask);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &hc.ctx, &rh);
@@ -400,9 +400,9 @@ void Accel::PrefetchHits(const RawHit *hits, int n) const {
     }
 }
 
-bool Accel::Intersect(const Ray &r, SurfaceInteraction *si) const {
+bool Accel::Intersect(const Ray &r, SurfaceInteraction *si, unsigned mask) const {
     RawHit hit;
-    if (!IntersectRaw(r, &hit)) return false;
+    if (!IntersectRaw(r, &hit, mask)) return false;
     *si = Interaction(r, hit);
     return true;
 }

@@ -92,10 +92,13 @@ class Accel {
     // Builds the BVH. Throws std::runtime_error with Embree's message on failure.
     void Commit();
 
-    // Closest hit in (0, ray.tMax), with full shading geometry (phase 2).
-    bool Intersect(const Ray &ray, SurfaceInteraction *si) const;
+    // Closest hit in (0, ray.tMax), with full shading geometry (phase 2). `mask` is the
+    // queries whose shapes it sees: CameraRays, or ShadowRays for light tracing's rays (bdpt's
+    // light subpaths, sppm's photons), so that a shape that casts no shadow ("shadowalpha" 0)
+    // lets the light through on every path, not only on shadow rays.
+    bool Intersect(const Ray &ray, SurfaceInteraction *si, unsigned mask = CameraRays) const;
     // Closest hit, ids and t only.
-    bool IntersectRaw(const Ray &ray, RawHit *hit) const;
+    bool IntersectRaw(const Ray &ray, RawHit *hit, unsigned mask = CameraRays) const;
     // Any hit in (0, ray.tMax).
     bool Occluded(const Ray &ray) const;
     // Up to 16 rays at once through Embree's packet path (rtcIntersect16/rtcOccluded16 with

@@ -53,7 +53,7 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
     int passes = 0, made = 0;
     while (made < surfaces) {
         SurfaceInteraction si;
-        if (!scene.accel->Intersect(ray, &si)) {
+        if (!scene.accel->Intersect(ray, &si, importance ? ShadowRays : CameraRays)) {
             if (!importance && HasInfiniteLight(scene)) {
                 BdptVertex &v = path.emplace_back();
                 v.type = BdptVertexType::Light;
@@ -172,7 +172,9 @@ void LightSubpath(const BdptContext &ctx, const BdptSamples &ps, std::vector<Bdp
     const float cosLight = ls.n == Vec3f(0, 0, 0) ? 1.f : AbsDot(ls.n, ls.ray.d);
     const RGB beta = ls.Le * (cosLight / (prob * ls.pdfPos * ls.pdfDir));
     if (beta.IsBlack() || !beta.IsFinite()) return;
-    const Ray ray = y0.infinite ? ls.ray : y0.si.SpawnRay(ls.ray.d, scene.offset);
+    // Point and spot lights (no normal) keep their ray as drawn, with its tMin.
+    const Ray ray =
+        y0.infinite || ls.n == Vec3f(0, 0, 0) ? ls.ray : y0.si.SpawnRay(ls.ray.d, scene.offset);
     rc.shadow++;  // light rays are counted with the shadow rays
     // The next vertex's density: the direction's, or the disk's at infinity.
     Walk(ctx, ray, beta, y0.infinite ? ls.pdfPos : ls.pdfDir, true, ctx.maxDepth, ps, nullptr, path,

@@ -41,10 +41,14 @@ Vec3f DiskOrigin(const SceneSphere &sphere, const Vec3f &d, Vec2f u) {
 
 namespace {
 
-// A point or spot light's emitted ray.
+// A point or spot light's emitted ray. It ignores surfaces within a few ulps of the light
+// (tMin), as the shadow rays toward the light do (they stop ShadowEpsilon short of it): a light
+// placed exactly on a surface, such as a spot at the apex of its closed lamp shade, would
+// otherwise hit that surface at t = 0 and scatter its light out through the wrong side.
 void PointEmission(const Vec3f &pos, const Vec3f &w, const RGB &Le, float pdfDir,
                    LightLeSample *ls) {
     ls->ray = Ray{pos, w};
+    ls->ray.tMin = (std::max({std::abs(pos.x), std::abs(pos.y), std::abs(pos.z)}) + 1) * 0x1p-20f;
     ls->n = Vec3f(0, 0, 0);
     ls->Le = Le;
     ls->pdfPos = 1;

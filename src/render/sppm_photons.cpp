@@ -170,7 +170,7 @@ struct PhotonTracer {
         int passes = 0;
         for (int depth = 0; depth < maxDepth; ++depth) {
             SurfaceInteraction si;
-            if (!scene.accel->Intersect(ray, &si)) break;
+            if (!scene.accel->Intersect(ray, &si, ShadowRays)) break;
             const Material &mat = scene.materials[size_t(scene.Info(si).material)];
             if (mat.IsPassThrough()) {
                 if (++passes > MaxPassThrough) break;
