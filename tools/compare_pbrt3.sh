@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Renders the scenes of ../shared/pbrt3-reference with Prism (the exact scene files pbrt-v3
-# rendered) and compares box-filtered images: both are downsampled by FACTOR (default 4) and
+# Renders the scenes of ../shared/pbrt3-reference and of the project's own
+# scenes/pbrt3-reference (each NAME.pbrt is the exact scene file pbrt-v3 rendered into NAME.exr
+# beside it; the project's folder also holds the images and files its scenes read) with Prism
+# and compares box-filtered images: both are downsampled by FACTOR (default 4) and
 # compared with oiiotool --diff (RMSE, PSNR, max error) and by their relative L1 error
 # (mean |a - b| / mean |b| over the RGB channels, from oiiotool --absdiff and --printstats).
 # Side-by-side PNGs go to OUTDIR. ONLY="cornell-path cornell-direct" renders just those scenes.
@@ -14,12 +16,14 @@ cd "$(dirname "$0")/.."
 OUT="${1:-docs/pbrt3}"
 FACTOR="${2:-4}"
 PRISM="${PRISM:-$PWD/build/prism}"
-REF="${SHARED:-$PWD/../shared}/pbrt3-reference"
+SHARED_REF="${SHARED:-$PWD/../shared}/pbrt3-reference"
+OWN_REF="$PWD/scenes/pbrt3-reference"
 SCENES="${SHARED:-$PWD/../shared}/scenes"
 mkdir -p "$OUT"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
-cp "$REF"/*.pbrt "$WORK/"
+cp "$SHARED_REF"/*.pbrt "$WORK/"
+cp -r "$OWN_REF"/. "$WORK/"
 # The texture the spheres scene needs sits with the original scene.
 cp -r "$SCENES/pbrt-spheres-differentials-texfilt/textures" "$WORK/"
 echo "| scene | Prism render (s) | RMSE | PSNR (dB) | max abs error | mean of reference | rel L1 | pbrt-v3 at Prism's spp: rel L1 |"
@@ -31,6 +35,8 @@ avg3() {
 }
 for f in "$WORK"/*.pbrt; do
     name="$(basename "$f" .pbrt)"
+    REF="$SHARED_REF"
+    [ -f "$OWN_REF/$name.pbrt" ] && REF="$OWN_REF"
     ref="$REF/$name.exr"
     [ -f "$ref" ] || continue
     if [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]]; then continue; fi
@@ -38,7 +44,11 @@ for f in "$WORK"/*.pbrt; do
     sppArgs=()
     if [ -f "$quarter" ]; then
         iters=$(grep -o 'numiterations" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$' || true)
-        if [ -n "$iters" ]; then
+        muts=$(grep -o 'mutationsperpixel" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$' || true)
+        if [ -n "$muts" ]; then
+            # mlt: a quarter of the mutations per pixel.
+            sed -i "s/mutationsperpixel\" *\[ *$muts/mutationsperpixel\" [$((muts / 4))/" "$f"
+        elif [ -n "$iters" ]; then
             # sppm: a quarter of the iterations (its --spp is not the iteration count).
             sed -i "s/numiterations\" *\[ *$iters/numiterations\" [$((iters / 4))/" "$f"
         else
