@@ -177,6 +177,19 @@ TEST(BuildBudget, WithoutABudgetTheDefaultLimitApplies) {
     SceneDescription d = Parse(Triangles(2), diag);
     BuildSettings s;  // budget null: a budget of its own of the default limit
     EXPECT_NO_THROW(BuildRenderScene(d, s, diag));
+    // The smallest square film over the default limit (75% of RAM) is refused before anything
+    // is allocated, by a budget of that limit.
+    int side = 1024;
+    while (EstimateFilmBytes(uint64_t(side), uint64_t(side), 0.5, 0.5, RenderTileSize) <=
+           DefaultMemoryBudget())
+        side += side / 8;
+    s.resolution = {side, side};
+    try {
+        BuildRenderScene(d, s, diag);
+        ADD_FAILURE() << "a " << side << "x" << side << " film was not refused";
+    } catch (const MemoryBudgetError &e) {
+        EXPECT_EQ(e.Limit(), DefaultMemoryBudget());
+    }
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -126,13 +125,10 @@ TEST(Study, TinySceneAllKnobs) {
     o.referenceSpp = 16;
     Diagnostics diag;
     int calls = 0, count = 0;
-    auto t0 = std::chrono::steady_clock::now();
     StudyResult r = RunStudy(desc, "whitted", o, diag, [&](int i, int n, const StudySetting &) {
         EXPECT_EQ(i, ++calls);
         count = n;
     });
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    EXPECT_LT(seconds, 60) << "a tiny study should take seconds";
     // spp 1..8, maxdepth 1..16, cutoff 4, precision 2, offset 4, tessellate 5, robust 2, bvh 3,
     // light-samples 5 (the sky is an infinite light).
     EXPECT_EQ(r.rows.size(), 4u + 16 + 4 + 2 + 4 + 5 + 2 + 3 + 5);

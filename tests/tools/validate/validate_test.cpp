@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -82,7 +81,6 @@ class InflatedSphere final : public AnalyticShapeT<InflatedSphere> {
 };
 
 TEST(Validate, EveryShapeAgreesWithinTheBand) {
-    auto start = std::chrono::steady_clock::now();
     ValidateOptions opt;
     opt.levels = {16, 64};
     opt.rays = 20000;
@@ -143,9 +141,6 @@ TEST(Validate, EveryShapeAgreesWithinTheBand) {
         reports.push_back(std::move(r));
     }
     EXPECT_EQ(ValidationStatus(reports), 0);
-    double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_LT(seconds, 30);
     std::string csv = ResultsCsv(reports);
     // A header and one row per level of each shape.
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * long(names.size()));
