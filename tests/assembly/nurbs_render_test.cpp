@@ -62,18 +62,17 @@ double Mean(const Image &img) {
 }
 
 TEST_F(NurbsRender, PatchThatWasSkippedRendersLitWithParametricUV) {
-    Result r = RenderText("lit", TopView("Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\n" +
-                                         std::string(UnitPatch)));
+    Result r = RenderText(
+        "lit", TopView("Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\n" + std::string(UnitPatch)));
     for (const Warning &w : r.warnings)
         EXPECT_EQ(w.message.find("not supported"), std::string::npos) << w.message;
     EXPECT_NEAR(Mean(r.image), 0.5, 0.01);  // every pixel: the patch, Kd 0.5, facing the light
     // The checkerboard of scale 2 over uv: u in [0, 2] gives 4 checks across, v in [0, 1] 2.
     Result c = RenderText(
-        "checks",
-        TopView("Texture \"c\" \"spectrum\" \"checkerboard\" \"float uscale\" [2] "
-                "\"float vscale\" [2] \"rgb tex1\" [1 1 1] \"rgb tex2\" [0 0 0]\n"
-                "Material \"matte\" \"texture Kd\" \"c\"\n" +
-                std::string(UnitPatch)));
+        "checks", TopView("Texture \"c\" \"spectrum\" \"checkerboard\" \"float uscale\" [2] "
+                          "\"float vscale\" [2] \"rgb tex1\" [1 1 1] \"rgb tex2\" [0 0 0]\n"
+                          "Material \"matte\" \"texture Kd\" \"c\"\n" +
+                          std::string(UnitPatch)));
     auto changes = [&](bool alongX) {
         int n = 0;
         for (int i = 1; i < 40; ++i) {
@@ -114,10 +113,27 @@ TEST_F(NurbsRender, AreaLightAndInstances) {
                "\"point P\" [" +
                P + "]\nWorldEnd\n";
     };
-    const std::string up = "-1 -1 0  2 -1 0  -1 2 0  2 2 0", down = "-1 2 0  2 2 0  -1 -1 0  2 -1 0";
+    const std::string up = "-1 -1 0  2 -1 0  -1 2 0  2 2 0",
+                      down = "-1 2 0  2 2 0  -1 -1 0  2 -1 0";
     EXPECT_NEAR(Mean(RenderText("light_up", emitter("", up)).image), 1.0, 1e-4);
     EXPECT_LT(Mean(RenderText("light_down", emitter("", down)).image), 1e-6);
     EXPECT_LT(Mean(RenderText("light_rev", emitter("ReverseOrientation\n", up)).image), 1e-6);
+    // The same rule for any mesh with shading normals (pbrt-v3's; Prism used to ignore
+    // ReverseOrientation there): reversed, it emits away; mirrored, it keeps its side.
+    std::string tri =
+        "Shape \"trianglemesh\" \"point P\" [-1 -1 0 2 -1 0 2 2 0 -1 2 0] \"integer indices\" "
+        "[0 1 2 0 2 3] \"normal N\" [0 0 1 0 0 1 0 0 1 0 0 1]\n";
+    auto meshLight = [&](const std::string &pre) {
+        std::string text = emitter(pre, up);
+        size_t at = text.find("Shape");
+        return text.substr(0, at) + tri + "WorldEnd\n";
+    };
+    EXPECT_NEAR(Mean(RenderText("mesh_up", meshLight("")).image), 1.0, 1e-4);
+    EXPECT_LT(Mean(RenderText("mesh_rev", meshLight("ReverseOrientation\n")).image), 1e-6);
+    EXPECT_NEAR(Mean(RenderText("mesh_mirror", meshLight("Scale -1 1 1\n")).image), 1.0, 0.1);
+    EXPECT_LT(
+        Mean(RenderText("mesh_mirror_rev", meshLight("Scale -1 1 1\nReverseOrientation\n")).image),
+        1e-6);
 
     std::string inst = TopView(
         "ObjectBegin \"half\"\nMaterial \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\n"
