@@ -224,37 +224,52 @@ double DistanceToMid(const Vec3d &s, const Vec3d &a, const Vec3d &b) {
 
 // The chordal error per break interval of each axis: the surface at the middle of every grid
 // edge against the edge's midpoint, and at the centre of every cell against the midpoint of
-// the diagonal the triangles share.
+// the diagonal the triangles share. A cell's centre error counts for the direction whose edges
+// explain it (at least half as large; a ruled surface's straight direction is not refined for
+// the other's curvature), or for both when neither does (a twist).
 void MeasureErrors(const NurbsPatch &patch, const Axis &au, const Axis &av, const Grid &g,
                    std::vector<double> &errU, std::vector<double> &errV) {
-    size_t nU = au.t.size();
+    size_t nU = au.t.size(), nV = av.t.size();
     auto P = [&](int iu, int iv) { return g.P[size_t(iv) * nU + size_t(iu)]; };
+    auto mid = [](const Axis &a, size_t seg) {
+        return 0.5 * (a.t[size_t(a.segments[seg][0])] + a.t[size_t(a.segments[seg][1])]);
+    };
+    std::vector<double> eu(au.segments.size() * nV), ev(av.segments.size() * nU);
     for (size_t su = 0; su < au.segments.size(); ++su) {
         auto [a, b] = au.segments[su];
-        double um = 0.5 * (au.t[size_t(a)] + au.t[size_t(b)]);
-        for (size_t iv = 0; iv < av.t.size(); ++iv) {
-            Vec3d s = EvaluateNurbs(patch, um, av.t[iv], false, av.fromLeft[iv] != 0).P;
+        double &worst = errU[size_t(au.segmentSpan[su])];
+        for (size_t iv = 0; iv < nV; ++iv) {
+            Vec3d s = EvaluateNurbs(patch, mid(au, su), av.t[iv], false, av.fromLeft[iv] != 0).P;
             double e = DistanceToMid(s, P(a, int(iv)), P(b, int(iv)));
-            errU[size_t(au.segmentSpan[su])] = std::max(errU[size_t(au.segmentSpan[su])], e);
-        }
-        for (size_t sv = 0; sv < av.segments.size(); ++sv) {
-            auto [c, d] = av.segments[sv];
-            double vm = 0.5 * (av.t[size_t(c)] + av.t[size_t(d)]);
-            Vec3d s = EvaluateNurbs(patch, um, vm).P;
-            double e = DistanceToMid(s, P(a, c), P(b, d));
-            errU[size_t(au.segmentSpan[su])] = std::max(errU[size_t(au.segmentSpan[su])], e);
-            errV[size_t(av.segmentSpan[sv])] = std::max(errV[size_t(av.segmentSpan[sv])], e);
+            eu[su * nV + iv] = e;
+            worst = std::max(worst, e);
         }
     }
     for (size_t sv = 0; sv < av.segments.size(); ++sv) {
         auto [c, d] = av.segments[sv];
-        double vm = 0.5 * (av.t[size_t(c)] + av.t[size_t(d)]);
+        double &worst = errV[size_t(av.segmentSpan[sv])];
         for (size_t iu = 0; iu < nU; ++iu) {
-            Vec3d s = EvaluateNurbs(patch, au.t[iu], vm, au.fromLeft[iu] != 0, false).P;
+            Vec3d s = EvaluateNurbs(patch, au.t[iu], mid(av, sv), au.fromLeft[iu] != 0, false).P;
             double e = DistanceToMid(s, P(int(iu), c), P(int(iu), d));
-            errV[size_t(av.segmentSpan[sv])] = std::max(errV[size_t(av.segmentSpan[sv])], e);
+            ev[sv * nU + iu] = e;
+            worst = std::max(worst, e);
         }
     }
+    for (size_t su = 0; su < au.segments.size(); ++su)
+        for (size_t sv = 0; sv < av.segments.size(); ++sv) {
+            auto [a, b] = au.segments[su];
+            auto [c, d] = av.segments[sv];
+            Vec3d s = EvaluateNurbs(patch, mid(au, su), mid(av, sv)).P;
+            double e = DistanceToMid(s, P(a, c), P(b, d));
+            double edgeU = std::max(eu[su * nV + size_t(c)], eu[su * nV + size_t(d)]);
+            double edgeV = std::max(ev[sv * nU + size_t(a)], ev[sv * nU + size_t(b)]);
+            bool toU = edgeU >= 0.5 * e, toV = edgeV >= 0.5 * e;
+            if (!toU && !toV) toU = toV = true;
+            if (toU)
+                errU[size_t(au.segmentSpan[su])] = std::max(errU[size_t(au.segmentSpan[su])], e);
+            if (toV)
+                errV[size_t(av.segmentSpan[sv])] = std::max(errV[size_t(av.segmentSpan[sv])], e);
+        }
 }
 
 // More segments for each interval over the tolerance: the error of a segment falls with the

@@ -360,6 +360,32 @@ TEST(NurbsTessellate, ChordalErrorIsBoundedAndDensityAtLeastPbrts) {
     EXPECT_NEAR(t.tolerance, 2e-4 * std::sqrt(1 + 1 + 4), 1e-9);
 }
 
+TEST(NurbsTessellate, RuledDirectionIsNotRefinedForTheOthersCurvature) {
+    // A full unit cylinder of height 1 as one 9-point rational patch (4 arcs, doubled knots):
+    // u refines until the chords are within tolerance, v (straight lines) stays at 29.
+    const double w = std::sqrt(0.5);
+    const double c[9][3] = {{1, 0, 1},   {1, 1, w},  {0, 1, 1},  {-1, 1, w}, {-1, 0, 1},
+                            {-1, -1, w}, {0, -1, 1}, {1, -1, w}, {1, 0, 1}};
+    NurbsPatch p;
+    p.nu = 9;
+    p.nv = 2;
+    p.uorder = 3;
+    p.vorder = 2;
+    p.uknots = {0, 0, 0, .25, .25, .5, .5, .75, .75, 1, 1, 1};
+    p.vknots = {0, 0, 1, 1};
+    p.u0 = 0, p.u1 = 1, p.v0 = 0, p.v1 = 1;
+    for (double z : {0.0, 1.0})
+        for (const auto &q : c) p.Pw.insert(p.Pw.end(), {q[0] * q[2], q[1] * q[2], z * q[2], q[2]});
+    ValidateNurbs(p);
+    NurbsTessellation t = TessellateNurbs(p);
+    EXPECT_EQ(t.segmentsV, 29);
+    EXPECT_GT(t.segmentsU, 64);
+    EXPECT_LE(t.chordalError, t.tolerance);
+    for (const Vec3f &q : t.mesh.P) EXPECT_NEAR(std::hypot(q.x, q.y), 1.0, 1e-6);
+    ExpectWatertight(t.mesh, "cylinder");
+    ExpectConsistentNormals(t.mesh, "cylinder", 0.99);
+}
+
 TEST(NurbsTessellate, BilinearPatchIsAPbrtGrid) {
     NurbsPatch p =
         Patch(2, 2, 2, 2, {0, 0, 1, 1}, {0, 0, 2, 2}, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
