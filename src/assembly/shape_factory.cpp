@@ -6,7 +6,9 @@
 
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "geometry/heightfield.h"
 #include "geometry/loop_subdiv.h"
+#include "geometry/nurbs_patch.h"
 #include "geometry/shape_list.h"
 #include "scene/ply_reader.h"
 
@@ -185,6 +187,124 @@ ShapeGeometry LoopSubdivShape(const ShapeDesc &s, const Transform &renderFromObj
     return g;
 }
 
+// The values of a numeric parameter at the precision they were written in (ParamSet's array
+// lookups round to float); `typed` is the lookup that checks the type and marks it used.
+template <typename Lookup>
+std::vector<double> Numbers(const ShapeDesc &s, const char *name, Lookup typed) {
+    typed(name);
+    const Param *p = s.params.Find(name);
+    return p ? p->numbers : std::vector<double>{};
+}
+
+int RequiredInt(const ShapeDesc &s, const char *name) {
+    if (!s.params.Has(name))
+        throw SceneError(s.loc, s.type + " needs \"integer " + std::string(name) + "\"");
+    return s.params.GetInt(name, 0);
+}
+
+// Reads one direction of a nurbs patch; the range defaults to the knots' whole domain.
+void ReadNurbsDirection(const ShapeDesc &s, const char *count, const char *order, const char *knots,
+                        const char *t0, const char *t1, int &n, int &k, std::vector<double> &kn,
+                        double &lo, double &hi) {
+    const ParamSet &ps = s.params;
+    n = RequiredInt(s, count);
+    k = RequiredInt(s, order);
+    kn = Numbers(s, knots, [&](const char *name) { return ps.GetFloats(name); });
+    if (kn.empty()) throw SceneError(s.loc, "nurbs needs \"float " + std::string(knots) + "\"");
+    bool known = k >= 1 && n >= 1 && size_t(n) < kn.size() && size_t(k - 1) < kn.size();
+    // At full precision: a range written as the end knots must not round out of the domain.
+    auto range = [&](const char *name, double def) {
+        ps.GetFloat(name, 0.f);  // checks the type, marks it used
+        const Param *p = ps.Find(name);
+        return p && !p->numbers.empty() ? p->numbers[0] : def;
+    };
+    lo = range(t0, known ? kn[size_t(k - 1)] : 0.0);
+    hi = range(t1, known ? kn[size_t(n)] : 1.0);
+}
+
+// Bytes per triangle of the tessellation while it is made (the grid in double with normals,
+// the patch mesh, and the render-space mesh), for the memory budget.
+constexpr uint64_t NurbsBytesPerTriangle = 128;
+
+// [nurbs] A NURBS patch (pbrt-v3's parameters: nu, nv, uorder, vorder, uknots, vknots, u0, u1,
+// v0, v1, and "point P" or rational "float Pw"), tessellated by geometry/nurbs_patch.h's rule
+// into a mesh with normals and the parametric (u, v) as uv.
+ShapeGeometry NurbsShape(const ShapeDesc &s, const Transform &renderFromObject,
+                         const ShapeFactoryContext &ctx, MemoryBudget &budget) {
+    const ParamSet &ps = s.params;
+    NurbsPatch patch;
+    ReadNurbsDirection(s, "nu", "uorder", "uknots", "u0", "u1", patch.nu, patch.uorder,
+                       patch.uknots, patch.u0, patch.u1);
+    ReadNurbsDirection(s, "nv", "vorder", "vknots", "v0", "v1", patch.nv, patch.vorder,
+                       patch.vknots, patch.v0, patch.v1);
+    bool hasP = ps.Has("P"), hasPw = ps.Has("Pw");
+    if (hasP && hasPw)
+        throw SceneError(ParamLoc(s, "Pw"), "nurbs takes \"point P\" or \"float Pw\", not both");
+    if (!hasP && !hasPw)
+        throw SceneError(s.loc, "nurbs needs control points \"point P\" or \"float Pw\"");
+    const char *pointsName = hasP ? "P" : "Pw";
+    if (hasP) {
+        std::vector<double> xyz = Numbers(s, "P", [&](const char *n) { return ps.GetPoint3s(n); });
+        patch.Pw.reserve(xyz.size() / 3 * 4);
+        for (size_t i = 0; i + 2 < xyz.size(); i += 3)
+            patch.Pw.insert(patch.Pw.end(), {xyz[i], xyz[i + 1], xyz[i + 2], 1.0});
+    } else {
+        patch.Pw = Numbers(s, "Pw", [&](const char *n) { return ps.GetFloats(n); });
+        if (patch.Pw.size() % 4 != 0)
+            throw SceneError(ParamLoc(s, "Pw"),
+                             "nurbs \"Pw\" has " + std::to_string(patch.Pw.size()) +
+                                 " values, not 4 (x w, y w, z w, w) per control point");
+    }
+    try {
+        ValidateNurbs(patch);
+    } catch (const PatchParamError &e) {
+        const char *name = std::string(e.param) == "Pw" ? pointsName : e.param;
+        throw SceneError(ParamLoc(s, name), e.what());
+    }
+    // The smallest grid must fit the triangle limit and the budget; the tessellation may then
+    // refine as far as both allow.
+    uint64_t minTriangles = MinNurbsTriangles(patch);
+    NurbsTessellationOptions options;
+    if (minTriangles > MaxNurbsTriangles)
+        throw SceneError(ParamLoc(s, "nu"),
+                         "nurbs patch needs at least " + std::to_string(minTriangles) +
+                             " triangles (29 segments per direction and one per knot span), "
+                             "more than the limit of " +
+                             std::to_string(MaxNurbsTriangles));
+    ChargeMesh(budget, s, 0, minTriangles * NurbsBytesPerTriangle);
+    options.maxTriangles = std::clamp<uint64_t>(budget.Remaining() / NurbsBytesPerTriangle,
+                                                minTriangles, MaxNurbsTriangles);
+    NurbsTessellation t = TessellateNurbs(patch, options);
+    if (t.capped)
+        ctx.diag.Warn(
+            s.loc, "nurbs: tessellation stopped at " + std::to_string(t.mesh.indices.size() / 3) +
+                       " triangles (the limit); chordal error " + std::to_string(t.chordalError) +
+                       ", asked " + std::to_string(t.tolerance));
+    const PatchMesh &m = t.mesh;
+    ShapeGeometry g;
+    g.mesh = MakeMesh(s, renderFromObject, m.P, m.indices, m.N, m.uv, budget,
+                      ArrayBytes(m.P, m.indices, m.N, m.uv));
+    return g;
+}
+
+// [heightfield] nu x nv heights "float Pz" over the unit square (geometry/heightfield.h).
+ShapeGeometry HeightfieldShape(const ShapeDesc &s, const Transform &renderFromObject,
+                               MemoryBudget &budget) {
+    int nu = RequiredInt(s, "nu"), nv = RequiredInt(s, "nv");
+    std::vector<double> Pz = Numbers(s, "Pz", [&](const char *n) { return s.params.GetFloats(n); });
+    if (Pz.empty()) throw SceneError(s.loc, "heightfield needs heights \"float Pz\"");
+    PatchMesh m;
+    try {
+        m = TessellateHeightfield(nu, nv, Pz);
+    } catch (const PatchParamError &e) {
+        throw SceneError(ParamLoc(s, e.param), e.what());
+    }
+    ShapeGeometry g;
+    g.mesh = MakeMesh(s, renderFromObject, m.P, m.indices, {}, m.uv, budget,
+                      ArrayBytes(m.P, m.indices, {}, m.uv));
+    return g;
+}
+
 }  // namespace
 
 ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFromObject,
@@ -202,6 +322,8 @@ ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFro
     if (s.type == "trianglemesh") return TriangleMeshShape(s, renderFromObject, ctx.diag, budget);
     if (s.type == "plymesh") return PlyMeshShape(s, renderFromObject, ctx, budget);
     if (s.type == "loopsubdiv") return LoopSubdivShape(s, renderFromObject, ctx, budget);
+    if (s.type == "nurbs") return NurbsShape(s, renderFromObject, ctx, budget);
+    if (s.type == "heightfield") return HeightfieldShape(s, renderFromObject, budget);
     ctx.diag.WarnOnce("shape:" + s.type, s.loc,
                       "shape \"" + s.type + "\" is not supported; every such shape is skipped");
     s.params.MarkAllUsed();

@@ -38,11 +38,15 @@ TriangleMesh::TriangleMesh(const Transform &renderFromObject, bool reverseOrient
         positions_[3 * i + 2] = w.z;
     }
     if (!N.empty()) {
+        // ReverseOrientation turns the shading normals too (the geometric normal follows them):
+        // pbrt-v3 emits from a reversed mesh's other side whether or not it has normals. A
+        // transform that swaps handedness does not (its normals stay as transformed).
+        double sign = reverseOrientation ? -1.0 : 1.0;
         normals_.resize(N.size());
         for (size_t i = 0; i < N.size(); ++i) {
             Vec3d n = identity ? Vec3d(N[i]) : renderFromObject.Normal(Vec3d(N[i]));
             double len = Length(n);
-            normals_[i] = len > 0 ? Vec3f(n / len) : Vec3f(0, 0, 0);
+            normals_[i] = len > 0 ? Vec3f(n * (sign / len)) : Vec3f(0, 0, 0);
         }
     }
 }

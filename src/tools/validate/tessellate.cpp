@@ -147,7 +147,10 @@ std::unique_ptr<TriangleMesh> MakeTessellatedMesh(const AnalyticShape &shape, in
             std::swap(m.indices[t + 1], m.indices[t + 2]);
     std::vector<Vec3f> P(m.P.size()), N(m.N.size());
     std::vector<Vec2f> uv(m.uv.size());
-    double s = shape.FlipNormals() ? -1 : 1;  // shading normals are not flipped by TriangleMesh
+    // The analytic normal is flipped by FlipNormals() = ReverseOrientation XOR handedness;
+    // TriangleMesh flips shading normals by ReverseOrientation alone, so the twin's are
+    // flipped here by the rest: the handedness.
+    double s = w.SwapsHandedness() ? -1 : 1;
     for (size_t i = 0; i < m.P.size(); ++i) {
         P[i] = Vec3f(m.P[i]);
         N[i] = Vec3f(m.N[i] * s);
