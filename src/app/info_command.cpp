@@ -73,7 +73,7 @@ int RunInfo(const InfoArgs &a) {
     double loadSeconds = SecondsSince(t0);
 
     std::map<std::string, int> shapes, materials, textures, lights;
-    size_t triangles = 0;
+    size_t triangles = 0, curveSegments = 0;
     Bounds3d bounds;
     ShapeFactoryContext ctx{desc, diag, Precision::Double, &budget};
     auto account = [&](const ShapeDesc &s, const Transform &worldFromObject) {
@@ -91,6 +91,10 @@ int RunInfo(const InfoArgs &a) {
             if (!b.IsEmpty()) bounds.Expand(Bounds3d(Vec3d(b.pMin), Vec3d(b.pMax)));
         } else if (g.analytic) {
             bounds.Expand(worldFromObject.Bounds(g.analytic->ObjectBounds()));
+        } else if (g.curves) {
+            curveSegments += g.curves->NumSegments();
+            Bounds3f b = g.curves->RenderBounds();
+            if (!b.IsEmpty()) bounds.Expand(Bounds3d(Vec3d(b.pMin), Vec3d(b.pMax)));
         }
     };
     for (const ShapeDesc &s : desc.shapes) account(s, s.worldFromObject);
@@ -137,6 +141,7 @@ int RunInfo(const InfoArgs &a) {
                     Counts(csgOperands).c_str());
     }
     std::printf("triangles:  %zu\n", triangles);
+    if (curveSegments > 0) std::printf("curves:     %zu segments\n", curveSegments);
     std::printf("instances:  %zu of %zu objects\n", desc.instances.size(), desc.objects.size());
     std::printf("materials:  %zu (%s)\n", desc.materials.size(), Counts(materials).c_str());
     std::printf("textures:   %zu (%s)\n", desc.textures.size(), Counts(textures).c_str());

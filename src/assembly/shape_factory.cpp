@@ -305,6 +305,100 @@ ShapeGeometry HeightfieldShape(const ShapeDesc &s, const Transform &renderFromOb
     return g;
 }
 
+// [curve] pbrt-v3's curve (docs/FORMAT.md "Curves"), as Embree's native Bézier curves:
+//   point P            control points: degree*n + 1 for "bezier", n + degree for "bspline"
+//   string basis       "bezier" (default) | "bspline"
+//   integer degree     3 (default) | 2 (elevated to cubic, exactly)
+//   string type        "flat" (default; faces each ray) | "cylinder" (a swept tube) |
+//                      "ribbon" (oriented by N)
+//   float width        1; width0, width1 (default width): the width at the curve's start and
+//                      end, linear in between
+//   normal N           ribbon: one per segment end (n + 1)
+//   integer splitdepth 3: pbrt-v3 splits each segment 2^splitdepth times for its own
+//                      intersector; here the number of ray-facing quads per segment Embree
+//                      tessellates a flat curve into (2^splitdepth, 1 to 64; the geometry of
+//                      cylinders and ribbons does not change)
+ShapeGeometry CurveShape(const ShapeDesc &s, const Transform &renderFromObject,
+                         const ShapeFactoryContext &ctx, MemoryBudget &budget) {
+    const ParamSet &ps = s.params;
+    std::vector<Vec3f> P = ps.GetPoint3s("P");
+    if (P.empty()) throw SceneError(s.loc, "curve needs control points \"P\"");
+    for (const Vec3f &p : P)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw SceneError(ParamLoc(s, "P"), "curve control point is not finite");
+    const std::string basis = ps.GetString("basis", "bezier");
+    if (basis != "bezier" && basis != "bspline")
+        throw SceneError(ParamLoc(s, "basis"),
+                         "curve \"basis\" must be \"bezier\" or "
+                         "\"bspline\", not " +
+                             Quote(basis));
+    const int degree = ps.GetInt("degree", 3);
+    if (degree != 2 && degree != 3)
+        throw SceneError(ParamLoc(s, "degree"),
+                         "curve \"degree\" must be 2 or 3, not " + std::to_string(degree));
+    const std::string typeName = ps.GetString("type", "flat");
+    CurveType type;
+    if (typeName == "flat")
+        type = CurveType::Flat;
+    else if (typeName == "cylinder")
+        type = CurveType::Cylinder;
+    else if (typeName == "ribbon")
+        type = CurveType::Ribbon;
+    else
+        throw SceneError(
+            ParamLoc(s, "type"),
+            "curve \"type\" must be \"flat\", \"cylinder\" or \"ribbon\", not " + Quote(typeName));
+    const bool bspline = basis == "bspline";
+    const size_t segments = CurveSegmentCount(P.size(), degree, bspline);
+    if (segments == 0 || segments > MaxCurveSegments)
+        throw SceneError(
+            ParamLoc(s, "P"),
+            "curve has " + std::to_string(P.size()) + " control points; a " + basis +
+                " curve of degree " + std::to_string(degree) + " and n segments has " +
+                (bspline ? "n + " + std::to_string(degree) : std::to_string(degree) + "n + 1") +
+                " (n from 1 to " + std::to_string(MaxCurveSegments) + ")");
+    const float width = ps.GetFloat("width", 1.f);
+    const float width0 = ps.GetFloat("width0", width), width1 = ps.GetFloat("width1", width);
+    for (auto [name, w] : {std::pair{"width", width}, {"width0", width0}, {"width1", width1}})
+        if (!(w >= 0) || !std::isfinite(w))
+            throw SceneError(ParamLoc(s, name),
+                             std::string("curve \"") + name + "\" must be a finite width >= 0");
+    std::vector<Vec3f> N;
+    if (type == CurveType::Ribbon) {
+        N = ps.GetNormals("N");
+        if (N.empty())
+            throw SceneError(s.loc,
+                             "a \"ribbon\" curve needs normals \"N\" at its segments' "
+                             "ends (" +
+                                 std::to_string(segments + 1) + ")");
+        if (N.size() != segments + 1)
+            throw SceneError(ParamLoc(s, "N"),
+                             "a ribbon curve of " + std::to_string(segments) +
+                                 " segment(s) needs " + std::to_string(segments + 1) +
+                                 " normals \"N\", not " + std::to_string(N.size()));
+        for (size_t i = 0; i < N.size(); ++i)
+            if (!std::isfinite(N[i].x) || !std::isfinite(N[i].y) || !std::isfinite(N[i].z) ||
+                LengthSquared(N[i]) == 0)
+                throw SceneError(ParamLoc(s, "N"),
+                                 "curve normal " + std::to_string(i) + " is zero or not finite");
+    } else {
+        WarnIgnored(ps, {"N"}, ctx.diag, "curve", "normals are read for \"ribbon\" curves only");
+    }
+    const int splitDepth = std::clamp(ps.GetInt("splitdepth", 3), 0, 6);
+    // The set, and the Bézier control points it is made from (freed after).
+    ChargeMesh(budget, s, CurveSet::Bytes(segments, type == CurveType::Ribbon),
+               segments * 4 * sizeof(Vec3f));
+    ShapeGeometry g;
+    try {
+        g.curves = std::make_unique<CurveSet>(renderFromObject, s.reverseOrientation, type,
+                                              CubicBezierSegments(P, degree, bspline), width0,
+                                              width1, N, 1 << splitDepth);
+    } catch (const std::invalid_argument &e) {
+        throw SceneError(s.loc, std::string("curve: ") + e.what());
+    }
+    return g;
+}
+
 }  // namespace
 
 ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFromObject,
@@ -324,6 +418,7 @@ ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFro
     if (s.type == "loopsubdiv") return LoopSubdivShape(s, renderFromObject, ctx, budget);
     if (s.type == "nurbs") return NurbsShape(s, renderFromObject, ctx, budget);
     if (s.type == "heightfield") return HeightfieldShape(s, renderFromObject, budget);
+    if (s.type == "curve") return CurveShape(s, renderFromObject, ctx, budget);
     ctx.diag.WarnOnce("shape:" + s.type, s.loc,
                       "shape \"" + s.type + "\" is not supported; every such shape is skipped");
     s.params.MarkAllUsed();

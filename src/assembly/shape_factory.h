@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
+#include "geometry/curves.h"
 #include "geometry/shape.h"
 #include "geometry/triangle_mesh.h"
 #include "scene/scene_description.h"
@@ -25,6 +26,8 @@ struct ShapeFactoryContext {
 struct ShapeGeometry {
     std::unique_ptr<AnalyticShape> analytic;
     std::unique_ptr<TriangleMesh> mesh;
+    std::unique_ptr<CurveSet> curves;  // "curve": Embree's native curves
+    bool Empty() const { return !analytic && !mesh && !curves; }
 };
 
 // Returns empty geometry (after a warning) for shapes Prism skips; throws SceneError for

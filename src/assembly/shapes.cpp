@@ -45,10 +45,11 @@ std::optional<AnimatedTransform> ShutterMotion(const BuildContext &ctx,
 namespace {
 
 // What the BVH estimate (core/memory.h EstimateBvhBytes) counts in an Accel: the triangles of
-// its meshes, and one user primitive for each analytic shape or instance.
+// its meshes, and one user primitive for each analytic shape, instance or curve segment.
 uint64_t UserPrimsOf(const Accel &accel) {
     uint64_t n = 0;
-    for (int i = 0; i < accel.NumShapes(); ++i) n += accel.Mesh(i) ? 0 : 1;
+    for (int i = 0; i < accel.NumShapes(); ++i)
+        n += accel.Mesh(i) ? 0 : accel.Curves(i) ? accel.Curves(i)->NumSegments() : 1;
     return n;
 }
 
@@ -134,7 +135,7 @@ struct ShapeBuilder : BuildStep {
                    const std::optional<AnimatedTransform> &motion = std::nullopt) {
         ShapeFactoryContext fctx{desc, diag, settings.precision, &budget};
         ShapeGeometry geom = CreateShapeGeometry(s, renderFromObject, fctx);
-        if (!geom.mesh && !geom.analytic) return -1;           // skipped with a warning
+        if (geom.Empty()) return -1;                           // skipped with a warning
         if (settings.replaceAnalyticShape && geom.analytic) {  // e.g. --tessellate N
             MeshCharge charge = [&](uint64_t meshBytes, uint64_t transientBytes) {
                 std::string what = "shape " + Quote(s.type);
@@ -153,6 +154,10 @@ struct ShapeBuilder : BuildStep {
         ShapeAlpha cutouts;
         unsigned mask = VisibilityMask(s, &cutouts);
         if (mask == 0) return -1;  // alpha 0: cut out entirely
+        if (geom.curves && cutouts.Any()) {
+            diag.Warn(s.loc, "alpha textures on curves are not supported; the curve is opaque");
+            cutouts = {};
+        }
         if (motion) AddMotion(s, geom, *motion, renderFromObject);
         int material = materials.MaterialForShape(s);
         // Normal maps read tangents: the mesh's own ("tangent"), else generated ones.
@@ -160,7 +165,10 @@ struct ShapeBuilder : BuildStep {
             geom.mesh->GenerateTangents(scene.materials[size_t(material)].normalMapUVSet);
         s.params.ReportUnused(diag, "shape " + Quote(s.type));
         int index;
-        if (geom.mesh) {
+        if (geom.curves) {
+            scene.features.curveSegments += geom.curves->NumSegments();
+            index = accel.AddCurves(std::move(geom.curves), mask);
+        } else if (geom.mesh) {
             scene.features.meshes++;
             scene.features.triangles += geom.mesh->NumTriangles();
             index = accel.AddMesh(std::move(geom.mesh), mask, std::move(cutouts));
@@ -190,15 +198,21 @@ struct ShapeBuilder : BuildStep {
             return;
         }
         const int n = MotionTimeSteps(motion);
+        const Transform startFromRender = renderFromObject.Inverse();
+        std::vector<Transform> steps;
+        for (int k = 1; k < n; ++k)
+            steps.push_back(motion.Interpolate(double(k) / (n - 1)) * startFromRender);
+        if (geom.curves) {
+            budget.Charge(uint64_t(n - 1) * geom.curves->MemoryBytes(),
+                          "shape " + Quote(s.type) + " motion steps", s.loc);
+            geom.curves->SetMotionSteps(steps);
+            return;
+        }
         // Each step after the first holds the positions (and normals) again.
         const TriangleMesh &m = *geom.mesh;
         budget.Charge(uint64_t(n - 1) * ((3 * m.NumVertices() + 1) * sizeof(float) +
                                          (m.HasNormals() ? m.NumVertices() * sizeof(Vec3f) : 0)),
                       "shape " + Quote(s.type) + " motion steps", s.loc);
-        const Transform startFromRender = renderFromObject.Inverse();
-        std::vector<Transform> steps;
-        for (int k = 1; k < n; ++k)
-            steps.push_back(motion.Interpolate(double(k) / (n - 1)) * startFromRender);
         geom.mesh->SetMotionSteps(steps);
     }
 
@@ -207,6 +221,12 @@ struct ShapeBuilder : BuildStep {
         std::optional<AnimatedTransform> motion = ShutterMotion(
             ctx, &scene.renderFromWorld, s.worldFromObject, s.motion, s.loc, &renderFromObject);
         int index = AddShapeTo(*scene.accel, scene.shapes, s, renderFromObject, motion);
+        if (index >= 0 && s.areaLight >= 0 && scene.accel->Curves(index)) {
+            diag.Warn(s.loc,
+                      "area lights on curves are not supported (pbrt-v3 stops with \"Curve::Sample "
+                      "not implemented\"); the curve does not emit");
+            return;
+        }
         if (index >= 0 && s.areaLight >= 0 && motion) {
             diag.Warn(s.loc,
                       "area lights on moving shapes are not supported (as in pbrt-v3); the "

@@ -140,6 +140,7 @@ struct Accel::Impl {
     struct Entry {
         std::unique_ptr<TriangleMesh> mesh;
         std::unique_ptr<AnalyticShape> analytic;
+        std::unique_ptr<CurveSet> curves;
         std::shared_ptr<const Accel> prototype;  // instances
         Transform renderFromInstance;
         // A moving instance: renderFromInstance at each Embree time step (evenly spaced over
@@ -203,8 +204,41 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask, ShapeAlpha
     dev.ThrowIfError("adding a triangle mesh");
     int shape = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, shape);
-    impl_->shapes.push_back({std::move(mesh), nullptr, nullptr, {}, {}});
+    impl_->shapes.push_back({std::move(mesh), nullptr, nullptr, nullptr, {}, {}});
     impl_->shapes.back().alpha = std::move(cutouts);
+    return shape;
+}
+
+int Accel::AddCurves(std::unique_ptr<CurveSet> curves, unsigned mask) {
+    PRISM_CHECK(!impl_->committed);
+    Device &dev = GetDevice();
+    const RTCGeometryType type =
+        curves->Type() == CurveType::Flat       ? RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE
+        : curves->Type() == CurveType::Cylinder ? RTC_GEOMETRY_TYPE_ROUND_BEZIER_CURVE
+                                                : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE;
+    RTCGeometry geom = rtcNewGeometry(dev.device, type);
+    const int steps = curves->NumTimeSteps();
+    if (steps > 1) rtcSetGeometryTimeStepCount(geom, unsigned(steps));
+    for (int k = 0; k < steps; ++k) {
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, unsigned(k), RTC_FORMAT_FLOAT4,
+                                   curves->VertexData(k), 0, 4 * sizeof(float),
+                                   curves->NumVertices());
+        if (curves->Type() == CurveType::Ribbon)
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_NORMAL, unsigned(k), RTC_FORMAT_FLOAT3,
+                                       curves->NormalData(k), 0, 3 * sizeof(float),
+                                       curves->NumVertices());
+    }
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, curves->IndexData(),
+                               0, sizeof(uint32_t), curves->NumSegments());
+    rtcSetGeometryTessellationRate(geom, float(curves->TessellationRate()));
+    rtcSetGeometryMask(geom, mask);
+    rtcCommitGeometry(geom);
+    unsigned id = rtcAttachGeometry(impl_->scene, geom);
+    rtcReleaseGeometry(geom);
+    dev.ThrowIfError("adding curves");
+    int shape = int(impl_->shapes.size());
+    MapGeom(impl_->shapeOfGeom, id, shape);
+    impl_->shapes.push_back({nullptr, nullptr, std::move(curves), nullptr, {}, {}});
     return shape;
 }
 
@@ -241,7 +275,7 @@ int Accel::AddInstance(std::shared_ptr<const Accel> prototype,
     dev.ThrowIfError("adding an instance");
     int index = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, index);
-    impl_->shapes.push_back({nullptr, nullptr, std::move(prototype),
+    impl_->shapes.push_back({nullptr, nullptr, nullptr, std::move(prototype),
                              renderFromInstance.Interpolate(0),
                              steps.size() > 1 ? std::move(steps) : std::vector<Matrix4>{}});
     return index;
@@ -256,7 +290,7 @@ int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask, Shap
     dev.ThrowIfError("adding an analytic shape");
     int index = int(impl_->shapes.size());
     MapGeom(impl_->shapeOfGeom, id, index);
-    impl_->shapes.push_back({nullptr, std::move(shape), nullptr, {}, {}});
+    impl_->shapes.push_back({nullptr, std::move(shape), nullptr, nullptr, {}, {}});
     return index;
 }
 
@@ -363,6 +397,9 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit, unsigned 
         si.time = r.time;
         return si;
     }
+    if (e.curves)
+        return e.curves->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.o, r.d, r.time,
+                                     hit.shape);
     if (e.mesh) {
         // Built in the caller's result (no zero-filled or copied SurfaceInteraction: per hit).
         return e.mesh->Interaction(size_t(hit.prim), hit.u, hit.v, hit.t, r.d, needs, r.time,
@@ -470,6 +507,14 @@ void Accel::Packet(const Ray *rays, int n, RawHit *hits, bool *occluded, bool ch
 int Accel::NumShapes() const { return int(impl_->shapes.size()); }
 const TriangleMesh *Accel::Mesh(int s) const { return impl_->shapes[s].mesh.get(); }
 const AnalyticShape *Accel::Analytic(int s) const { return impl_->shapes[s].analytic.get(); }
+const CurveSet *Accel::Curves(int s) const { return impl_->shapes[s].curves.get(); }
+
+size_t Accel::NumCurveSegments() const {
+    size_t n = 0;
+    for (const Impl::Entry &e : impl_->shapes)
+        if (e.curves) n += e.curves->NumSegments();
+    return n;
+}
 double Accel::BuildSeconds() const { return impl_->buildSeconds; }
 bool Accel::BuiltWithHighQuality() const { return impl_->builtQuality == BvhQuality::High; }
 BvhQuality Accel::BuildQuality() const { return impl_->builtQuality; }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/curves.h"
 #include "geometry/interaction.h"
 #include "geometry/shape.h"
 #include "geometry/triangle_mesh.h"
@@ -79,6 +80,9 @@ class Accel {
     int AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask = AllRays, ShapeAlpha alpha = {});
     int AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask = AllRays,
                     ShapeAlpha alpha = {});
+    // pbrt-v3 curves as Embree's native Bézier curves (geometry/curves.h; no cut-outs). A
+    // curve set that moves gets Embree time steps (CurveSet::SetMotionSteps).
+    int AddCurves(std::unique_ptr<CurveSet> curves, unsigned mask = AllRays);
     // An Embree instance of a committed prototype (pbrt ObjectInstance). Embree 3 allows one
     // instance level: prototypes hold meshes and analytic shapes only, and analytic shapes
     // apply their own object transform inside the instance.
@@ -127,6 +131,8 @@ class Accel {
     size_t NumTriangles() const;  // of this scene's meshes (instances' prototypes not included)
     const TriangleMesh *Mesh(int shape) const;       // nullptr if analytic
     const AnalyticShape *Analytic(int shape) const;  // nullptr if mesh
+    const CurveSet *Curves(int shape) const;         // nullptr unless curves
+    size_t NumCurveSegments() const;                 // of this scene's curves (as NumTriangles)
     double BuildSeconds() const;
     bool BuiltWithHighQuality() const;  // after Commit(): whether the HIGH builder ran
     BvhQuality BuildQuality() const;    // after Commit(): Low, Medium or High (never Auto)

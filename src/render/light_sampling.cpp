@@ -20,6 +20,8 @@ Bounds3f SceneBounds(const RenderScene &scene) {
             for (size_t i = 0; i < m->NumVertices(); ++i) b.Expand(m->Position(uint32_t(i)));
         } else if (const AnalyticShape *a = scene.accel->Analytic(s)) {
             b.Expand(a->RenderBounds());
+        } else if (const CurveSet *c = scene.accel->Curves(s)) {
+            b.Expand(c->RenderBounds());
         }
     }
     return b;

@@ -34,7 +34,8 @@ struct SceneFeatures {
     int analyticShapes = 0, meshes = 0;
     int csgNodes = 0;  // top-level CSGBegin nodes (their operands count as shapes too)
     size_t triangles = 0;
-    EffectSet effects;  // what the scene calls for, with reasons (render/effects.h)
+    size_t curveSegments = 0;  // of "curve" shapes (Embree's native curves)
+    EffectSet effects;         // what the scene calls for, with reasons (render/effects.h)
 };
 
 struct ShapeInfo {
