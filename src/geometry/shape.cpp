@@ -180,6 +180,30 @@ SurfaceInteraction ShapeInteraction(const AnalyticShape &shape, const Transform 
 
 }  // namespace
 
+void AnalyticShape::NormalDerivatives(const SurfaceInteraction &si, const Vec3f &n, const Vec3f *dp,
+                                      Vec3f *dn, int count) const {
+    // With N the object-space field, the render-space unit normal is m = M^-T N / |M^-T N|
+    // (M = renderFromObject), so along a render-space dp (object dpObj = M^-1 dp)
+    // dm = (I - m m^T) M^-T dN / |M^-T N| with dN = NormalFieldDerivative(pObj, dpObj).
+    std::optional<Transform> moved;
+    if (motion_) moved = motion_->Interpolate(double(si.time));
+    const Transform &rfo = moved ? *moved : renderFromObject_;
+    const Transform ofr = rfo.Inverse();
+    const Vec3d pObj = ofr.Point(Vec3d(si.p));
+    const Vec3d mW = rfo.Normal(NormalField(pObj));
+    const double len = Length(mW);
+    if (!(len > 0) || !std::isfinite(len)) {
+        for (int i = 0; i < count; ++i) dn[i] = Vec3f();
+        return;
+    }
+    const Vec3d m = mW / len;
+    const double scale = (Dot(m, Vec3d(n)) < 0 ? -1 : 1) / len;
+    for (int i = 0; i < count; ++i) {
+        const Vec3d dN = rfo.Normal(NormalFieldDerivative(pObj, ofr.Vector(Vec3d(dp[i]))));
+        dn[i] = Vec3f((dN - m * Dot(m, dN)) * scale);
+    }
+}
+
 SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir,
                                               unsigned needs, float time, int shape,
                                               int prim) const {
