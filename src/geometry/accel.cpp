@@ -429,6 +429,43 @@ SurfaceInteraction Accel::Interaction(const Ray &r, const RawHit &hit, unsigned 
     }
 }
 
+void Accel::NormalDerivatives(const SurfaceInteraction &si, const Vec3f &n, const Vec3f *dp,
+                              Vec3f *dn, int count) const {
+    constexpr int MaxCount = 4;
+    if (si.shape < 0 || size_t(si.shape) >= impl_->shapes.size() || count > MaxCount) {
+        for (int i = 0; i < count; ++i) dn[i] = Vec3f();
+        return;
+    }
+    const Impl::Entry &e = impl_->shapes[size_t(si.shape)];
+    if (e.prototype) {
+        // In instance space (W = renderFromInstance): the normal there is W^T n up to length,
+        // tangents W^-1 dp; back in render space the unit normal is W^-T m_I / |W^-T m_I|, so
+        // dn = (I - n n^T) W^-T dn_I / |W^-T m_I| (as AnalyticShape::NormalDerivatives).
+        std::optional<Transform> moved;
+        if (!e.instanceSteps.empty()) moved = InstanceTransformAt(e.instanceSteps, si.time);
+        const Transform &w = moved ? *moved : e.renderFromInstance;
+        const Transform instFromRender = w.Inverse();
+        SurfaceInteraction sub = si;
+        sub.p = Vec3f(instFromRender.Point(Vec3d(si.p)));
+        sub.shape = si.instanceShape;
+        sub.instanceShape = -1;
+        const Vec3d nI = Normalize(instFromRender.Normal(Vec3d(n)));
+        Vec3f dpI[MaxCount], dnI[MaxCount];
+        for (int i = 0; i < count; ++i) dpI[i] = Vec3f(instFromRender.Vector(Vec3d(dp[i])));
+        e.prototype->NormalDerivatives(sub, Vec3f(nI), dpI, dnI, count);
+        const double len = Length(w.Normal(nI));
+        const Vec3d nW(n);
+        for (int i = 0; i < count; ++i) {
+            const Vec3d d = w.Normal(Vec3d(dnI[i]));
+            dn[i] = len > 0 ? Vec3f((d - nW * Dot(nW, d)) / len) : Vec3f();
+        }
+    } else if (e.mesh) {
+        e.mesh->NormalDerivatives(size_t(si.prim), si, n, dp, dn, count);
+    } else {
+        e.analytic->NormalDerivatives(si, n, dp, dn, count);
+    }
+}
+
 void Accel::PrefetchHits(const RawHit *hits, int n) const {
     for (int i = 0; i < n; ++i) {
         if (hits[i].shape < 0) continue;

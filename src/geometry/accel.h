@@ -123,6 +123,13 @@ class Accel {
     // what the render's own hits compute.
     SurfaceInteraction Interaction(const Ray &ray, const RawHit &hit,
                                    unsigned extraNeeds = 0) const;
+    // Curvature at a hit this scene's Intersect or Interaction returned: the derivatives dn[i]
+    // of its unit shading normal (before bump or normal maps) along the render-space tangent
+    // vectors dp[i], oriented as the unit vector n (AnalyticShape::NormalDerivatives,
+    // TriangleMesh::NormalDerivatives; instances through their transform). Computed from the
+    // shape on request, for specular ray differentials (render/differentials.h).
+    void NormalDerivatives(const SurfaceInteraction &si, const Vec3f &n, const Vec3f *dp, Vec3f *dn,
+                           int count) const;
     // Prefetches the mesh data Interaction will read for these hits (a packet's hits, before
     // they are shaded one by one, so their cache misses overlap).
     void PrefetchHits(const RawHit *hits, int n) const;

@@ -40,6 +40,9 @@ Bounds3d Cone::ObjectBounds() const {
 
 double Cone::Implicit(const Vec3d &p) const { return ConeQuadric(radius_, height_).F(p); }
 Vec3d Cone::ImplicitGradient(const Vec3d &p) const { return ConeQuadric(radius_, height_).Grad(p); }
+Vec3d Cone::NormalFieldDerivative(const Vec3d &, const Vec3d &dp) const {
+    return ConeQuadric(radius_, height_).GradDerivative(dp);
+}
 
 template <typename Real>
 bool Cone::IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real tSlack,

@@ -17,6 +17,8 @@ class Cone final : public AnalyticShapeT<Cone> {
     // Positive outside (farther from the axis than the surface).
     double Implicit(const Vec3d &p) const override;
     Vec3d ImplicitGradient(const Vec3d &p) const override;
+    // Curvature: the field is the quadric's gradient (the default NormalField), linear in p.
+    Vec3d NormalFieldDerivative(const Vec3d &p, const Vec3d &dp) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 

@@ -425,6 +425,16 @@ bool CsgShape::Intersect(const Vec3f &o, const Vec3f &d, float tMin, float tMax,
     return false;
 }
 
+void CsgShape::NormalDerivatives(const SurfaceInteraction &si, const Vec3f &n, const Vec3f *dp,
+                                 Vec3f *dn, int count) const {
+    const int part = si.instanceShape;
+    if (part >= 0 && part < NumLeaves() && leaves_[size_t(part)]->analytic) {
+        leaves_[size_t(part)]->analytic->NormalDerivatives(si, n, dp, dn, count);
+        return;
+    }
+    for (int i = 0; i < count; ++i) dn[i] = Vec3f();
+}
+
 LocalGeometry CsgShape::Geometry(const ObjectHit &hit) const {
     LocalGeometry g;
     if (hit.part < 0 || hit.part >= NumLeaves()) {  // not a CSG hit (cannot happen)

@@ -68,6 +68,11 @@ class CsgShape final : public AnalyticShape {
     bool Intersect(const Vec3f &o, const Vec3f &d, float tMin, float tMax, Precision precision,
                    ObjectHit *hit) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
+    // Curvature is the operand's (si.instanceShape): an analytic operand's own, zero on a mesh
+    // operand (its faces are flat: CSG meshes shade with their geometric normals).
+    Vec3d NormalFieldDerivative(const Vec3d &, const Vec3d &) const override { return {}; }
+    void NormalDerivatives(const SurfaceInteraction &si, const Vec3f &n, const Vec3f *dp, Vec3f *dn,
+                           int count) const override;
 
     // Every boundary crossing of the result along the ray after tMin (for tests): t and
     // whether the ray enters the solid there.

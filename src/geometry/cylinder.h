@@ -18,6 +18,11 @@ class Cylinder final : public AnalyticShapeT<Cylinder> {
     Vec3d ImplicitGradient(const Vec3d &p) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
     Vec3d GeometricNormal(const ObjectHit &hit) const override { return {hit.p.x, hit.p.y, 0}; }
+    // Curvature: the field (x, y, 0), linear in p.
+    Vec3d NormalField(const Vec3d &p) const override { return {p.x, p.y, 0}; }
+    Vec3d NormalFieldDerivative(const Vec3d &, const Vec3d &dp) const override {
+        return {dp.x, dp.y, 0};
+    }
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 
     template <typename Real>

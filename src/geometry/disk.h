@@ -19,6 +19,8 @@ class Disk final : public AnalyticShapeT<Disk> {
     Vec3d ImplicitGradient(const Vec3d &) const override { return {0, 0, 1}; }
     LocalGeometry Geometry(const ObjectHit &hit) const override;
     Vec3d GeometricNormal(const ObjectHit &) const override { return {0, 0, 1}; }
+    // A plane: the normal does not change.
+    Vec3d NormalFieldDerivative(const Vec3d &, const Vec3d &) const override { return {}; }
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 
     template <typename Real>

@@ -73,6 +73,9 @@ double Hyperboloid::Implicit(const Vec3d &p) const { return HyperboloidQuadric(a
 Vec3d Hyperboloid::ImplicitGradient(const Vec3d &p) const {
     return HyperboloidQuadric(ah_, ch_).Grad(p);
 }
+Vec3d Hyperboloid::NormalFieldDerivative(const Vec3d &, const Vec3d &dp) const {
+    return HyperboloidQuadric(ah_, ch_).GradDerivative(dp);
+}
 
 double Hyperboloid::Phi(const Vec3d &p) const {
     double v = (p.z - p1_.z) / (p2_.z - p1_.z);

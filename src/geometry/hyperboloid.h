@@ -19,6 +19,8 @@ class Hyperboloid final : public AnalyticShapeT<Hyperboloid> {
     Bounds3d ObjectBounds() const override;
     double Implicit(const Vec3d &p) const override;  // a rho^2 - c z^2 - 1, positive outside
     Vec3d ImplicitGradient(const Vec3d &p) const override;
+    // Curvature: the field is the quadric's gradient (the default NormalField), linear in p.
+    Vec3d NormalFieldDerivative(const Vec3d &p, const Vec3d &dp) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 

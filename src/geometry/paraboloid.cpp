@@ -46,6 +46,9 @@ Bounds3d Paraboloid::ObjectBounds() const {
 
 double Paraboloid::Implicit(const Vec3d &p) const { return ParaboloidQuadric(k_).F(p); }
 Vec3d Paraboloid::ImplicitGradient(const Vec3d &p) const { return ParaboloidQuadric(k_).Grad(p); }
+Vec3d Paraboloid::NormalFieldDerivative(const Vec3d &, const Vec3d &dp) const {
+    return ParaboloidQuadric(k_).GradDerivative(dp);
+}
 
 template <typename Real>
 bool Paraboloid::IntersectT(Vec3<Real> o, Vec3<Real> d, Real tMin, Real tMax, Real tSlack,

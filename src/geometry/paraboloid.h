@@ -17,6 +17,8 @@ class Paraboloid final : public AnalyticShapeT<Paraboloid> {
     Bounds3d ObjectBounds() const override;
     double Implicit(const Vec3d &p) const override;  // k (x^2 + y^2) - z, positive outside
     Vec3d ImplicitGradient(const Vec3d &p) const override;
+    // Curvature: the field is the quadric's gradient (the default NormalField), linear in p.
+    Vec3d NormalFieldDerivative(const Vec3d &p, const Vec3d &dp) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
     Vec3d GeometricNormal(const ObjectHit &hit) const override {
         return {2 * k_ * hit.p.x, 2 * k_ * hit.p.y, -1};

@@ -26,6 +26,10 @@ struct RotationalQuadric {
                std::abs(D);
     }
     Vec3d Grad(const Vec3d &p) const { return {2 * A * p.x, 2 * A * p.y, 2 * B * (p.z - z0) + C}; }
+    // Grad's derivative along dp (F's Hessian times dp: Grad is linear in p).
+    Vec3d GradDerivative(const Vec3d &dp) const {
+        return {2 * A * dp.x, 2 * A * dp.y, 2 * B * dp.z};
+    }
 };
 
 // b*b' - c*d with one FMA-recovered rounding error (Kahan): a 1.5-ulp discriminant.

@@ -180,6 +180,36 @@ SurfaceInteraction ShapeInteraction(const AnalyticShape &shape, const Transform 
 
 }  // namespace
 
+void AnalyticShape::NormalDerivatives(const SurfaceInteraction &si, const Vec3f &n, const Vec3f *dp,
+                                      Vec3f *dn, int count) const {
+    // With N the object-space field, the render-space unit normal is m = M^-T N / |M^-T N|
+    // (M = renderFromObject), so along a render-space dp (object dpObj = M^-1 dp)
+    // dm = (I - m m^T) M^-T dN / |M^-T N| with dN = NormalFieldDerivative(pObj, dpObj).
+    // Everything goes through objectFromRender (M^-1): M^-T v is its transpose times v.
+    Affine3<double> moved;
+    const Affine3<double> &ofr =
+        motion_ ? (moved = ObjectFromRenderAt<double>(si.time)) : objectFromRenderD_;
+    auto inverseTranspose = [&ofr](const Vec3d &v) {
+        const auto &m = ofr.m;
+        return Vec3d(m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z,
+                     m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
+                     m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z);
+    };
+    const Vec3d pObj = ofr.Point(Vec3d(si.p));
+    const Vec3d mW = inverseTranspose(NormalField(pObj));
+    const double len = Length(mW);
+    if (!(len > 0) || !std::isfinite(len)) {
+        for (int i = 0; i < count; ++i) dn[i] = Vec3f();
+        return;
+    }
+    const Vec3d m = mW / len;
+    const double scale = (Dot(m, Vec3d(n)) < 0 ? -1 : 1) / len;
+    for (int i = 0; i < count; ++i) {
+        const Vec3d dN = inverseTranspose(NormalFieldDerivative(pObj, ofr.Vector(Vec3d(dp[i]))));
+        dn[i] = Vec3f((dN - m * Dot(m, dN)) * scale);
+    }
+}
+
 SurfaceInteraction AnalyticShape::Interaction(const ObjectHit &hit, const Vec3f &rayDir,
                                               unsigned needs, float time, int shape,
                                               int prim) const {

@@ -96,6 +96,21 @@ class AnalyticShape {
     // needs neither uv nor dpdu; shapes override it when that is cheaper.
     virtual Vec3d GeometricNormal(const ObjectHit &hit) const { return Geometry(hit).n; }
 
+    // Curvature, asked only where a specular bounce carries ray differentials
+    // (render/differentials.h): a smooth object-space vector field that lies along the surface
+    // normal at every surface point (any length, either sign; ImplicitGradient by default), and
+    // its directional derivative (Jacobian times dpObj, for dpObj tangent to the surface at
+    // pObj). Closed forms per shape; zero for a plane.
+    virtual Vec3d NormalField(const Vec3d &pObj) const { return ImplicitGradient(pObj); }
+    virtual Vec3d NormalFieldDerivative(const Vec3d &pObj, const Vec3d &dpObj) const = 0;
+    // The derivatives dn[i] of the render-space unit normal along the render-space tangent
+    // vectors dp[i] (i < count) at the hit si on this shape: the Weingarten map, so dp = dpdu,
+    // dpdv gives dndu, dndv and the footprint's dpdx, dpdy give dndx, dndy. Oriented as the
+    // unit vector n (which lies in the normal's hemisphere: si.n or si.ns). Computed from the
+    // shape at si.p (and si.time for a moving shape), so SurfaceInteraction carries none of it.
+    virtual void NormalDerivatives(const SurfaceInteraction &si, const Vec3f &n, const Vec3f *dp,
+                                   Vec3f *dn, int count) const;
+
     // Uniform sampling of the object-space surface by area: the point, its unnormalized
     // normal (pbrt orientation before flips) and the object-space area density. Shapes that
     // cannot be sampled return false (they cannot be area lights).

@@ -16,6 +16,9 @@ class Sphere final : public AnalyticShapeT<Sphere> {
     Vec3d ImplicitGradient(const Vec3d &p) const override { return Normalize(p); }
     LocalGeometry Geometry(const ObjectHit &hit) const override;
     Vec3d GeometricNormal(const ObjectHit &hit) const override { return hit.p; }
+    // Curvature: the field p (radial), whose derivative along dp is dp.
+    Vec3d NormalField(const Vec3d &p) const override { return p; }
+    Vec3d NormalFieldDerivative(const Vec3d &, const Vec3d &dp) const override { return dp; }
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
     bool SampleObjectArea(Vec2f u, Vec3d *p, Vec3d *n, double *pdfArea) const override;
     // Full spheres under similarity transforms sample the cone they subtend (pbrt-v3

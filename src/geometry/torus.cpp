@@ -104,6 +104,20 @@ Bounds3d Torus::ObjectBounds() const {
 double Torus::Implicit(const Vec3d &p) const { return TorusDistance{R_, r_}.F(p); }
 Vec3d Torus::ImplicitGradient(const Vec3d &p) const { return TorusDistance{R_, r_}.Grad(p); }
 
+Vec3d Torus::NormalField(const Vec3d &p) const {
+    const double rho = std::hypot(p.x, p.y);
+    const Vec3d radial = rho > 0 ? Vec3d(p.x / rho, p.y / rho, 0) : Vec3d(1, 0, 0);
+    return p - radial * R_;
+}
+
+Vec3d Torus::NormalFieldDerivative(const Vec3d &p, const Vec3d &dp) const {
+    // d(radial) = (dq - radial (radial . dq)) / rho with dq = (dx, dy, 0).
+    const double rho = std::hypot(p.x, p.y);
+    if (!(rho > 0)) return dp;  // on the axis: never on the surface (r < R)
+    const Vec3d radial(p.x / rho, p.y / rho, 0), dq(dp.x, dp.y, 0);
+    return dp - (dq - radial * Dot(radial, dq)) * (R_ / rho);
+}
+
 int Torus::Roots(const Vec3d &o, const Vec3d &dIn, double tMin, double tMax, double tSlack,
                  Root roots[4]) const {
     // Unit direction: the quartic is then monic; tau = t |d|.

@@ -21,6 +21,9 @@ class Torus final : public AnalyticShapeT<Torus> {
     // positive outside, and free of the quartic's R/r cancellation.
     double Implicit(const Vec3d &p) const override;
     Vec3d ImplicitGradient(const Vec3d &p) const override;
+    // Curvature: the field p - R radial(p) (from the tube's centre circle to p).
+    Vec3d NormalField(const Vec3d &p) const override;
+    Vec3d NormalFieldDerivative(const Vec3d &p, const Vec3d &dp) const override;
     LocalGeometry Geometry(const ObjectHit &hit) const override;
     bool Revolution(RevolutionProfile *profile) const override;  // [validate hook]
 

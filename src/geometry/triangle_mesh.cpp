@@ -143,6 +143,47 @@ Vec3f TriangleMesh::GeometricNormal(size_t prim) const {
     return UnitNormal(Position(v[0]), Position(v[1]), Position(v[2]), flipNormals_);
 }
 
+void TriangleMesh::NormalDerivatives(size_t prim, const SurfaceInteraction &si, const Vec3f &n,
+                                     const Vec3f *dp, Vec3f *dn, int count) const {
+    for (int i = 0; i < count; ++i) dn[i] = Vec3f();
+    if (normals_.empty()) return;
+    const uint32_t *vi = Triangle(prim);
+    const bool moving = !stepPositions_.empty();
+    Vec3d p0(moving ? PositionAt(vi[0], si.time) : Position(vi[0])),
+        p1(moving ? PositionAt(vi[1], si.time) : Position(vi[1])),
+        p2(moving ? PositionAt(vi[2], si.time) : Position(vi[2]));
+    Vec3d n0(moving ? NormalAt(vi[0], si.time) : normals_[vi[0]]),
+        n1(moving ? NormalAt(vi[1], si.time) : normals_[vi[1]]),
+        n2(moving ? NormalAt(vi[2], si.time) : normals_[vi[2]]);
+    // Barycentrics (b1, b2) of a point q in the plane: the least-squares solution of
+    // e1 b1 + e2 b2 = q - p0 (Gram matrix of the edges); the same solve maps a tangent dp to
+    // (db1, db2). The shading normal is N / |N| with N = n0 + b1 (n1 - n0) + b2 (n2 - n0).
+    const Vec3d e1 = p1 - p0, e2 = p2 - p0;
+    const double d11 = Dot(e1, e1), d12 = Dot(e1, e2), d22 = Dot(e2, e2);
+    const double det = d11 * d22 - d12 * d12;
+    if (!(std::abs(det) > 0)) return;
+    auto solve = [&](const Vec3d &w, double *b1, double *b2) {
+        const double w1 = Dot(w, e1), w2 = Dot(w, e2);
+        *b1 = (d22 * w1 - d12 * w2) / det;
+        *b2 = (d11 * w2 - d12 * w1) / det;
+    };
+    double b1, b2;
+    solve(Vec3d(si.p) - p0, &b1, &b2);
+    const Vec3d dn1 = n1 - n0, dn2 = n2 - n0;
+    const Vec3d N = n0 + dn1 * b1 + dn2 * b2;
+    const double len = Length(N);
+    if (!(len > 0) || !std::isfinite(len)) return;
+    const Vec3d m = N / len;
+    // d(N / |N|) = (I - m m^T) dN / |N|, turned to n's side.
+    const double scale = (Dot(m, Vec3d(n)) < 0 ? -1 : 1) / len;
+    for (int i = 0; i < count; ++i) {
+        double db1, db2;
+        solve(Vec3d(dp[i]), &db1, &db2);
+        const Vec3d dN = dn1 * db1 + dn2 * db2;
+        dn[i] = Vec3f((dN - m * Dot(m, dN)) * scale);
+    }
+}
+
 SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, float t,
                                              const Vec3f &rayDir, unsigned needs, float time,
                                              int shape) const {

@@ -99,6 +99,13 @@ class TriangleMesh {
     // index of this mesh) are stored in the result, so that Accel returns it as built.
     SurfaceInteraction Interaction(size_t prim, float u, float v, float t, const Vec3f &rayDir,
                                    unsigned needs = NeedAll, float time = 0, int shape = -1) const;
+    // Curvature (AnalyticShape::NormalDerivatives for meshes): the derivatives of the unit
+    // shading normal of triangle `prim` along the tangent vectors dp[i] at the hit si, oriented
+    // as n. With per-vertex normals, the interpolated normal's (barycentric differences of the
+    // vertex normals, through the hit's barycentrics recomputed from si.p); zero without them
+    // (flat faces).
+    void NormalDerivatives(size_t prim, const SurfaceInteraction &si, const Vec3f &n,
+                           const Vec3f *dp, Vec3f *dn, int count) const;
 
   private:
     // Vertex i (and its shading normal) where a moving mesh is at `time`.

@@ -9,8 +9,12 @@ namespace prism {
 namespace {
 
 // pbrt-v3 Material::Bump without ray differentials: its fallback step du = dv = .0005 (pbrt
-// takes .5 (|dudx| + |dudy|) and uses .0005 when that is 0). The dndu/dndv term is left out:
-// Prism's hits carry no normal derivatives (it vanishes on flat surfaces).
+// takes .5 (|dudx| + |dudy|) and uses .0005 when that is 0). The displaced tangents leave out
+// the displacement times the normal's derivatives (d dndu, d dndv): hits carry no dndu/dndv,
+// and fetching the shape's curvature (Accel::NormalDerivatives) at every bumped hit would
+// change every bump-mapped image; the term vanishes on flat surfaces and where the
+// displacement is 0. Specular ray differentials at a bumped hit read the surface's own normal
+// derivatives (render/differentials.h), as pbrt-v3 keeps the unbumped dndu/dndv there.
 void Bump(const Texture &d, SurfaceInteraction &si) {
     constexpr float du = .0005f, dv = .0005f;
     const Vec3f n = si.ns;

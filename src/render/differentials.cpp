@@ -48,38 +48,60 @@ void ComputeDifferentials(const SurfaceInteraction &si, const RayDifferential &r
     if (!Solve2x2(A, By, &tc->dudy, &tc->dvdy)) tc->dudy = tc->dvdy = 0;
 }
 
+NormalDifferentials FootprintNormalDifferentials(const Accel &accel, const SurfaceInteraction &si,
+                                                 const TextureContext &tc, const Vec3f &ns) {
+    const Vec3f dp[2] = {tc.dpdx, tc.dpdy};
+    Vec3f dn[2];
+    accel.NormalDerivatives(si, ns, dp, dn, 2);
+    return {dn[0], dn[1]};
+}
+
 RayDifferential ReflectDifferential(const SurfaceInteraction &si, const TextureContext &tc,
-                                    const RayDifferential &rd, const Vec3f &ns, const Vec3f &wi) {
+                                    const RayDifferential &rd, const Vec3f &ns,
+                                    const NormalDifferentials &dn, const Vec3f &wi) {
     const Vec3f &wo = si.wo;
     RayDifferential r;
     r.rxOrigin = si.p + tc.dpdx;
     r.ryOrigin = si.p + tc.dpdy;
-    // pbrt-v3 with dn/dx = 0: wi' = wi - dwo + 2 (dwo · ns) ns.
+    // wi = -wo + 2 (wo . n) n, differentiated across the footprint:
+    // dwi = -dwo + 2 [(wo . n) dn + (dwo . n + wo . dn) n], with dwo = -(d + dd) - wo the
+    // change of wo toward the offset ray.
     const Vec3f dwodx = -rd.rxDirection - wo, dwody = -rd.ryDirection - wo;
-    r.rxDirection = wi - dwodx + ns * (2 * Dot(dwodx, ns));
-    r.ryDirection = wi - dwody + ns * (2 * Dot(dwody, ns));
+    const float cosO = Dot(wo, ns);
+    const float dDNdx = Dot(dwodx, ns) + Dot(wo, dn.dndx);
+    const float dDNdy = Dot(dwody, ns) + Dot(wo, dn.dndy);
+    r.rxDirection = wi - dwodx + (dn.dndx * cosO + ns * dDNdx) * 2;
+    r.ryDirection = wi - dwody + (dn.dndy * cosO + ns * dDNdy) * 2;
     return r;
 }
 
 RayDifferential RefractDifferential(const SurfaceInteraction &si, const TextureContext &tc,
-                                    const RayDifferential &rd, Vec3f ns, const Vec3f &wi,
-                                    float eta) {
+                                    const RayDifferential &rd, Vec3f ns, NormalDifferentials dn,
+                                    const Vec3f &wi, float eta) {
     const Vec3f &wo = si.wo;
     RayDifferential r;
     r.rxOrigin = si.p + tc.dpdx;
     r.ryOrigin = si.p + tc.dpdy;
-    // pbrt-v3: the relative index from wo's side to wi's, with ns turned to wo's side.
+    // The relative index e from wo's side to wi's, with ns (and its derivatives) turned to
+    // wo's side.
     float e = 1 / eta;
     if (Dot(wo, ns) < 0) {
         e = eta;
         ns = -ns;
+        dn.dndx = -dn.dndx;
+        dn.dndy = -dn.dndy;
     }
+    // wi = -e wo + mu n with mu = e cosI - cosT, cosI = wo . n, cosT = sqrt(1 - e^2 (1 -
+    // cosI^2)); so dwi = -e dwo + mu dn + dmu n, dmu = (e - e^2 cosI / cosT) dcosI and
+    // dcosI = dwo . n + wo . dn.
     const Vec3f dwodx = -rd.rxDirection - wo, dwody = -rd.ryDirection - wo;
-    const float dDNdx = Dot(dwodx, ns), dDNdy = Dot(dwody, ns);
+    const float dDNdx = Dot(dwodx, ns) + Dot(wo, dn.dndx);
+    const float dDNdy = Dot(dwody, ns) + Dot(wo, dn.dndy);
     const float cosI = Dot(wo, ns), cosT = AbsDot(wi, ns);
+    const float mu = e * cosI - cosT;
     const float k = cosT > 0 ? e - (e * e * cosI) / cosT : 0.f;
-    r.rxDirection = wi - dwodx * e + ns * (k * dDNdx);
-    r.ryDirection = wi - dwody * e + ns * (k * dDNdy);
+    r.rxDirection = wi - dwodx * e + dn.dndx * mu + ns * (k * dDNdx);
+    r.ryDirection = wi - dwody * e + dn.dndy * mu + ns * (k * dDNdy);
     return r;
 }
 

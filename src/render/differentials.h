@@ -1,10 +1,14 @@
 // Ray differentials at hits (pbrt-v3 §10.1): the screen-space derivatives of the hit point and
 // of (u, v) that filtered texture lookups read, and the differentials of specularly reflected
-// and refracted rays (pbrt-v3 SpecularReflect / SpecularTransmit). Prism's hits carry no
-// normal derivatives (dndu, dndv), so the curvature term of the specular differentials is
-// left out: exact for flat mirrors and glass, too narrow a footprint behind curved ones.
+// and refracted rays (Igehy's ray differentials, as pbrt-v3's SpecularReflect and
+// SpecularTransmit form them), with the surface's curvature: the derivatives dn/dx, dn/dy of
+// the shading normal across the footprint. A curved mirror or lens thus widens (or narrows) the
+// footprint of what it shows as it bends the neighbouring rays. The curvature comes from the
+// shape at the hit on request (Accel::NormalDerivatives), only where a specular bounce carries
+// differentials: hits carry no dndu/dndv, and renders without differentials do no extra work.
 #pragma once
 
+#include "geometry/accel.h"
 #include "geometry/interaction.h"
 #include "geometry/ray.h"
 #include "render/texture.h"
@@ -17,14 +21,27 @@ namespace prism {
 void ComputeDifferentials(const SurfaceInteraction &si, const RayDifferential &rd,
                           TextureContext *tc);
 
+// The derivatives of the unit shading normal across the footprint (pbrt-v3's dndx, dndy:
+// dndu dudx + dndv dvdx, which is the Weingarten map applied to dpdx), oriented as ns.
+struct NormalDifferentials {
+    Vec3f dndx, dndy;
+};
+// From the shape that si is on, along tc.dpdx/dpdy. The surface's own curvature: behind a
+// bump or normal map the perturbed normal turns with the unperturbed one (the map's own second
+// derivatives are left out, as pbrt-v3's Bump keeps the surface's dndu/dndv).
+NormalDifferentials FootprintNormalDifferentials(const Accel &accel, const SurfaceInteraction &si,
+                                                 const TextureContext &tc, const Vec3f &ns);
+
 // The differentials of the ray reflected specularly about the shading normal ns (wo, wi: the
-// unit directions away from the surface) at a hit whose derivatives tc holds.
+// unit directions away from the surface) at a hit whose derivatives tc and dn hold
+// (dn zero: a flat mirror's).
 RayDifferential ReflectDifferential(const SurfaceInteraction &si, const TextureContext &tc,
-                                    const RayDifferential &rd, const Vec3f &ns, const Vec3f &wi);
+                                    const RayDifferential &rd, const Vec3f &ns,
+                                    const NormalDifferentials &dn, const Vec3f &wi);
 // The same for specular refraction into wi through an interface of relative index eta
 // (inside over outside, as BxDFLobes::eta).
 RayDifferential RefractDifferential(const SurfaceInteraction &si, const TextureContext &tc,
-                                    const RayDifferential &rd, Vec3f ns, const Vec3f &wi,
-                                    float eta);
+                                    const RayDifferential &rd, Vec3f ns, NormalDifferentials dn,
+                                    const Vec3f &wi, float eta);
 
 }  // namespace prism

@@ -38,12 +38,12 @@ void DirectLightingIntegrator::Prepare(const RenderScene &scene) {
 
 RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps,
                                  RayCounters &rc, RGB *direct) const {
-    return Li(scene, ray, ps, 0, kRayTreeBudget, rc, direct);
+    return Li(scene, ray, ps, 0, kRayTreeBudget, ps.diff, rc, direct);
 }
 
 RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &rayIn, const PixelSamples &ps,
-                                 int depth, uint64_t treeRays, RayCounters &counters,
-                                 RGB *direct) const {
+                                 int depth, uint64_t treeRays, const RayDifferential *diff,
+                                 RayCounters &counters, RGB *direct) const {
     Ray ray = rayIn;
     SurfaceInteraction si;
     const ShapeInfo *info = nullptr;
@@ -70,8 +70,10 @@ RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &rayIn, con
                  .L(si, si.wo);
     if (mat.PerturbsShading()) mat.PerturbShading(si);
     TextureContext tc{si.uv, si.p, si.uv1};
-    // The camera ray's footprint at its first hit (not behind pass-through surfaces).
-    if (depth == 0 && ps.diff && ray.o == rayIn.o) ComputeDifferentials(si, *ps.diff, &tc);
+    // The ray's footprint (not behind pass-through surfaces, whose continued rays carry no
+    // differentials).
+    if (diff && !(ray.o == rayIn.o)) diff = nullptr;
+    if (diff) ComputeDifferentials(si, *diff, &tc);
     if (mat.HasEmission()) L += mat.Emitted(tc);
     BSDF bsdf = mat.GetBSDF(si, tc);
     bsdf.MakeRoughSpecularGlossy();  // pbrt-v3: rough glass is a microfacet BSDF
@@ -88,6 +90,7 @@ RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &rayIn, con
         struct SpecularRay {
             Vec3f wi;
             RGB weight;
+            float eta;  // the part's (refraction)
             bool reflect;
         };
         SpecularRay rays[2 * BSDF::MaxParts];
@@ -96,19 +99,28 @@ RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &rayIn, con
             Vec3f wi;
             RGB weight;
             if (bsdf.SampleSpecularReflection(part, si.wo, &wi, &weight))
-                rays[n++] = {wi, weight, true};
+                rays[n++] = {wi, weight, 0.f, true};
             if (bsdf.SampleSpecularTransmission(part, si.wo, &wi, &weight))
-                rays[n++] = {wi, weight, false};
+                rays[n++] = {wi, weight, bsdf.Part(part).eta, false};
         }
         const RayTreeShare share = ShareRayTree(treeRays, uint64_t(n));
+        // The surface's curvature across the footprint, once (render/differentials.h).
+        NormalDifferentials dn;
+        if (diff && n > 0 && share.traced > 0)
+            dn = FootprintNormalDifferentials(*scene.accel, si, tc, bsdf.ns);
         for (int i = 0; i < n; ++i) {
             if (uint64_t(i) >= share.traced) {
                 counters.treeBudget += uint64_t(n - i);
                 break;
             }
             (rays[i].reflect ? counters.reflection : counters.refraction)++;
+            RayDifferential rd;
+            if (diff)
+                rd = rays[i].reflect
+                         ? ReflectDifferential(si, tc, *diff, bsdf.ns, dn, rays[i].wi)
+                         : RefractDifferential(si, tc, *diff, bsdf.ns, dn, rays[i].wi, rays[i].eta);
             L += rays[i].weight * Li(scene, si.SpawnRay(rays[i].wi, scene.offset), ps, depth + 1,
-                                     share.each, counters, nullptr);
+                                     share.each, diff ? &rd : nullptr, counters, nullptr);
         }
     }
     return L;

@@ -22,9 +22,12 @@ class DirectLightingIntegrator : public Integrator {
 
   private:
     // Radiance along a ray; depth counts delta bounces (camera rays are depth 0), treeRays
-    // is what the ray tree below the ray may still trace (render/ray_tree.h).
+    // is what the ray tree below the ray may still trace (render/ray_tree.h), diff the ray's
+    // differentials or null (the camera ray's, then the specular rays', as pbrt-v3's
+    // SpecularReflect/SpecularTransmit pass them on).
     RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, int depth,
-           uint64_t treeRays, RayCounters &counters, RGB *direct) const;
+           uint64_t treeRays, const RayDifferential *diff, RayCounters &counters,
+           RGB *direct) const;
 
     bool allLights_;
     LightChooser chooser_;

@@ -273,6 +273,11 @@ uint64_t Kernel<K>::AddSpecular(const SurfaceInteraction &si, const TextureConte
     }
     // The first rays of the hit within its ray-tree budget, each with an even share of it.
     const RayTreeShare share = ShareRayTree(sc.treeRays, uint64_t(n) + glossyRays);
+    // The surface's curvature across the footprint, once per hit whose rays carry
+    // differentials (render/differentials.h).
+    NormalDifferentials dn;
+    if (diff && n > 0 && share.traced > 0)
+        dn = FootprintNormalDifferentials(*scene_.accel, si, tc, bsdf.ns);
     for (int i = 0; i < n; ++i) {
         if (uint64_t(i) >= share.traced) {
             counters.treeBudget += uint64_t(n - i);
@@ -288,8 +293,8 @@ uint64_t Kernel<K>::AddSpecular(const SurfaceInteraction &si, const TextureConte
         RayDifferential rd;
         next.diff = nullptr;
         if (diff) {
-            rd = r.reflect ? ReflectDifferential(si, tc, *diff, bsdf.ns, r.wi)
-                           : RefractDifferential(si, tc, *diff, bsdf.ns, r.wi, r.eta);
+            rd = r.reflect ? ReflectDifferential(si, tc, *diff, bsdf.ns, dn, r.wi)
+                           : RefractDifferential(si, tc, *diff, bsdf.ns, dn, r.wi, r.eta);
             next.diff = &rd;
         }
         L += r.weight * Li(si.SpawnRay(r.wi, scene_.offset), depth + 1, counters, next);

@@ -118,7 +118,7 @@ TEST(RayDifferentials, FlatMirrorReflectsLikeTheMirroredCamera) {
         TextureContext tc{si.uv, si.p};
         ComputeDifferentials(si, rd, &tc);
         const Vec3f wi = MirrorY(r.d);
-        const RayDifferential refl = ReflectDifferential(si, tc, rd, si.ns, wi);
+        const RayDifferential refl = ReflectDifferential(si, tc, rd, si.ns, {}, wi);
         // The mirrored camera (eye below the plane) sends its offset rays along the mirrored
         // directions through the mirrored origins: the same lines as the reflected ones.
         for (int axis = 0; axis < 2; ++axis) {
@@ -143,7 +143,7 @@ TEST(RayDifferentials, StraightThroughRefractionKeepsTheRays) {
     const SurfaceInteraction si = PlaneHit(r);
     TextureContext tc{si.uv, si.p};
     ComputeDifferentials(si, rd, &tc);
-    const RayDifferential t = RefractDifferential(si, tc, rd, si.ns, r.d, 1.f);
+    const RayDifferential t = RefractDifferential(si, tc, rd, si.ns, {}, r.d, 1.f);
     EXPECT_LT(Dist(t.rxDirection, rd.rxDirection), 1e-6);
     EXPECT_LT(Dist(t.ryDirection, rd.ryDirection), 1e-6);
     // Into glass the refracted differentials match refracting the neighbouring rays.
@@ -154,7 +154,7 @@ TEST(RayDifferentials, StraightThroughRefractionKeepsTheRays) {
         float cosT = std::sqrt(1 - e * e * (1 - cosI * cosI));
         return -wo * e + Vec3f(0, 1, 0) * (e * cosI - cosT);
     };
-    const RayDifferential g = RefractDifferential(si, tc, rd, si.ns, refract(r.d), eta);
+    const RayDifferential g = RefractDifferential(si, tc, rd, si.ns, {}, refract(r.d), eta);
     EXPECT_LT(Dist(g.rxDirection, refract(rd.rxDirection)), 2e-3 * Dist(rd.rxDirection, r.d));
     EXPECT_LT(Dist(g.ryDirection, refract(rd.ryDirection)), 2e-3 * Dist(rd.ryDirection, r.d));
 }

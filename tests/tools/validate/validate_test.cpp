@@ -46,6 +46,10 @@ class InflatedSphere final : public AnalyticShapeT<InflatedSphere> {
     }
     double Implicit(const Vec3d &p) const override { return truth_.Implicit(p); }
     Vec3d ImplicitGradient(const Vec3d &p) const override { return truth_.ImplicitGradient(p); }
+    Vec3d NormalField(const Vec3d &p) const override { return truth_.NormalField(p); }
+    Vec3d NormalFieldDerivative(const Vec3d &p, const Vec3d &dp) const override {
+        return truth_.NormalFieldDerivative(p, dp);
+    }
     LocalGeometry Geometry(const ObjectHit &hit) const override {
         LocalGeometry g = truth_.Geometry(hit);
         if (tilt_ != 0 && hit.t == 0) {
