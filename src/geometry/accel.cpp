@@ -461,8 +461,11 @@ void Accel::NormalDerivatives(const SurfaceInteraction &si, const Vec3f &n, cons
         }
     } else if (e.mesh) {
         e.mesh->NormalDerivatives(size_t(si.prim), si, n, dp, dn, count);
-    } else {
+    } else if (e.analytic) {
         e.analytic->NormalDerivatives(si, n, dp, dn, count);
+    } else {
+        // Curves: thinner than a footprint wherever differentials matter; taken as flat.
+        for (int i = 0; i < count; ++i) dn[i] = Vec3f();
     }
 }
 
