@@ -13,7 +13,7 @@ namespace {
 // The exit pupil's bounds are tabulated for this many radial intervals of the film, each from
 // this many rear-plane samples squared.
 constexpr int PupilIntervals = 64;
-constexpr int PupilGrid = 128;
+constexpr int PupilGrid = 192;
 
 double AirIfZero(double eta) { return eta == 0 ? 1 : eta; }
 
