@@ -131,8 +131,8 @@ void ReadProjection(const CameraDesc &cd, const BuildSettings &settings, CameraP
 //                                   warning, to the file's)
 //   focusdistance     float   10    the distance from the film that is in focus, m
 //   simpleweighting   bool    true  weights cos^4 times the exit pupil's area over the
-//                                   centre's (else over the rear distance squared:
-//                                   pbrt-v3's physical weighting)
+//                                   centre's (else times the shutter time over the rear
+//                                   distance squared: pbrt-v3's physical weighting)
 // and the Film's "diagonal" (mm, 35): the film's physical size.
 std::shared_ptr<const LensSystem> ReadLens(BuildContext &ctx, CameraParams *params) {
     const CameraDesc &cd = ctx.desc.camera;
@@ -180,9 +180,12 @@ std::shared_ptr<const LensSystem> ReadLens(BuildContext &ctx, CameraParams *para
         throw SceneError(p ? p->loc : ctx.desc.film.loc, "film \"diagonal\" must be positive");
     }
     params->filmDiagonal = diagonal * 1e-3;
+    // Physical weighting integrates over the shutter (BuildCamera checks and orders the times).
+    const double shutter =
+        std::abs(double(cp.GetFloat("shutterclose", 1.f)) - cp.GetFloat("shutteropen", 0.f));
     try {
         return std::make_shared<const LensSystem>(std::move(lens), double(focus),
-                                                  params->filmDiagonal, simple);
+                                                  params->filmDiagonal, simple, shutter);
     } catch (const std::invalid_argument &e) {
         throw SceneError(loc("focusdistance"), std::string("realistic camera: ") + e.what());
     }

@@ -32,8 +32,11 @@ bool RefractRay(const Vec3d &d, Vec3d n, double etaI, double etaT, Vec3d *out) {
 }  // namespace
 
 LensSystem::LensSystem(std::vector<LensInterface> interfaces, double focusDistance,
-                       double filmDiagonal, bool simpleWeighting)
-    : interfaces_(std::move(interfaces)), filmRadius_(filmDiagonal / 2), simple_(simpleWeighting) {
+                       double filmDiagonal, bool simpleWeighting, double shutterTime)
+    : interfaces_(std::move(interfaces)),
+      filmRadius_(filmDiagonal / 2),
+      simple_(simpleWeighting),
+      shutterTime_(shutterTime) {
     if (interfaces_.empty()) throw std::invalid_argument("the lens has no interfaces");
     auto place = [&] {
         z_.assign(interfaces_.size(), 0);
@@ -182,7 +185,8 @@ LensRay LensSystem::GenerateRay(Vec2d pFilm, Vec2d u, double *weight) const {
     if (b.Area() == 0 || !TraceFromFilm(film, &out)) return film;
     const double cos2 = film.d.z * film.d.z;
     const double area = b.Area();
-    *weight = cos2 * cos2 * area / (simple_ ? pupils_[0].Area() : RearZ() * RearZ());
+    *weight = simple_ ? cos2 * cos2 * area / pupils_[0].Area()
+                      : shutterTime_ * cos2 * cos2 * area / (RearZ() * RearZ());
     return out;
 }
 

@@ -30,11 +30,11 @@ struct LensRay {
 
 class LensSystem {
   public:
-    // interfaces: scene side first (their thicknesses as given); filmDiagonal: metres.
-    // Throws std::invalid_argument when the lens cannot focus at focusDistance (metres from
-    // the film).
+    // interfaces: scene side first (their thicknesses as given); filmDiagonal: metres;
+    // shutterTime: the shutter's open interval (physical weighting scales by it). Throws
+    // std::invalid_argument when the lens cannot focus at focusDistance (metres from the film).
     LensSystem(std::vector<LensInterface> interfaces, double focusDistance, double filmDiagonal,
-               bool simpleWeighting);
+               bool simpleWeighting, double shutterTime = 1);
 
     // Traces r (from the film, toward +z) through every interface: false when an interface
     // or the stop blocks it (or it reflects totally). *out: the ray leaving the front.
@@ -44,7 +44,8 @@ class LensSystem {
 
     // The camera ray from camera-space film point (x, y, 0) through the exit pupil sample
     // u in [0,1)^2; *weight: pbrt-v3's (cos^4 times the pupil's area, normalized by the
-    // pupil at the film's centre with simple weighting, else by the rear distance squared);
+    // pupil at the film's centre with simple weighting, else times the shutter time over the
+    // rear distance squared);
     // 0 when the lens blocks the ray.
     LensRay GenerateRay(Vec2d pFilm, Vec2d u, double *weight) const;
 
@@ -67,6 +68,7 @@ class LensSystem {
     std::vector<double> z_;  // each interface's vertex
     double filmRadius_;      // half the film diagonal
     bool simple_;
+    double shutterTime_;
     std::vector<Box> pupils_;  // per radial interval of [0, filmRadius_]
 };
 

@@ -123,6 +123,17 @@ TEST(LensSystem, TheExitPupilBoundsHoldEveryRayThatPasses) {
     const LensRay ray = lens.GenerateRay(Vec2d(0, 0), Vec2d(0.5, 0.5), &w);
     EXPECT_NEAR(w, 1, 1e-12);  // straight down the axis, the centre's own pupil
     EXPECT_GT(ray.d.z, 0);
+    // Physical weighting: the pupil's area over the rear distance squared, times the shutter
+    // time (pbrt-v3's renders halve with a shutter open half as long).
+    const std::vector<LensInterface> l = WithStop(ParseLensFile(DoubleGauss, "dgauss.dat"), 12);
+    const LensSystem full(l, 5, 0.035, false, 1), half(l, 5, 0.035, false, 0.5);
+    double wFull, wHalf;
+    full.GenerateRay(Vec2d(3e-3, 0), Vec2d(0.4, 0.6), &wFull);
+    half.GenerateRay(Vec2d(3e-3, 0), Vec2d(0.4, 0.6), &wHalf);
+    ASSERT_GT(wFull, 0);
+    EXPECT_NEAR(wHalf, 0.5 * wFull, 1e-12 * wFull);
+    const LensSystem::Box &b = full.PupilBounds(3e-3);
+    EXPECT_LT(wFull, b.Area() / (full.RearZ() * full.RearZ()));  // cos^4 < 1 off the axis
 }
 
 }  // namespace
