@@ -137,8 +137,7 @@ RGB MltIntegrator::PathRadiance(const FrameContext &frame, const MltSampler &sam
     CameraSubpath(cameraCtx, ray, sampler, diff ? &*diff : nullptr, cameraPath, rc);
     if (int(cameraPath.size()) != t) return RGB(0);
     lightPath.clear();
-    // s = 1 samples its light itself (ConnectStrategy): no light subpath.
-    if (s > 1) {
+    if (s > 0) {
         const BdptContext lightCtx{scene, chooser_, camera_, sphere_, s - 1};
         LightSubpath(lightCtx, sampler, lightPath, rc);
         if (int(lightPath.size()) != s) return RGB(0);
