@@ -4,10 +4,13 @@
 #include <cmath>
 
 #include "assembly/directive_params.h"
+#include "assembly/lens_file.h"
+#include "core/file_io.h"
 #include "core/memory.h"
 #include "core/pbrt_defaults.h"
 #include "image/tonemap.h"
 #include "render/aov.h"
+#include "render/lens_system.h"
 #include "render/renderer.h"
 
 namespace prism {
@@ -82,7 +85,10 @@ void BuildFilm(BuildContext &ctx) {
         if (!ParseAovList(scene.filmAovs, &aovs, &error))
             throw SceneError(p->loc, "film \"aovs\": " + error);
     }
-    WarnIgnored(film, {"diagonal"}, diag, "film", "the film's physical size is not simulated");
+    // The realistic camera reads the film's physical size (BuildCamera); the others do not.
+    if (desc.camera.type != "realistic")
+        WarnIgnored(film, {"diagonal"}, diag, "film",
+                    "the film's physical size is not simulated (only the realistic camera's)");
     film.ReportUnused(diag, "film");
 }
 
@@ -98,6 +104,95 @@ void ChargeFilmMemory(BuildContext &ctx) {
     ctx.budget.Charge(bytes, "image " + std::to_string(res.x) + "x" + std::to_string(res.y), loc);
 }
 
+namespace {
+
+// The perspective and orthographic cameras' fov, screen window and thin lens.
+void ReadProjection(const CameraDesc &cd, const BuildSettings &settings, CameraParams *params) {
+    const ParamSet &cp = cd.params;
+    params->fovDeg = cp.GetFloat("fov", PbrtDefaultFovDeg);
+    float halffov = cp.GetFloat("halffov", -1.f);
+    if (halffov > 0) params->fovDeg = 2 * halffov;
+    if (settings.fovDeg > 0) params->fovDeg = settings.fovDeg;
+    if (!(params->fovDeg > 0 && params->fovDeg < 180)) {
+        const Param *p = cp.Find("fov");
+        throw SceneError(p ? p->loc : cd.loc, "camera fov must be between 0 and 180 degrees");
+    }
+    std::vector<float> sw = cp.GetFloats("screenwindow");
+    if (sw.size() == 4)
+        for (int i = 0; i < 4; ++i) params->screenWindow[i] = sw[size_t(i)];
+    params->lensRadius = cp.GetFloat("lensradius", 0.f);
+    params->focalDistance = cp.GetFloat("focaldistance", 1e6f);
+}
+
+// Camera "realistic" (pbrt-v3 RealisticCamera). Parameters:
+//   lensfile          string  ""    the lens description file (assembly/lens_file.h),
+//                                   relative to the scene; required
+//   aperturediameter  float   1     the aperture stop's diameter, mm (clamped, with a
+//                                   warning, to the file's)
+//   focusdistance     float   10    the distance from the film that is in focus, m
+//   simpleweighting   bool    true  weights cos^4 times the exit pupil's area over the
+//                                   centre's (else times the shutter time over the rear
+//                                   distance squared: pbrt-v3's physical weighting)
+// and the Film's "diagonal" (mm, 35): the film's physical size.
+std::shared_ptr<const LensSystem> ReadLens(BuildContext &ctx, CameraParams *params) {
+    const CameraDesc &cd = ctx.desc.camera;
+    const ParamSet &cp = cd.params;
+    auto loc = [&](const char *name) {
+        const Param *p = cp.Find(name);
+        return p ? p->loc : cd.loc;
+    };
+    const std::string file = cp.GetString("lensfile", "");
+    if (file.empty()) throw SceneError(cd.loc, "the realistic camera needs a \"lensfile\"");
+    const std::string path = ResolveScenePath(ctx.desc, file);
+    CheckReadConfinement(path, loc("lensfile"), "lens file", file);
+    const std::string text =
+        ReadFileOrThrow(path, loc("lensfile"), ctx.budget, "lens file " + Quote(file));
+    std::vector<LensInterface> lens = ParseLensFile(text, path);
+
+    const float aperture = cp.GetFloat("aperturediameter", 1.f);
+    if (!(aperture > 0 && aperture < 1e5f))
+        throw SceneError(loc("aperturediameter"), "camera \"aperturediameter\" must be positive");
+    bool stop = false;
+    for (LensInterface &e : lens) {
+        if (e.radius != 0) continue;
+        stop = true;
+        const double r = 0.5e-3 * aperture;
+        if (r > e.apertureRadius)
+            ctx.diag.Warn(loc("aperturediameter"), "aperture diameter " + std::to_string(aperture) +
+                                                       " mm is larger than the lens's stop (" +
+                                                       std::to_string(e.apertureRadius * 2e3) +
+                                                       " mm); using the stop's");
+        else
+            e.apertureRadius = r;
+    }
+    if (!stop && cp.Find("aperturediameter"))
+        ctx.diag.Warn(loc("aperturediameter"),
+                      "the lens file has no aperture stop (a row of radius 0): "
+                      "\"aperturediameter\" has no effect");
+    const float focus = cp.GetFloat("focusdistance", 10.f);
+    if (!(focus > 0 && focus < 1e9f))
+        throw SceneError(loc("focusdistance"), "camera \"focusdistance\" must be positive");
+    const bool simple = cp.GetBool("simpleweighting", true);
+    const ParamSet &film = ctx.desc.film.params;
+    const float diagonal = film.GetFloat("diagonal", 35.f);
+    if (!(diagonal > 0 && diagonal < 1e5f)) {
+        const Param *p = film.Find("diagonal");
+        throw SceneError(p ? p->loc : ctx.desc.film.loc, "film \"diagonal\" must be positive");
+    }
+    params->filmDiagonal = diagonal * 1e-3;
+    // Physical weighting integrates over the shutter (BuildCamera checks and orders the times).
+    const double shutter =
+        std::abs(double(cp.GetFloat("shutterclose", 1.f)) - cp.GetFloat("shutteropen", 0.f));
+    try {
+        return std::make_shared<const LensSystem>(std::move(lens), double(focus),
+                                                  params->filmDiagonal, simple, shutter);
+    } catch (const std::invalid_argument &e) {
+        throw SceneError(loc("focusdistance"), std::string("realistic camera: ") + e.what());
+    }
+}
+
+}  // namespace
+
 void BuildCamera(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     const BuildSettings &settings = ctx.settings;
@@ -109,28 +204,27 @@ void BuildCamera(BuildContext &ctx) {
     std::string type = cd.specified ? cd.type : "perspective";
     if (type == "orthographic") {
         params.orthographic = true;
+    } else if (type == "environment") {
+        params.environment = true;
+    } else if (type == "realistic") {
+        params.lens = ReadLens(ctx, &params);
     } else if (type != "perspective") {
         diag.Warn(cd.loc, "camera " + Quote(type) + " is not supported; using perspective");
     }
-    params.fovDeg = cp.GetFloat("fov", PbrtDefaultFovDeg);
-    float halffov = cp.GetFloat("halffov", -1.f);
-    if (halffov > 0) params.fovDeg = 2 * halffov;
-    if (settings.fovDeg > 0) params.fovDeg = settings.fovDeg;
-    if (!(params.fovDeg > 0 && params.fovDeg < 180)) {
-        const Param *p = cp.Find("fov");
-        throw SceneError(p ? p->loc : cd.loc, "camera fov must be between 0 and 180 degrees");
+    if (params.environment || params.lens) {
+        // pbrt-v3's environment and realistic cameras read their screen window and ignore
+        // it, and read no fov or thin lens (those are reported unused, as pbrt-v3 does).
+        cp.GetFloats("screenwindow");
+    } else {
+        ReadProjection(cd, settings, &params);
     }
-    std::vector<float> sw = cp.GetFloats("screenwindow");
-    if (sw.size() == 4)
-        for (int i = 0; i < 4; ++i) params.screenWindow[i] = sw[size_t(i)];
-    params.lensRadius = cp.GetFloat("lensradius", 0.f);
-    params.focalDistance = cp.GetFloat("focaldistance", 1e6f);
-    scene.features.lens = params.lensRadius > 0;
+    scene.features.lens = params.lensRadius > 0 || params.lens;
     if (scene.features.lens) {
-        const Param *lr = cp.Find("lensradius");
-        scene.features.effects.Enable(Effect::DepthOfField,
-                                      "Camera " + Quote(type) + " \"lensradius\"",
-                                      lr ? lr->loc : cd.loc);
+        const Param *lr = cp.Find(params.lens ? "lensfile" : "lensradius");
+        scene.features.effects.Enable(
+            Effect::DepthOfField,
+            "Camera " + Quote(type) + (params.lens ? " \"lensfile\"" : " \"lensradius\""),
+            lr ? lr->loc : cd.loc);
     }
     const Vec2i res = scene.resolution;
     double frame = cp.GetFloat("frameaspectratio", float(double(res.x) / res.y));

@@ -11,7 +11,7 @@ CameraImportance::CameraImportance(const Camera &camera, const Bounds2i &crop)
       renderFromCamera_(camera.RenderFromCamera()),
       cameraFromRender_(camera.RenderFromCamera().Inverse()),
       crop_(crop) {
-    supported_ = !proj_.orthographic && !crop.Empty();
+    supported_ = !proj_.orthographic && !proj_.environment && !proj_.realistic && !crop.Empty();
     forward_ = Vec3f(Normalize(renderFromCamera_.Vector(Vec3d(0, 0, 1))));
     const Vec2i res = proj_.resolution;
     // The full screen window's area on z = 1, scaled to the crop window's share of the pixels.

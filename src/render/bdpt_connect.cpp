@@ -183,7 +183,12 @@ RGB ConnectStrategy(const BdptContext &ctx, const std::vector<BdptVertex> &light
     const RenderScene &scene = ctx.scene;
     if (s == 0) return HitEmitter(ctx, camera, t);
     const BdptVertex &pt0 = camera[size_t(t - 1)];
-    const BdptVertex &qs0 = light[size_t(s - 1)];
+    // Next-event estimation (s = 1) samples a light of its own: it runs also when the light
+    // subpath ended at once (a direction its light does not emit along, as a projection
+    // light's outside its frustum), which pbrt-v3 skips, darkening such lights.
+    if (s > int(light.size()) && !(s == 1 && t > 1)) return RGB(0);
+    static const BdptVertex noVertex;
+    const BdptVertex &qs0 = s <= int(light.size()) ? light[size_t(s - 1)] : noVertex;
     const int lightIndex = light.empty() ? -1 : light[0].light;
     RGB L;
     int l = lightIndex;

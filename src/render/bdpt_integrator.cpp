@@ -1,5 +1,6 @@
 #include "render/bdpt_integrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -73,7 +74,8 @@ RGB BdptIntegrator::Sample(const RenderScene &scene, const Ray &ray, const Pixel
     const int nc = int(cameraPath.size()), nl = int(lightPath.size());
     for (int t = 1; t <= nc; ++t) {
         if (t == 1 && !splats) continue;
-        for (int s = 0; s <= nl; ++s) {
+        // s = 1 samples its light itself (ConnectStrategy), with or without a light subpath.
+        for (int s = 0; s <= std::max(nl, 1); ++s) {
             const int depth = s + t - 2;
             if (depth < 0 || depth > ps.trace.maxDepth) continue;
             Vec2f raster;

@@ -2,10 +2,14 @@
 
 #include <cmath>
 
+#include "render/lens_system.h"
+
 namespace prism {
 
 Camera::Camera(const CameraParams &p, const Transform &renderFromCamera, Vec2i res, double frame)
-    : ortho_(p.orthographic),
+    : lens_(p.environment ? nullptr : p.lens),
+      ortho_(p.orthographic && !p.environment && !p.lens),
+      env_(p.environment),
       lensRadius_(p.lensRadius),
       focalDistance_(p.focalDistance),
       res_(res),
@@ -33,7 +37,18 @@ Camera::Camera(const CameraParams &p, const Transform &renderFromCamera, Vec2i r
     // Raster → screen is sx = sx0 + x ax, sy = sy1 + y ay.
     double ax = (sx1_ - sx0_) / res_.x, ay = -(sy1_ - sy0_) / res_.y;
     const Transform &m = renderFromCamera_;
-    if (ortho_) {
+    if (lens_) {
+        // pbrt-v3 Film::GetPhysicalExtent: the diagonal split by the image's aspect ratio.
+        const double aspect = double(res_.y) / res_.x;
+        filmW_ = std::sqrt(p.filmDiagonal * p.filmDiagonal / (1 + aspect * aspect));
+        filmH_ = aspect * filmW_;
+    }
+    if (env_ || lens_) {
+        // Not affine in pFilm: GenerateRay computes every direction.
+        oX_ = oY_ = dX_ = dY_ = d0_ = Vec3f(0, 0, 0);
+        o0_ = Vec3f(m.Point(Vec3d(0, 0, 0)));
+        lensRadius_ = 0;
+    } else if (ortho_) {
         oX_ = Vec3f(m.Vector(Vec3d(ax, 0, 0)));
         oY_ = Vec3f(m.Vector(Vec3d(0, ay, 0)));
         o0_ = Vec3f(m.Point(Vec3d(sx0_, sy1_, 0)));
@@ -52,7 +67,50 @@ void Camera::SetMotion(const AnimatedTransform &renderFromCamera) {
     motion_ = std::make_shared<const AnimatedTransform>(renderFromCamera);
 }
 
+Vec3d Camera::EnvironmentDirection(Vec2f pFilm) const {
+    // pbrt-v3 EnvironmentCamera: theta from camera +y down the rows, phi from +x toward +z
+    // across the columns, over the full resolution (a crop window keeps its pixels' rays).
+    const double theta = Pi * double(pFilm.y) / res_.y, phi = 2 * Pi * double(pFilm.x) / res_.x;
+    const double sinTheta = std::sin(theta);
+    return {sinTheta * std::cos(phi), std::cos(theta), sinTheta * std::sin(phi)};
+}
+
+Vec2d Camera::FilmPoint(Vec2f pFilm) const {
+    // Raster (0, 0) is the film's (-w/2, -h/2); x is mirrored, as the lens inverts the image.
+    const double fx = filmW_ * (double(pFilm.x) / res_.x - 0.5);
+    const double fy = filmH_ * (double(pFilm.y) / res_.y - 0.5);
+    return {-fx, fy};
+}
+
+Ray Camera::ToRender(const Vec3d &o, const Vec3d &d, float time) const {
+    Ray ray;
+    if (motion_) {
+        const Transform m = motion_->Interpolate(double(time));
+        ray.o = Vec3f(m.Point(o));
+        ray.d = Vec3f(Normalize(m.Vector(d)));
+    } else {
+        ray.o = Vec3f(renderFromCamera_.Point(o));
+        ray.d = Vec3f(Normalize(renderFromCamera_.Vector(d)));
+    }
+    ray.tMax = Infinity;
+    ray.time = time;
+    return ray;
+}
+
+float Camera::RayWeight(Vec2f pFilm, Vec2f uLens) const {
+    if (!lens_) return 1;
+    double w;
+    lens_->GenerateRay(FilmPoint(pFilm), Vec2d(uLens.x, uLens.y), &w);
+    return float(w);
+}
+
 Ray Camera::GenerateRay(Vec2f pFilm, Vec2f uLens, float time) const {
+    if (env_) return ToRender(Vec3d(0, 0, 0), EnvironmentDirection(pFilm), time);
+    if (lens_) {
+        double w;
+        const LensRay r = lens_->GenerateRay(FilmPoint(pFilm), Vec2d(uLens.x, uLens.y), &w);
+        return ToRender(r.o, r.d, time);
+    }
     if (lensRadius_ <= 0 && !motion_) {
         Ray ray;
         ray.o = o0_ + oX_ * pFilm.x + oY_ * pFilm.y;

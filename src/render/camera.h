@@ -1,5 +1,8 @@
-// pbrt-v3 perspective and orthographic cameras (left-handed camera space, +z forward, raster y
-// down). fov applies to the shorter image axis through the default screen window.
+// pbrt-v3 perspective, orthographic, environment and realistic cameras (left-handed camera
+// space, +z forward, raster y down). fov applies to the shorter image axis through the default
+// screen window; the environment camera sees the whole sphere of directions in
+// latitude-longitude; the realistic camera traces rays from its film through a lens system
+// (render/lens_system.h).
 #pragma once
 
 #include <memory>
@@ -11,11 +14,21 @@
 
 namespace prism {
 
+class LensSystem;
+
 struct CameraParams {
     bool orthographic = false;
+    // pbrt-v3's "environment" camera: raster (x, y) of a W x H film looks along camera-space
+    // (sin t cos p, cos t, sin t sin p), t = pi y / H from +y, p = 2 pi x / W from +x toward
+    // +z; fov, screen window and lens are not read.
+    bool environment = false;
     double fovDeg = PbrtDefaultFovDeg;
     double screenWindow[4] = {0, 0, 0, 0};  // x0 x1 y0 y1; all zero → pbrt default
     double lensRadius = 0, focalDistance = 1e6;
+    // pbrt-v3's "realistic" camera: rays from a film of this diagonal (metres) through the
+    // lens, which replaces fov, screen window and thin lens.
+    std::shared_ptr<const LensSystem> lens;
+    double filmDiagonal = 0.035;
 };
 
 class Camera {
@@ -32,6 +45,11 @@ class Camera {
     // ScaleDifferentials with max(1/8, 1/sqrt(spp))).
     RayDifferential GenerateDifferential(const Ray &ray, Vec2f pFilm, Vec2f uLens, float time,
                                          float scale) const;
+    // The radiance weight of the ray GenerateRay(pFilm, uLens, ...) makes: 1 but for the
+    // realistic camera (pbrt-v3's ray weight, 0 where the lens blocks the ray: the ray made
+    // then is one that contributes nothing).
+    bool HasRayWeights() const { return lens_ != nullptr; }
+    float RayWeight(Vec2f pFilm, Vec2f uLens) const;
     // Motion blur: renderFromCamera over the shutter (times as fractions of it; its value at 0
     // the transform the camera was made with).
     void SetMotion(const AnimatedTransform &renderFromCamera);
@@ -44,15 +62,28 @@ class Camera {
         bool orthographic;
         double sx0, sx1, sy0, sy1, tanHalf, lensRadius, focalDistance;
         Vec2i resolution;
+        bool environment = false;  // not a projection: the lat-long camera (no importance)
+        bool realistic = false;    // nor the lens system
     };
     Projection GetProjection() const {
-        return {ortho_, sx0_, sx1_, sy0_, sy1_, tanHalf_, lensRadius_, focalDistance_, res_};
+        Projection p{ortho_, sx0_, sx1_, sy0_, sy1_, tanHalf_, lensRadius_, focalDistance_, res_};
+        p.environment = env_;
+        p.realistic = lens_ != nullptr;
+        return p;
     }
+    // The lat-long camera's camera-space direction of raster position pFilm.
+    Vec3d EnvironmentDirection(Vec2f pFilm) const;
     bool Moves() const { return motion_ != nullptr; }
 
   private:
     std::shared_ptr<const AnimatedTransform> motion_;
-    bool ortho_;
+    // The realistic camera's lens and the camera-space film point of raster position pFilm.
+    Vec2d FilmPoint(Vec2f pFilm) const;
+    // Camera space to render space at `time` (the motion's, else the fixed transform).
+    Ray ToRender(const Vec3d &o, const Vec3d &d, float time) const;
+    std::shared_ptr<const LensSystem> lens_;
+    double filmW_ = 0, filmH_ = 0;  // the film's physical size (realistic camera)
+    bool ortho_, env_;
     double sx0_, sx1_, sy0_, sy1_, tanHalf_;
     double lensRadius_, focalDistance_;
     Vec2i res_;

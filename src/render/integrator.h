@@ -85,6 +85,9 @@ class CameraSampler {
     Ray GenerateRay(const CameraSample &cs) const {
         return camera_.GenerateRay(cs.pFilm, cs.uLens, cs.time);
     }
+    // The radiance weight of the sample's ray (Camera::RayWeight: 1 but for a lens system).
+    float RayWeight(const CameraSample &cs) const { return camera_.RayWeight(cs.pFilm, cs.uLens); }
+    bool HasRayWeights() const { return camera_.HasRayWeights(); }
     // The ray's differentials (pbrt-v3: scaled by max(1/8, 1/sqrt(spp))).
     RayDifferential GenerateDifferential(const Ray &ray, const CameraSample &cs) const {
         return camera_.GenerateDifferential(ray, cs.pFilm, cs.uLens, cs.time, diffScale_);

@@ -198,6 +198,19 @@ bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
         buf.L[i] = L;
         if (buf.wantDirect) buf.direct[i] = buf.direct[i] * (scale * clamp);
     }
+    // The camera's ray weights (a lens system's; pbrt-v3 weights the clamped sample), from
+    // the same camera samples the integrator traced.
+    if (camera_.HasRayWeights())
+        for (int y = tb.pMin.y; y < tb.pMax.y; ++y)
+            for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
+                const CameraSampler::Seeds seeds = camera_.PixelSeeds(x, y);
+                for (uint32_t s = 0; s < buf.spp; ++s) {
+                    const size_t i = buf.Index(x, y, s);
+                    const float w = camera_.RayWeight(camera_.Sample(x, y, s, seeds));
+                    buf.L[i] = buf.L[i] * w;
+                    if (buf.wantDirect) buf.direct[i] = buf.direct[i] * w;
+                }
+            }
     // Pixel by pixel in the buffer's order (TileSamples::Index), each pixel's samples in turn.
     const int spp = int(buf.spp);
     size_t first = 0;

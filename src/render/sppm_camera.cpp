@@ -74,7 +74,7 @@ void SppmIntegrator::CameraPass(const FrameContext &frame, int iter, SppmPass &p
                 RayDifferential rd;
                 if (camera.Differentials()) rd = camera.GenerateDifferential(ray, cs);
                 const Vec3f cameraOrigin = ray.o;
-                RGB beta(1), Ld;
+                RGB beta(camera.RayWeight(cs)), Ld;
                 bool specularBounce = false;
                 float etaScale = 1;
                 int passes = 0;

@@ -123,5 +123,63 @@ TEST(ThinLens, BlurCircleMatchesTheThinLensFormula) {
     EXPECT_LE(differ, 2);
 }
 
+// pbrt-v3's environment camera, as its render of coloured spheres around the camera shows
+// (scenes/pbrt3-reference/envcamera.pbrt): the left edge looks along +x, a quarter across
+// along +z, the centre along -x, three quarters along -z; the top row up (+y), the bottom
+// row down.
+TEST(EnvironmentCamera, PixelsLookWherePbrtV3Looks) {
+    CameraParams p;
+    p.environment = true;
+    p.fovDeg = 30;  // ignored
+    const Vec2i res(200, 100);
+    const Camera cam(p, Transform(), res, 2.0);
+    struct Case {
+        Vec2f pFilm;
+        Vec3f d;
+    } cases[] = {{{0, 50}, {1, 0, 0}},    {{50, 50}, {0, 0, 1}},  {{100, 50}, {-1, 0, 0}},
+                 {{150, 50}, {0, 0, -1}}, {{200, 50}, {1, 0, 0}}, {{37, 0}, {0, 1, 0}},
+                 {{137, 100}, {0, -1, 0}}};
+    for (const Case &c : cases) {
+        const Ray r = cam.GenerateRay(c.pFilm, Vec2f(0.5f, 0.5f));
+        EXPECT_LT(Length(r.d - c.d), 1e-5f) << c.pFilm.x << " " << c.pFilm.y;
+        EXPECT_EQ(r.o, Vec3f(0, 0, 0));
+    }
+    // Halfway up, a quarter across: between +y and +z.
+    const Ray r = cam.GenerateRay(Vec2f(50, 25), Vec2f(0.5f, 0.5f));
+    EXPECT_LT(Length(r.d - Normalize(Vec3f(0, 1, 1))), 1e-5f);
+    // Not a projection: bidirectional light tracing has no importance for it.
+    EXPECT_TRUE(cam.GetProjection().environment);
+}
+
+// The scene assembly makes Camera "environment" a lat-long camera under the file's LookAt (and
+// no longer a perspective one), and reports the fov it does not read.
+TEST(EnvironmentCamera, TheAssemblyBuildsItUnderTheCameraTransform) {
+    const fs::path dir = fs::path(::testing::TempDir()) / "envcamera";
+    fs::create_directories(dir);
+    const std::string file = (dir / "e.pbrt").string();
+    std::ofstream(file) << "LookAt 1 2 3  1 2 4  1 0 0\n"  // looks along +z, camera +y is +x
+                           "Camera \"environment\" \"float fov\" [ 40 ]\n"
+                           "Film \"image\" \"integer xresolution\" [ 64 ] "
+                           "\"integer yresolution\" [ 32 ]\n"
+                           "WorldBegin\nShape \"sphere\"\nWorldEnd\n";
+    Diagnostics diag(false);
+    SceneDescription desc = LoadScene(file, diag);
+    BuildSettings settings;
+    settings.cameraRelative = false;
+    RenderScene scene = BuildRenderScene(desc, settings, diag);
+    // LookAt makes camera +x world -y, +y world +x (up), +z world +z: the top row looks
+    // along world +x, a quarter across along +z, the left edge along -y.
+    const Ray top = scene.camera->GenerateRay(Vec2f(10, 0), Vec2f(0.5f, 0.5f));
+    EXPECT_LT(Length(top.d - Vec3f(1, 0, 0)), 1e-5f);
+    EXPECT_LT(Length(top.o - Vec3f(1, 2, 3)), 1e-5f);
+    const Ray quarter = scene.camera->GenerateRay(Vec2f(16, 16), Vec2f(0.5f, 0.5f));
+    EXPECT_LT(Length(quarter.d - Vec3f(0, 0, 1)), 1e-5f);
+    const Ray left = scene.camera->GenerateRay(Vec2f(0, 16), Vec2f(0.5f, 0.5f));
+    EXPECT_LT(Length(left.d - Vec3f(0, -1, 0)), 1e-5f);
+    bool unused = false;
+    for (const Warning &w : diag.Warnings()) unused |= w.message.find("fov") != std::string::npos;
+    EXPECT_TRUE(unused);
+}
+
 }  // namespace
 }  // namespace prism

@@ -3,9 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "assembly/build_scene.h"
+#include "image/image.h"
+#include "image/image_io.h"
+#include "render/goniometric_light.h"
 #include "render/infinite_light.h"
+#include "render/projection_light.h"
 #include "scene/load_scene.h"
 #include "test_util.h"
 
@@ -14,9 +19,9 @@ namespace {
 
 TEST(Light, TheRegistryNamesEachLightOnce) {
     const std::vector<std::string> &names = LightNames();
-    for (const char *n : {"point", "spot", "distant", "infinite"})
+    for (const char *n : {"point", "spot", "distant", "infinite", "goniometric", "projection"})
         EXPECT_EQ(std::count(names.begin(), names.end(), n), 1) << n;
-    EXPECT_EQ(names.size(), 4u);
+    EXPECT_EQ(names.size(), 6u);
 }
 
 TEST(Light, EachLightSourceIsItsClassAndAnUnknownOneIsIgnoredWithAWarning) {
@@ -26,7 +31,7 @@ TEST(Light, EachLightSourceIsItsClassAndAnUnknownOneIsIgnoredWithAWarning) {
                                       "WorldBegin\nLightSource \"point\" \"rgb I\" [1 2 3]\n"
                                       "LightSource \"spot\"\nLightSource \"distant\"\n"
                                       "LightSource \"infinite\" \"integer nsamples\" 4\n"
-                                      "LightSource \"goniometric\"\nLightSource \"goniometric\"\n"
+                                      "LightSource \"lantern\"\nLightSource \"lantern\"\n"
                                       "Shape \"sphere\"\nWorldEnd\n"),
                   diag);
     BuildSettings s;
@@ -39,9 +44,170 @@ TEST(Light, EachLightSourceIsItsClassAndAnUnknownOneIsIgnoredWithAWarning) {
     EXPECT_TRUE(scene.features.environment);
     int warned = 0;
     for (const Warning &w : diag.Warnings())
-        warned += w.loc.line == 6 &&
-                  w.message.find("\"goniometric\" is not supported") != std::string::npos;
+        warned +=
+            w.loc.line == 6 && w.message.find("\"lantern\" is not supported") != std::string::npos;
     EXPECT_EQ(warned, 1);  // once per type
+}
+
+// A w x h map of value `base`, with value `bright` in the top-left quadrant.
+std::shared_ptr<const Image> QuadrantMap(int w, int h, float base, float bright) {
+    auto img = std::make_shared<Image>(w, h, 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) img->SetRGB(x, y, RGB(x < w / 2 && y < h / 2 ? bright : base));
+    return img;
+}
+
+SurfaceInteraction At(const Vec3f &p) {
+    SurfaceInteraction si;
+    si.p = p;
+    si.n = si.ns = Vec3f(0, 1, 0);
+    return si;
+}
+
+// Monte Carlo estimate of the emitted power's luminance from SampleLe: the mean of
+// Le / pdfDir over stratified direction samples (the integral of the intensity).
+double PowerFromEmission(const Light &light) {
+    const int n = 256;
+    double sum = 0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            LightLeSample le;
+            if (!light.SampleLe(Vec2f(0.5f, 0.5f), Vec2f((i + 0.5f) / n, (j + 0.5f) / n),
+                                SceneSphere{}, &le))
+                continue;
+            float pdfPos, pdfDir;
+            light.PdfLe(le.ray.o, le.n, le.ray.d, SceneSphere{}, &pdfPos, &pdfDir);
+            EXPECT_FLOAT_EQ(pdfDir, le.pdfDir);
+            sum += double(le.Le.Luminance()) / le.pdfDir;
+        }
+    return sum / (double(n) * n);
+}
+
+// A goniometric light with a constant map is a point light of I times the map's value: its
+// power is 4 pi I c, and every point receives what the point light gives it.
+TEST(GoniometricLight, AConstantMapIsAPointLightOfTheScaledIntensity) {
+    const Transform renderFromLight = Translate(Vec3d(1, 2, 3)) * RotateX(30);
+    const GoniometricLight gonio(renderFromLight, RGB(2, 3, 4), QuadrantMap(64, 32, 0.5f, 0.5f));
+    const PointLight point(Vec3f(1, 2, 3), RGB(1, 1.5f, 2));
+    EXPECT_NEAR(gonio.Power(1), 4 * Pi * RGB(1, 1.5f, 2).Luminance(), 1e-5);
+    EXPECT_NEAR(PowerFromEmission(gonio), gonio.Power(1), 1e-4 * gonio.Power(1));
+    for (Vec3f p : {Vec3f(0, 0, 0), Vec3f(4, -1, 2), Vec3f(1, 7, 3.5f), Vec3f(-3, 2, -9)}) {
+        LightSample a, b;
+        ASSERT_TRUE(gonio.SampleLi(At(p), Vec2f(0.5f, 0.5f), &a));
+        ASSERT_TRUE(point.SampleLi(At(p), Vec2f(0.5f, 0.5f), &b));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.Li[c], b.Li[c], 1e-6f * b.Li[c]);
+        EXPECT_LT(Length(a.wi - b.wi), 1e-6f);
+        EXPECT_EQ(a.pLight, b.pLight);
+    }
+}
+
+// The map's rows run from the light's +y (row 0) to -y and its columns from +x toward +z
+// (pbrt-v3's render of scenes/pbrt3-reference/goniometric.pbrt shows the same): a bright
+// top-left quadrant lights the directions with y > 0 and z > 0 only, also under a rotation.
+TEST(GoniometricLight, TheTopLeftQuadrantLightsUpAndTowardPlusZ) {
+    for (double angle : {0.0, 90.0}) {
+        const Transform rot = RotateY(angle);  // light +z to render +x at 90 degrees
+        const GoniometricLight l(rot, RGB(1), QuadrantMap(64, 32, 0, 1));
+        auto scale = [&](Vec3d wLight) { return l.Scale(Vec3f(rot.Vector(wLight))).r; };
+        EXPECT_NEAR(scale(Vec3d(0.3, 0.8, 0.5)), 1, 1e-6) << angle;
+        EXPECT_NEAR(scale(Vec3d(-0.3, 0.8, 0.5)), 1, 1e-6) << angle;
+        EXPECT_EQ(scale(Vec3d(0.3, 0.8, -0.5)), 0) << angle;
+        EXPECT_EQ(scale(Vec3d(0.3, -0.8, 0.5)), 0) << angle;
+        EXPECT_EQ(scale(Vec3d(-0.3, -0.8, -0.5)), 0) << angle;
+    }
+    // The quadrant covers a quarter of the sphere.
+    const GoniometricLight l(Transform(), RGB(1), QuadrantMap(64, 32, 0, 1));
+    EXPECT_NEAR(l.Power(1), Pi, 1e-9);
+    EXPECT_NEAR(PowerFromEmission(l), Pi, 2e-3 * Pi);
+}
+
+// A projection light with a constant map is the point light of I times the map's value inside
+// its frustum (fov across the image's shorter side, aspect the image's) and dark outside; its
+// power is I c times the frustum's solid angle, 4 asin(sin a sin b) for half angles a, b.
+TEST(ProjectionLight, AConstantMapIsAPointLightInsideItsFrustum) {
+    const double fov = 40;
+    const Transform renderFromLight = Translate(Vec3d(0, 1, 0)) * RotateX(20);
+    const ProjectionLight proj(renderFromLight, RGB(2), QuadrantMap(64, 32, 0.25f, 0.25f), fov);
+    const double ty = std::tan(Radians(fov / 2)), tx = 2 * ty;
+    const double omega = 4 * std::asin(std::sin(std::atan(tx)) * std::sin(std::atan(ty)));
+    EXPECT_NEAR(proj.Power(1), 0.5 * omega, 1e-6);
+    EXPECT_NEAR(PowerFromEmission(proj), proj.Power(1), 2e-3 * proj.Power(1));
+    const PointLight point(Vec3f(0, 1, 0), RGB(0.5f));
+    for (double fx : {-0.99, -0.5, 0.0, 0.7, 0.99, 1.01, -1.02})
+        for (double fy : {-0.98, 0.0, 0.6, 1.03}) {
+            const double dist = 3;
+            const Vec3d wl = Normalize(Vec3d(fx * tx, fy * ty, 1));
+            const Vec3f p = Vec3f(renderFromLight.Point(wl * dist));
+            LightSample a, b;
+            const bool lit = proj.SampleLi(At(p), Vec2f(0.5f, 0.5f), &a);
+            ASSERT_TRUE(point.SampleLi(At(p), Vec2f(0.5f, 0.5f), &b));
+            const bool inside = std::abs(fx) <= 1 && std::abs(fy) <= 1;
+            EXPECT_EQ(lit, inside) << fx << " " << fy;
+            if (lit) EXPECT_NEAR(a.Li.g, b.Li.g, 1e-5f * b.Li.g) << fx << " " << fy;
+        }
+    // Behind the light: dark.
+    LightSample s;
+    EXPECT_FALSE(proj.SampleLi(At(Vec3f(renderFromLight.Point(Vec3d(0, 0, -2)))), Vec2f(), &s));
+}
+
+// pbrt-v3 throws the image's top-left quadrant to the frustum's -x, -y corner (its render of
+// scenes/pbrt3-reference/projection.pbrt: the image lands upside down on the wall it faces).
+TEST(ProjectionLight, TheTopLeftQuadrantLandsAtMinusXMinusY) {
+    const ProjectionLight l(Transform(), RGB(1), QuadrantMap(64, 32, 0, 1), 45);
+    auto proj = [&](double x, double y) {
+        return l.Projection(Vec3f(Normalize(Vec3d(x, y, 1)))).r;
+    };
+    EXPECT_NEAR(proj(-0.3, -0.1), 1, 1e-6);
+    EXPECT_EQ(proj(0.3, -0.1), 0);
+    EXPECT_EQ(proj(-0.3, 0.1), 0);
+    EXPECT_EQ(proj(0.3, 0.1), 0);
+    // A quarter of the frustum's solid angle by symmetry.
+    const ProjectionLight full(Transform(), RGB(1), QuadrantMap(64, 32, 1, 1), 45);
+    EXPECT_NEAR(l.Power(1), full.Power(1) / 4, 1e-9);
+}
+
+// Both lights read their image through the assembly (relative to the scene file), and a bad
+// fov is an error at its location.
+TEST(ImageLights, TheSceneAssemblyReadsTheirMapsBesideTheScene) {
+    const std::filesystem::path dir = test::ScratchDir("imagelights");
+    Image map(8, 4, 3);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) map.SetRGB(x, y, RGB(y < 2 ? 1.f : 0.f));
+    WriteImage((dir / "map.exr").string(), map);
+    Diagnostics diag(false);
+    SceneDescription desc =
+        LoadScene(test::WriteTestFile(
+                      dir / "l.pbrt",
+                      "WorldBegin\nLightSource \"goniometric\" \"string mapname\" \"map.exr\"\n"
+                      "LightSource \"projection\" \"string mapname\" \"map.exr\"\n"
+                      "Shape \"sphere\"\nWorldEnd\n"),
+                  diag);
+    BuildSettings s;
+    s.resolution = Vec2i(4, 4);
+    s.cameraRelative = false;
+    RenderScene scene = BuildRenderScene(desc, s, diag);
+    ASSERT_EQ(scene.lights.size(), 2u);
+    const auto &g = dynamic_cast<const GoniometricLight &>(*scene.lights[0]);
+    EXPECT_NEAR(g.Scale(Vec3f(0, 1, 0)).r, 1, 1e-6);
+    EXPECT_EQ(g.Scale(Vec3f(0, -1, 0)).r, 0);
+    const auto &p = dynamic_cast<const ProjectionLight &>(*scene.lights[1]);
+    EXPECT_EQ(p.Projection(Normalize(Vec3f(0, 0.3f, 1))).r, 0);
+    EXPECT_NEAR(p.Projection(Normalize(Vec3f(0, -0.3f, 1))).r, 1, 1e-6);
+    EXPECT_FALSE(scene.features.environment);
+    for (const Warning &w : diag.Warnings())
+        EXPECT_EQ(w.message.find("light"), std::string::npos) << w.message;
+
+    SceneDescription bad = LoadScene(
+        test::WriteTestFile(dir / "bad.pbrt",
+                            "WorldBegin\nLightSource \"projection\"\n  \"float fov\" [ 180 ]\n"
+                            "WorldEnd\n"),
+        diag);
+    try {
+        BuildRenderScene(bad, s, diag);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError &e) {
+        EXPECT_EQ(e.Loc().line, 3) << e.what();
+    }
 }
 
 }  // namespace
