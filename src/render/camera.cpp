@@ -149,18 +149,7 @@ Ray Camera::GenerateRay(Vec2f pFilm, Vec2f uLens, float time) const {
         o = o + pLens;
         d = Normalize(pFocus - o);
     }
-    Ray ray;
-    if (motion_) {
-        Transform m = motion_->Interpolate(double(time));
-        ray.o = Vec3f(m.Point(o));
-        ray.d = Vec3f(Normalize(m.Vector(d)));
-    } else {
-        ray.o = Vec3f(renderFromCamera_.Point(o));
-        ray.d = Vec3f(Normalize(renderFromCamera_.Vector(d)));
-    }
-    ray.tMax = Infinity;
-    ray.time = time;
-    return ray;
+    return ToRender(o, d, time);
 }
 
 RayDifferential Camera::GenerateDifferential(const Ray &ray, Vec2f pFilm, Vec2f uLens, float time,
