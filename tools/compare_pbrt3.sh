@@ -43,16 +43,16 @@ for f in "$WORK"/*.pbrt; do
     quarter="$REF/$name.quarter.exr"
     sppArgs=()
     if [ -f "$quarter" ]; then
-        iters=$(grep -o 'numiterations" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$' || true)
-        muts=$(grep -o 'mutationsperpixel" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$' || true)
+        iters=$(grep -o 'numiterations" *\[\? *[0-9]*' "$f" | grep -o '[0-9]*$' || true)
+        muts=$(grep -o 'mutationsperpixel" *\[\? *[0-9]*' "$f" | grep -o '[0-9]*$' || true)
         if [ -n "$muts" ]; then
             # mlt: a quarter of the mutations per pixel.
-            sed -i "s/mutationsperpixel\" *\[ *$muts/mutationsperpixel\" [$((muts / 4))/" "$f"
+            sed -i -E "s/mutationsperpixel\" *(\[ *$muts *\]|$muts)/mutationsperpixel\" [$((muts / 4))]/" "$f"
         elif [ -n "$iters" ]; then
             # sppm: a quarter of the iterations (its --spp is not the iteration count).
-            sed -i "s/numiterations\" *\[ *$iters/numiterations\" [$((iters / 4))/" "$f"
+            sed -i -E "s/numiterations\" *(\[ *$iters *\]|$iters)/numiterations\" [$((iters / 4))]/" "$f"
         else
-            spp=$(grep -o 'pixelsamples" *\[ *[0-9]*' "$f" | grep -o '[0-9]*$')
+            spp=$(grep -o 'pixelsamples" *\[\? *[0-9]*' "$f" | grep -o '[0-9]*$')
             sppArgs=(--spp $((spp / 4)))
         fi
     fi
