@@ -5,8 +5,11 @@
 
 #include "app/commands.h"
 #include "app/common.h"
+#include "app/render_stack.h"
 
-int main(int argc, char **argv) {
+namespace {
+
+int Main(int argc, char **argv) {
     if (argc == 1) return prism::RenderDefaultScene();
     CLI::App app{"Prism: a CPU ray tracer on Embree (pbrt-v3, OBJ, glTF scenes)", "prism"};
     app.require_subcommand(1);
@@ -35,4 +38,10 @@ int main(int argc, char **argv) {
         return prism::ExitBadInput;
     }
     return exitCode;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    return prism::RunOnRenderStack([&] { return Main(argc, argv); });
 }

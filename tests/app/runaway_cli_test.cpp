@@ -121,6 +121,21 @@ TEST(Hostile, TimeLimitStopsAPassThatDoesNotFit) {
     EXPECT_FALSE(fs::exists(dir / "out.png"));
 }
 
+// maxdepth 1000, the most there is, between two mirrors: every camera ray recurses 1000 levels
+// deep in the Whitted kernel, more stack than TBB gives a worker (4 MB) or than this main
+// thread has (2 MB). Every thread that renders has a stack of its own size
+// (app/render_stack.h); without it the render died of a stack overflow.
+TEST(Hostile, TheDeepestSpecularRecursionFitsEveryRenderThread) {
+    fs::path dir = TempDir("deep_recursion");
+    std::ofstream(dir / "hall.pbrt") << MirrorHall(64, 16, 1, 1000);  // 4 tiles, 1M rays
+    RunResult r = RunPrism("render hall.pbrt -o out.exr --threads 2 --stats", dir,
+                           "ulimit -s 2048 && timeout -k 5 120");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "out.exr"));
+    // Every pixel's ray bounced maxdepth - 1 times.
+    EXPECT_NE(r.err.find("reflection 1022976,"), std::string::npos) << r.err;
+}
+
 // The pid of a child process of `parent` (from /proc/*/stat), or -1.
 pid_t ChildOf(pid_t parent) {
     std::error_code ec;

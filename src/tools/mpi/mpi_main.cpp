@@ -8,11 +8,15 @@
 
 #include "app/commands.h"
 #include "app/common.h"
+#include "app/render_stack.h"
 #include "tools/mpi/mpi_comm.h"
 #include "tools/mpi/mpi_commands.h"
 
-int main(int argc, char **argv) {
-    // Only the main thread calls MPI; TBB's threads render.
+namespace {
+
+int Main(int argc, char **argv) {
+    // Only this thread (MPI's main thread: it calls MPI_Init_thread) calls MPI; TBB's
+    // threads render.
     int provided = 0;
     MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
     const int rank = prism::mpi::Rank();
@@ -52,4 +56,11 @@ int main(int argc, char **argv) {
     }
     MPI_Finalize();
     return exitCode;
+}
+
+}  // namespace
+
+// On a render stack (app/render_stack.h), which is then MPI's main thread.
+int main(int argc, char **argv) {
+    return prism::RunOnRenderStack([&] { return Main(argc, argv); });
 }
