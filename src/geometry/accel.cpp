@@ -158,6 +158,12 @@ struct Accel::Impl {
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
     }
+
+    // Records `entry` as the shape of Embree geometry `id`; returns its shape index.
+    int Record(unsigned id, Entry entry);
+    // Commits geom, attaches it to the scene (which keeps it; `what` names it in an Embree
+    // error) and records `entry` as its shape.
+    int Attach(Device &dev, RTCGeometry geom, const char *what, Entry entry);
 };
 
 Accel::Accel(const AccelOptions &options) : impl_(std::make_unique<Impl>()) {
@@ -170,9 +176,20 @@ Accel::Accel(const AccelOptions &options) : impl_(std::make_unique<Impl>()) {
 
 Accel::~Accel() = default;
 
-static void MapGeom(std::vector<int> &table, unsigned geomID, int shape) {
-    if (table.size() <= geomID) table.resize(geomID + 1, -1);
-    table[geomID] = shape;
+int Accel::Impl::Record(unsigned id, Entry entry) {
+    if (shapeOfGeom.size() <= id) shapeOfGeom.resize(id + 1, -1);
+    const int shape = int(shapes.size());
+    shapeOfGeom[id] = shape;
+    shapes.push_back(std::move(entry));
+    return shape;
+}
+
+int Accel::Impl::Attach(Device &dev, RTCGeometry geom, const char *what, Entry entry) {
+    rtcCommitGeometry(geom);
+    const unsigned id = rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    dev.ThrowIfError(what);
+    return Record(id, std::move(entry));
 }
 
 int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask, ShapeAlpha alpha) {
@@ -198,15 +215,9 @@ int Accel::AddMesh(std::unique_ptr<TriangleMesh> mesh, unsigned mask, ShapeAlpha
         if (cutouts->alpha.shadow)
             rtcSetGeometryOccludedFilterFunction(geom, MeshAlphaFilter<true>);
     }
-    rtcCommitGeometry(geom);
-    unsigned id = rtcAttachGeometry(impl_->scene, geom);
-    rtcReleaseGeometry(geom);
-    dev.ThrowIfError("adding a triangle mesh");
-    int shape = int(impl_->shapes.size());
-    MapGeom(impl_->shapeOfGeom, id, shape);
-    impl_->shapes.push_back({std::move(mesh), nullptr, nullptr, nullptr, {}, {}});
-    impl_->shapes.back().alpha = std::move(cutouts);
-    return shape;
+    Impl::Entry entry{std::move(mesh), nullptr, nullptr, nullptr, {}, {}};
+    entry.alpha = std::move(cutouts);
+    return impl_->Attach(dev, geom, "adding a triangle mesh", std::move(entry));
 }
 
 int Accel::AddCurves(std::unique_ptr<CurveSet> curves, unsigned mask) {
@@ -232,14 +243,8 @@ int Accel::AddCurves(std::unique_ptr<CurveSet> curves, unsigned mask) {
                                0, sizeof(uint32_t), curves->NumSegments());
     rtcSetGeometryTessellationRate(geom, float(curves->TessellationRate()));
     rtcSetGeometryMask(geom, mask);
-    rtcCommitGeometry(geom);
-    unsigned id = rtcAttachGeometry(impl_->scene, geom);
-    rtcReleaseGeometry(geom);
-    dev.ThrowIfError("adding curves");
-    int shape = int(impl_->shapes.size());
-    MapGeom(impl_->shapeOfGeom, id, shape);
-    impl_->shapes.push_back({nullptr, nullptr, std::move(curves), nullptr, {}, {}});
-    return shape;
+    return impl_->Attach(dev, geom, "adding curves",
+                         {nullptr, nullptr, std::move(curves), nullptr, {}, {}});
 }
 
 int Accel::AddInstance(std::shared_ptr<const Accel> prototype,
@@ -269,16 +274,10 @@ int Accel::AddInstance(std::shared_ptr<const Accel> prototype,
             for (int c = 0; c < 4; ++c) xfm[r * 4 + c] = float(steps[k].m[r][c]);
         rtcSetGeometryTransform(geom, unsigned(k), RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
     }
-    rtcCommitGeometry(geom);
-    unsigned id = rtcAttachGeometry(impl_->scene, geom);
-    rtcReleaseGeometry(geom);
-    dev.ThrowIfError("adding an instance");
-    int index = int(impl_->shapes.size());
-    MapGeom(impl_->shapeOfGeom, id, index);
-    impl_->shapes.push_back({nullptr, nullptr, nullptr, std::move(prototype),
-                             renderFromInstance.Interpolate(0),
-                             steps.size() > 1 ? std::move(steps) : std::vector<Matrix4>{}});
-    return index;
+    const Transform first = renderFromInstance.Interpolate(0);
+    return impl_->Attach(dev, geom, "adding an instance",
+                         {nullptr, nullptr, nullptr, std::move(prototype), first,
+                          steps.size() > 1 ? std::move(steps) : std::vector<Matrix4>{}});
 }
 
 int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask, ShapeAlpha alpha) {
@@ -288,10 +287,7 @@ int Accel::AddAnalytic(std::unique_ptr<AnalyticShape> shape, unsigned mask, Shap
     unsigned id =
         AttachUserGeometry(dev.device, impl_->scene, shape.get(), impl_->options.precision, mask);
     dev.ThrowIfError("adding an analytic shape");
-    int index = int(impl_->shapes.size());
-    MapGeom(impl_->shapeOfGeom, id, index);
-    impl_->shapes.push_back({nullptr, std::move(shape), nullptr, nullptr, {}, {}});
-    return index;
+    return impl_->Record(id, {nullptr, std::move(shape), nullptr, nullptr, {}, {}});
 }
 
 void Accel::Commit() {
@@ -500,10 +496,15 @@ void Accel::Packet(const Ray *rays, int n, RawHit *hits, bool *occluded, bool ch
     alignas(64) RTCRayHit16 rh;
     unsigned objectGeom[16];
     ObjectHit objectHits[16];
+    // Masked lanes still hold a finite ray, empty (tnear > tfar): without 16-wide kernels
+    // (no AVX-512) Embree traces rtcIntersect16 as a ray stream, which takes a lane's
+    // activity from its ray rather than from the mask (an untraceable lane 0 copied into the
+    // padding tripped an assertion of Debian's Embree on an AVX2 machine).
+    static const Ray inert{{0, 0, 0}, {0, 0, 1}, /*tMax=*/0.f, /*tMin=*/1.f};
     for (int i = 0; i < 16; ++i) {
         PRISM_DCHECK(i >= n || check || TraceableRay(rays[i]));
         valid[i] = i < n && (!check || TraceableRay(rays[i])) ? -1 : 0;
-        InitRay16(rays[i < n ? i : 0], i, CameraRays, &rh.ray);
+        InitRay16(valid[i] ? rays[i] : inert, i, CameraRays, &rh.ray);
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
         objectGeom[i] = RTC_INVALID_GEOMETRY_ID;
@@ -538,7 +539,7 @@ void Accel::Packet(const Ray *rays, int n, RawHit *hits, bool *occluded, bool ch
     }
     if (occluded) {
         alignas(64) RTCRay16 ray;
-        for (int i = 0; i < 16; ++i) InitRay16(rays[i < n ? i : 0], i, ShadowRays, &ray);
+        for (int i = 0; i < 16; ++i) InitRay16(valid[i] ? rays[i] : inert, i, ShadowRays, &ray);
         rtcOccluded16(valid, impl_->scene, &ctx, &ray);
         for (int i = 0; i < n; ++i) occluded[i] = ray.tfar[i] < 0;
     }
