@@ -51,16 +51,10 @@ RGB GoniometricLight::Scale(const Vec3f &w) const {
 }
 
 bool GoniometricLight::SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const {
-    const Vec3f d = pos_ - si.p;
-    const float dist2 = LengthSquared(d);
-    if (!(dist2 > 0)) return false;
-    ls->wi = d / std::sqrt(dist2);
+    float dist2;
+    if (!SamplePointPosition(pos_, si, ls, &dist2)) return false;
     ls->Li = I_ * Scale(-ls->wi) / dist2;
-    if (ls->Li.IsBlack()) return false;
-    ls->pLight = pos_;
-    ls->infinite = false;
-    ls->pdf = 1;
-    return true;
+    return !ls->Li.IsBlack();
 }
 
 bool GoniometricLight::SampleLe(Vec2f, Vec2f uDir, const SceneSphere &, LightLeSample *ls) const {
@@ -89,9 +83,7 @@ void GoniometricLight::PdfLe(const Vec3f &, const Vec3f &, const Vec3f &, const 
 std::unique_ptr<Light> CreateGoniometricLight(const LightInputs &in) {
     const LightParams &p = in.params;
     const RGB I = p.Spectrum("I", RGB(1)) * p.Scale();
-    const std::string mapname = p.String("mapname", "");
-    std::shared_ptr<const Image> map;
-    if (!mapname.empty()) map = p.LoadImage("mapname", mapname);
+    const std::shared_ptr<const Image> map = p.OptionalImage("mapname");
     return std::make_unique<GoniometricLight>(in.renderFromLight, I, map);
 }
 

@@ -158,9 +158,7 @@ inline constexpr int MaxInfiniteLightSamples = 4096;
 std::unique_ptr<Light> CreateInfiniteLight(const LightInputs &in) {
     const LightParams &p = in.params;
     const RGB L = p.Spectrum("L", RGB(1)) * p.Scale();
-    const std::string mapname = p.String("mapname", "");
-    std::shared_ptr<const Image> map;
-    if (!mapname.empty()) map = p.LoadImage("mapname", mapname);
+    const std::shared_ptr<const Image> map = p.OptionalImage("mapname");
     int n = p.Int("nsamples", p.Int("samples", 1));
     if (in.lightSamples > 0) n = in.lightSamples;
     if (n < 1 || n > MaxInfiniteLightSamples)

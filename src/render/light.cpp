@@ -100,15 +100,22 @@ void DistantLight::PdfLe(const Vec3f &, const Vec3f &, const Vec3f &, const Scen
     *pdfDir = 0;
 }
 
-bool PointLight::SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const {
-    Vec3f d = pos_ - si.p;
-    float dist2 = LengthSquared(d);
-    if (!(dist2 > 0)) return false;
-    ls->wi = d / std::sqrt(dist2);
-    ls->Li = I_ / dist2;
-    ls->pLight = pos_;
+bool SamplePointPosition(const Vec3f &pos, const SurfaceInteraction &si, LightSample *ls,
+                         float *dist2) {
+    const Vec3f d = pos - si.p;
+    *dist2 = LengthSquared(d);
+    if (!(*dist2 > 0)) return false;
+    ls->wi = d / std::sqrt(*dist2);
+    ls->pLight = pos;
     ls->infinite = false;
     ls->pdf = 1;
+    return true;
+}
+
+bool PointLight::SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const {
+    float dist2;
+    if (!SamplePointPosition(pos_, si, ls, &dist2)) return false;
+    ls->Li = I_ / dist2;
     return true;
 }
 
@@ -130,16 +137,11 @@ float SpotLight::Falloff(const Vec3f &w) const {
 }
 
 bool SpotLight::SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const {
-    Vec3f d = pos_ - si.p;
-    float dist2 = LengthSquared(d);
-    if (!(dist2 > 0)) return false;
-    ls->wi = d / std::sqrt(dist2);
-    float f = Falloff(-ls->wi);
+    float dist2;
+    if (!SamplePointPosition(pos_, si, ls, &dist2)) return false;
+    const float f = Falloff(-ls->wi);
     if (f == 0) return false;
     ls->Li = I_ * (f / dist2);
-    ls->pLight = pos_;
-    ls->infinite = false;
-    ls->pdf = 1;
     return true;
 }
 

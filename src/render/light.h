@@ -25,6 +25,12 @@ struct LightSample {
     int prim = 0;  // mesh area lights: the triangle of pLight
 };
 
+// The first step of SampleLi at a light that is a point at pos (point, spot, goniometric and
+// projection lights): ls's direction from si toward pos and the delta sample's fields, and
+// the squared distance; false when si is at pos. The caller sets ls->Li.
+bool SamplePointPosition(const Vec3f &pos, const SurfaceInteraction &si, LightSample *ls,
+                         float *dist2);
+
 // The sphere that bounds the scene, where distant and infinite lights start the rays they emit.
 struct SceneSphere {
     Vec3f center;
@@ -157,6 +163,11 @@ class LightParams : public Params {
     // The image file named by string parameter `name` (relative to the scene), linear.
     virtual std::shared_ptr<const Image> LoadImage(const char *name,
                                                    const std::string &file) const = 0;
+    // The image named by string parameter `name`, or null when the parameter is absent or "".
+    std::shared_ptr<const Image> OptionalImage(const char *name) const {
+        const std::string file = String(name, "");
+        return file.empty() ? nullptr : LoadImage(name, file);
+    }
 };
 
 // What a light's Create reads.

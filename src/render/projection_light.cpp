@@ -64,16 +64,10 @@ RGB ProjectionLight::Projection(const Vec3f &w) const {
 }
 
 bool ProjectionLight::SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const {
-    const Vec3f d = pos_ - si.p;
-    const float dist2 = LengthSquared(d);
-    if (!(dist2 > 0)) return false;
-    ls->wi = d / std::sqrt(dist2);
+    float dist2;
+    if (!SamplePointPosition(pos_, si, ls, &dist2)) return false;
     ls->Li = I_ * Projection(-ls->wi) / dist2;
-    if (ls->Li.IsBlack()) return false;
-    ls->pLight = pos_;
-    ls->infinite = false;
-    ls->pdf = 1;
-    return true;
+    return !ls->Li.IsBlack();
 }
 
 bool ProjectionLight::SampleLe(Vec2f, Vec2f uDir, const SceneSphere &, LightLeSample *ls) const {
@@ -109,9 +103,7 @@ std::unique_ptr<Light> CreateProjectionLight(const LightInputs &in) {
     const float fov = p.Float("fov", 45.f);
     if (!(fov > 0 && fov < 180))
         throw SceneError(p.Loc("fov"), "projection light fov must be between 0 and 180 degrees");
-    const std::string mapname = p.String("mapname", "");
-    std::shared_ptr<const Image> map;
-    if (!mapname.empty()) map = p.LoadImage("mapname", mapname);
+    const std::shared_ptr<const Image> map = p.OptionalImage("mapname");
     return std::make_unique<ProjectionLight>(in.renderFromLight, I, map, fov);
 }
 
