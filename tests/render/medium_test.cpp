@@ -338,9 +338,11 @@ TEST(Medium, SceneWithoutMediaIsUnchanged) {
         RenderStats stats;
         Image img = Render(scene, &stats);
         Image golden = ReadImage(Source + "/tests/golden/" + c.golden);
-        ImageDiff d = CompareImages(img, golden, 1e-6f);
-        // Bit-identical on the machine that made it; the bound only absorbs other compilers.
-        EXPECT_LT(d.maxAbs, 1e-6);
+        ImageDiff d = CompareImages(img, golden, 1e-5f);
+        // Bit-identical on the machine that made it; the bound only absorbs other compilers
+        // and Embree's kernels for other instruction sets (an AVX2-only machine rounds
+        // triangle hits differently from an AVX-512 one: 1.3e-6 in one pixel).
+        EXPECT_LT(d.maxAbs, 1e-5);
         EXPECT_EQ(d.badPixels, 0);
         EXPECT_EQ(stats.rays.camera, 12288u);
         EXPECT_EQ(stats.rays.shadow, c.shadow);
