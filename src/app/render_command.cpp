@@ -478,8 +478,10 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "Embree build quality: auto (default: by triangles and samples), low, "
                     "medium or high")
         ->check(CLI::IsMember({"auto", "low", "medium", "high"}));
-    cmd->add_option("--lookat", args->lookAt,
-                    "Camera ex,ey,ez,lx,ly,lz,ux,uy,uz (replaces the scene's camera)");
+    cmd->add_option(
+        "--lookat", args->lookAt,
+        "Camera ex,ey,ez,lx,ly,lz,ux,uy,uz as pbrt's LookAt, unmirrored in right-handed OBJ/glTF "
+        "worlds (replaces the scene's camera)");
     cmd->add_option("--fov", args->fov, "Field of view in degrees on the shorter image axis")
         ->check(CLI::Range(0.001, 179.999));
     cmd->add_option(

@@ -251,7 +251,13 @@ void BuildCamera(BuildContext &ctx) {
     if (cd.motion && !settings.worldFromCamera)
         motion = TransformMotion{cd.motion->end.Inverse(), cd.motion->startTime, cd.motion->endTime,
                                  cd.motion->loc};
-    if (settings.worldFromCamera) worldFromCamera = *settings.worldFromCamera;
+    if (settings.worldFromCamera) {
+        worldFromCamera = *settings.worldFromCamera;
+        // --lookat is pbrt's LookAt, whose camera frame is left-handed as pbrt worlds are.
+        // OBJ, glTF and PLY worlds are right-handed: flip camera x, as the default camera
+        // does (scene/load_scene.cpp), or world +x would show on the left looking down -z.
+        if (ctx.desc.format != "pbrt") worldFromCamera = worldFromCamera * Scale(-1, 1, 1);
+    }
     // Render in camera-centred world space (pbrt-v4 "cameraworld"): far-away scenes keep
     // full float precision near the viewer (the viewer at the shutter's opening).
     Transform renderFromCamera;

@@ -238,6 +238,58 @@ TEST(Cli, InfoDescribesScene) {
     EXPECT_NE(r.out.find("kernel:     none (path integrator)"), std::string::npos) << r.out;
 }
 
+// Red channel minus blue, summed over the left and the right half of an image.
+std::pair<double, double> RedMinusBlueByHalf(const Image &img) {
+    double left = 0, right = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            (2 * x < img.width ? left : right) += img.At(x, y, 0) - img.At(x, y, 2);
+    return {left, right};
+}
+
+// --lookat frames a right-handed OBJ (or glTF) world as its default camera does: looking
+// down -z with +y up, world +x is on the image's right. It used to be pbrt's left-handed
+// frame everywhere, which mirrored OBJ and glTF renders. In a pbrt world it is the file's
+// LookAt, bit for bit.
+TEST(Cli, LookAtShowsWorldPlusXOnTheRightOfARightHandedWorld) {
+    fs::path dir = TempDir("lookat");
+    std::ofstream(dir / "m.mtl") << "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n";
+    std::ofstream(dir / "s.obj") << "mtllib m.mtl\n"
+                                    "v 0.2 -1 0\nv 2 -1 0\nv 2 1 0\nv 0.2 1 0\n"
+                                    "v -2 -1 0\nv -0.2 -1 0\nv -0.2 1 0\nv -2 1 0\n"
+                                    "usemtl red\nf 1 2 3 4\nusemtl blue\nf 5 6 7 8\n";
+    RunResult r =
+        RunPrism("render s.obj -o obj.exr -q --res 32x16 --lookat 0,0,5,0,0,0,0,1,0 --fov 60", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto [left, right] = RedMinusBlueByHalf(ReadImage((dir / "obj.exr").string()));
+    EXPECT_LT(left, 0) << "blue (world -x) belongs on the left";
+    EXPECT_GT(right, 0) << "red (world +x) belongs on the right";
+
+    const std::string world =
+        "WorldBegin\nLightSource \"distant\" \"point from\" [0 0 5]\n"
+        "Material \"matte\" \"rgb Kd\" [1 0 0]\n"
+        "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] "
+        "\"point3 P\" [0.2 -1 0  2 -1 0  2 1 0  0.2 1 0]\n"
+        "Material \"matte\" \"rgb Kd\" [0 0 1]\n"
+        "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] "
+        "\"point3 P\" [-2 -1 0  -0.2 -1 0  -0.2 1 0  -2 1 0]\n";
+    const std::string film =
+        "Film \"image\" \"integer xresolution\" 32 \"integer yresolution\" 16\n";
+    std::ofstream(dir / "own.pbrt") << "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" "
+                                       "\"float fov\" 60\n"
+                                    << film << world;
+    std::ofstream(dir / "flag.pbrt") << "Camera \"perspective\" \"float fov\" 60\n"
+                                     << film << world;
+    ASSERT_EQ(RunPrism("render own.pbrt -o own.exr -q", dir).exitCode, 0);
+    ASSERT_EQ(RunPrism("render flag.pbrt -o flag.exr -q --lookat 0,0,5,0,0,0,0,1,0", dir).exitCode,
+              0);
+    Image own = ReadImage((dir / "own.exr").string()),
+          flag = ReadImage((dir / "flag.exr").string());
+    EXPECT_EQ(own.pixels, flag.pixels);
+    // pbrt's left-handed frame: looking down -z, world +x is on the left.
+    EXPECT_GT(RedMinusBlueByHalf(own).first, 0);
+}
+
 TEST(Cli, TraceReportsHitsMissesAndLimits) {
     fs::path dir = TempDir("trace");
     std::ofstream(dir / "s.pbrt")
