@@ -60,7 +60,11 @@ class GltfConverter {
     void AddMesh(int meshIndex, const Transform &worldFromObject);
     void AddCamera(const tinygltf::Node &node, const Matrix4 &world);
     void AddLight(const tinygltf::Node &node, const Matrix4 &world);
+    void CheckExtensions();
     void ConvertMaterials();
+    // The scene material of a primitive without one: glTF's default material (base colour 1,
+    // metallic 1, roughness 1), added after the file's own on first use.
+    int DefaultMaterial();
     std::string TextureFor(int textureIndex, bool linear);
     bool AddMap(ParamSet &ps, const std::string &param, int textureIndex, int texCoord,
                 const tinygltf::ExtensionMap &ext, bool linear);
@@ -108,6 +112,7 @@ class GltfConverter {
     int currentMaterial_ = -1;               // the material ConvertMaterials is converting
     std::set<int> materialsUsingTexCoord1_;  // their primitives read TEXCOORD_1 ("uv1")
     bool warnedMissingTexCoord1_ = false;
+    int defaultMaterial_ = -1;  // DefaultMaterial's index, once added
     bool haveCamera_ = false;
     mutable std::string where_;  // the JSON pointer of what is being converted ("": the file)
 };

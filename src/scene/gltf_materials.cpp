@@ -362,4 +362,18 @@ void GltfConverter::ConvertMaterials() {
     }
 }
 
+int GltfConverter::DefaultMaterial() {
+    if (defaultMaterial_ < 0) {
+        // The "gltf" material's defaults are glTF's: no parameters needed.
+        MaterialDesc md;
+        md.name = "glTF default material";
+        md.loc = loc_;
+        md.type = "gltf";
+        defaultMaterial_ = int(desc_.materials.size());
+        desc_.materials.push_back(std::move(md));
+        areaLightOfMaterial_.push_back(-1);
+    }
+    return defaultMaterial_;
+}
+
 }  // namespace prism::gltf_internal

@@ -9,10 +9,12 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include "core/file_io.h"
 #include "core/memory.h"
@@ -315,7 +317,8 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
         s.loc = loc_;
         s.name = mesh.name;
         s.worldFromObject = worldFromObject;
-        s.material = prim.material;  // desc.materials mirrors model.materials
+        // desc.materials mirrors model.materials, then glTF's default material.
+        s.material = prim.material >= 0 ? prim.material : DefaultMaterial();
         s.areaLight = prim.material >= 0 ? areaLightOfMaterial_[size_t(prim.material)] : -1;
         s.directiveIndex = int(desc_.shapes.size());
         s.params = TriangleMeshParams(indices, P, N, uv, loc_);
@@ -538,18 +541,101 @@ void GltfConverter::CheckExpansion(const std::vector<int> &roots) const {
                    loc_);
 }
 
-void GltfConverter::Read() {
-    static const std::set<std::string> supported = {
-        "KHR_lights_punctual",    "KHR_materials_transmission",
-        "KHR_materials_ior",      "KHR_materials_emissive_strength",
-        "KHR_materials_specular", "KHR_materials_clearcoat",
-        "KHR_texture_transform"};
-    std::string unknown;
-    for (const std::string &e : model_.extensionsRequired)
-        if (!supported.count(e)) unknown += (unknown.empty() ? "" : ", ") + e;
-    if (!unknown.empty())
-        diag_.Warn(loc_, "required glTF extensions are not supported and are ignored: " + unknown);
+namespace {
 
+// The glTF extensions Prism simulates: wholly, or without the textures listed (each with
+// what is used instead).
+struct IgnoredTexture {
+    const char *name, *instead;
+};
+struct SimulatedExtension {
+    const char *name;
+    std::vector<IgnoredTexture> ignoredTextures;
+};
+const SimulatedExtension kSimulated[] = {
+    {"KHR_lights_punctual", {}},
+    {"KHR_materials_ior", {}},
+    {"KHR_materials_emissive_strength", {}},
+    {"KHR_texture_transform", {}},
+    {"KHR_materials_transmission", {{"transmissionTexture", "transmissionFactor alone"}}},
+    {"KHR_materials_specular",
+     {{"specularTexture", "specularFactor alone"},
+      {"specularColorTexture", "specularColorFactor alone"}}},
+    {"KHR_materials_clearcoat",
+     {{"clearcoatTexture", "clearcoatFactor alone"},
+      {"clearcoatRoughnessTexture", "clearcoatRoughnessFactor alone"},
+      {"clearcoatNormalTexture", "the base's shading normal"}}},
+};
+
+const SimulatedExtension *FindSimulated(const std::string &name) {
+    for (const SimulatedExtension &e : kSimulated)
+        if (name == e.name) return &e;
+    return nullptr;
+}
+
+// What a file loses when Prism ignores an extension it uses, for the ones whose loss is not
+// obvious from the name.
+std::string IgnoredBecause(const std::string &name) {
+    static const std::map<std::string, std::string> why = {
+        {"KHR_materials_volume",
+         "transmissive surfaces are thin: no refraction through the "
+         "volume and no attenuation tint"},
+        {"KHR_materials_sheen", "no sheen lobe"},
+        {"KHR_materials_iridescence", "no thin-film colours"},
+        {"KHR_materials_anisotropy", "highlights are isotropic"},
+        {"KHR_materials_unlit", "unlit materials are shaded as lit ones"},
+        {"KHR_materials_dispersion", "one index of refraction for every colour"},
+        {"KHR_materials_variants", "the materials the file names by default are used"},
+        {"EXT_mesh_gpu_instancing", "each mesh is drawn once, at its node"},
+    };
+    auto it = why.find(name);
+    return it == why.end() ? "" : " (" + it->second + ")";
+}
+
+}  // namespace
+
+// Every extension the file uses that Prism does not simulate is named once, with what it
+// costs where that is known; so are the extension textures that are read as factors only.
+// An extension the file requires but Prism does not simulate is an error: the file says it
+// cannot be rendered without it.
+void GltfConverter::CheckExtensions() {
+    for (size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
+        const std::string &e = model_.extensionsRequired[i];
+        if (FindSimulated(e)) continue;
+        const Where where(*this, "/extensionsRequired/" + std::to_string(i));
+        Fail("the file requires glTF extension " + e + ", which Prism does not support" +
+             IgnoredBecause(e));
+    }
+    for (const std::string &e : model_.extensionsUsed)
+        if (!FindSimulated(e))
+            diag_.Warn(loc_, "glTF extension " + e + " is not supported and is ignored" +
+                                 IgnoredBecause(e));
+    // The partly simulated ones: each ignored texture once, with the first material using it
+    // and how many do.
+    for (const SimulatedExtension &e : kSimulated)
+        for (const IgnoredTexture &texture : e.ignoredTextures) {
+            int count = 0;
+            std::string first;
+            for (size_t mi = 0; mi < model_.materials.size(); ++mi) {
+                const tinygltf::Material &m = model_.materials[mi];
+                auto it = m.extensions.find(e.name);
+                if (it == m.extensions.end() || !it->second.IsObject() ||
+                    !it->second.Has(texture.name))
+                    continue;
+                if (count++ == 0)
+                    first = m.name.empty() ? "material " + std::to_string(mi)
+                                           : "material \"" + m.name + "\"";
+            }
+            if (count == 0) continue;
+            diag_.Warn(loc_, std::string(e.name) + " " + texture.name + " is ignored (" +
+                                 texture.instead + " is used), in " + first +
+                                 (count > 1 ? " and " + std::to_string(count - 1) + " more"
+                                            : std::string()));
+        }
+}
+
+void GltfConverter::Read() {
+    CheckExtensions();
     ConvertMaterials();
     if (model_.scenes.empty()) {
         // No scene: glTF allows this for libraries of assets; render every root node.

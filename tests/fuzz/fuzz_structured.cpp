@@ -271,7 +271,11 @@ std::string GltfFromChoices(Choices &c) {
              });
         j += ", \"scene\": " + std::to_string(c.Index(2));
     }
-    if (c.Below(8) == 0) j += ", \"extensionsRequired\": [\"KHR_draco_mesh_compression\"]";
+    // An unsimulated extension used (a warning) and a simulated one required; an unsimulated
+    // required one is refused at once (GltfReader tests), which would leave nothing to fuzz.
+    if (c.Below(8) == 0)
+        j += ", \"extensionsUsed\": [\"KHR_draco_mesh_compression\"], \"extensionsRequired\": "
+             "[\"KHR_lights_punctual\"]";
     return j + "}\n";
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -66,7 +67,7 @@ const char *kGltf = R"({
   "asset": {"version": "2.0"},
   "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
                      "KHR_materials_emissive_strength", "EXT_made_up"],
-  "extensionsRequired": ["KHR_lights_punctual", "EXT_made_up"],
+  "extensionsRequired": ["KHR_lights_punctual"],
   "scene": SCENE,
   "scenes": [{"nodes": [0]}, {"nodes": [5]}, {"nodes": [6]}],
   "nodes": [
@@ -131,9 +132,16 @@ const char *kGltf = R"({
   ]
 })";
 
+// kGltf with its placeholders filled, after the edits `from` -> `to` of `edits`.
 std::string WriteGltf(const std::string &name, int scene, bool dataUriBuffer = false,
-                      const std::string &texcoordCount = "4") {
-    std::string json = Replace(kGltf, "SCENE", std::to_string(scene));
+                      const std::string &texcoordCount = "4",
+                      const std::vector<std::pair<std::string, std::string>> &edits = {}) {
+    std::string json = kGltf;
+    for (const auto &[from, to] : edits) {
+        EXPECT_NE(json.find(from), std::string::npos) << from;
+        json = Replace(json, from, to);
+    }
+    json = Replace(json, "SCENE", std::to_string(scene));
     json = Replace(json, "POSCOUNT", texcoordCount);
     json = Replace(json, "IMAGE64", Base64("PNGDATA"));
     if (dataUriBuffer) {
@@ -378,6 +386,77 @@ TEST(GltfReader, MaterialExtensionsAndTextureTransform) {
     // The untextured "lamp" and the textured emission of "embedded" (issue 13: emissive
     // textures are area lights too).
     ASSERT_EQ(d.areaLights.size(), 2u);
+}
+
+// A primitive without a material gets glTF's default material (base colour 1, metallic 1,
+// roughness 1: Prism's "gltf" material with no parameters), not Prism's grey matte.
+TEST(GltfReader, APrimitiveWithoutAMaterialHasGltfsDefaultMaterial) {
+    Diagnostics diag;
+    SceneDescription d =
+        ReadGltfFile(WriteGltf("gltft_nomat", 0, true, "4",
+                               {{R"({"attributes": {"POSITION": 4}, "material": 1},)",
+                                 R"({"attributes": {"POSITION": 4}},)"}}),
+                     diag);
+    ASSERT_EQ(d.materials.size(), 6u);  // the file's five, then the default
+    const MaterialDesc &m = d.materials[5];
+    EXPECT_EQ(m.type, "gltf");
+    EXPECT_EQ(m.name, "glTF default material");
+    EXPECT_TRUE(m.params.Params().empty());
+    ASSERT_EQ(d.shapes.size(), 5u);
+    EXPECT_EQ(d.shapes[1].material, 5);
+    EXPECT_EQ(d.shapes[1].areaLight, -1);
+    EXPECT_EQ(d.shapes[0].material, 0);
+}
+
+// Every used extension Prism does not simulate is named once, with what is lost where that is
+// known; extension textures read as their factors are named with the materials using them;
+// an unsupported extension the file requires is an error at its place in the file.
+TEST(GltfReader, UnsupportedExtensionsAreWarnedOnceOrRefusedWhenRequired) {
+    Diagnostics diag;
+    ReadGltfFile(WriteGltf("gltft_ext", 0, true, "4",
+                           {{R"("EXT_made_up"],)", R"("EXT_made_up", "KHR_materials_sheen",
+                     "KHR_materials_clearcoat"],)"},
+                            {R"({"name": "gold",)",
+                             R"({"name": "gold", "extensions": {"KHR_materials_sheen": {},
+                     "KHR_materials_clearcoat": {"clearcoatFactor": 1,
+                       "clearcoatTexture": {"index": 0}}},)"},
+                            {R"({"name": "embedded",)",
+                             R"({"name": "embedded", "extensions": {"KHR_materials_clearcoat": {
+                       "clearcoatFactor": 1, "clearcoatTexture": {"index": 0}}},)"}}),
+                 diag);
+    std::vector<std::string> messages;
+    for (const Warning &w : diag.Warnings()) messages.push_back(w.message);
+    auto count = [&](const std::string &part) {
+        return std::count_if(messages.begin(), messages.end(), [&](const std::string &m) {
+            return m.find(part) != std::string::npos;
+        });
+    };
+    EXPECT_EQ(count("glTF extension EXT_made_up is not supported and is ignored"), 1);
+    EXPECT_EQ(count("glTF extension KHR_materials_sheen is not supported and is ignored (no "
+                    "sheen lobe)"),
+              1);
+    EXPECT_EQ(count("KHR_materials_clearcoat clearcoatTexture is ignored (clearcoatFactor alone "
+                    "is used), in material \"gold\" and 1 more"),
+              1);
+    EXPECT_EQ(count("KHR_materials_clearcoat is not"), 0);  // simulated
+    EXPECT_EQ(count("KHR_lights_punctual"), 0);
+
+    const std::string path =
+        WriteGltf("gltft_required", 0, true, "4",
+                  {{R"("extensionsRequired": ["KHR_lights_punctual"],)",
+                    R"("extensionsRequired": ["KHR_lights_punctual", "KHR_materials_volume"],)"}});
+    try {
+        ReadGltfFile(path, diag);
+        ADD_FAILURE() << "a required extension Prism lacks was accepted";
+    } catch (const SceneError &e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("gltft_required.gltf:5:"), std::string::npos) << what;
+        EXPECT_NE(what.find("requires glTF extension KHR_materials_volume, which Prism does not "
+                            "support (transmissive surfaces are thin"),
+                  std::string::npos)
+            << what;
+        EXPECT_NE(what.find("(at /extensionsRequired/1)"), std::string::npos) << what;
+    }
 }
 
 TEST(GltfReader, MalformedFilesAreSceneErrors) {
