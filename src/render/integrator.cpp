@@ -37,9 +37,9 @@ void Integrator::RenderTile(const TileContext &ctx, TileSamples &out, RayCounter
     const Bounds2i &tb = out.bounds;
     for (int y = tb.pMin.y; y < tb.pMax.y; ++y)
         for (int x = tb.pMin.x; x < tb.pMax.x; ++x) {
-            if (ctx.Cancelled()) return;
             const CameraSampler::Seeds seeds = camera.PixelSeeds(x, y);
             for (uint32_t s = 0; s < spp; ++s) {
+                if (ctx.Cancelled()) return;
                 const CameraSample cs = camera.Sample(x, y, s, seeds);
                 if (camera.Lens()) rc.lensSamples++;
                 const Ray ray = camera.GenerateRay(cs);

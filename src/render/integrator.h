@@ -148,7 +148,8 @@ struct TileContext {
     const CameraSampler &camera;
     uint32_t kernelMask = 0;  // Integrator::KernelMask, chosen once per render
     // The render's cancel flag (or null): a RenderTile reads it at least once per camera
-    // packet (RenderPacketW x RenderPacketH pixels) or pixel and returns once it reads true,
+    // sample, or per packet of one sample in RenderPacketW x RenderPacketH pixels (the
+    // kernel's), and returns once it reads true,
     // leaving the tile incomplete (the driver then drops it). Cancelled() reads it.
     const volatile int *cancel = nullptr;
     bool Cancelled() const { return cancel && *cancel; }

@@ -397,7 +397,6 @@ void RenderTileKernel(const TileContext &ctx, const KernelParams &params, TileSa
     const bool seeded = camera.Seeded();
     for (int by = tb.pMin.y; by < tb.pMax.y; by += PacketH) {
         for (int bx = tb.pMin.x; bx < tb.pMax.x; bx += PacketW) {
-            if (ctx.Cancelled()) return;
             const int ex = std::min(bx + PacketW, tb.pMax.x),
                       ey = std::min(by + PacketH, tb.pMax.y);
             // The packet's pattern seeds, once for all its samples.
@@ -406,6 +405,9 @@ void RenderTileKernel(const TileContext &ctx, const KernelParams &params, TileSa
                 for (int y = by; y < ey; ++y)
                     for (int x = bx; x < ex; ++x, ++m) seeds[m] = camera.PixelSeeds(x, y);
             for (uint32_t s = 0; s < spp; ++s) {
+                // Once per packet of camera rays: a deep packet (1600 spp of mirror chains in
+                // Hostile.InterruptStopsARenderInsideItsOnlyTile) took 25 s between checks.
+                if (ctx.Cancelled()) return;
                 m = 0;
                 for (int y = by; y < ey; ++y) {
                     for (int x = bx; x < ex; ++x, ++m) {
