@@ -248,6 +248,35 @@ Matrix4 NodeLocalMatrix(const tinygltf::Node &n, const FileLoc &loc) {
     return m;
 }
 
+// The triangles of a primitive's vertex sequence v, three indices each, for glTF's
+// triangles (4), triangle strip (5: triangle i is v_i, v_{i+1+i%2}, v_{i+2-i%2}, so every
+// triangle keeps the first one's winding) and triangle fan (6: v_{i+1}, v_{i+2}, v_0).
+// Degenerate triangles of strips and fans (repeated indices, how strips restart) are dropped.
+std::vector<int> TriangleList(int mode, const std::vector<int> &v) {
+    std::vector<int> out;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        out.assign(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 3 * 3));
+        return out;
+    }
+    if (v.size() < 3) return out;
+    out.reserve(3 * (v.size() - 2));
+    for (size_t i = 0; i + 2 < v.size(); ++i) {
+        int a, b, c;
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            a = v[i];
+            b = v[i + 1 + i % 2];
+            c = v[i + 2 - i % 2];
+        } else {
+            a = v[i + 1];
+            b = v[i + 2];
+            c = v[0];
+        }
+        if (a == b || b == c || a == c) continue;
+        out.insert(out.end(), {a, b, c});
+    }
+    return out;
+}
+
 }  // namespace
 
 void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
@@ -260,11 +289,13 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
         const tinygltf::Primitive &prim = mesh.primitives[primIndex];
         const Where where(*this, "/meshes/" + std::to_string(meshIndex) + "/primitives/" +
                                      std::to_string(primIndex));
-        int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-        if (mode != TINYGLTF_MODE_TRIANGLES) {
+        const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             if (warnedModes_.insert(mode).second)
                 diag_.Warn(loc_, "primitive mode " + std::to_string(mode) +
-                                     " is not supported (only triangles); such primitives are "
+                                     " (points or lines) is not supported: only triangles, "
+                                     "strips and fans are rendered; such primitives are "
                                      "skipped");
             continue;
         }
@@ -307,7 +338,7 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
             indices.resize(P.size());
             for (size_t i = 0; i < P.size(); ++i) indices[i] = int(i);
         }
-        indices.resize(indices.size() / 3 * 3);
+        indices = TriangleList(mode, indices);
         if (indices.empty() || P.empty()) continue;
         if (prim.material >= int(model_.materials.size()))
             Fail("primitive refers to material " + std::to_string(prim.material) +

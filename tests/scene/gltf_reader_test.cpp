@@ -388,6 +388,26 @@ TEST(GltfReader, MaterialExtensionsAndTextureTransform) {
     ASSERT_EQ(d.areaLights.size(), 2u);
 }
 
+// Triangle strips and fans become triangle lists with glTF's vertex order (every triangle
+// wound as the first); points and lines are still skipped, warned once per mode.
+TEST(GltfReader, StripsAndFansBecomeTriangles) {
+    Diagnostics diag;
+    SceneDescription d =
+        ReadGltfFile(WriteGltf("gltft_strips", 0, true, "4",
+                               {{R"({"attributes": {"POSITION": 0}, "mode": 1},)",
+                                 R"({"attributes": {"POSITION": 0}, "mode": 6},)"},
+                                {R"({"attributes": {"POSITION": 0}, "mode": 0},)",
+                                 R"({"attributes": {"POSITION": 0}, "mode": 5},)"}}),
+                     diag);
+    ASSERT_EQ(d.shapes.size(), 7u);
+    EXPECT_EQ(d.shapes[2].params.GetInts("indices"), (std::vector<int>{1, 2, 0, 2, 3, 0}));
+    EXPECT_EQ(d.shapes[3].params.GetInts("indices"), (std::vector<int>{0, 1, 2, 1, 3, 2}));
+    int modeWarnings = 0;
+    for (const Warning &w : diag.Warnings())
+        modeWarnings += w.message.find("primitive mode 1 (points or lines)") != std::string::npos;
+    EXPECT_EQ(modeWarnings, 1);
+}
+
 // A primitive without a material gets glTF's default material (base colour 1, metallic 1,
 // roughness 1: Prism's "gltf" material with no parameters), not Prism's grey matte.
 TEST(GltfReader, APrimitiveWithoutAMaterialHasGltfsDefaultMaterial) {
