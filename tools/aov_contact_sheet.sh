@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# An AOV contact sheet (README "AOVs"): renders SCENE with `prism render --aov all` and tiles
+# An AOV contact sheet (docs/USAGE.md "AOVs"): renders SCENE with `prism render --aov all` and tiles
 # the beauty and each layer, mapped to display values and labelled, into one PNG with oiiotool.
 # Usage: tools/aov_contact_sheet.sh [SCENE] [OUT.png] [RES]
 set -euo pipefail

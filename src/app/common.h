@@ -60,8 +60,8 @@ void CheckOutputPath(const std::string &path);
 // directory): missing, read-only (also for root: a file is really created and removed) or full.
 void CheckWritableDirectory(const std::string &dir);
 
-// --confine [DIR] for render, info, batch and validate (README, docs/RELIABILITY.md): every file
-// a scene reads must resolve inside DIR, by default the scene file's folder.
+// --confine [DIR] for render, info, batch and validate (docs/USAGE.md, docs/RELIABILITY.md): every
+// file a scene reads must resolve inside DIR, by default the scene file's folder.
 struct ConfineOption {
     std::string dir;                // as given; empty: the scene's folder
     CLI::Option *option = nullptr;  // set by AddConfineOption

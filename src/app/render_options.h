@@ -34,13 +34,13 @@ struct RenderArgs {
     // with, as given on the command line.
     double targetError = 0;
     bool verify = false, sppGiven = false, cutoffGiven = false, lightSamplesGiven = false;
-    // Output (docs: README "Exposure and tone mapping"): empty / not given → the Film's, else
+    // Output (docs/USAGE.md "Exposure and tone mapping"): empty / not given → the Film's, else
     // the scene format's default.
     float exposure = 0;
     bool exposureGiven = false, exposureAuto = false;  // --exposure auto
     std::string exposureText;                          // as given
     std::string toneMap;
-    // --env (README "Lighting"): empty when not given.
+    // --env (docs/USAGE.md "Lighting"): empty when not given.
     std::string env, envMode;
     double envRotate = 0;
     bool envRotateGiven = false;

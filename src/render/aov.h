@@ -1,7 +1,7 @@
 // Arbitrary output variables (AOVs): per-pixel layers beside the beauty image, written into one
-// multi-channel EXR (`prism render --aov`, Film "string aovs"; README "AOVs"). They are computed
-// from the render itself, tile by tile, by the one tile driver (render/renderer.h), under every
-// integrator: the variance and the direct/indirect split from the beauty's own samples, the
+// multi-channel EXR (`prism render --aov`, Film "string aovs"; docs/USAGE.md "AOVs"). They are
+// computed from the render itself, tile by tile, by the one tile driver (render/renderer.h), under
+// every integrator: the variance and the direct/indirect split from the beauty's own samples, the
 // geometric layers from the first hit of the same camera rays (as Mitsuba's aov integrator). A
 // render without AOVs runs none of this code and its image is unchanged.
 //

@@ -64,7 +64,7 @@ Bounds3f SceneMeshBounds(const SceneDescription &desc);
 void FrameDefaultCamera(SceneDescription &desc, const Bounds3f &bounds);
 
 // The studio rig every OBJ, glTF or PLY file without lights (and without emissive materials)
-// gets (README.md "Lighting"): a distant key light of L = 2.5 from above the camera, slightly
+// gets (docs/USAGE.md "Lighting"): a distant key light of L = 2.5 from above the camera, slightly
 // left and behind the viewer; a distant fill of L = 0.6 from the camera's right at a low angle;
 // and a dim uniform environment of L = 0.15 (16 samples), which is also the background. The key
 // and fill directions follow desc.camera (framed by the model's bounds when the file has none),

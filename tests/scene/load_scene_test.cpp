@@ -107,7 +107,7 @@ TEST(LoadScene, ObjGetsFramedCameraAndDefaultLights) {
     }
 }
 
-// The studio rig (docs: README "Lighting a light-less model"): a key from above the camera, a
+// The studio rig (docs/USAGE.md "Lighting"): a key from above the camera, a
 // weaker fill from its right, a dim uniform environment with stratified samples.
 TEST(LoadScene, LightLessModelGetsTheStudioRig) {
     std::string path = WriteFile("ls_rig.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");

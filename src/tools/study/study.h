@@ -70,7 +70,7 @@ bool KnobReusesScene(StudyKnob knob);
 // Why the knob does not apply to the scene (nothing to study), or nullopt when it does.
 std::optional<std::string> KnobSkipReason(StudyKnob knob, const SceneFeatures &features);
 
-// Error of an image against the reference, over every pixel's RGB components (docs: README
+// Error of an image against the reference, over every pixel's RGB components (docs/USAGE.md
 // "Accuracy study"):
 //   rmse        sqrt(mean (a - ref)^2)
 //   rel_l1      sum |a - ref| / sum |ref|  (mean absolute error over the mean reference value)

@@ -1,0 +1,70 @@
+// The manual (docs/USAGE.md) against the command line: every flag `prism <command> --help`
+// prints is named there, so a new flag cannot land undocumented.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <string>
+
+#include "app/run_prism.h"
+
+namespace fs = std::filesystem;
+
+namespace prism {
+namespace {
+
+const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+
+// The long flags of a --help text ("--spp", "--env-rotate"), without --help itself.
+std::set<std::string> LongFlags(const std::string &help) {
+    std::set<std::string> flags;
+    static const std::regex flag("--[a-z0-9][a-z0-9-]*");
+    for (auto it = std::sregex_iterator(help.begin(), help.end(), flag);
+         it != std::sregex_iterator(); ++it)
+        if (it->str() != "--help") flags.insert(it->str());
+    return flags;
+}
+
+// Whether text names `flag` as a whole token: "--env" is not named by "--env-rotate" alone.
+bool Names(const std::string &text, const std::string &flag) {
+    for (size_t at = text.find(flag); at != std::string::npos; at = text.find(flag, at + 1)) {
+        const size_t end = at + flag.size();
+        const char next = end < text.size() ? text[end] : ' ';
+        if (!(std::isalnum(static_cast<unsigned char>(next)) || next == '-')) return true;
+    }
+    return false;
+}
+
+TEST(Docs, UsageNamesEveryFlag) {
+    const std::string usage = test::ReadFile(Source + "/docs/USAGE.md");
+    ASSERT_FALSE(usage.empty());
+    const fs::path dir = test::FreshTempDir("docs", "usage");
+    size_t checked = 0;
+    for (const char *command : {"render", "batch", "info", "trace", "pick", "validate", "study",
+                                "bench ceiling", "bench knot", "bench suite"}) {
+        const test::RunResult r = test::RunPrism(std::string(command) + " --help", dir);
+        ASSERT_EQ(r.exitCode, 0) << command << ": " << r.err;
+        const std::set<std::string> flags = LongFlags(r.out);
+        EXPECT_FALSE(flags.empty()) << command;
+        for (const std::string &f : flags) {
+            EXPECT_TRUE(Names(usage, f))
+                << "prism " << command << " " << f << " is not in docs/USAGE.md";
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 100u);  // the render command alone has dozens
+}
+
+// The front door stays one: under 200 lines, pointing to the manual.
+TEST(Docs, ReadmeIsAFrontDoor) {
+    const std::string readme = test::ReadFile(Source + "/README.md");
+    size_t lines = 0;
+    for (char c : readme) lines += c == '\n';
+    EXPECT_LT(lines, 200u);
+    EXPECT_NE(readme.find("docs/USAGE.md"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace prism
