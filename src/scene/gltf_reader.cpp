@@ -248,18 +248,19 @@ Matrix4 NodeLocalMatrix(const tinygltf::Node &n, const FileLoc &loc) {
     return m;
 }
 
-// The triangles of a primitive's vertex sequence v, three indices each, for glTF's
-// triangles (4), triangle strip (5: triangle i is v_i, v_{i+1+i%2}, v_{i+2-i%2}, so every
-// triangle keeps the first one's winding) and triangle fan (6: v_{i+1}, v_{i+2}, v_0).
-// Degenerate triangles of strips and fans (repeated indices, how strips restart) are dropped.
-std::vector<int> TriangleList(int mode, const std::vector<int> &v) {
-    std::vector<int> out;
+// Turns a primitive's vertex sequence v (*indices) into triangles, three each, for glTF's
+// triangles (4: in place, a trailing partial triangle dropped), triangle strip (5: triangle i
+// is v_i, v_{i+1+i%2}, v_{i+2-i%2}, so every triangle keeps the first one's winding) and
+// triangle fan (6: v_{i+1}, v_{i+2}, v_0). Degenerate triangles of strips and fans (repeated
+// indices, how strips restart) are dropped.
+void ToTriangleList(int mode, std::vector<int> *indices) {
     if (mode == TINYGLTF_MODE_TRIANGLES) {
-        out.assign(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 3 * 3));
-        return out;
+        indices->resize(indices->size() / 3 * 3);
+        return;
     }
-    if (v.size() < 3) return out;
-    out.reserve(3 * (v.size() - 2));
+    const std::vector<int> &v = *indices;
+    std::vector<int> out;
+    if (v.size() >= 3) out.reserve(3 * (v.size() - 2));
     for (size_t i = 0; i + 2 < v.size(); ++i) {
         int a, b, c;
         if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
@@ -274,7 +275,7 @@ std::vector<int> TriangleList(int mode, const std::vector<int> &v) {
         if (a == b || b == c || a == c) continue;
         out.insert(out.end(), {a, b, c});
     }
-    return out;
+    *indices = std::move(out);
 }
 
 }  // namespace
@@ -338,7 +339,7 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
             indices.resize(P.size());
             for (size_t i = 0; i < P.size(); ++i) indices[i] = int(i);
         }
-        indices = TriangleList(mode, indices);
+        ToTriangleList(mode, &indices);
         if (indices.empty() || P.empty()) continue;
         if (prim.material >= int(model_.materials.size()))
             Fail("primitive refers to material " + std::to_string(prim.material) +
