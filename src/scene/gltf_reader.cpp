@@ -294,10 +294,11 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             if (warnedModes_.insert(mode).second)
-                diag_.Warn(loc_, "primitive mode " + std::to_string(mode) +
-                                     " (points or lines) is not supported: only triangles, "
-                                     "strips and fans are rendered; such primitives are "
-                                     "skipped");
+                diag_.Warn(loc_,
+                           "primitive mode " + std::to_string(mode) +
+                               (mode <= TINYGLTF_MODE_LINE_STRIP ? " (points or lines)" : "") +
+                               " is not supported: only triangles, strips and fans are "
+                               "rendered; such primitives are skipped");
             continue;
         }
         auto pos = prim.attributes.find("POSITION");

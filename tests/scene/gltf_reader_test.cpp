@@ -397,15 +397,23 @@ TEST(GltfReader, StripsAndFansBecomeTriangles) {
                                {{R"({"attributes": {"POSITION": 0}, "mode": 1},)",
                                  R"({"attributes": {"POSITION": 0}, "mode": 6},)"},
                                 {R"({"attributes": {"POSITION": 0}, "mode": 0},)",
-                                 R"({"attributes": {"POSITION": 0}, "mode": 5},)"}}),
+                                 R"({"attributes": {"POSITION": 0}, "mode": 5},)"},
+                                {R"({"attributes": {"POSITION": 4}, "material": 4}]})",
+                                 R"({"attributes": {"POSITION": 4}, "material": 4},
+                                    {"attributes": {"POSITION": 4}, "mode": 9}]})"}}),
                      diag);
     ASSERT_EQ(d.shapes.size(), 7u);
     EXPECT_EQ(d.shapes[2].params.GetInts("indices"), (std::vector<int>{1, 2, 0, 2, 3, 0}));
     EXPECT_EQ(d.shapes[3].params.GetInts("indices"), (std::vector<int>{0, 1, 2, 1, 3, 2}));
-    int modeWarnings = 0;
-    for (const Warning &w : diag.Warnings())
+    int modeWarnings = 0, unknownModeWarnings = 0;
+    for (const Warning &w : diag.Warnings()) {
         modeWarnings += w.message.find("primitive mode 1 (points or lines)") != std::string::npos;
+        // Not a glTF mode at all: not called points or lines.
+        unknownModeWarnings +=
+            w.message.find("primitive mode 9 is not supported") != std::string::npos;
+    }
     EXPECT_EQ(modeWarnings, 1);
+    EXPECT_EQ(unknownModeWarnings, 1);
 }
 
 // A primitive without a material gets glTF's default material (base colour 1, metallic 1,
