@@ -15,17 +15,15 @@
 #include <string>
 #include <vector>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::RunPrism;
-using test::RunResult;
-
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("aov_cli", name); }
+using namespace test;
 
 struct Exr {
     int width = 0, height = 0;

@@ -13,23 +13,19 @@
 #include <string>
 #include <thread>
 
-#include "app/run_prism.h"
 #include "image/image.h"
 #include "image/image_compare.h"
 #include "image/image_io.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::ReadFile;
-using test::RunPrism;
-using test::RunResult;
-
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("cli", name); }
-
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 TEST(Cli, RendersWhittedAtSmallSize) {
     fs::path dir = TempDir("whitted");
@@ -467,16 +463,8 @@ TEST(Batch, InterruptKeepsFinishedImagesAndReport) {
     std::ofstream(dir / "later.pbrt") << SphereScene(16, 12, 1);
     std::ofstream(dir / "list.txt") << "fast.pbrt\nslow.pbrt\nlater.pbrt\n";
     fs::path out = dir / "out";
-    pid_t pid = fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-        if (chdir(dir.c_str()) != 0) _exit(126);
-        std::freopen("batch.log", "w", stderr);
-        std::freopen("/dev/null", "w", stdout);
-        execl(PRISM_BINARY, PRISM_BINARY, "batch", "list.txt", "-o", "out", "--threads", "1",
-              (char *)nullptr);
-        _exit(127);
-    }
+    pid_t pid = SpawnPrism(dir, {"batch", "list.txt", "-o", "out", "--threads", "1"}, "batch.log");
+    ASSERT_GT(pid, 0);
     // The slow render has started once the fast one is reported finished (its log removed
     // before that) and a render log exists again.
     auto slowStarted = [&] {
@@ -494,14 +482,8 @@ TEST(Batch, InterruptKeepsFinishedImagesAndReport) {
     EXPECT_TRUE(fs::exists(out / "fast.png"));
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     kill(pid, SIGINT);
-    int status = 0;
-    for (int i = 0; i < 6000 && waitpid(pid, &status, WNOHANG) == 0; ++i)
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    if (waitpid(pid, &status, WNOHANG) == 0 && !WIFEXITED(status)) {
-        kill(pid, SIGKILL);
-        waitpid(pid, &status, 0);
-        FAIL() << "batch did not stop after SIGINT";
-    }
+    const int status = WaitOrKill(pid, 60);
+    ASSERT_NE(status, -1) << "batch did not stop after SIGINT";
     ASSERT_TRUE(WIFEXITED(status)) << ReadFile(dir / "batch.log");
     EXPECT_EQ(WEXITSTATUS(status), 130) << ReadFile(dir / "batch.log");
     EXPECT_TRUE(HasStatus(out, "fast.pbrt", "ok")) << ReadFile(out / "report.json");

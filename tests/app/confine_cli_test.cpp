@@ -14,20 +14,16 @@
 #include <utility>
 #include <vector>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::ReadFile;
-using test::RunPrism;
-using test::RunResult;
-
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("confine", name); }
-
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 // Six lines; the directive under test goes on line 7.
 const char *const kPbrtHead =

@@ -10,20 +10,16 @@
 #include <string>
 #include <vector>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::ReadFile;
-using test::RunPrism;
-using test::RunResult;
-
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("csg_cli", name); }
-
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 // "hit t px py pz nx ny nz shape prim" → the numbers.
 std::vector<double> Numbers(const std::string &line) {

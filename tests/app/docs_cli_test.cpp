@@ -8,14 +8,16 @@
 #include <set>
 #include <string>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 // The long flags of a --help text ("--spp", "--env-rotate"), without --help itself.
 std::set<std::string> LongFlags(const std::string &help) {
@@ -40,7 +42,7 @@ bool Names(const std::string &text, const std::string &flag) {
 TEST(Docs, UsageNamesEveryFlag) {
     const std::string usage = test::ReadFile(Source + "/docs/USAGE.md");
     ASSERT_FALSE(usage.empty());
-    const fs::path dir = test::FreshTempDir("docs", "usage");
+    const fs::path dir = TempDir("usage");
     size_t checked = 0;
     for (const char *command : {"render", "batch", "info", "trace", "pick", "validate", "study",
                                 "bench ceiling", "bench knot", "bench suite"}) {

@@ -6,20 +6,16 @@
 #include <fstream>
 #include <string>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::ReadFile;
-using test::RunPrism;
-using test::RunResult;
-
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
-
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("effects_cli", name); }
+using namespace test;
 
 bool Has(const std::string &out, const std::string &s) { return out.find(s) != std::string::npos; }
 

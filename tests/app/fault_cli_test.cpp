@@ -14,18 +14,15 @@
 #include <optional>
 #include <string>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::ReadFile;
-using test::RunPrism;
-using test::RunResult;
-
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("fault", name); }
+using namespace test;
 
 const char *const kScene =
     "LookAt 0 0 5  0 0 0  0 1 0\n"

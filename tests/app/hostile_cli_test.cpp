@@ -20,26 +20,19 @@
 #include <tuple>
 #include <vector>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::ReadFile;
-using test::RunPrism;
-using test::RunResult;
+using namespace test;
 
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("hostile", name); }
-
-// Five lines; what a case adds starts on line 6.
-const char *const kHead =
-    "LookAt 0 0 5  0 0 0  0 1 0\n"
-    "Camera \"perspective\" \"float fov\" 40\n"
-    "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\n"
-    "WorldBegin\n"
-    "LightSource \"point\" \"rgb I\" [10 10 10] \"point from\" [0 0 5]\n";
+// Five lines (test::kCliHead); what a case adds starts on line 6.
+const std::string kHead = kCliHead;
 
 int ErrorLines(const std::string &err) {
     int n = 0;

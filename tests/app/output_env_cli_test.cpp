@@ -8,23 +8,20 @@
 #include <fstream>
 #include <string>
 
-#include "app/run_prism.h"
 #include "core/vecmath.h"
 #include "image/image.h"
 #include "image/image_io.h"
 #include "image/tonemap.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::RunPrism;
-using test::RunResult;
-
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
-
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("outenv", name); }
+using namespace test;
 
 void Write(const fs::path &p, const std::string &text) { std::ofstream(p) << text; }
 

@@ -8,17 +8,15 @@
 #include <string>
 #include <vector>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::RunPrism;
-using test::RunResult;
-
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("pick_cli", name); }
+using namespace test;
 
 // A unit sphere at the origin (Shape on line 6), a mirror sphere beside it (line 9), seen from
 // z = -5 with a 60 degree field of view on a 21x21 image.

@@ -6,16 +6,15 @@
 #include <fstream>
 #include <string>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::FreshTempDir;
-using test::RunPrism;
-using test::RunResult;
+using namespace test;
 
 // A sphere under an area light: soft shadows, so samples differ.
 void WriteScene(const fs::path &p) {
@@ -30,7 +29,7 @@ void WriteScene(const fs::path &p) {
 }
 
 TEST(TimeLimitCli, RendersPassesAndPrintsTheNoise) {
-    fs::path dir = FreshTempDir("progressive", "render");
+    fs::path dir = TempDir("render");
     WriteScene(dir / "s.pbrt");
     RunResult r = RunPrism("render s.pbrt -o s.png --no-progress --time-limit 1 --stats", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -54,7 +53,7 @@ TEST(TimeLimitCli, RendersPassesAndPrintsTheNoise) {
 }
 
 TEST(TimeLimitCli, BadCombinationsAreUsageErrors) {
-    fs::path dir = FreshTempDir("progressive", "bad");
+    fs::path dir = TempDir("bad");
     WriteScene(dir / "s.pbrt");
     RunResult r = RunPrism("render s.pbrt -o s.png --time-limit 1 --target-error 0.05", dir);
     EXPECT_EQ(r.exitCode, 2);
@@ -66,7 +65,7 @@ TEST(TimeLimitCli, BadCombinationsAreUsageErrors) {
 }
 
 TEST(TimeLimitCli, BatchPassesTheLimitToEachScene) {
-    fs::path dir = FreshTempDir("progressive", "batch");
+    fs::path dir = TempDir("batch");
     fs::create_directories(dir / "in");
     WriteScene(dir / "in/a.pbrt");
     WriteScene(dir / "in/b.pbrt");

@@ -19,26 +19,19 @@
 #include <tuple>
 #include <vector>
 
-#include "app/run_prism.h"
+#include "support/process.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::ReadFile;
-using test::RunPrism;
-using test::RunResult;
+using namespace test;
 
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("runaway", name); }
-
-// Five lines; what a case adds starts on line 6.
-const char *const kHead =
-    "LookAt 0 0 5  0 0 0  0 1 0\n"
-    "Camera \"perspective\" \"float fov\" 40\n"
-    "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\n"
-    "WorldBegin\n"
-    "LightSource \"point\" \"rgb I\" [10 10 10] \"point from\" [0 0 5]\n";
+// Five lines (test::kCliHead); what a case adds starts on line 6.
+const std::string kHead = kCliHead;
 
 // A camera between two parallel mirrors, looking at one of them: every camera ray bounces
 // `depth` times (Kr 1, so no ray is cut off), each pixel costs n * n * depth rays (n * n spp).
@@ -56,42 +49,13 @@ std::string MirrorHall(int w, int h, int n, int depth) {
            "  \"point3 P\" [-100 -1 -100  -100 -1 100  100 -1 100  100 -1 -100]\n";
 }
 
-// Forks `prism ARGS...` in dir with stderr to dir/err.txt; returns its pid.
-pid_t Spawn(const fs::path &dir, const std::vector<std::string> &args) {
-    pid_t pid = fork();
-    if (pid == 0) {
-        if (chdir(dir.c_str()) != 0) _exit(126);
-        if (!std::freopen("err.txt", "w", stderr) || !std::freopen("/dev/null", "w", stdout))
-            _exit(126);
-        std::vector<char *> argv{const_cast<char *>(PRISM_BINARY)};
-        for (const std::string &a : args) argv.push_back(const_cast<char *>(a.c_str()));
-        argv.push_back(nullptr);
-        execv(PRISM_BINARY, argv.data());
-        _exit(127);
-    }
-    return pid;
-}
-
-// Waits up to `seconds` for pid; kills it (SIGKILL) if it is still running then. Returns its
-// wait status, or -1 if it had to be killed.
-int WaitOrKill(pid_t pid, int seconds) {
-    int status = 0;
-    for (int i = 0; i < seconds * 50; ++i) {
-        if (waitpid(pid, &status, WNOHANG) == pid) return status;
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    kill(pid, SIGKILL);
-    waitpid(pid, &status, 0);
-    return -1;
-}
-
 // One 16x16 tile whose every camera packet (4x4 pixels) takes seconds: SIGINT used to be
 // read only between tiles, so the render went on to the end of the tile (about a minute and
 // a half here) before it stopped.
 TEST(Hostile, InterruptStopsARenderInsideItsOnlyTile) {
     fs::path dir = TempDir("interrupt_tile");
     std::ofstream(dir / "hall.pbrt") << MirrorHall(16, 16, 40, 1000);
-    pid_t pid = Spawn(dir, {"render", "hall.pbrt", "-o", "out.png", "-q", "--threads", "1"});
+    pid_t pid = SpawnPrism(dir, {"render", "hall.pbrt", "-o", "out.png", "-q", "--threads", "1"});
     ASSERT_GT(pid, 0);
     std::this_thread::sleep_for(std::chrono::seconds(2));  // loaded (a few ms), rendering
     kill(pid, SIGINT);
@@ -217,7 +181,7 @@ TEST(Hostile, KillingTheBatchEndsItsRender) {
     fs::path dir = TempDir("batch_killed");
     std::ofstream(dir / "hall.pbrt") << MirrorHall(256, 256, 8, 1000);
     std::ofstream(dir / "list.txt") << "hall.pbrt\n";
-    pid_t batch = Spawn(dir, {"batch", "list.txt", "-o", "out", "--threads", "1", "-q"});
+    pid_t batch = SpawnPrism(dir, {"batch", "list.txt", "-o", "out", "--threads", "1", "-q"});
     ASSERT_GT(batch, 0);
     const pid_t render = WaitForRender(batch, dir, "hall.pbrt");
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -240,7 +204,7 @@ TEST(Hostile, TerminatingTheBatchStopsItsRenderAndSaysSoInTheReport) {
     std::ofstream(dir / "hall.pbrt") << MirrorHall(256, 256, 8, 1000);
     std::ofstream(dir / "c.pbrt") << kHead << "Shape \"sphere\"\n";
     std::ofstream(dir / "list.txt") << "a.pbrt\nhall.pbrt\nc.pbrt\n";
-    pid_t batch = Spawn(dir, {"batch", "list.txt", "-o", "out", "--threads", "1", "-q"});
+    pid_t batch = SpawnPrism(dir, {"batch", "list.txt", "-o", "out", "--threads", "1", "-q"});
     ASSERT_GT(batch, 0);
     const pid_t render = WaitForRender(batch, dir, "hall.pbrt");
     std::this_thread::sleep_for(std::chrono::milliseconds(500));

@@ -8,20 +8,18 @@
 #include <sstream>
 #include <string>
 
-#include "app/run_prism.h"
-#include "test_util.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::ReadFile;
-using test::RunPrism;
-using test::RunResult;
+using namespace test;
 
-// (One literal: g++ 12 warns -Wrestrict, falsely, on "'" + std::string(...).)
-const std::string Whitted = "'" PRISM_SOURCE_DIR_FOR_TESTS "/scenes/whitted.pbrt'";
+const std::string Whitted = ShellQuoted(Source + "/scenes/whitted.pbrt");
 
 class TargetErrorCli : public test::FreshDirTest {};
 

@@ -6,21 +6,18 @@
 #include <filesystem>
 #include <string>
 
-#include "app/run_prism.h"
 #include "image/image_compare.h"
 #include "image/image_io.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::RunPrism;
-using test::RunResult;
-
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
-
-fs::path TempDir(const std::string &name) { return test::FreshTempDir("texfilt_cli", name); }
+using namespace test;
 
 TEST(TextureFilterCli, InfoSaysHowTexturesFilter) {
     fs::path dir = TempDir("info");

@@ -13,34 +13,20 @@
 #include "image/image_compare.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/shared.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
-
-struct Rendered {
-    Image image;
-    RenderStats stats;
-};
-
-Rendered RenderFile(const std::string &path, const BuildSettings &opts) {
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(path, diag);
-    RenderScene scene = BuildRenderScene(desc, opts, diag);
-    Rendered r;
-    r.image = Render(scene, &r.stats);
-    return r;
-}
+using namespace test;
 
 std::string WriteScene(const std::string &name, const std::string &text) {
-    fs::path dir = fs::path(::testing::TempDir()) / "prism_accuracy_knobs";
-    fs::create_directories(dir);
-    fs::path file = dir / (name + ".pbrt");
-    std::ofstream(file) << text;
-    return file.string();
+    return WriteSceneText("prism_accuracy_knobs", name, text);
 }
 
 std::string ReadText(const std::string &path) {
@@ -69,9 +55,9 @@ BuildSettings Small(Vec2i res, int spp) {
 TEST(AccuracyKnobs, CutoffZeroIsBitIdentical) {
     const std::string scene = Source + "/scenes/whitted.pbrt";  // mirror and glass spheres
     BuildSettings opts = Small({96, 72}, 2);
-    Rendered plain = RenderFile(scene, opts);
+    Rendered plain = RenderSceneFile(scene, opts);
     opts.rayCutoff = 0;
-    Rendered zero = RenderFile(scene, opts);
+    Rendered zero = RenderSceneFile(scene, opts);
     EXPECT_TRUE(BitIdentical(plain.image, zero.image));
     EXPECT_EQ(zero.stats.rays.cutoff, 0u);
     EXPECT_EQ(zero.stats.rays.reflection, plain.stats.rays.reflection);
@@ -79,7 +65,7 @@ TEST(AccuracyKnobs, CutoffZeroIsBitIdentical) {
     EXPECT_GT(plain.stats.rays.reflection, 0u);
     EXPECT_GT(plain.stats.rays.refraction, 0u);
     opts.rayCutoff = 1e-30f;
-    Rendered tiny = RenderFile(scene, opts);
+    Rendered tiny = RenderSceneFile(scene, opts);
     EXPECT_TRUE(BitIdentical(plain.image, tiny.image));
 }
 
@@ -89,9 +75,9 @@ TEST(AccuracyKnobs, CutoffZeroIsBitIdentical) {
 TEST(AccuracyKnobs, CutoffSavesRaysAndChangesLittle) {
     const std::string scene = Source + "/scenes/whitted.pbrt";
     BuildSettings opts = Small({96, 72}, 2);
-    Rendered full = RenderFile(scene, opts);
+    Rendered full = RenderSceneFile(scene, opts);
     opts.rayCutoff = 1e-2f;
-    Rendered cut = RenderFile(scene, opts);
+    Rendered cut = RenderSceneFile(scene, opts);
     const RayCounters &a = full.stats.rays, &b = cut.stats.rays;
     EXPECT_GT(b.cutoff, 0u);
     EXPECT_LT(b.reflection + b.refraction, a.reflection + a.refraction);
@@ -124,15 +110,15 @@ Shape "trianglemesh" "integer indices" [ 0 1 2  0 2 3 ]
 WorldEnd
 )");
     BuildSettings opts;
-    Rendered all = RenderFile(file, opts);
+    Rendered all = RenderSceneFile(file, opts);
     EXPECT_EQ(all.stats.rays.reflection, 19u);  // depths 1 to 19 under maxdepth 20
     EXPECT_EQ(all.stats.rays.cutoff, 0u);
     opts.rayCutoff = 0.1f;
-    Rendered cut = RenderFile(file, opts);
+    Rendered cut = RenderSceneFile(file, opts);
     EXPECT_EQ(cut.stats.rays.reflection, 3u);
     EXPECT_EQ(cut.stats.rays.cutoff, 1u);
     opts.rayCutoff = 0.125f;  // "more than the cutoff": 0.125 itself is dropped
-    EXPECT_EQ(RenderFile(file, opts).stats.rays.reflection, 2u);
+    EXPECT_EQ(RenderSceneFile(file, opts).stats.rays.reflection, 2u);
 }
 
 // Whitted's floor (r = 1e5) with a sphere on it, lit from above. The floor can shadow nothing
@@ -150,9 +136,9 @@ struct AcneCase {
         reference = WriteScene(name + "_reference", text);
     }
     int64_t BadPixels(BuildSettings opts, RayOffset offset) const {
-        Image ref = RenderFile(reference, opts).image;
+        Image ref = RenderSceneFile(reference, opts).image;
         opts.offset = offset;
-        Image img = RenderFile(scene, opts).image;
+        Image img = RenderSceneFile(scene, opts).image;
         return CompareImages(ref, img, 0.1f).badPixels;
     }
 };

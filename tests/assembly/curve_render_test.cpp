@@ -11,29 +11,18 @@
 #include "core/vecmath.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
+#include "support/render_text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-struct Rendered {
-    Image image{1, 1};
-    std::vector<Warning> warnings;
-};
+using namespace test;
 
 Rendered RenderText(const std::string &name, const std::string &text, BuildSettings opts) {
-    fs::path dir = fs::path(::testing::TempDir()) / "prism_curve_render";
-    fs::create_directories(dir);
-    fs::path file = dir / (name + ".pbrt");
-    std::ofstream(file) << text;
-    Diagnostics diag;
-    SceneDescription desc = LoadScene(file.string(), diag);
-    RenderScene scene = BuildRenderScene(desc, opts, diag);
-    Rendered r;
-    r.image = Render(scene, nullptr);
-    r.warnings = diag.Warnings();
-    return r;
+    return RenderSceneText("prism_curve_render", name, text, opts);
 }
 
 // A horizontal curve of radius 0.15 along x through the origin, 5 in front of the camera, a

@@ -8,24 +8,22 @@
 #include <cstring>
 
 #include "assembly/build_scene.h"
-#include "gltf_test_scene.h"
 #include "image/image_io.h"
 #include "render/area_light.h"
 #include "render/gltf_material.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/gltf_scene.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace prism {
 namespace {
 
-using test::GltfTwoUvQuad;
-using test::WriteHalfImage;
-
-struct Built {
-    RenderScene scene;
-    std::vector<Warning> warnings;
-};
+using namespace test;
 
 class GltfLighting : public test::FreshDirTest {
   protected:
@@ -35,11 +33,7 @@ class GltfLighting : public test::FreshDirTest {
     Built Build(const std::string &path, int spp = 1) {
         BuildSettings opts;
         opts.spp = spp;
-        Diagnostics diag;
-        SceneDescription desc = LoadScene(path, diag);
-        Built b{BuildRenderScene(desc, opts, diag), {}};
-        b.warnings = diag.Warnings();
-        return b;
+        return BuildSceneFile(path, opts);
     }
     Image RenderFile(const std::string &path, int spp = 1) {
         Built b = Build(path, spp);
@@ -121,13 +115,6 @@ WorldEnd
 )";
 }
 
-double Mean(const Image &img) {
-    double s = 0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) s += img.GetRGB(x, y).g;
-    return s / (img.width * img.height);
-}
-
 TEST_F(GltfLighting, MaskAlphaOnTexCoord1CutsOutBySecondUvSet) {
     // An RGBA image whose alpha is 1 where x < 4, else 0; MASK reads the base colour's alpha.
     Image rgba(8, 8, 4);
@@ -169,12 +156,14 @@ AreaLightSource "diffuse" "rgb L" [2 2 2] "texture emissionmap" "em" "integer ns
     // Floor radiance = Kd/pi × E, E = L × 4 corner irradiances.
     const double expected = 2 * 4 * CornerIrradiance(0.5, 0.5, 1) / Pi;
     const double uniform =
-        Mean(RenderFile(Write("u.pbrt", EmitterOverFloor(light("white.exr"))), 4));
-    const double half = Mean(RenderFile(Write("h.pbrt", EmitterOverFloor(light("half.exr"))), 4));
-    const double constant = Mean(
+        MeanChannel(RenderFile(Write("u.pbrt", EmitterOverFloor(light("white.exr"))), 4), 1);
+    const double half =
+        MeanChannel(RenderFile(Write("h.pbrt", EmitterOverFloor(light("half.exr"))), 4), 1);
+    const double constant = MeanChannel(
         RenderFile(Write("c.pbrt", EmitterOverFloor(R"(AreaLightSource "diffuse" "rgb L" [2 2 2]
   "integer nsamples" [64])")),
-                   4));
+                   4),
+        1);
     EXPECT_NEAR(constant, expected, 0.01 * expected);
     EXPECT_NEAR(uniform, expected, 0.01 * expected);
     EXPECT_NEAR(half, 0.5 * expected, 0.01 * expected);
@@ -296,7 +285,7 @@ WorldEnd
   "string alphamode" "blend" "float alpha" [0.25])";
     const Image lit = RenderFile(Write("l.pbrt", scene(""))),
                 shadowed = RenderFile(Write("s.pbrt", scene(blocker)));
-    const double ratio = Mean(shadowed) / Mean(lit);
+    const double ratio = MeanChannel(shadowed, 1) / MeanChannel(lit, 1);
     EXPECT_NEAR(ratio, 0.75, 0.03);
     EXPECT_LT(ratio, 0.99);  // it does cast a shadow
 }

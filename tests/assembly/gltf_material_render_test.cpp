@@ -10,22 +10,19 @@
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "support/render_text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
+using namespace test;
+
 Image RenderText(const std::string &name, const std::string &text, Diagnostics &diag) {
-    fs::path dir = fs::path(::testing::TempDir()) / "prism_gltf_render";
-    fs::create_directories(dir);
-    fs::path file = dir / (name + ".pbrt");
-    std::ofstream(file) << text;
-    SceneDescription desc = LoadScene(file.string(), diag);
-    BuildSettings opts;
-    RenderScene scene = BuildRenderScene(desc, opts, diag);
-    RenderStats stats;
-    return Render(scene, &stats);
+    Rendered r = RenderSceneText("prism_gltf_render", name, text);
+    for (const Warning &w : r.warnings) diag.Warn(w.loc, w.message);
+    return r.image;
 }
 
 std::string SphereScene(const std::string &material) {

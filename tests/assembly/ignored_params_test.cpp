@@ -9,13 +9,14 @@
 #include "assembly/build_scene.h"
 #include "image/image_io.h"
 #include "scene/load_scene.h"
+#include "support/shared.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 fs::path ScratchDir() {
     fs::path dir = fs::path(::testing::TempDir()) / "prism_ignored_params";

@@ -15,12 +15,15 @@
 #include "render/renderer.h"
 #include "scene/pbrt_parser.h"
 #include "scene/ply_reader.h"
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 fs::path Dir() { return test::ScratchDir("prism_assembly_budget"); }
 

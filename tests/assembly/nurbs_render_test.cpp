@@ -11,10 +11,14 @@
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/image_stats.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 class NurbsRender : public test::FreshDirTest {
   protected:
@@ -54,19 +58,13 @@ const char *UnitPatch =
     "\"integer vorder\" [2] \"float uknots\" [0 0 2 2] \"float vknots\" [0 0 1 1] "
     "\"point P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n";
 
-double Mean(const Image &img) {
-    double s = 0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) s += img.At(x, y, 0);
-    return s / (img.width * img.height);
-}
-
 TEST_F(NurbsRender, PatchThatWasSkippedRendersLitWithParametricUV) {
     Result r = RenderText(
         "lit", TopView("Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\n" + std::string(UnitPatch)));
     for (const Warning &w : r.warnings)
         EXPECT_EQ(w.message.find("not supported"), std::string::npos) << w.message;
-    EXPECT_NEAR(Mean(r.image), 0.5, 0.01);  // every pixel: the patch, Kd 0.5, facing the light
+    EXPECT_NEAR(MeanChannel(r.image, 0), 0.5,
+                0.01);  // every pixel: the patch, Kd 0.5, facing the light
     // The checkerboard of scale 2 over uv: u in [0, 2] gives 4 checks across, v in [0, 1] 2.
     Result c = RenderText(
         "checks", TopView("Texture \"c\" \"spectrum\" \"checkerboard\" \"float uscale\" [2] "
@@ -96,7 +94,7 @@ TEST_F(NurbsRender, RationalQuarterAnnulusHasTheCirclesArea) {
         "\"float Pw\" [0.5 0 0 1  0.35355339 0.35355339 0 0.70710678  0 0.5 0 1 "
         "1 0 0 1  0.70710678 0.70710678 0 0.70710678  0 1 0 1]\n";
     Result r = RenderText("annulus", TopView(annulus, 200), 16);
-    EXPECT_NEAR(Mean(r.image), Pi * 0.75 / 4, 0.002);
+    EXPECT_NEAR(MeanChannel(r.image, 0), Pi * 0.75 / 4, 0.002);
 }
 
 TEST_F(NurbsRender, AreaLightAndInstances) {
@@ -115,9 +113,10 @@ TEST_F(NurbsRender, AreaLightAndInstances) {
     };
     const std::string up = "-1 -1 0  2 -1 0  -1 2 0  2 2 0",
                       down = "-1 2 0  2 2 0  -1 -1 0  2 -1 0";
-    EXPECT_NEAR(Mean(RenderText("light_up", emitter("", up)).image), 1.0, 1e-4);
-    EXPECT_LT(Mean(RenderText("light_down", emitter("", down)).image), 1e-6);
-    EXPECT_LT(Mean(RenderText("light_rev", emitter("ReverseOrientation\n", up)).image), 1e-6);
+    EXPECT_NEAR(MeanChannel(RenderText("light_up", emitter("", up)).image, 0), 1.0, 1e-4);
+    EXPECT_LT(MeanChannel(RenderText("light_down", emitter("", down)).image, 0), 1e-6);
+    EXPECT_LT(MeanChannel(RenderText("light_rev", emitter("ReverseOrientation\n", up)).image, 0),
+              1e-6);
     // The same rule for any mesh with shading normals (pbrt-v3's; Prism used to ignore
     // ReverseOrientation there): reversed, it emits away; mirrored, it keeps its side.
     std::string tri =
@@ -128,11 +127,15 @@ TEST_F(NurbsRender, AreaLightAndInstances) {
         size_t at = text.find("Shape");
         return text.substr(0, at) + tri + "WorldEnd\n";
     };
-    EXPECT_NEAR(Mean(RenderText("mesh_up", meshLight("")).image), 1.0, 1e-4);
-    EXPECT_LT(Mean(RenderText("mesh_rev", meshLight("ReverseOrientation\n")).image), 1e-6);
-    EXPECT_NEAR(Mean(RenderText("mesh_mirror", meshLight("Scale -1 1 1\n")).image), 1.0, 0.1);
+    EXPECT_NEAR(MeanChannel(RenderText("mesh_up", meshLight("")).image, 0), 1.0, 1e-4);
+    EXPECT_LT(MeanChannel(RenderText("mesh_rev", meshLight("ReverseOrientation\n")).image, 0),
+              1e-6);
+    EXPECT_NEAR(MeanChannel(RenderText("mesh_mirror", meshLight("Scale -1 1 1\n")).image, 0), 1.0,
+                0.1);
     EXPECT_LT(
-        Mean(RenderText("mesh_mirror_rev", meshLight("Scale -1 1 1\nReverseOrientation\n")).image),
+        MeanChannel(
+            RenderText("mesh_mirror_rev", meshLight("Scale -1 1 1\nReverseOrientation\n")).image,
+            0),
         1e-6);
 
     std::string inst = TopView(
@@ -143,7 +146,7 @@ TEST_F(NurbsRender, AreaLightAndInstances) {
         "ObjectInstance \"half\"\n"
         "AttributeBegin\nTranslate 0.5 0 0\nObjectInstance \"half\"\nAttributeEnd\n");
     Result two = RenderText("instances", inst);
-    EXPECT_NEAR(Mean(two.image), 0.5, 0.01);
+    EXPECT_NEAR(MeanChannel(two.image, 0), 0.5, 0.01);
 }
 
 TEST_F(NurbsRender, MovingPatchBlurs) {
@@ -163,7 +166,7 @@ TEST_F(NurbsRender, MovingPatchBlurs) {
                                64);
     // The same covered area on average (only moved), but spread over more pixels, each
     // partly covered.
-    EXPECT_NEAR(Mean(moving.image), Mean(still.image), 0.02);
+    EXPECT_NEAR(MeanChannel(moving.image, 0), MeanChannel(still.image, 0), 0.02);
     auto lit = [](const Image &img) {
         int n = 0;
         for (int y = 0; y < img.height; ++y)

@@ -9,15 +9,13 @@
 
 #include "assembly/build_scene.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
-using test::ScratchDir;
-using test::WriteTestFile;
-
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 RenderScene Build(const std::string &path, const std::string &integrator = "") {
     Diagnostics diag(false);

@@ -13,38 +13,26 @@
 #include "image/image_compare.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/errors.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
-
-struct Rendered {
-    Image image;
-    RenderStats stats;
-    std::vector<Warning> warnings;
-};
+using namespace test;
 
 Rendered RenderFile(const std::string &path, BuildSettings opts = {}) {
     if (opts.defaultIntegrator.empty()) opts.defaultIntegrator = "whitted";  // closed forms
-    Diagnostics diag;
-    SceneDescription desc = LoadScene(path, diag);
-    RenderScene scene = BuildRenderScene(desc, opts, diag);
-    Rendered r;
-    r.image = Render(scene, &r.stats);
-    r.warnings = diag.Warnings();
-    return r;
+    return RenderSceneFile(path, opts);
 }
 
 Rendered RenderText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
-    fs::path dir = fs::path(::testing::TempDir()) / "prism_scene_render";
-    fs::create_directories(dir);
-    fs::path file = dir / (name + ".pbrt");
-    std::ofstream(file) << text;
-    return RenderFile(file.string(), opts);
+    return RenderFile(WriteSceneText("prism_scene_render", name, text), opts);
 }
 
 TEST(SceneRender, QuadricsShowcaseHasNoNaN) {

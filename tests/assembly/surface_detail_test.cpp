@@ -9,30 +9,26 @@
 #include <fstream>
 
 #include "assembly/build_scene.h"
-#include "gltf_test_scene.h"
 #include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/gltf_scene.h"
+#include "support/render_text.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-struct Built {
-    RenderScene scene;
-    std::vector<Warning> warnings;
-};
+using namespace test;
 
 Built BuildFile(const std::string &path, BuildSettings opts = {}) {
     opts.spp = 1;
     if (opts.defaultIntegrator.empty()) opts.defaultIntegrator = "whitted";
-    Diagnostics diag;
-    SceneDescription desc = LoadScene(path, diag);
-    Built b{BuildRenderScene(desc, opts, diag), {}};
-    b.warnings = diag.Warnings();
-    return b;
+    return BuildSceneFile(path, opts);
 }
 
 class SurfaceDetail : public test::FreshDirTest {

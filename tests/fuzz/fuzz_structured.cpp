@@ -20,12 +20,15 @@
 #include "render/renderer.h"
 #include "scene/gltf_reader.h"
 #include "scene/pbrt_parser.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism::fuzz {
 
 namespace {
+
+using test::Base64;
 
 class Choices {
   public:
@@ -82,21 +85,6 @@ const fs::path &Scratch() {
         return p;
     }();
     return dir;
-}
-
-std::string Base64(const std::string &in) {
-    static const char *const k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < in.size(); i += 3) {
-        uint32_t v = uint32_t(uint8_t(in[i])) << 16;
-        if (i + 1 < in.size()) v |= uint32_t(uint8_t(in[i + 1])) << 8;
-        if (i + 2 < in.size()) v |= uint32_t(uint8_t(in[i + 2]));
-        out += k[(v >> 18) & 63];
-        out += k[(v >> 12) & 63];
-        out += i + 1 < in.size() ? k[(v >> 6) & 63] : '=';
-        out += i + 2 < in.size() ? k[v & 63] : '=';
-    }
-    return out;
 }
 
 // A JSON array of `n` items made by `item(i)`.

@@ -15,22 +15,18 @@
 #include <set>
 #include <string>
 
-#include "test_util.h"
+#include "support/image_stats.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
+using namespace test;
+
 namespace fs = std::filesystem;
 
 class ImageIOTest : public test::FreshDirTest {};
-
-Image RandomImage(int w, int h, int c, float lo, float hi, uint32_t seed) {
-    Image img(w, h, c);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> dist(lo, hi);
-    for (float &v : img.pixels) v = dist(rng);
-    return img;
-}
 
 // The 8-bit encoding (a table of thresholds) equals its definition — the sRGB curve in double,
 // rounded — on a dense sweep of floats in (0, 1), around every step, and at the edges.

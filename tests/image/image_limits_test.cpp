@@ -11,41 +11,36 @@
 
 #include "core/memory.h"
 #include "image/image_io.h"
+#include "support/errors.h"
+#include "support/shared.h"
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 std::vector<unsigned char> Bytes(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-std::string ErrorOf(const std::function<void()> &f) {
-    try {
-        f();
-    } catch (const std::runtime_error &e) {
-        return e.what();
-    }
-    return "";
-}
-
-const std::string Bad = std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/tests/bad/tex/";
+const std::string Bad = test::Source + "/tests/bad/tex/";
 
 TEST(ImageLimits, ExrAttributeLargerThanTheFileIsRejected) {
     std::vector<unsigned char> b = Bytes(Bad + "huge_attribute.exr");
     ASSERT_FALSE(b.empty());
-    std::string err = ErrorOf([&] { ReadImageFromMemory(b, "t.exr"); });
+    std::string err = ErrorOf<std::runtime_error>([&] { ReadImageFromMemory(b, "t.exr"); });
     EXPECT_NE(err.find("corrupt OpenEXR header (an attribute claims 2147418112 bytes)"),
               std::string::npos)
         << err;
     // The same through a file, whatever its extension says.
-    err = ErrorOf([&] { ReadImage(Bad + "huge_attribute.exr"); });
+    err = ErrorOf<std::runtime_error>([&] { ReadImage(Bad + "huge_attribute.exr"); });
     EXPECT_NE(err.find("corrupt OpenEXR header"), std::string::npos) << err;
 }
 
 TEST(ImageLimits, ExrDataWindowBeyondThePixelLimitIsRejected) {
     std::vector<unsigned char> b = Bytes(Bad + "huge_window.exr");
-    std::string err = ErrorOf([&] { ReadImageFromMemory(b, "t.exr"); });
+    std::string err = ErrorOf<std::runtime_error>([&] { ReadImageFromMemory(b, "t.exr"); });
     EXPECT_NE(err.find("image is too large (2000000001x2000000001x1 values)"), std::string::npos)
         << err;
 }
@@ -64,14 +59,14 @@ TEST(ImageLimits, ValidExrStillReadsAndMaxPixelsIsEnforced) {
     EXPECT_EQ(back.pixels[5], 0.5f);
     ReadImageOptions small;
     small.maxPixels = 95;  // 8 x 4 x 3 = 96 values
-    std::string err = ErrorOf([&] { ReadImageFromMemory(b, "ok.exr", small); });
+    std::string err = ErrorOf<std::runtime_error>([&] { ReadImageFromMemory(b, "ok.exr", small); });
     EXPECT_NE(err.find("image is too large"), std::string::npos) << err;
     small.maxPixels = 96;
     EXPECT_NO_THROW(ReadImage(path, small));
     std::string png = ::testing::TempDir() + "prism_limits_ok.png";
     WriteImage(png, img);
     small.maxPixels = 95;
-    err = ErrorOf([&] { ReadImage(png, small); });
+    err = ErrorOf<std::runtime_error>([&] { ReadImage(png, small); });
     EXPECT_NE(err.find("image is too large: 8x4x3 values need 384 bytes, more than the limit of "
                        "380 bytes"),
               std::string::npos)

@@ -18,46 +18,26 @@
 #include "image/image_decoder.h"
 #include "image/image_io.h"
 #include "image/oiio_loader.h"
-#include "test_util.h"
+#include "support/image_stats.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 namespace fs = std::filesystem;
 
 class ImageModuleTest : public test::FreshDirTest {};
 
-struct RunResult {
-    int status = -1;
-    std::string output;  // stdout and stderr
-};
-
-RunResult RunCommand(const std::string &command) {
-    RunResult r;
-    FILE *p = ::popen((command + " 2>&1").c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = std::fread(buf, 1, sizeof(buf), p)) > 0) r.output.append(buf, n);
-    int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
-
-Image Noise(int w, int h, int c, float lo, float hi, uint32_t seed) {
-    Image img(w, h, c);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> dist(lo, hi);
-    for (float &v : img.pixels) v = dist(rng);
-    return img;
-}
-
 const std::string Prism = PRISM_BINARY;
-const std::string Whitted = std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/whitted.pbrt";
+const std::string Whitted = test::Source + "/scenes/whitted.pbrt";
 
 // A scene whose only image is a texture t.EXT (TGA is a format only OpenImageIO reads).
 std::string WriteTexturedScene(const fs::path &dir, const std::string &ext = "tga") {
-    Image tex = Noise(4, 4, 3, 0.f, 1.f, 5);
+    Image tex = RandomImage(4, 4, 3, 0.f, 1.f, 5);
     WriteImage((dir / ("t." + ext)).string(), tex);
     std::ofstream f(dir / ("textured_" + ext + ".pbrt"));
     f << "Film \"image\" \"integer xresolution\" [8] \"integer yresolution\" [6]\n"
@@ -72,25 +52,25 @@ std::string WriteTexturedScene(const fs::path &dir, const std::string &ext = "tg
     return (dir / ("textured_" + ext + ".pbrt")).string();
 }
 
-TEST(ImageModule, PrismDoesNotLinkOpenImageIO) {
-    RunResult r = RunCommand("readelf -d '" + Prism + "'");
-    if (r.status != 0) GTEST_SKIP() << "readelf not available";
-    EXPECT_NE(r.output.find("NEEDED"), std::string::npos) << r.output;
-    EXPECT_EQ(r.output.find("OpenImageIO"), std::string::npos) << r.output;
+TEST_F(ImageModuleTest, PrismDoesNotLinkOpenImageIO) {
+    RunResult r = RunShell("readelf -d '" + Prism + "'", dir_);
+    if (r.exitCode != 0) GTEST_SKIP() << "readelf not available";
+    EXPECT_NE(r.Both().find("NEEDED"), std::string::npos) << r.Both();
+    EXPECT_EQ(r.Both().find("OpenImageIO"), std::string::npos) << r.Both();
 }
 
 TEST_F(ImageModuleTest, RenderWithoutImagesNeverMapsOpenImageIO) {
     // LD_DEBUG=files makes the dynamic loader report every library it maps, dlopen() included.
-    RunResult r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + Whitted +
-                             "' --res 8x6 --quiet -o '" + Path("w.png") + "'");
-    ASSERT_EQ(r.status, 0) << r.output;
-    EXPECT_NE(r.output.find("libpng16"), std::string::npos) << "LD_DEBUG output missing";
-    EXPECT_EQ(r.output.find("libOpenImageIO"), std::string::npos);
-    EXPECT_EQ(r.output.find("libprism_oiio"), std::string::npos);
-    r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + Whitted +
-                   "' --res 8x6 --quiet -o '" + Path("w.exr") + "'");
-    ASSERT_EQ(r.status, 0) << r.output;
-    EXPECT_EQ(r.output.find("libOpenImageIO"), std::string::npos);
+    RunResult r = RunPrism("render '" + Whitted + "' --res 8x6 --quiet -o '" + Path("w.png") + "'",
+                           dir_, "LD_DEBUG=files");
+    ASSERT_EQ(r.exitCode, 0) << r.Both();
+    EXPECT_NE(r.Both().find("libpng16"), std::string::npos) << "LD_DEBUG output missing";
+    EXPECT_EQ(r.Both().find("libOpenImageIO"), std::string::npos);
+    EXPECT_EQ(r.Both().find("libprism_oiio"), std::string::npos);
+    r = RunPrism("render '" + Whitted + "' --res 8x6 --quiet -o '" + Path("w.exr") + "'", dir_,
+                 "LD_DEBUG=files");
+    ASSERT_EQ(r.exitCode, 0) << r.Both();
+    EXPECT_EQ(r.Both().find("libOpenImageIO"), std::string::npos);
     EXPECT_TRUE(fs::is_regular_file(Path("w.exr")));
 }
 
@@ -98,45 +78,45 @@ TEST_F(ImageModuleTest, OnlyOtherFormatsLoadTheModule) {
     // PNG and EXR textures are read directly.
     for (const char *ext : {"png", "exr"}) {
         std::string scene = WriteTexturedScene(dir_, ext);
-        RunResult r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + scene +
-                                 "' --quiet -o '" + Path("out.png") + "'");
-        ASSERT_EQ(r.status, 0) << r.output;
-        EXPECT_EQ(r.output.find("libOpenImageIO"), std::string::npos) << ext;
+        RunResult r = RunPrism("render '" + scene + "' --quiet -o '" + Path("out.png") + "'", dir_,
+                               "LD_DEBUG=files");
+        ASSERT_EQ(r.exitCode, 0) << r.Both();
+        EXPECT_EQ(r.Both().find("libOpenImageIO"), std::string::npos) << ext;
     }
     // A TGA texture loads the module.
     std::string scene = WriteTexturedScene(dir_);
-    RunResult r = RunCommand("LD_DEBUG=files '" + Prism + "' render '" + scene + "' --quiet -o '" +
-                             Path("out.png") + "'");
-    ASSERT_EQ(r.status, 0) << r.output;
-    EXPECT_NE(r.output.find("libprism_oiio"), std::string::npos);
-    EXPECT_NE(r.output.find("libOpenImageIO"), std::string::npos);
+    RunResult r = RunPrism("render '" + scene + "' --quiet -o '" + Path("out.png") + "'", dir_,
+                           "LD_DEBUG=files");
+    ASSERT_EQ(r.exitCode, 0) << r.Both();
+    EXPECT_NE(r.Both().find("libprism_oiio"), std::string::npos);
+    EXPECT_NE(r.Both().find("libOpenImageIO"), std::string::npos);
 }
 
 TEST_F(ImageModuleTest, MissingModuleIsAClearError) {
     std::string scene = WriteTexturedScene(dir_);
-    RunResult r = RunCommand("PRISM_OIIO_MODULE='" + Path("no-such-module.so") + "' '" + Prism +
-                             "' render '" + scene + "' --quiet -o '" + Path("t.png") + "'");
-    EXPECT_EQ(r.status, 2) << r.output;
-    EXPECT_NE(r.output.find("cannot read image"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("libprism_oiio.so could not be loaded"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("no-such-module.so: not found"), std::string::npos) << r.output;
-    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one error line";
+    RunResult r = RunPrism("render '" + scene + "' --quiet -o '" + Path("t.png") + "'", dir_,
+                           "PRISM_OIIO_MODULE='" + Path("no-such-module.so") + "'");
+    EXPECT_EQ(r.exitCode, 2) << r.Both();
+    EXPECT_NE(r.Both().find("cannot read image"), std::string::npos) << r.Both();
+    EXPECT_NE(r.Both().find("libprism_oiio.so could not be loaded"), std::string::npos) << r.Both();
+    EXPECT_NE(r.Both().find("no-such-module.so: not found"), std::string::npos) << r.Both();
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one error line";
     EXPECT_FALSE(fs::exists(Path("t.png")));
     // A file that is not a shared library is reported with dlopen's reason.
     { std::ofstream(Path("fake.so")) << "not a library\n"; }
-    r = RunCommand("PRISM_OIIO_MODULE='" + Path("fake.so") + "' '" + Prism + "' render '" + scene +
-                   "' --quiet -o '" + Path("t.png") + "'");
-    EXPECT_EQ(r.status, 2) << r.output;
-    EXPECT_NE(r.output.find("fake.so: "), std::string::npos) << r.output;
+    r = RunPrism("render '" + scene + "' --quiet -o '" + Path("t.png") + "'", dir_,
+                 "PRISM_OIIO_MODULE='" + Path("fake.so") + "'");
+    EXPECT_EQ(r.exitCode, 2) << r.Both();
+    EXPECT_NE(r.Both().find("fake.so: "), std::string::npos) << r.Both();
     // PNG and EXR output need no module.
-    r = RunCommand("PRISM_OIIO_MODULE='" + Path("no-such-module.so") + "' '" + Prism +
-                   "' render '" + Whitted + "' --res 8x6 --quiet -o '" + Path("w.exr") + "'");
-    EXPECT_EQ(r.status, 0) << r.output;
+    r = RunPrism("render '" + Whitted + "' --res 8x6 --quiet -o '" + Path("w.exr") + "'", dir_,
+                 "PRISM_OIIO_MODULE='" + Path("no-such-module.so") + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.Both();
 }
 
 TEST_F(ImageModuleTest, ModuleReadsAndWritesOtherFormats) {
     // JPEG and TGA go through the module, in this process.
-    Image img = Noise(8, 8, 3, 0.f, 1.f, 11);
+    Image img = RandomImage(8, 8, 3, 0.f, 1.f, 11);
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) img.SetRGB(x, y, RGB(0.2f, 0.5f, 0.8f));
     WriteImage(Path("a.jpg"), img);
@@ -152,7 +132,7 @@ TEST_F(ImageModuleTest, ModuleReadsAndWritesOtherFormats) {
 
 TEST_F(ImageModuleTest, ExrAndPngRoundTripsAllLayouts) {
     for (int c : {1, 2, 3, 4}) {
-        Image img = Noise(9, 7, c, -2.f, 70000.f, 20 + c);  // beyond half's range
+        Image img = RandomImage(9, 7, c, -2.f, 70000.f, 20 + c);  // beyond half's range
         std::string exr = Path("r" + std::to_string(c) + ".exr");
         WriteImage(exr, img);
         Image back = ReadImage(exr);
@@ -165,7 +145,7 @@ TEST_F(ImageModuleTest, ExrAndPngRoundTripsAllLayouts) {
                     ASSERT_EQ(back.At(x, y, k), img.At(x, y, src)) << c << " " << k;
                 }
 
-        Image ldr = Noise(9, 7, c, 0.f, 1.f, 30 + c);
+        Image ldr = RandomImage(9, 7, c, 0.f, 1.f, 30 + c);
         std::string png = Path("r" + std::to_string(c) + ".png");
         WriteImage(png, ldr);
         back = ReadImage(png);
@@ -184,7 +164,7 @@ TEST_F(ImageModuleTest, ExrAndPngRoundTripsAllLayouts) {
 }
 
 TEST_F(ImageModuleTest, FailedWritesLeaveNoFile) {
-    Image img = Noise(4, 4, 3, 0.f, 1.f, 3);
+    Image img = RandomImage(4, 4, 3, 0.f, 1.f, 3);
     // A missing directory and a parent that is a regular file (root ignores directory
     // permission bits, so a read-only directory would not fail).
     { std::ofstream(Path("plain")) << "x"; }
@@ -199,7 +179,7 @@ TEST_F(ImageModuleTest, FailedWritesLeaveNoFile) {
 
 TEST_F(ImageModuleTest, WriteErrorMidFileRemovesTheTemporary) {
     // A file size limit makes the writes fail part-way (EFBIG), as a full disk would (ENOSPC).
-    Image img = Noise(256, 256, 4, 0.f, 1.f, 4);  // noise does not compress
+    Image img = RandomImage(256, 256, 4, 0.f, 1.f, 4);  // noise does not compress
     struct rlimit saved;
     ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
     auto oldHandler = ::signal(SIGXFSZ, SIG_IGN);
@@ -234,8 +214,7 @@ TEST_F(ImageModuleTest, WriteErrorMidFileRemovesTheTemporary) {
 TEST(ImageModule, DirectReadersMatchOpenImageIO) {
     std::vector<fs::path> files;
     for (const std::string &root :
-         {std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/tests",
-          std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes", std::string(PRISM_SHARED_DIR)}) {
+         {test::Source + "/tests", test::Source + "/scenes", std::string(PRISM_SHARED_DIR)}) {
         std::error_code ec;
         if (!fs::is_directory(root, ec)) continue;
         for (auto it = fs::recursive_directory_iterator(root, ec);

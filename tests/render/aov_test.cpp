@@ -11,13 +11,13 @@
 #include "render/light_sampling.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
-using test::ScratchDir;
-using test::WriteTestFile;
+using namespace test;
 
 // A box lit by an area light: direct light, and indirect light between the walls.
 const char *kRoom = R"(LookAt 0 1 -3.5  0 1 0  0 1 0

@@ -14,24 +14,23 @@
 
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
-#include "render/scene_text.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
+using namespace test;
+
 RenderScene BuildText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
-    return test::BuildSceneText("bdpt", name, text, opts);
+    return BuildSceneText("bdpt", name, text, opts);
 }
-
-Image RenderSeed(const RenderScene &scene, uint32_t seed) {
-    return test::RenderWithSeed(scene, seed);
-}
-double Mean(const Image &img) { return test::MeanValue(img); }
-
-using test::RelL1;
 
 // The camera inside a closed sphere of albedo a whose inside emits 1: Le (1 + a + ... +
 // a^maxdepth).
@@ -53,12 +52,13 @@ TEST(Bdpt, FurnaceIsTheGeometricSeries) {
         const double expected = (1 - std::pow(double(a), depth + 1)) / (1 - a);
         RenderScene scene = BuildText("furnace" + std::to_string(depth), Furnace(a, depth, 64));
         EXPECT_STREQ(scene.IntegratorName(), "bdpt");
-        EXPECT_NEAR(Mean(RenderSeed(scene, 0)), expected, 3e-3 * expected) << "maxdepth " << depth;
+        EXPECT_NEAR(MeanValue(RenderWithSeed(scene, 0)), expected, 3e-3 * expected)
+            << "maxdepth " << depth;
     }
     // A crop window: light tracing lands only on the crop's pixels, normalized over them.
     RenderScene crop =
         BuildText("furnace_crop", Furnace(0.6f, 2, 64, "\"float cropwindow\" [0.25 0.75 0 0.5]"));
-    EXPECT_NEAR(Mean(RenderSeed(crop, 0)), 1.96, 3e-3 * 1.96);
+    EXPECT_NEAR(MeanValue(RenderWithSeed(crop, 0)), 1.96, 3e-3 * 1.96);
 }
 
 // A diffuse box with a sphere and a box in it, lit by `light`, viewed from inside.
@@ -118,8 +118,9 @@ TEST(Bdpt, AgreesWithPathUnderEveryLight) {
                                      Room("Integrator \"bdpt\"", light, 64, Ceiling));
         RenderScene path = BuildText(std::string("agree_path_") + name,
                                      Room("Integrator \"path\"", light, 64, Ceiling));
-        const Image b = RenderSeed(bdpt, 0), p1 = RenderSeed(path, 0), p2 = RenderSeed(path, 1);
-        EXPECT_NEAR(Mean(b), Mean(p1), 0.015 * Mean(p1)) << name;
+        const Image b = RenderWithSeed(bdpt, 0), p1 = RenderWithSeed(path, 0),
+                    p2 = RenderWithSeed(path, 1);
+        EXPECT_NEAR(MeanValue(b), MeanValue(p1), 0.015 * MeanValue(p1)) << name;
         EXPECT_LT(RelL1(b, p1), 1.2 * RelL1(p2, p1)) << name;
     }
 }
@@ -143,8 +144,9 @@ TEST(Bdpt, AgreesWithPathUnderTheSkyAndTheSun) {
     };
     RenderScene bdpt = BuildText("sky_bdpt", with("Integrator \"bdpt\""));
     RenderScene path = BuildText("sky_path", with("Integrator \"path\""));
-    const Image b = RenderSeed(bdpt, 0), p1 = RenderSeed(path, 0), p2 = RenderSeed(path, 1);
-    EXPECT_NEAR(Mean(b), Mean(p1), 0.015 * Mean(p1));
+    const Image b = RenderWithSeed(bdpt, 0), p1 = RenderWithSeed(path, 0),
+                p2 = RenderWithSeed(path, 1);
+    EXPECT_NEAR(MeanValue(b), MeanValue(p1), 0.015 * MeanValue(p1));
     EXPECT_LT(RelL1(b, p1), 1.2 * RelL1(p2, p1));
 }
 
@@ -156,24 +158,22 @@ TEST(Bdpt, BeatsPathThroughASmallOpening) {
         BuildText("gap_bdpt", Room("Integrator \"bdpt\"", LightAbove, 16, Opening(0.15f), false));
     RenderScene path =
         BuildText("gap_path", Room("Integrator \"path\"", LightAbove, 16, Opening(0.15f), false));
-    const Image b1 = RenderSeed(bdpt, 0), b2 = RenderSeed(bdpt, 1);
-    const Image p1 = RenderSeed(path, 0), p2 = RenderSeed(path, 1);
+    const Image b1 = RenderWithSeed(bdpt, 0), b2 = RenderWithSeed(bdpt, 1);
+    const Image p1 = RenderWithSeed(path, 0), p2 = RenderWithSeed(path, 1);
     const double bdptNoise = RelL1(b1, b2), pathNoise = RelL1(p1, p2);
     EXPECT_LT(bdptNoise, 0.8 * pathNoise) << "bdpt " << bdptNoise << ", path " << pathNoise;
-    const double mb = (Mean(b1) + Mean(b2)) / 2, mp = (Mean(p1) + Mean(p2)) / 2;
+    const double mb = (MeanValue(b1) + MeanValue(b2)) / 2, mp = (MeanValue(p1) + MeanValue(p2)) / 2;
     EXPECT_NEAR(mb, mp, 0.05 * mp);
 }
 
 TEST(Bdpt, SameImageForAnyThreadCountAndThroughFrameTiles) {
     RenderScene scene =
         BuildText("threads", Room("Integrator \"bdpt\"", LightAbove, 4, Opening(0.3f)));
-    Image one, two;
-    RenderStats stats;
-    tbb::task_arena(1).execute([&] { one = Render(scene, &stats); });
-    tbb::task_arena(2).execute([&] { two = Render(scene, &stats); });
+    Image one = RenderOnThreads(scene, 1), two = RenderOnThreads(scene, 2);
     EXPECT_TRUE(one.pixels == two.pixels);
-    EXPECT_GT(Mean(one), 0);
+    EXPECT_GT(MeanValue(one), 0);
     // prism-mpi's path: tiles rendered apart, merged in order, splats with them.
+    RenderStats stats;
     FrameTiles frame(scene);
     std::vector<FilmTile> tiles;
     RayCounters rays;
@@ -222,7 +222,7 @@ TEST(Bdpt, ALightOnAShadowlessOrOpaqueSurfaceAgreesWithPath) {
             opts.spp = 16;
             Diagnostics diag(false);
             SceneDescription desc = LoadScene(file, diag);
-            mean[i] = Mean(RenderSeed(BuildRenderScene(desc, opts, diag), 0));
+            mean[i] = MeanValue(RenderWithSeed(BuildRenderScene(desc, opts, diag), 0));
         }
         EXPECT_GT(mean[0], 0);
         EXPECT_NEAR(mean[1], mean[0], 0.2 * mean[0]) << "bdpt";

@@ -15,13 +15,17 @@
 #include "render/renderer.h"
 #include "render/sampler.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/shared.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 // ∫ f_glossy |cos θi| dωi over the sphere by the midpoint rule in (θ, φ). Transmission
 // through a microfacet that faces away from wo is left out: pbrt-v3's MicrofacetTransmission::f
@@ -170,31 +174,8 @@ TEST(GlossySampling, SmoothLimitIsTheMirrorDirection) {
     ExpectWithin(w, F, 1e-3, "weight");
 }
 
-struct Rendered {
-    Image image;
-    RenderStats stats;
-};
-
 Rendered RenderText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
-    fs::path dir = fs::path(::testing::TempDir()) / "prism_distribution";
-    fs::create_directories(dir);
-    fs::path file = dir / (name + ".pbrt");
-    std::ofstream(file) << text;
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(file.string(), diag);
-    RenderScene scene = BuildRenderScene(desc, opts, diag);
-    Rendered r;
-    r.image = Render(scene, &r.stats);
-    return r;
-}
-
-RGB Mean(const Image &img) {
-    double s[3] = {0, 0, 0};
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-            for (int c = 0; c < 3; ++c) s[c] += img.pixels[img.PixelOffset(x, y) + size_t(c)];
-    double n = double(img.width) * img.height;
-    return RGB(float(s[0] / n), float(s[1] / n), float(s[2] / n));
+    return RenderSceneText("prism_distribution", name, text, opts);
 }
 
 // A sphere seen head-on through a 0.2-degree field of view: every camera ray meets it within
@@ -225,7 +206,7 @@ TEST(DistributionIntegrator, GlossySphereUnderUniformSkyReflectsItsAlbedo) {
         l.alphaX = l.alphaY = alpha;
         l.glossyFresnel = Conductor();
         RGB albedo = NumericAlbedo(b, Vec3f(0, 0, 1));
-        ExpectWithin(Mean(r.image), albedo, 0.01, "alpha " + std::to_string(alpha));
+        ExpectWithin(MeanRGB(r.image), albedo, 0.01, "alpha " + std::to_string(alpha));
         // DefaultGlossySamples per camera ray, less those that fall below the surface.
         EXPECT_LE(r.stats.rays.glossy, 4u * 256u * uint64_t(DefaultGlossySamples));
         EXPECT_GT(r.stats.rays.glossy, 4u * 256u * uint64_t(DefaultGlossySamples) * 9 / 10);
@@ -241,7 +222,7 @@ TEST(DistributionIntegrator, GlossySphereUnderUniformSkyReflectsItsAlbedo) {
     l.ks = RGB(1);
     l.alphaX = l.alphaY = 0.2f;
     l.glossyFresnel = Dielectric(1.5f, 1.f);
-    ExpectWithin(Mean(r.image), NumericAlbedo(b, Vec3f(0, 0, 1)), 0.01, "plastic");
+    ExpectWithin(MeanRGB(r.image), NumericAlbedo(b, Vec3f(0, 0, 1)), 0.01, "plastic");
 }
 
 // A checkered floor, a blue ball and a sphere of `material`, under an area light and a sky (no

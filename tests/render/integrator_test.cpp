@@ -9,28 +9,17 @@
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/render_text.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
-using test::ScratchDir;
-using test::WriteTestFile;
-
-struct Built {
-    RenderScene scene;
-    std::vector<Warning> warnings;
-};
+using namespace test;
 
 Built BuildText(const std::string &name, const std::string &text, int res, int spp) {
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(WriteTestFile(ScratchDir("integrator") / name, text), diag);
-    BuildSettings s;
-    s.resolution = Vec2i(res, res);
-    s.spp = spp;
-    Built b{BuildRenderScene(desc, s, diag), {}};
-    b.warnings = diag.Warnings();
-    return b;
+    return BuildSceneFile(WriteSceneText("integrator", name, text), SizedSettings(res, res, spp));
 }
 
 TEST(Integrator, TheRegistryNamesEachIntegratorOnce) {

@@ -13,17 +13,15 @@
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
-using test::ScratchDir;
-using test::WriteTestFile;
-
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 RenderScene Build(const std::string &path, int w = 48, int h = 36, int spp = 2,
                   bool allEffects = false) {

@@ -12,10 +12,13 @@
 #include "render/infinite_light.h"
 #include "render/projection_light.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 TEST(Light, TheRegistryNamesEachLightOnce) {
     const std::vector<std::string> &names = LightNames();

@@ -15,37 +15,22 @@
 #include "render/kernel.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/errors.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
-using test::ScratchDir;
-using test::WriteTestFile;
-
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
-
-struct Rendered {
-    RenderScene scene;
-    Image image;
-    RenderStats stats;
-    std::vector<Warning> warnings;
-};
+using namespace test;
 
 Rendered RenderText(const std::string &name, const std::string &text, int w = 1, int h = 1,
                     int spp = 1, const std::string &integrator = "") {
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(WriteTestFile(ScratchDir("medium") / name, text), diag);
-    BuildSettings s;
-    s.resolution = Vec2i(w, h);
-    s.spp = spp;
-    s.integrator = integrator;
+    BuildSettings s = SizedSettings(w, h, spp, integrator);
     s.defaultIntegrator = "whitted";  // the media kernel's
-    Rendered r;
-    r.scene = BuildRenderScene(desc, s, diag);
-    r.image = Render(r.scene, &r.stats);
-    r.warnings = diag.Warnings();
-    return r;
+    return RenderSceneText("medium", name, text, s);
 }
 
 RGB Pixel(const Image &img, int x = 0, int y = 0) {

@@ -10,20 +10,20 @@
 #include "assembly/build_scene.h"
 #include "core/error.h"
 #include "render/renderer.h"
-#include "render/scene_text.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
-RenderScene BuildText(const std::string &name, const std::string &text) {
-    return test::BuildSceneText("mlt", name, text);
-}
+using namespace test;
 
-Image RenderSeed(const RenderScene &scene, uint32_t seed) {
-    return test::RenderWithSeed(scene, seed);
+RenderScene BuildText(const std::string &name, const std::string &text) {
+    return BuildSceneText("mlt", name, text);
 }
-double Mean(const Image &img) { return test::MeanValue(img); }
 
 std::string Mlt(int mutations, int bootstrap = 4096, int chains = 64, int maxDepth = 5) {
     return "Integrator \"mlt\" \"integer maxdepth\" [" + std::to_string(maxDepth) +
@@ -44,7 +44,7 @@ TEST(Mlt, FurnaceIsTheGeometricSeries) {
         "AttributeEnd\n";
     RenderScene scene = BuildText("furnace", text);
     EXPECT_STREQ(scene.IntegratorName(), "mlt");
-    EXPECT_NEAR(Mean(RenderSeed(scene, 0)), 1.96, 0.02 * 1.96);
+    EXPECT_NEAR(MeanValue(RenderWithSeed(scene, 0)), 1.96, 0.02 * 1.96);
 }
 
 // A diffuse box with a matte sphere in it, lit by a small spherical area light.
@@ -65,18 +65,16 @@ std::string Room(const std::string &integrator, int spp) {
            "Translate -0.6 0.6 -0.9\nShape \"sphere\" \"float radius\" [0.6]\nAttributeEnd\n";
 }
 
-using test::RelL1;
-
 TEST(Mlt, AgreesWithPathOnADiffuseRoom) {
     // The means agree (within 0.2% when written), and the image converges on the path
     // tracer's: four times the mutations, about half the distance (0.25, then 0.14).
     RenderScene mlt64 = BuildText("room_mlt64", Room(Mlt(64, 32768), 1));
     RenderScene mlt256 = BuildText("room_mlt256", Room(Mlt(256, 32768), 1));
     RenderScene path = BuildText("room_path", Room("Integrator \"path\"", 256));
-    const Image m64 = RenderSeed(mlt64, 0), m256 = RenderSeed(mlt256, 0);
-    const Image p = RenderSeed(path, 0);
-    EXPECT_NEAR(Mean(m64), Mean(p), 0.02 * Mean(p));
-    EXPECT_NEAR(Mean(m256), Mean(p), 0.02 * Mean(p));
+    const Image m64 = RenderWithSeed(mlt64, 0), m256 = RenderWithSeed(mlt256, 0);
+    const Image p = RenderWithSeed(path, 0);
+    EXPECT_NEAR(MeanValue(m64), MeanValue(p), 0.02 * MeanValue(p));
+    EXPECT_NEAR(MeanValue(m256), MeanValue(p), 0.02 * MeanValue(p));
     const double d64 = RelL1(m64, p), d256 = RelL1(m256, p);
     EXPECT_LT(d64, 0.35);
     EXPECT_LT(d256, 0.7 * d64) << "64: " << d64 << ", 256: " << d256;
@@ -84,21 +82,18 @@ TEST(Mlt, AgreesWithPathOnADiffuseRoom) {
 
 TEST(Mlt, SameImageForAnyThreadCount) {
     RenderScene scene = BuildText("threads", Room(Mlt(8, 1024, 16), 1));
-    Image one, two;
-    RenderStats stats;
-    tbb::task_arena(1).execute([&] { one = Render(scene, &stats); });
-    tbb::task_arena(2).execute([&] { two = Render(scene, &stats); });
+    Image one = RenderOnThreads(scene, 1), two = RenderOnThreads(scene, 2);
     EXPECT_TRUE(one.pixels == two.pixels);
-    EXPECT_GT(Mean(one), 0);
+    EXPECT_GT(MeanValue(one), 0);
     // Another seed, another image.
-    EXPECT_FALSE(RenderSeed(scene, 1).pixels == one.pixels);
+    EXPECT_FALSE(RenderWithSeed(scene, 1).pixels == one.pixels);
 }
 
 // --spp (BuildSettings::spp) is mlt's mutations per pixel: it wins over mutationsperpixel.
 TEST(Mlt, SppSetsTheMutationsPerPixel) {
     BuildSettings opts;
     opts.spp = 3;
-    RenderScene scene = test::BuildSceneText("mlt", "spp", Room(Mlt(8, 1024, 16), 1), opts);
+    RenderScene scene = BuildSceneText("mlt", "spp", Room(Mlt(8, 1024, 16), 1), opts);
     RenderStats stats;
     Render(scene, &stats);
     EXPECT_EQ(stats.spp, 3);

@@ -12,11 +12,16 @@
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
+#include "support/render_text.h"
+#include "support/shared.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 // An orthographic 64 x 16 view of the window [-4, 4] x [-1, 1] (8 pixels a unit) against a
 // white environment (radiance 1); black matte objects darken it by the fraction of the
@@ -36,22 +41,8 @@ std::string Header(const std::string &camera = "", int spp = 256) {
            "Material \"matte\" \"rgb Kd\" [ 0 0 0 ]\n";
 }
 
-struct Rendered {
-    Image image;
-    RenderScene scene;
-};
-
 Rendered RenderText(const std::string &text, const std::string &name) {
-    fs::path dir = fs::path(::testing::TempDir()) / "prism_motion";
-    fs::create_directories(dir);
-    fs::path file = dir / (name + ".pbrt");
-    std::ofstream(file) << text;
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(file.string(), diag);
-    Rendered r;
-    r.scene = BuildRenderScene(desc, BuildSettings{}, diag);
-    r.image = Render(r.scene, nullptr);
-    return r;
+    return RenderSceneText("prism_motion", name, text);
 }
 
 // Darkness (1 - red) of pixel (x, y).
@@ -237,8 +228,7 @@ TEST(MotionBlur, StillSceneIsIdenticalWhateverTheShutter) {
 // finite everywhere and the moving ball is there.
 TEST(MotionBlur, DistributionSceneShowsEveryEffect) {
     Diagnostics diag(false);
-    SceneDescription desc =
-        LoadScene(std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/distribution.pbrt", diag);
+    SceneDescription desc = LoadScene(test::Source + "/scenes/distribution.pbrt", diag);
     BuildSettings opts;
     opts.resolution = {64, 40};
     opts.spp = 4;
@@ -256,12 +246,7 @@ TEST(MotionBlur, DistributionSceneShowsEveryEffect) {
 }
 
 std::string ErrorOf(const std::string &text, const std::string &name) {
-    try {
-        RenderText(text, name);
-    } catch (const SceneError &e) {
-        return e.what();
-    }
-    return "";
+    return test::ErrorOf<SceneError>([&] { RenderText(text, name); });
 }
 
 TEST(MotionBlur, BadMotionInputIsLocated) {

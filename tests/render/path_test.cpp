@@ -16,34 +16,27 @@
 #include "render/light_sampling.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
-#include "render/scene_text.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
+using namespace test;
+
 RenderScene BuildText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
-    return test::BuildSceneText("prism_path", name, text, opts);
+    return BuildSceneText("prism_path", name, text, opts);
 }
 
 Image RenderText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
-    RenderScene scene = BuildText(name, text, opts);
-    RenderStats stats;
-    return Render(scene, &stats);
+    return RenderSceneText("prism_path", name, text, opts).image;
 }
-
-RGB Mean(const Image &img) {
-    double s[3] = {0, 0, 0};
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-            for (int c = 0; c < 3; ++c) s[c] += img.pixels[img.PixelOffset(x, y) + size_t(c)];
-    double n = double(img.width) * img.height;
-    return RGB(float(s[0] / n), float(s[1] / n), float(s[2] / n));
-}
-
-using test::RelL1;
 
 // The camera inside a closed sphere of albedo a whose inside emits Le everywhere: the radiance
 // is Le (1 + a + ... + a^maxdepth) (Le / (1 - a) as maxdepth grows).
@@ -67,7 +60,7 @@ TEST(PathIntegrator, FurnaceIsTheGeometricSeries) {
         const float a = 0.6f;
         Image img = RenderText("furnace" + std::to_string(depth), Furnace(a, depth, 0, 4));
         double expected = (1 - std::pow(double(a), depth + 1)) / (1 - a);
-        RGB m = Mean(img);
+        RGB m = MeanRGB(img);
         EXPECT_NEAR(m.r, expected, 2e-3 * expected) << "maxdepth " << depth;
         EXPECT_NEAR(m.g, expected, 2e-3 * expected) << "maxdepth " << depth;
     }
@@ -81,8 +74,8 @@ TEST(PathIntegrator, RussianRouletteIsUnbiased) {
     Image rr = RenderText("rr", Furnace(a, depth, 1, 64));
     Image exact = RenderText("norr", Furnace(a, depth, 0, 4));
     const double expected = (1 - std::pow(double(a), depth + 1)) / (1 - a);
-    EXPECT_NEAR(Mean(exact).r, expected, 2e-3 * expected);
-    EXPECT_NEAR(Mean(rr).r, expected, 0.02 * expected);
+    EXPECT_NEAR(MeanRGB(exact).r, expected, 2e-3 * expected);
+    EXPECT_NEAR(MeanRGB(rr).r, expected, 0.02 * expected);
     double spread = 0;
     for (int y = 0; y < rr.height; ++y)
         for (int x = 0; x < rr.width; ++x)
@@ -266,7 +259,7 @@ TEST(PathIntegrator, DiffuseSphereUnderUniformSky) {
         "LookAt 0 0 -10  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [2]\nWorldBegin\n"
         "LightSource \"infinite\" \"rgb L\" [2 2 2]\n"
         "Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\nShape \"sphere\" \"float radius\" [1]\n";
-    RGB m = Mean(RenderText("sky", scene));
+    RGB m = MeanRGB(RenderText("sky", scene));
     EXPECT_NEAR(m.g, 1.0, 2e-3);
 }
 
@@ -275,17 +268,7 @@ std::string DiffuseRoom(const std::string &integrator, int spp, int res = 16) {
     return "Film \"image\" \"integer xresolution\" [" + std::to_string(res) +
            "] \"integer yresolution\" [" + std::to_string(res) +
            "]\nSampler \"stratified\" \"integer xsamples\" [" + std::to_string(spp) +
-           "] \"integer ysamples\" [1]\n" + integrator +
-           "\nLookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" [50]\n"
-           "WorldBegin\n"
-           "LightSource \"point\" \"point from\" [1.5 2 -1] \"rgb I\" [2 2 2]\n"
-           "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\n"
-           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
-           "  \"point P\" [-0.5 2.5 -0.5  0.5 2.5 -0.5  0.5 2.5 0.5  -0.5 2.5 0.5]\n"
-           "AttributeEnd\n"
-           "Material \"matte\" \"rgb Kd\" [0.6 0.5 0.4]\n"
-           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
-           "  \"point P\" [-3 0 -3  3 0 -3  3 0 3  -3 0 3]\n"
+           "] \"integer ysamples\" [1]\n" + integrator + "\n" + std::string(kLitFloorFromLookAt) +
            "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
            "  \"point P\" [-3 0 2  3 0 2  3 3 2  -3 3 2]\n"
            "Material \"matte\" \"rgb Kd\" [0.3 0.6 0.3] \"float sigma\" [20]\n"
@@ -298,11 +281,11 @@ TEST(PathIntegrator, MaxDepthOneIsDirectLighting) {
     Image direct = RenderText(
         "d1", DiffuseRoom("Integrator \"directlighting\" \"integer maxdepth\" [1]", 256));
     EXPECT_LT(RelL1(path, direct), 0.03);
-    RGB a = Mean(path), b = Mean(direct);
+    RGB a = MeanRGB(path), b = MeanRGB(direct);
     EXPECT_NEAR(a.g, b.g, 0.01 * b.g);
     // And indirect light makes the path image brighter at depth 5.
     Image deep = RenderText("p5", DiffuseRoom("Integrator \"path\" \"integer maxdepth\" [5]", 64));
-    EXPECT_GT(Mean(deep).g, 1.1f * b.g);
+    EXPECT_GT(MeanRGB(deep).g, 1.1f * b.g);
 }
 
 TEST(PathIntegrator, DirectStrategyOneAndAllAgree) {
@@ -310,7 +293,7 @@ TEST(PathIntegrator, DirectStrategyOneAndAllAgree) {
         "all", DiffuseRoom("Integrator \"directlighting\" \"string strategy\" \"all\"", 256));
     Image one = RenderText(
         "one", DiffuseRoom("Integrator \"directlighting\" \"string strategy\" \"one\"", 256));
-    RGB a = Mean(all), b = Mean(one);
+    RGB a = MeanRGB(all), b = MeanRGB(one);
     EXPECT_NEAR(a.r, b.r, 0.01 * a.r);
     EXPECT_NEAR(a.g, b.g, 0.01 * a.g);
     EXPECT_LT(RelL1(one, all), 0.05);
@@ -326,7 +309,7 @@ TEST(PathIntegrator, SameImageForOneAndTwoThreads) {
         tbb::task_arena(1).execute([&] { one = Render(scene, &stats); });
         tbb::task_arena(2).execute([&] { two = Render(scene, &stats); });
         EXPECT_TRUE(one.pixels == two.pixels) << integrator;
-        EXPECT_GT(Mean(one).g, 0.f);
+        EXPECT_GT(MeanRGB(one).g, 0.f);
     }
 }
 

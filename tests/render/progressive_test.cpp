@@ -12,10 +12,13 @@
 
 #include "assembly/build_scene.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 // An area light over a floor and a sphere: soft shadows give every spp its noise.
 std::string SoftScene() {

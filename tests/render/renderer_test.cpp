@@ -10,10 +10,13 @@
 
 #include "assembly/build_scene.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 // A sphere over a floor, a mirror and an area light; 37x29 leaves partial tiles and packets.
 // Each test writes files of its own (`test`): ctest runs tests in parallel.

@@ -11,25 +11,27 @@
 
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
-#include "render/scene_text.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
 
+using namespace test;
+
 RenderScene BuildText(const std::string &name, const std::string &text, BuildSettings opts = {}) {
-    return test::BuildSceneText("prism_sppm", name, text, opts);
+    return BuildSceneText("prism_sppm", name, text, opts);
 }
 
 Image RenderText(const std::string &name, const std::string &text, RenderStats *stats = nullptr,
                  uint32_t seed = 0) {
-    RenderScene scene = BuildText(name, text);
-    RenderOptions options;
-    options.sampler = scene.sampler;
-    options.sampler.seed = seed;
-    return Render(scene, options, stats);
+    return RenderWithSeed(BuildText(name, text), seed, stats);
 }
 
 double MeanOf(const Image &img, int x0, int x1, int y0, int y1, int c = 1) {
@@ -127,17 +129,7 @@ std::string DiffuseRoom(const std::string &integrator, int res) {
     return "Film \"image\" \"integer xresolution\" [" + std::to_string(res) +
            "] \"integer yresolution\" [" + std::to_string(res) +
            "]\nSampler \"stratified\" \"integer xsamples\" [16] \"integer ysamples\" [16]\n" +
-           integrator +
-           "LookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" [50]\n"
-           "WorldBegin\n"
-           "LightSource \"point\" \"point from\" [1.5 2 -1] \"rgb I\" [2 2 2]\n"
-           "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\n"
-           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
-           "  \"point P\" [-0.5 2.5 -0.5  0.5 2.5 -0.5  0.5 2.5 0.5  -0.5 2.5 0.5]\n"
-           "AttributeEnd\n"
-           "Material \"matte\" \"rgb Kd\" [0.6 0.5 0.4]\n"
-           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
-           "  \"point P\" [-3 0 -3  3 0 -3  3 0 3  -3 0 3]\n"
+           integrator + kLitFloorFromLookAt +
            "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
            "  \"point P\" [-3 0 2  3 0 2  3 3 2  -3 3 2]\n"
            "Material \"matte\" \"rgb Kd\" [0.3 0.6 0.3]\n"
@@ -206,10 +198,7 @@ TEST(SppmIntegrator, ShowsAGlassCausticWherePathIsNoise) {
 
 TEST(SppmIntegrator, SameImageForOneAndTwoThreads) {
     RenderScene scene = BuildText("threads", DiffuseRoom(Sppm(3, 5000, 0.2f), 24));
-    Image one, two;
-    RenderStats stats;
-    tbb::task_arena(1).execute([&] { one = Render(scene, &stats); });
-    tbb::task_arena(2).execute([&] { two = Render(scene, &stats); });
+    Image one = RenderOnThreads(scene, 1), two = RenderOnThreads(scene, 2);
     EXPECT_TRUE(one.pixels == two.pixels);
     EXPECT_GT(MeanOf(one, 0, 24, 0, 24), 0.0);
 }

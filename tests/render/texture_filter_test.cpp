@@ -16,13 +16,16 @@
 #include "render/renderer.h"
 #include "render/texture.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/errors.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
-using test::ScratchDir;
-using test::WriteTestFile;
+using namespace test;
 
 double Dist(const Vec3f &a, const Vec3f &b) { return double(Length(a - b)); }
 
@@ -250,15 +253,11 @@ std::string HeadOnScene(const std::string &file, int res, const std::string &fil
 
 Image RenderText(const std::string &name, const std::string &text, int spp = 0,
                  const std::string &textureFilter = "", const std::string &integrator = "") {
-    std::string path = WriteTestFile(ScratchDir("texfilt") / name, text);
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(path, diag);
     BuildSettings s;
     s.spp = spp;
     s.textureFilter = textureFilter;
     s.integrator = integrator;
-    RenderScene scene = BuildRenderScene(desc, s, diag);
-    return Render(scene, nullptr);
+    return RenderSceneText("texfilt", name, text, s).image;
 }
 
 double MaxDiff(const Image &a, const Image &b) {

@@ -8,41 +8,25 @@
 #include <sstream>
 
 #include "assembly/build_scene.h"
-#include "gltf_test_scene.h"
+#include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/errors.h"
+#include "support/gltf_scene.h"
+#include "support/image_stats.h"
+#include "support/render_text.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace prism {
 namespace {
 
-using test::ScratchDir;
-using test::WriteTestFile;
-
-struct Rendered {
-    Image image;
-    RenderStats stats;
-};
+using namespace test;
 
 Rendered RenderText(const std::string &name, const std::string &text, int res, int spp,
                     const std::string &integrator = "") {
-    Diagnostics diag(false);
-    SceneDescription desc = LoadScene(WriteTestFile(ScratchDir("volpath") / name, text), diag);
-    BuildSettings s;
-    s.resolution = Vec2i(res, res);
-    s.spp = spp;
-    s.integrator = integrator;
-    RenderScene scene = BuildRenderScene(desc, s, diag);
-    Rendered r;
-    r.image = Render(scene, &r.stats);
-    return r;
-}
-
-double MeanChannel(const Image &img, int c) {
-    double s = 0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) s += img.pixels[img.PixelOffset(x, y) + size_t(c)];
-    return s / (double(img.width) * img.height);
+    return RenderSceneText("volpath", name, text, SizedSettings(res, res, spp, integrator));
 }
 
 // A sphere of scattering medium (albedo 1, forward-scattering) behind an invisible boundary,
@@ -106,17 +90,7 @@ TEST(VolPath, FurnaceWithAbsorptionIsDarker) {
 }
 
 std::string Room(const std::string &integrator) {
-    return integrator +
-           "\nLookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" [50]\n"
-           "WorldBegin\n"
-           "LightSource \"point\" \"point from\" [1.5 2 -1] \"rgb I\" [2 2 2]\n"
-           "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\n"
-           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
-           "  \"point P\" [-0.5 2.5 -0.5  0.5 2.5 -0.5  0.5 2.5 0.5  -0.5 2.5 0.5]\n"
-           "AttributeEnd\n"
-           "Material \"matte\" \"rgb Kd\" [0.6 0.5 0.4]\n"
-           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
-           "  \"point P\" [-3 0 -3  3 0 -3  3 0 3  -3 0 3]\n"
+    return integrator + "\n" + std::string(kLitFloorFromLookAt) +
            "Material \"glass\"\nAttributeBegin\nTranslate 0.8 0.4 0\n"
            "Shape \"sphere\" \"float radius\" [0.4]\nAttributeEnd\n"
            "Material \"plastic\" \"rgb Kd\" [0.3 0.6 0.3] \"float roughness\" [0.1]\n"

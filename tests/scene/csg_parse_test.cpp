@@ -3,23 +3,16 @@
 #include <gtest/gtest.h>
 
 #include "scene/pbrt_parser.h"
+#include "support/errors.h"
 
 namespace prism {
 namespace {
 
+using namespace test;
+
 SceneDescription Parse(const std::string &text) {
     Diagnostics diag;
     return ParsePbrtString(text, "s.pbrt", diag);
-}
-
-std::string ErrorOf(const std::string &text) {
-    Diagnostics diag;
-    try {
-        ParsePbrtString(text, "s.pbrt", diag);
-    } catch (const SceneError &e) {
-        return e.what();
-    }
-    return "no error";
 }
 
 TEST(CsgParse, NestedNodesKeepOperandsInOrder) {
@@ -73,24 +66,26 @@ WorldEnd)");
 }
 
 TEST(CsgParse, ErrorsAreLocated) {
-    EXPECT_EQ(ErrorOf("WorldBegin\nCSGBegin \"xor\" Shape \"sphere\" CSGEnd"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin\nCSGBegin \"xor\" Shape \"sphere\" CSGEnd"),
               "s.pbrt:2:1: error: unknown CSG operation \"xor\" (expected \"union\", "
               "\"intersection\" or \"difference\")");
-    EXPECT_EQ(ErrorOf("WorldBegin\nShape \"sphere\"\nCSGEnd"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin\nShape \"sphere\"\nCSGEnd"),
               "s.pbrt:3:1: error: CSGEnd without matching CSGBegin");
-    EXPECT_EQ(ErrorOf("WorldBegin\n  CSGBegin \"union\" Shape \"sphere\"\nWorldEnd"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin\n  CSGBegin \"union\" Shape \"sphere\"\nWorldEnd"),
               "s.pbrt:2:3: error: CSGBegin without matching CSGEnd");
-    EXPECT_EQ(ErrorOf("WorldBegin\nCSGBegin \"union\"\nCSGBegin \"intersection\" CSGEnd\nCSGEnd"),
-              "s.pbrt:3:1: error: CSGBegin \"intersection\" has no operands (empty CSG node)");
-    EXPECT_EQ(ErrorOf("WorldBegin ObjectBegin \"o\" Shape \"sphere\" ObjectEnd\n"
-                      "CSGBegin \"union\"\n ObjectInstance \"o\" CSGEnd"),
+    EXPECT_EQ(
+        PbrtErrorOf("WorldBegin\nCSGBegin \"union\"\nCSGBegin \"intersection\" CSGEnd\nCSGEnd"),
+        "s.pbrt:3:1: error: CSGBegin \"intersection\" has no operands (empty CSG node)");
+    EXPECT_EQ(PbrtErrorOf("WorldBegin ObjectBegin \"o\" Shape \"sphere\" ObjectEnd\n"
+                          "CSGBegin \"union\"\n ObjectInstance \"o\" CSGEnd"),
               "s.pbrt:3:2: error: ObjectInstance cannot be a CSG operand (CSGBegin at "
               "s.pbrt:2:1)");
-    EXPECT_EQ(ErrorOf("WorldBegin CSGBegin \"union\"\nObjectBegin \"o\""),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin CSGBegin \"union\"\nObjectBegin \"o\""),
               "s.pbrt:2:1: error: ObjectBegin inside CSGBegin (at s.pbrt:1:12) is not supported");
-    EXPECT_EQ(ErrorOf("WorldBegin ObjectBegin \"o\"\nCSGBegin \"union\""),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin ObjectBegin \"o\"\nCSGBegin \"union\""),
               "s.pbrt:2:1: error: CSGBegin inside ObjectBegin \"o\" is not supported");
-    EXPECT_EQ(ErrorOf("CSGBegin \"union\""), "s.pbrt:1:1: error: CSGBegin without matching CSGEnd");
+    EXPECT_EQ(PbrtErrorOf("CSGBegin \"union\""),
+              "s.pbrt:1:1: error: CSGBegin without matching CSGEnd");
 }
 
 }  // namespace

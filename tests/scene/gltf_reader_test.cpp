@@ -9,34 +9,14 @@
 #include <cstring>
 #include <fstream>
 
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace prism {
 namespace {
 
-std::string WriteFile(const std::string &name, const std::string &contents) {
-    return test::WriteTestFile(::testing::TempDir() + name, contents);
-}
-
-std::string Base64(const std::string &in) {
-    static const char *tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    size_t i = 0;
-    for (; i + 2 < in.size(); i += 3) {
-        uint32_t v = uint32_t((unsigned char)in[i]) << 16 |
-                     uint32_t((unsigned char)in[i + 1]) << 8 | uint32_t((unsigned char)in[i + 2]);
-        for (int k = 3; k >= 0; --k) out += tbl[(v >> (6 * k)) & 63];
-    }
-    if (i < in.size()) {
-        uint32_t v = uint32_t((unsigned char)in[i]) << 16;
-        if (i + 1 < in.size()) v |= uint32_t((unsigned char)in[i + 1]) << 8;
-        out += tbl[(v >> 18) & 63];
-        out += tbl[(v >> 12) & 63];
-        out += i + 1 < in.size() ? tbl[(v >> 6) & 63] : '=';
-        out += '=';
-    }
-    return out;
-}
+using namespace test;
 
 template <typename T>
 void Put(std::string &buf, std::initializer_list<T> values) {
@@ -148,11 +128,11 @@ std::string WriteGltf(const std::string &name, int scene, bool dataUriBuffer = f
         json = Replace(json, "BUFFERURI",
                        "data:application/octet-stream;base64," + Base64(QuadBuffer()));
     } else {
-        WriteFile(name + ".bin", QuadBuffer());
+        WriteScratchFile(name + ".bin", QuadBuffer());
         json = Replace(json, "BUFFERURI", name + ".bin");
     }
-    WriteFile("gltft tex.png", "not really a png");
-    return WriteFile(name + ".gltf", json);
+    WriteScratchFile("gltft tex.png", "not really a png");
+    return WriteScratchFile(name + ".gltf", json);
 }
 
 Vec3d Apply(const Transform &t, Vec3d p) { return t.Point(p); }
@@ -340,9 +320,9 @@ TEST(GltfReader, MaterialExtensionsAndTextureTransform) {
     json = Replace(json, "IMAGE64", Base64("PNGDATA"));
     json =
         Replace(json, "BUFFERURI", "data:application/octet-stream;base64," + Base64(QuadBuffer()));
-    WriteFile("gltft tex.png", "not really a png");
+    WriteScratchFile("gltft tex.png", "not really a png");
     Diagnostics diag;
-    SceneDescription d = ReadGltfFile(WriteFile("gltft_ext.gltf", json), diag);
+    SceneDescription d = ReadGltfFile(WriteScratchFile("gltft_ext.gltf", json), diag);
     // The fixture's own warnings (EXT_made_up, line and point primitives) are about other
     // things; none names a material feature.
     for (const Warning &w : diag.Warnings())
@@ -506,10 +486,12 @@ TEST(GltfReader, MalformedFilesAreSceneErrors) {
     json = Replace(Replace(Replace(json, "SCENE", "0"), "POSCOUNT", "4"), "IMAGE64", "AAAA");
     json =
         Replace(json, "BUFFERURI", "data:application/octet-stream;base64," + Base64(QuadBuffer()));
-    EXPECT_THROW(ReadGltfFile(WriteFile("gltft_bad3.gltf", json), diag), SceneError);
-    EXPECT_THROW(ReadGltfFile(WriteFile("gltft_bad4.gltf", "{ \"asset\": "), diag), SceneError);
-    EXPECT_THROW(ReadGltfFile(WriteFile("gltft_bad5.glb", "glTF\x02\x00\x00\x00garbage"), diag),
+    EXPECT_THROW(ReadGltfFile(WriteScratchFile("gltft_bad3.gltf", json), diag), SceneError);
+    EXPECT_THROW(ReadGltfFile(WriteScratchFile("gltft_bad4.gltf", "{ \"asset\": "), diag),
                  SceneError);
+    EXPECT_THROW(
+        ReadGltfFile(WriteScratchFile("gltft_bad5.glb", "glTF\x02\x00\x00\x00garbage"), diag),
+        SceneError);
     EXPECT_THROW(ReadGltfFile(::testing::TempDir() + "gltft_missing.gltf", diag), SceneError);
 }
 

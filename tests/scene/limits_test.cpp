@@ -11,12 +11,17 @@
 #include "scene/load_scene.h"
 #include "scene/pbrt_parser.h"
 #include "scene/ply_reader.h"
-#include "test_util.h"
+#include "support/errors.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 fs::path Dir() { return test::ScratchDir("prism_limits"); }
 
@@ -24,33 +29,16 @@ std::string Write(const std::string &name, const std::string &contents) {
     return test::WriteTestFile(Dir() / name, contents);
 }
 
-std::string ErrorOf(const std::function<void()> &f) {
-    try {
-        f();
-    } catch (const SceneError &e) {
-        return e.what();
-    }
-    return "";
-}
-
-std::string AsciiPly(int nv) {
-    std::string s = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(nv) +
-                    "\nproperty float x\nproperty float y\nproperty float z\n"
-                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
-    for (int i = 0; i < nv; ++i) s += "0 0 " + std::to_string(i) + "\n";
-    return s + "3 0 1 2\n";
-}
-
 TEST(Limits, PlyMeshMustFitTheMemoryBudget) {
     std::string path = Write("budget.ply", AsciiPly(1000));
     Diagnostics diag;
     EXPECT_EQ(ReadPlyFile(path, diag, 1 << 20).P.size(), 1000u);
-    std::string err = ErrorOf([&] { ReadPlyFile(path, diag, 20000); });
+    std::string err = ErrorOf<SceneError>([&] { ReadPlyFile(path, diag, 20000); });
     EXPECT_NE(err.find("budget.ply:3:1: error: mesh needs about"), std::string::npos) << err;
     EXPECT_NE(err.find("more than the memory budget of 20 KiB"), std::string::npos) << err;
     EXPECT_EQ(err.find("--max-memory"), std::string::npos) << "the library names no flag: " << err;
     // The file itself larger than the budget.
-    err = ErrorOf([&] { ReadPlyFile(path, diag, 1000); });
+    err = ErrorOf<SceneError>([&] { ReadPlyFile(path, diag, 1000); });
     EXPECT_NE(err.find("more than the memory budget of 1000 bytes"), std::string::npos) << err;
 }
 
@@ -60,7 +48,7 @@ TEST(Limits, PlyHeaderClaimingATrillionVertices) {
                              "property float x\nproperty float y\nproperty float z\nend_header\n" +
                                  std::string(24, '\0'));
     Diagnostics diag;
-    std::string err = ErrorOf([&] { ReadPlyFile(path, diag); });
+    std::string err = ErrorOf<SceneError>([&] { ReadPlyFile(path, diag); });
     EXPECT_NE(err.find("file ends after 2 of 1000000000000 vertices"), std::string::npos) << err;
 }
 
@@ -69,7 +57,7 @@ TEST(Limits, LoadSceneRejectsFilesBeyondTheBudget) {
     LoadOptions opts;
     opts.maxMemory = 100;
     Diagnostics diag;
-    std::string err = ErrorOf([&] { LoadScene(path, diag, opts); });
+    std::string err = ErrorOf<SceneError>([&] { LoadScene(path, diag, opts); });
     EXPECT_NE(err.find("more than the memory budget of 100 bytes"), std::string::npos) << err;
     EXPECT_EQ(err.find("--max-memory"), std::string::npos) << "the library names no flag: " << err;
     opts.maxMemory = 1 << 20;
@@ -92,14 +80,14 @@ TEST(Limits, GltfBuffersMustFitTheBudgetAndBeRegularFiles) {
     EXPECT_NO_THROW(ReadGltfFile(path, diag, 1 << 20));
     // The .gltf itself fits but the buffer does not.
     uint64_t gltfSize = fs::file_size(path);
-    std::string err = ErrorOf([&] { ReadGltfFile(path, diag, gltfSize + 10); });
+    std::string err = ErrorOf<SceneError>([&] { ReadGltfFile(path, diag, gltfSize + 10); });
     EXPECT_NE(err.find("exceeds the memory budget"), std::string::npos) << err;
     // A buffer that is a device (hostile URI) is refused before it is read.
     std::string rel;
     for (fs::path p = Dir(); p.has_relative_path() && p != p.root_path(); p = p.parent_path())
         rel += "../";
     path = Write("zero.gltf", TriangleGltf(rel + "dev/zero", 36));
-    err = ErrorOf([&] { ReadGltfFile(path, diag); });
+    err = ErrorOf<SceneError>([&] { ReadGltfFile(path, diag); });
     EXPECT_NE(err.find("not a regular file"), std::string::npos) << err;
 }
 
@@ -107,7 +95,7 @@ TEST(Limits, GltfAccessorPastItsBuffer) {
     Write("short.bin", std::string(24, '\0'));
     std::string path = Write("short.gltf", TriangleGltf("short.bin", 24));
     Diagnostics diag;
-    std::string err = ErrorOf([&] { ReadGltfFile(path, diag); });
+    std::string err = ErrorOf<SceneError>([&] { ReadGltfFile(path, diag); });
     EXPECT_NE(err.find("reaches past the end of its buffer"), std::string::npos) << err;
 }
 
@@ -122,16 +110,17 @@ TEST(Limits, IncludeDepthAndCycles) {
     opts.maxIncludeDepth = 10;
     EXPECT_NO_THROW(ParsePbrtFile((Dir() / "chain0.pbrt").string(), diag, opts));
     opts.maxIncludeDepth = 5;
-    std::string err = ErrorOf([&] { ParsePbrtFile((Dir() / "chain0.pbrt").string(), diag, opts); });
+    std::string err =
+        ErrorOf<SceneError>([&] { ParsePbrtFile((Dir() / "chain0.pbrt").string(), diag, opts); });
     EXPECT_NE(err.find("includes nested deeper than"), std::string::npos) << err;
     Write("self.pbrt", "WorldBegin\nInclude \"self.pbrt\"\n");
-    err = ErrorOf([&] { ParsePbrtFile((Dir() / "self.pbrt").string(), diag); });
+    err = ErrorOf<SceneError>([&] { ParsePbrtFile((Dir() / "self.pbrt").string(), diag); });
     EXPECT_NE(err.find("self.pbrt:2:1: error: include cycle"), std::string::npos) << err;
     // Confined includes may not leave the top-level file's directory.
     Write("escape.pbrt", "Include \"../escape-target.pbrt\"\n");
     std::ofstream(Dir().parent_path() / "escape-target.pbrt") << "\n";
     opts.confineIncludes = true;
-    err = ErrorOf([&] { ParsePbrtFile((Dir() / "escape.pbrt").string(), diag, opts); });
+    err = ErrorOf<SceneError>([&] { ParsePbrtFile((Dir() / "escape.pbrt").string(), diag, opts); });
     EXPECT_NE(err.find("escape.pbrt:1:1: error:"), std::string::npos) << err;
 }
 

@@ -9,23 +9,24 @@
 #include <filesystem>
 #include <fstream>
 
-#include "test_util.h"
+#include "support/errors.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
-std::string WriteFile(const std::string &name, const std::string &contents) {
-    return test::WriteTestFile(::testing::TempDir() + name, contents);
-}
+using namespace test;
 
 std::string ErrorOf(const std::string &path) {
+    // The message without its location, unlike test::ErrorOf.
     Diagnostics diag;
     try {
         LoadScene(path, diag);
     } catch (const SceneError &e) {
         return e.Message();
     }
-    return "(no error)";
+    return kNoError;
 }
 
 size_t TriangleCount(const SceneDescription &d) {
@@ -42,7 +43,7 @@ bool HasNote(const SceneDescription &d, const std::string &text) {
 }
 
 TEST(LoadScene, Errors) {
-    std::string xyz = WriteFile("ls_scene.xyz", "whatever");
+    std::string xyz = WriteScratchFile("ls_scene.xyz", "whatever");
     EXPECT_EQ(ErrorOf(xyz),
               "unsupported scene format \".xyz\" (expected .pbrt, .obj, .gltf, .glb or .ply)");
     std::string missing = ::testing::TempDir() + "ls_missing.obj";
@@ -50,9 +51,9 @@ TEST(LoadScene, Errors) {
 }
 
 TEST(LoadScene, DispatchesPbrt) {
-    std::string path = WriteFile("ls_tiny.pbrt",
-                                 "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n"
-                                 "WorldBegin\nShape \"sphere\"\nWorldEnd\n");
+    std::string path = WriteScratchFile("ls_tiny.pbrt",
+                                        "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n"
+                                        "WorldBegin\nShape \"sphere\"\nWorldEnd\n");
     Diagnostics diag;
     SceneDescription d = LoadScene(path, diag);
     EXPECT_EQ(d.format, "pbrt");
@@ -64,10 +65,10 @@ TEST(LoadScene, DispatchesPbrt) {
 // The default view of a right-handed, y-up scene: the centre is ahead, world +x appears on
 // the right, +y up, and the whole bounding box is inside the 40° field of view.
 TEST(LoadScene, ObjGetsFramedCameraAndDefaultLights) {
-    std::string path = WriteFile("ls_box.obj",
-                                 "v -1 0 -2\nv 3 0 -2\nv 3 2 -2\nv -1 2 -2\n"
-                                 "v -1 0 2\nv 3 0 2\nv 3 2 2\nv -1 2 2\n"
-                                 "f 1 2 3 4\nf 5 6 7 8\n");
+    std::string path = WriteScratchFile("ls_box.obj",
+                                        "v -1 0 -2\nv 3 0 -2\nv 3 2 -2\nv -1 2 -2\n"
+                                        "v -1 0 2\nv 3 0 2\nv 3 2 2\nv -1 2 2\n"
+                                        "f 1 2 3 4\nf 5 6 7 8\n");
     Diagnostics diag;
     SceneDescription d = LoadScene(path, diag);
     ASSERT_TRUE(d.camera.specified);
@@ -110,7 +111,7 @@ TEST(LoadScene, ObjGetsFramedCameraAndDefaultLights) {
 // The studio rig (docs/USAGE.md "Lighting"): a key from above the camera, a
 // weaker fill from its right, a dim uniform environment with stratified samples.
 TEST(LoadScene, LightLessModelGetsTheStudioRig) {
-    std::string path = WriteFile("ls_rig.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");
+    std::string path = WriteScratchFile("ls_rig.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");
     Diagnostics diag;
     SceneDescription d = LoadScene(path, diag);
     ASSERT_EQ(d.lights.size(), 3u);
@@ -147,7 +148,7 @@ TEST(LoadScene, LightLessModelGetsTheStudioRig) {
 // --env: the equirectangular frame puts the map's top row up and its centre column ahead
 // (-z for y-up formats), u growing to the viewer's right (+x), turned about up by the angle.
 TEST(LoadScene, EnvironmentFrameAndReplaceOrAdd) {
-    std::string path = WriteFile("ls_env.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::string path = WriteScratchFile("ls_env.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     Diagnostics diag;
     SceneDescription d = LoadScene(path, diag);
     EXPECT_EQ(SceneUpAxis(d), Vec3d(0, 1, 0));
@@ -185,9 +186,9 @@ TEST(LoadScene, EnvironmentFrameAndReplaceOrAdd) {
     EXPECT_TRUE(std::filesystem::path(map).is_absolute()) << map;
 
     // pbrt: up is the world axis nearest the camera's up, ahead the one nearest its view.
-    std::string pbrt = WriteFile("ls_env.pbrt",
-                                 "LookAt 0 -5 1  0 0 0.9  0 0.1 1\nCamera \"perspective\"\n"
-                                 "WorldBegin\nWorldEnd\n");
+    std::string pbrt = WriteScratchFile("ls_env.pbrt",
+                                        "LookAt 0 -5 1  0 0 0.9  0 0.1 1\nCamera \"perspective\"\n"
+                                        "WorldBegin\nWorldEnd\n");
     SceneDescription p = LoadScene(pbrt, diag);
     EXPECT_EQ(SceneUpAxis(p), Vec3d(0, 0, 1));
     Transform pf = EnvironmentFrame(p, 0);
@@ -200,10 +201,10 @@ TEST(LoadScene, EnvironmentFrameAndReplaceOrAdd) {
 }
 
 TEST(LoadScene, EmissiveObjGetsNoDefaultLight) {
-    WriteFile("ls_lamp.mtl", "newmtl lamp\nKe 1 1 1\n");
-    std::string path = WriteFile("ls_lamp.obj",
-                                 "mtllib ls_lamp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
-                                 "usemtl lamp\nf 1 2 3\n");
+    WriteScratchFile("ls_lamp.mtl", "newmtl lamp\nKe 1 1 1\n");
+    std::string path = WriteScratchFile("ls_lamp.obj",
+                                        "mtllib ls_lamp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                        "usemtl lamp\nf 1 2 3\n");
     Diagnostics diag;
     SceneDescription d = LoadScene(path, diag);
     EXPECT_TRUE(d.lights.empty());
@@ -215,11 +216,12 @@ TEST(LoadScene, EmissiveObjGetsNoDefaultLight) {
 }
 
 TEST(LoadScene, PlyBecomesPlymeshScene) {
-    std::string path = WriteFile("ls_tri.ply",
-                                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                                 "property float y\nproperty float z\nelement face 1\n"
-                                 "property list uchar int vertex_indices\nend_header\n"
-                                 "0 0 0\n10 0 0\n0 10 0\n3 0 1 2\n");
+    std::string path =
+        WriteScratchFile("ls_tri.ply",
+                         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                         "property float y\nproperty float z\nelement face 1\n"
+                         "property list uchar int vertex_indices\nend_header\n"
+                         "0 0 0\n10 0 0\n0 10 0\n3 0 1 2\n");
     Diagnostics diag;
     SceneDescription d = LoadScene(path, diag);
     EXPECT_EQ(d.format, "ply");
@@ -233,9 +235,9 @@ TEST(LoadScene, PlyBecomesPlymeshScene) {
     EXPECT_GT(c.z, 0);
     EXPECT_FALSE(d.lights.empty());
     // A broken PLY is reported by LoadScene, not later.
-    std::string bad = WriteFile("ls_bad.ply",
-                                "ply\nformat ascii 1.0\nelement vertex 5\n"
-                                "property float x\nend_header\n1\n");
+    std::string bad = WriteScratchFile("ls_bad.ply",
+                                       "ply\nformat ascii 1.0\nelement vertex 5\n"
+                                       "property float x\nend_header\n1\n");
     EXPECT_NE(ErrorOf(bad).find("5 vertices"), std::string::npos) << ErrorOf(bad);
 }
 

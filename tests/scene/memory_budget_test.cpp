@@ -13,12 +13,17 @@
 #include "scene/load_scene.h"
 #include "scene/obj_reader.h"
 #include "scene/ply_reader.h"
-#include "test_util.h"
+#include "support/errors.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 fs::path Dir() { return test::ScratchDir("prism_memory_budget"); }
 
@@ -36,24 +41,6 @@ std::string PaddedPbrt(const std::string &body, size_t bytes) {
 }
 
 // The MemoryBudgetError `f` throws ("" if none; "not a MemoryBudgetError" for another error).
-std::string BudgetErrorOf(const std::function<void()> &f) {
-    try {
-        f();
-    } catch (const MemoryBudgetError &e) {
-        return e.what();
-    } catch (const std::exception &e) {
-        return std::string("not a MemoryBudgetError: ") + e.what();
-    }
-    return "";
-}
-
-std::string AsciiPly(int nv) {
-    std::string s = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(nv) +
-                    "\nproperty float x\nproperty float y\nproperty float z\n"
-                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
-    for (int i = 0; i < nv; ++i) s += "0 0 " + std::to_string(i) + "\n";
-    return s + "3 0 1 2\n";
-}
 
 TEST(MemoryBudgetScene, IncludedFilesEachUnderTheLimitAreRefusedTogether) {
     Write("part_a.pbrt", PaddedPbrt("", 3000));
@@ -69,7 +56,7 @@ TEST(MemoryBudgetScene, IncludedFilesEachUnderTheLimitAreRefusedTogether) {
     // Each part fits the budget with its top file.
     EXPECT_NO_THROW(LoadScene(onlyA, diag, opts));
     // Both together do not: refused at the second Include, naming both sums and the limit.
-    std::string err = BudgetErrorOf([&] { LoadScene(top, diag, opts); });
+    std::string err = ErrorOf<MemoryBudgetError>([&] { LoadScene(top, diag, opts); });
     EXPECT_NE(err.find("two_parts.pbrt:4:1: error: included file \"part_b.pbrt\" needs about "
                        "2.9 KiB; with "),
               std::string::npos)
@@ -94,7 +81,7 @@ TEST(MemoryBudgetScene, TheTopFileCountsWithWhatIsAlreadyCommitted) {
     Diagnostics diag;
     LoadOptions opts;
     opts.budget = &budget;
-    std::string err = BudgetErrorOf([&] { LoadScene(path, diag, opts); });
+    std::string err = ErrorOf<MemoryBudgetError>([&] { LoadScene(path, diag, opts); });
     EXPECT_NE(err.find("scene file needs about 2.0 KiB; with 3.9 KiB already committed that "
                        "exceeds the memory budget of 4.9 KiB"),
               std::string::npos)
@@ -122,7 +109,7 @@ TEST(MemoryBudgetScene, PlyUnderTheLimitWithTheSceneFileOverIt) {
     SceneDescription desc = LoadScene(scene, diag, opts);
     EXPECT_GE(budget.Used(), 3000u);
     // What the builder does for the "plymesh" shape: refused before the arrays are allocated.
-    std::string err = BudgetErrorOf([&] { ReadPlyFile(ply, diag, budget); });
+    std::string err = ErrorOf<MemoryBudgetError>([&] { ReadPlyFile(ply, diag, budget); });
     EXPECT_NE(err.find("mesh.ply:3:1: error: mesh needs about"), std::string::npos) << err;
     EXPECT_NE(err.find("already committed that exceeds the memory budget of"), std::string::npos)
         << err;
@@ -138,7 +125,7 @@ TEST(MemoryBudgetScene, TopLevelPlyIsCheckedAndItsChargeGivenBack) {
     EXPECT_NO_THROW(LoadScene(ply, diag, opts));
     EXPECT_EQ(budget.Used(), 0u);  // the builder charges the mesh when it reads it again
     budget.Charge(200, "textures");
-    std::string err = BudgetErrorOf([&] { LoadScene(ply, diag, opts); });
+    std::string err = ErrorOf<MemoryBudgetError>([&] { LoadScene(ply, diag, opts); });
     EXPECT_NE(err.find("mesh needs about"), std::string::npos) << err;
     EXPECT_EQ(budget.Used(), 200u);
 }
@@ -164,7 +151,7 @@ TEST(MemoryBudgetScene, TriangleMeshParametersAreCharged) {
     ASSERT_GT(fileSize, 1024u);
     opts.budget = nullptr;
     opts.maxMemory = numbers + shape + 1024;
-    std::string err = BudgetErrorOf([&] { LoadScene(path, diag, opts); });
+    std::string err = ErrorOf<MemoryBudgetError>([&] { LoadScene(path, diag, opts); });
     EXPECT_NE(err.find("mesh.pbrt:2:1: error: shape \"trianglemesh\" needs about 1"),
               std::string::npos)
         << err;
@@ -179,7 +166,7 @@ TEST(MemoryBudgetScene, ObjFileAndGeometryAreCharged) {
     ReadObjFile(path, diag, &budget);
     EXPECT_GT(budget.Used(), fileSize + 9 * sizeof(double));
     MemoryBudget tight(fileSize + 16);
-    std::string err = BudgetErrorOf([&] { ReadObjFile(path, diag, &tight); });
+    std::string err = ErrorOf<MemoryBudgetError>([&] { ReadObjFile(path, diag, &tight); });
     EXPECT_NE(err.find("tri.obj: error: mesh needs about"), std::string::npos) << err;
 }
 
@@ -200,7 +187,7 @@ TEST(MemoryBudgetScene, GltfBufferRefusedWithWhatIsCommitted) {
     // The .gltf and its buffer each fit; with 1000 bytes already committed they do not.
     MemoryBudget tight(gltfSize + 1010);
     tight.Charge(1000, "film");
-    std::string err = BudgetErrorOf([&] { ReadGltfFile(path, diag, tight); });
+    std::string err = ErrorOf<MemoryBudgetError>([&] { ReadGltfFile(path, diag, tight); });
     EXPECT_NE(err.find("tri2.gltf: error: file \"tri2.bin\" needs about 36 bytes; with "),
               std::string::npos)
         << err;

@@ -7,14 +7,13 @@
 #include <cmath>
 #include <fstream>
 
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
-std::string WriteFile(const std::string &name, const std::string &contents) {
-    return test::WriteTestFile(::testing::TempDir() + name, contents);
-}
+using namespace test;
 
 size_t Triangles(const ShapeDesc &s) { return s.params.GetInts("indices").size() / 3; }
 
@@ -29,19 +28,19 @@ bool Near(const RGB &c, float r, float g, float b) {
 }
 
 TEST(ObjReader, GroupsNegativeIndicesAndMissingNormals) {
-    WriteFile("objt_groups.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n");
-    std::string path = WriteFile("objt_groups.obj",
-                                 "mtllib objt_groups.mtl\r\n"
-                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-                                 "vn 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                                 "g quad\nusemtl red\n"
-                                 "f -4 -3 -2 -1\n"  // relative indices, no normals
-                                 "g tri\nusemtl blue\n"
-                                 "f 1/1/1 2/2/1 3/3/1\n"
-                                 "usemtl red\n"
-                                 "f 1/1/1 3/3/1 4/4/1\n"
-                                 "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nv 0.5 1.5 1\n"
-                                 "g penta\nusemtl blue\nf -5 -4 -3 -1 -2\n");
+    WriteScratchFile("objt_groups.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n");
+    std::string path = WriteScratchFile("objt_groups.obj",
+                                        "mtllib objt_groups.mtl\r\n"
+                                        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                        "vn 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                        "g quad\nusemtl red\n"
+                                        "f -4 -3 -2 -1\n"  // relative indices, no normals
+                                        "g tri\nusemtl blue\n"
+                                        "f 1/1/1 2/2/1 3/3/1\n"
+                                        "usemtl red\n"
+                                        "f 1/1/1 3/3/1 4/4/1\n"
+                                        "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nv 0.5 1.5 1\n"
+                                        "g penta\nusemtl blue\nf -5 -4 -3 -1 -2\n");
     Diagnostics diag;
     SceneDescription d = ReadObjFile(path, diag);
     EXPECT_EQ(d.format, "obj");
@@ -81,21 +80,21 @@ TEST(ObjReader, GroupsNegativeIndicesAndMissingNormals) {
 }
 
 TEST(ObjReader, MaterialMapping) {
-    WriteFile("objt_mats.mtl",
-              "newmtl dull\nKd 0.5 0.25 0.125\nKs 0 0 0\nillum 2\n"
-              "newmtl shiny\nKd 0.2 0.2 0.2\nKs 0.5 0.5 0.5\nNs 98\nillum 2\n"
-              "newmtl mirror\nKd 0 0 0\nKs 0.9 0.8 0.7\nNs 1000\nNi 3.3\nillum 5\n"
-              "newmtl mirror3\nKs 0.5 0.5 0.5\nillum 3\n"
-              "newmtl glass\nKd 0 0 0\nKs 1 1 1\nTf 0.9 1 0.9\nNi 1.33\nillum 7\n"
-              "newmtl faded\nKd 1 1 1\nd 0.5\nTf 1 1 1\nillum 2\n"
-              "newmtl tinted_tf_only\nKd 0.3 0.3 0.3\nTf 1 1 1\nillum 2\n"
-              "newmtl lamp\nKd 0 0 0\nKe 17 12 4\n"
-              "newmtl wood\nKd 0.8 0.8 0.8\nmap_Kd .\\tex\\wood.jpg\n");
+    WriteScratchFile("objt_mats.mtl",
+                     "newmtl dull\nKd 0.5 0.25 0.125\nKs 0 0 0\nillum 2\n"
+                     "newmtl shiny\nKd 0.2 0.2 0.2\nKs 0.5 0.5 0.5\nNs 98\nillum 2\n"
+                     "newmtl mirror\nKd 0 0 0\nKs 0.9 0.8 0.7\nNs 1000\nNi 3.3\nillum 5\n"
+                     "newmtl mirror3\nKs 0.5 0.5 0.5\nillum 3\n"
+                     "newmtl glass\nKd 0 0 0\nKs 1 1 1\nTf 0.9 1 0.9\nNi 1.33\nillum 7\n"
+                     "newmtl faded\nKd 1 1 1\nd 0.5\nTf 1 1 1\nillum 2\n"
+                     "newmtl tinted_tf_only\nKd 0.3 0.3 0.3\nTf 1 1 1\nillum 2\n"
+                     "newmtl lamp\nKd 0 0 0\nKe 17 12 4\n"
+                     "newmtl wood\nKd 0.8 0.8 0.8\nmap_Kd .\\tex\\wood.jpg\n");
     std::string obj = "mtllib objt_mats.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n";
     for (const char *m :
          {"dull", "shiny", "mirror", "mirror3", "glass", "faded", "tinted_tf_only", "lamp", "wood"})
         obj += std::string("usemtl ") + m + "\nf 1 2 3\n";
-    std::string path = WriteFile("objt_mats.obj", obj);
+    std::string path = WriteScratchFile("objt_mats.obj", obj);
     Diagnostics diag;
     SceneDescription d = ReadObjFile(path, diag);
     ASSERT_EQ(d.materials.size(), 9u);
@@ -159,9 +158,9 @@ TEST(ObjReader, MaterialMapping) {
 }
 
 TEST(ObjReader, MissingMtlIsAWarning) {
-    std::string path = WriteFile("objt_nomtl.obj",
-                                 "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
-                                 "usemtl ghost\nf 1 2 3\n");
+    std::string path = WriteScratchFile("objt_nomtl.obj",
+                                        "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                        "usemtl ghost\nf 1 2 3\n");
     Diagnostics diag;
     SceneDescription d = ReadObjFile(path, diag);
     ASSERT_EQ(d.shapes.size(), 1u);
@@ -182,12 +181,12 @@ TEST(ObjReader, Errors) {
         EXPECT_NE(std::string(e.what()).find("cannot open file"), std::string::npos) << e.what();
     }
     // A face that refers to a vertex that does not exist.
-    std::string path = WriteFile("objt_badidx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    std::string path = WriteScratchFile("objt_badidx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
     EXPECT_THROW(ReadObjFile(path, diag), SceneError);
-    path = WriteFile("objt_badidx2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n");
+    path = WriteScratchFile("objt_badidx2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n");
     EXPECT_THROW(ReadObjFile(path, diag), SceneError);
     // Malformed numbers: tinyobjloader would read them as 0.
-    path = WriteFile("objt_badnum.obj", "v 0 0 0\nv 1 abc 0\nv 0 1 0\nf 1 2 3\n");
+    path = WriteScratchFile("objt_badnum.obj", "v 0 0 0\nv 1 abc 0\nv 0 1 0\nf 1 2 3\n");
     try {
         ReadObjFile(path, diag);
         ADD_FAILURE() << "expected SceneError";
@@ -195,7 +194,7 @@ TEST(ObjReader, Errors) {
         EXPECT_NE(std::string(e.what()).find("objt_badnum.obj:2:5"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("bad number \"abc\""), std::string::npos) << e.what();
     }
-    path = WriteFile("objt_nan.obj", "v 0 0 0\nv 1 0 0\nvn 0 nan 1\nf 1 2 3\n");
+    path = WriteScratchFile("objt_nan.obj", "v 0 0 0\nv 1 0 0\nvn 0 nan 1\nf 1 2 3\n");
     EXPECT_THROW(ReadObjFile(path, diag), SceneError);
 }
 

@@ -8,9 +8,12 @@
 
 #include "scene/pbrt_parser.h"
 #include "scene/spectrum.h"
+#include "support/errors.h"
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 // Parses `Shape "test" <params>` and returns the shape's parameter list.
 ParamSet Params(const std::string &params, const std::string &file = "p.pbrt") {
@@ -21,23 +24,12 @@ ParamSet Params(const std::string &params, const std::string &file = "p.pbrt") {
 }
 
 std::string ParamError(const std::string &params) {
-    Diagnostics diag;
-    try {
-        ParsePbrtString("WorldBegin Shape \"test\" " + params, "p.pbrt", diag);
-    } catch (const SceneError &e) {
-        return e.what();
-    }
-    return "no error";
+    return PbrtErrorOf("WorldBegin Shape \"test\" " + params, {}, "p.pbrt");
 }
 
 template <typename F>
 std::string LookupError(F f) {
-    try {
-        f();
-    } catch (const SceneError &e) {
-        return e.what();
-    }
-    return "no error";
+    return ErrorOf<SceneError>(f);
 }
 
 void ExpectRGBNear(const RGB &a, const RGB &b, float tol) {

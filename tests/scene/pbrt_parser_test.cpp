@@ -6,10 +6,14 @@
 #include <fstream>
 #include <random>
 
-#include "test_util.h"
+#include "support/errors.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 namespace fs = std::filesystem;
 
@@ -19,31 +23,14 @@ SceneDescription Parse(const std::string &text, Diagnostics *diagOut = nullptr) 
     return s;
 }
 
-std::string ErrorOf(const std::string &text, const PbrtParseOptions &opts = {}) {
-    Diagnostics diag;
-    try {
-        ParsePbrtString(text, "s.pbrt", diag, opts);
-    } catch (const SceneError &e) {
-        return e.what();
-    }
-    return "no error";
-}
-
 Vec3d Origin(const Transform &t) { return t.Point(Vec3d(0, 0, 0)); }
 
-// A fresh directory under the test temp dir, with helpers to write files into it.
-struct TempDir {
+// A fresh directory of the test (test::TempDir), with a helper to write files into it.
+struct ParserDir {
     fs::path path;
-    explicit TempDir(const std::string &name) {
-        path = fs::path(::testing::TempDir()) / ("prism_parser_" + name);
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
+    explicit ParserDir(const std::string &name) : path(TempDir(name)) {}
     std::string Write(const std::string &rel, const std::string &text) const {
-        fs::path p = path / rel;
-        fs::create_directories(p.parent_path());
-        std::ofstream(p) << text;
-        return p.string();
+        return WriteTestFile(path / rel, text);
     }
 };
 
@@ -204,15 +191,16 @@ TEST(PbrtParser, NamedMaterialsAreScoped) {
     s.materials[0].params.GetRGB("Kd", {});
     s.materials[0].params.ReportUnused(diag, "");
     EXPECT_EQ(diag.Count(), 0u);
-    EXPECT_EQ(ErrorOf(R"(WorldBegin AttributeBegin MakeNamedMaterial "inner" "string type" "glass"
+    EXPECT_EQ(
+        PbrtErrorOf(R"(WorldBegin AttributeBegin MakeNamedMaterial "inner" "string type" "glass"
         AttributeEnd NamedMaterial "inner")"),
-              "s.pbrt:2:22: error: unknown named material \"inner\"");
+        "s.pbrt:2:22: error: unknown named material \"inner\"");
 }
 
 TEST(PbrtParser, NamedMaterialErrors) {
-    EXPECT_EQ(ErrorOf("WorldBegin NamedMaterial \"nope\""),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin NamedMaterial \"nope\""),
               "s.pbrt:1:12: error: unknown named material \"nope\"");
-    EXPECT_EQ(ErrorOf("WorldBegin MakeNamedMaterial \"m\" \"rgb Kd\" [1 1 1]"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin MakeNamedMaterial \"m\" \"rgb Kd\" [1 1 1]"),
               "s.pbrt:1:12: error: MakeNamedMaterial \"m\" needs a \"string type\" parameter");
 }
 
@@ -230,7 +218,7 @@ TEST(PbrtParser, Textures) {
     EXPECT_TRUE(s.textures[1].isFloat);
     EXPECT_EQ(Origin(s.textures[0].worldFromTexture), Vec3d(1, 0, 0));
     EXPECT_EQ(s.materials[0].params.GetTexture("Kd"), "checks");
-    EXPECT_EQ(ErrorOf(R"(WorldBegin Texture "t" "vector" "constant")"),
+    EXPECT_EQ(PbrtErrorOf(R"(WorldBegin Texture "t" "vector" "constant")"),
               "s.pbrt:1:12: error: texture \"t\": unknown texture type \"vector\" "
               "(expected \"float\" or \"spectrum\")");
 }
@@ -269,7 +257,7 @@ TEST(PbrtParser, CoordinateSystems) {
     EXPECT_NEAR(eye.z, -10, 1e-12);
     EXPECT_EQ(Origin(s.shapes[1].worldFromObject), Vec3d(3, 0, 0));
     EXPECT_TRUE(s.shapes[2].worldFromObject.IsIdentity());
-    EXPECT_EQ(ErrorOf("WorldBegin CoordSysTransform \"nope\""),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin CoordSysTransform \"nope\""),
               "s.pbrt:1:12: error: unknown coordinate system \"nope\"");
 }
 
@@ -305,16 +293,16 @@ TEST(PbrtParser, ObjectsAndInstances) {
 }
 
 TEST(PbrtParser, ObjectErrors) {
-    EXPECT_EQ(ErrorOf("WorldBegin ObjectBegin \"a\" ObjectBegin \"b\""),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin ObjectBegin \"a\" ObjectBegin \"b\""),
               "s.pbrt:1:28: error: ObjectBegin inside ObjectBegin \"a\" (started at s.pbrt:1:12)");
-    EXPECT_EQ(ErrorOf("WorldBegin ObjectInstance \"x\""),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin ObjectInstance \"x\""),
               "s.pbrt:1:12: error: unknown object \"x\"");
-    EXPECT_EQ(ErrorOf("WorldBegin ObjectBegin \"a\" ObjectEnd "
-                      "ObjectBegin \"b\" ObjectInstance \"a\""),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin ObjectBegin \"a\" ObjectEnd "
+                          "ObjectBegin \"b\" ObjectInstance \"a\""),
               "s.pbrt:1:54: error: ObjectInstance inside ObjectBegin \"b\"");
-    EXPECT_EQ(ErrorOf("WorldBegin ObjectEnd"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin ObjectEnd"),
               "s.pbrt:1:12: error: ObjectEnd without matching ObjectBegin");
-    EXPECT_EQ(ErrorOf("WorldBegin ObjectBegin \"a\" AttributeEnd"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin ObjectBegin \"a\" AttributeEnd"),
               "s.pbrt:1:28: error: AttributeEnd does not match ObjectBegin at s.pbrt:1:12");
 }
 
@@ -330,39 +318,40 @@ TEST(PbrtParser, DirectiveIndexCountsTopLevelShapesInOrder) {
 }
 
 TEST(PbrtParser, UnknownDirectiveLocation) {
-    EXPECT_EQ(ErrorOf("WorldBegin\n  Shape \"sphere\"\n\n    Foo 1 2"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin\n  Shape \"sphere\"\n\n    Foo 1 2"),
               "s.pbrt:4:5: error: unknown directive \"Foo\"");
 }
 
 TEST(PbrtParser, PositionalArgumentErrors) {
-    EXPECT_EQ(ErrorOf("Translate 1 2\nWorldBegin"),
+    EXPECT_EQ(PbrtErrorOf("Translate 1 2\nWorldBegin"),
               "s.pbrt:1:1: error: Translate expects 3 numbers, got 2");
-    EXPECT_EQ(ErrorOf("Translate 1 2 3 4"),
+    EXPECT_EQ(PbrtErrorOf("Translate 1 2 3 4"),
               "s.pbrt:1:1: error: Translate expects 3 numbers, got 4");
-    EXPECT_EQ(ErrorOf("Transform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0]"),
+    EXPECT_EQ(PbrtErrorOf("Transform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0]"),
               "s.pbrt:1:1: error: Transform expects 16 numbers, got 15");
-    EXPECT_EQ(ErrorOf("WorldBegin Shape \"sphere\" ]"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin Shape \"sphere\" ]"),
               "s.pbrt:1:27: error: unexpected token \"]\"");
-    EXPECT_EQ(ErrorOf("WorldBegin Shape 1"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin Shape 1"),
               "s.pbrt:1:12: error: Shape expects a quoted shape type, got 1");
-    EXPECT_EQ(ErrorOf("WorldBegin Shape"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin Shape"),
               "s.pbrt:1:12: error: Shape expects a quoted shape type, got end of file");
-    EXPECT_EQ(ErrorOf("LookAt 0 0 0 0 0 0 0 1 0"),
+    EXPECT_EQ(PbrtErrorOf("LookAt 0 0 0 0 0 0 0 1 0"),
               "s.pbrt:1:1: error: LookAt: LookAt: eye and look point are the same");
-    EXPECT_EQ(ErrorOf("Scale 1 0 1"), "s.pbrt:1:1: error: Scale: singular transformation matrix");
-    EXPECT_EQ(ErrorOf("Rotate 30 0 0 0"), "s.pbrt:1:1: error: Rotate axis must not be zero");
-    EXPECT_EQ(ErrorOf("WorldBegin \"float x\" 1"),
+    EXPECT_EQ(PbrtErrorOf("Scale 1 0 1"),
+              "s.pbrt:1:1: error: Scale: singular transformation matrix");
+    EXPECT_EQ(PbrtErrorOf("Rotate 30 0 0 0"), "s.pbrt:1:1: error: Rotate axis must not be zero");
+    EXPECT_EQ(PbrtErrorOf("WorldBegin \"float x\" 1"),
               "s.pbrt:1:12: error: unexpected string \"float x\"");
-    EXPECT_EQ(ErrorOf("WorldBegin WorldBegin"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin WorldBegin"),
               "s.pbrt:1:12: error: WorldBegin inside the world block");
-    EXPECT_EQ(ErrorOf("WorldBegin WorldEnd Shape \"sphere\""),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin WorldEnd Shape \"sphere\""),
               "s.pbrt:1:21: error: Shape after WorldEnd");
 }
 
 TEST(PbrtParser, WrongParameterTypeError) {
-    EXPECT_EQ(ErrorOf("WorldBegin\nShape \"sphere\" \"float radius\" \"one\""),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin\nShape \"sphere\" \"float radius\" \"one\""),
               "s.pbrt:2:16: error: parameter \"radius\": expected numbers, got strings");
-    EXPECT_EQ(ErrorOf("WorldBegin\nShape \"sphere\" \"spline radius\" 1"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin\nShape \"sphere\" \"spline radius\" 1"),
               "s.pbrt:2:16: error: unknown parameter type \"spline\"");
 }
 
@@ -392,11 +381,11 @@ TEST(PbrtParser, AllParameterTypesParse) {
 }
 
 TEST(PbrtParser, UnbalancedScopes) {
-    EXPECT_EQ(ErrorOf("WorldBegin AttributeEnd"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin AttributeEnd"),
               "s.pbrt:1:12: error: AttributeEnd without matching AttributeBegin");
-    EXPECT_EQ(ErrorOf("WorldBegin TransformEnd"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin TransformEnd"),
               "s.pbrt:1:12: error: TransformEnd without matching TransformBegin");
-    EXPECT_EQ(ErrorOf("WorldBegin TransformBegin AttributeEnd"),
+    EXPECT_EQ(PbrtErrorOf("WorldBegin TransformBegin AttributeEnd"),
               "s.pbrt:1:27: error: AttributeEnd does not match TransformBegin at s.pbrt:1:12");
     Diagnostics diag;
     Parse("WorldBegin\nAttributeBegin\nShape \"sphere\"\nWorldEnd", &diag);
@@ -441,7 +430,7 @@ TEST(PbrtParser, UnsupportedFeaturesWarn) {
 }
 
 TEST(PbrtParser, IncludeResolvesAgainstTopLevelDirectory) {
-    TempDir dir("include");
+    ParserDir dir("include");
     dir.Write("geom/a.pbrt", "Include \"geom/b.pbrt\"\nShape \"a\"\n");
     dir.Write("geom/b.pbrt", "Translate 1 0 0\n\n  Shape \"b\"\n");
     dir.Write("sub/abs.pbrt", "Shape \"abs\"\n");
@@ -464,7 +453,7 @@ TEST(PbrtParser, IncludeResolvesAgainstTopLevelDirectory) {
 }
 
 TEST(PbrtParser, IncludeCycle) {
-    TempDir dir("cycle");
+    ParserDir dir("cycle");
     dir.Write("a.pbrt", "WorldBegin\nInclude \"b.pbrt\"\n");
     dir.Write("b.pbrt", "\n Include \"a.pbrt\"\n");
     dir.Write("self.pbrt", "Include \"self.pbrt\"\n");
@@ -486,7 +475,7 @@ TEST(PbrtParser, IncludeCycle) {
 }
 
 TEST(PbrtParser, IncludeDepthAndConfinement) {
-    TempDir dir("depth");
+    ParserDir dir("depth");
     for (int i = 0; i < 5; ++i) {
         std::string name = std::string("d").append(std::to_string(i)).append(".pbrt");
         std::string next = std::string("d").append(std::to_string(i + 1)).append(".pbrt");
@@ -528,10 +517,10 @@ TEST(PbrtParser, MissingFiles) {
                   "/nonexistent/x.pbrt: error: cannot open file "
                   "\"/nonexistent/x.pbrt\": No such file or directory");
     }
-    EXPECT_EQ(ErrorOf("Include \"/nonexistent/y.pbrt\""),
+    EXPECT_EQ(PbrtErrorOf("Include \"/nonexistent/y.pbrt\""),
               "s.pbrt:1:1: error: cannot open file \"/nonexistent/y.pbrt\": "
               "No such file or directory");
-    TempDir dir("missing");
+    ParserDir dir("missing");
     try {
         ParsePbrtFile(dir.path.string(), diag);
         FAIL() << "no error";
@@ -542,7 +531,7 @@ TEST(PbrtParser, MissingFiles) {
 
 TEST(PbrtParser, RefusesNonRegularFiles) {
     // Reading a device would never end; it must fail promptly instead.
-    EXPECT_EQ(ErrorOf("Include \"/dev/zero\""),
+    EXPECT_EQ(PbrtErrorOf("Include \"/dev/zero\""),
               "s.pbrt:1:1: error: cannot open file \"/dev/zero\": not a regular file");
     Diagnostics diag;
     SceneDescription s =

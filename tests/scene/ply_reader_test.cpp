@@ -8,16 +8,14 @@
 #include <cstring>
 #include <fstream>
 
+#include "support/temp_dir.h"
+
 namespace prism {
 namespace {
 
-std::string TempPath(const std::string &name) { return ::testing::TempDir() + "ply_" + name; }
+using namespace test;
 
-std::string WriteFile(const std::string &name, const std::string &contents) {
-    std::string path = TempPath(name);
-    std::ofstream(path, std::ios::binary) << contents;
-    return path;
-}
+std::string TempPath(const std::string &name) { return ::testing::TempDir() + "ply_" + name; }
 
 // Appends binary values in a chosen byte order.
 struct Bytes {
@@ -45,17 +43,17 @@ std::string ExpectError(const std::string &path, Diagnostics &diag) {
 }
 
 TEST(PlyReader, AsciiTriangleAndQuadWithNormalsAndUV) {
-    std::string path = WriteFile("ascii.ply",
-                                 "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\n"
-                                 "element vertex 4\r\n"
-                                 "property float x\nproperty float y\nproperty float z\n"
-                                 "property float nx\nproperty float ny\nproperty float nz\n"
-                                 "property float u\nproperty float v\n"
-                                 "element face 2\nproperty list uchar int vertex_indices\n"
-                                 "end_header\n"
-                                 "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n"
-                                 "0 1 0 0 0 1 0 1\n"
-                                 "3 0 1 2\n4 0 1 2 3\n");
+    std::string path = WriteScratchFile("ply_ascii.ply",
+                                        "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\n"
+                                        "element vertex 4\r\n"
+                                        "property float x\nproperty float y\nproperty float z\n"
+                                        "property float nx\nproperty float ny\nproperty float nz\n"
+                                        "property float u\nproperty float v\n"
+                                        "element face 2\nproperty list uchar int vertex_indices\n"
+                                        "end_header\n"
+                                        "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n"
+                                        "0 1 0 0 0 1 0 1\n"
+                                        "3 0 1 2\n4 0 1 2 3\n");
     Diagnostics diag;
     PlyMesh m = ReadPlyFile(path, diag);
     ASSERT_EQ(m.P.size(), 4u);
@@ -94,7 +92,7 @@ TEST(PlyReader, BinaryLittleEndianSkipsOtherElements) {
         "element face 1\nproperty int flags\nproperty list uint8 uint vertex_index\n"
         "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n";
     Diagnostics diag;
-    PlyMesh m = ReadPlyFile(WriteFile("le.ply", header + b.data), diag);
+    PlyMesh m = ReadPlyFile(WriteScratchFile("ply_le.ply", header + b.data), diag);
     ASSERT_EQ(m.P.size(), 3u);
     EXPECT_EQ(m.P[2], Vec3f(2, 4, -1));
     EXPECT_TRUE(m.N.empty());
@@ -120,7 +118,7 @@ TEST(PlyReader, BinaryBigEndianDoublesAndTextureUV) {
         "property float texture_u\nproperty float texture_v\n"
         "element face 1\nproperty list int ushort vertex_indices\nend_header\n";
     Diagnostics diag;
-    PlyMesh m = ReadPlyFile(WriteFile("be.ply", header + b.data), diag);
+    PlyMesh m = ReadPlyFile(WriteScratchFile("ply_be.ply", header + b.data), diag);
     ASSERT_EQ(m.P.size(), 4u);
     EXPECT_EQ(m.P[3], Vec3f(0, 1, 5));
     ASSERT_EQ(m.uv.size(), 4u);
@@ -129,12 +127,13 @@ TEST(PlyReader, BinaryBigEndianDoublesAndTextureUV) {
 }
 
 TEST(PlyReader, UVAliasesTextureST) {
-    std::string path = WriteFile("st.ply",
-                                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                                 "property float y\nproperty float z\nproperty float texture_s\n"
-                                 "property float texture_t\nelement face 1\n"
-                                 "property list uchar int vertex_indices\nend_header\n"
-                                 "0 0 0 0.5 0.25\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n");
+    std::string path =
+        WriteScratchFile("ply_st.ply",
+                         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                         "property float y\nproperty float z\nproperty float texture_s\n"
+                         "property float texture_t\nelement face 1\n"
+                         "property list uchar int vertex_indices\nend_header\n"
+                         "0 0 0 0.5 0.25\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n");
     Diagnostics diag;
     PlyMesh m = ReadPlyFile(path, diag);
     ASSERT_EQ(m.uv.size(), 3u);
@@ -142,12 +141,13 @@ TEST(PlyReader, UVAliasesTextureST) {
 }
 
 TEST(PlyReader, PentagonsAreFannedWithOneWarning) {
-    std::string path = WriteFile("penta.ply",
-                                 "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\n"
-                                 "property float y\nproperty float z\nelement face 4\n"
-                                 "property list uchar int vertex_indices\nend_header\n"
-                                 "0 0 0\n1 0 0\n2 1 0\n1 2 0\n0 1 0\n"
-                                 "5 0 1 2 3 4\n5 4 3 2 1 0\n2 0 1\n3 0 1 2\n");
+    std::string path =
+        WriteScratchFile("ply_penta.ply",
+                         "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\n"
+                         "property float y\nproperty float z\nelement face 4\n"
+                         "property list uchar int vertex_indices\nend_header\n"
+                         "0 0 0\n1 0 0\n2 1 0\n1 2 0\n0 1 0\n"
+                         "5 0 1 2 3 4\n5 4 3 2 1 0\n2 0 1\n3 0 1 2\n");
     Diagnostics diag;
     PlyMesh m = ReadPlyFile(path, diag);
     EXPECT_EQ(m.indices.size(), (3u + 3u + 1u) * 3u);
@@ -173,7 +173,7 @@ TEST(PlyReader, TruncatedBinaryData) {
         "property float x\nproperty float y\nproperty float z\nend_header\n";
     // Fixed-size binary elements are checked against the file size before reading.
     Diagnostics diag;
-    std::string msg = ExpectError(WriteFile("trunc.ply", header + b.data), diag);
+    std::string msg = ExpectError(WriteScratchFile("ply_trunc.ply", header + b.data), diag);
     EXPECT_NE(msg.find("file ends after 10 of 24 vertices"), std::string::npos) << msg;
 
     // ascii: 3 values per vertex need 6 bytes each by the size rule, so this header passes
@@ -182,7 +182,7 @@ TEST(PlyReader, TruncatedBinaryData) {
         "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
         "property float y\nproperty float z\nend_header\n"
         "0 0 0\n1 0 0\n1 1 0\n1.5        ";
-    msg = ExpectError(WriteFile("trunc_ascii.ply", ascii), diag);
+    msg = ExpectError(WriteScratchFile("ply_trunc_ascii.ply", ascii), diag);
     EXPECT_NE(msg.find("file ends after 3 of 4 vertices"), std::string::npos) << msg;
 }
 
@@ -196,7 +196,7 @@ TEST(PlyReader, TruncatedFacesReportsCounts) {
         "property float x\nproperty float y\nproperty float z\n"
         "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
     Diagnostics diag;
-    std::string msg = ExpectError(WriteFile("truncf.ply", header + b.data), diag);
+    std::string msg = ExpectError(WriteScratchFile("ply_truncf.ply", header + b.data), diag);
     EXPECT_NE(msg.find("file ends after 1 of 2 faces"), std::string::npos) << msg;
 }
 
@@ -206,7 +206,8 @@ TEST(PlyReader, HugeHeaderCountIsRejectedWithoutAllocating) {
         "property float x\nproperty float y\nproperty float z\nend_header\n";
     Diagnostics diag;
     auto t0 = std::chrono::steady_clock::now();
-    std::string msg = ExpectError(WriteFile("huge.ply", header + std::string(64, '\0')), diag);
+    std::string msg =
+        ExpectError(WriteScratchFile("ply_huge.ply", header + std::string(64, '\0')), diag);
     double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_LT(sec, 1.0);
     EXPECT_NE(msg.find("1000000000000 vertices"), std::string::npos) << msg;
@@ -216,13 +217,13 @@ TEST(PlyReader, HugeHeaderCountIsRejectedWithoutAllocating) {
     header =
         "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
         "property float z\nelement junk 999999999999\nproperty int a\nend_header\n0 0 0\n";
-    msg = ExpectError(WriteFile("huge2.ply", header), diag);
+    msg = ExpectError(WriteScratchFile("ply_huge2.ply", header), diag);
     EXPECT_NE(msg.find("999999999999"), std::string::npos) << msg;
     header =
         "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
         "property float z\nelement empty 999999999999\nend_header\n0 0 0\n";
     Diagnostics d2;
-    PlyMesh m = ReadPlyFile(WriteFile("huge3.ply", header), d2);
+    PlyMesh m = ReadPlyFile(WriteScratchFile("ply_huge3.ply", header), d2);
     EXPECT_EQ(m.P.size(), 1u);
 }
 
@@ -235,7 +236,7 @@ TEST(PlyReader, HugeListCountIsTruncationNotAllocation) {
         "property float x\nproperty float y\nproperty float z\n"
         "element face 1\nproperty list uint int vertex_indices\nend_header\n";
     Diagnostics diag;
-    std::string msg = ExpectError(WriteFile("hugelist.ply", header + b.data), diag);
+    std::string msg = ExpectError(WriteScratchFile("ply_hugelist.ply", header + b.data), diag);
     EXPECT_NE(msg.find("file ends after 0 of 1 faces"), std::string::npos) << msg;
 }
 
@@ -248,7 +249,7 @@ TEST(PlyReader, IndexOutOfRange) {
     for (int f = 0; f < 7; ++f) data += "3 0 1 2\n";
     data += "3 0 99 2\n";
     Diagnostics diag;
-    std::string msg = ExpectError(WriteFile("range.ply", data), diag);
+    std::string msg = ExpectError(WriteScratchFile("ply_range.ply", data), diag);
     EXPECT_NE(msg.find("face 7 references vertex 99, but there are 24 vertices"), std::string::npos)
         << msg;
 }
@@ -256,28 +257,28 @@ TEST(PlyReader, IndexOutOfRange) {
 TEST(PlyReader, HeaderErrorsCarryLocations) {
     Diagnostics diag;
     std::string msg =
-        ExpectError(WriteFile("notply.ply", "solid cube\nfacet normal 0 0 1\n"), diag);
+        ExpectError(WriteScratchFile("ply_notply.ply", "solid cube\nfacet normal 0 0 1\n"), diag);
     EXPECT_NE(msg.find("notply.ply:1:1"), std::string::npos) << msg;
     EXPECT_NE(msg.find("not a PLY file"), std::string::npos) << msg;
 
-    msg = ExpectError(WriteFile("badfmt.ply",
-                                "ply\nformat binary_middle_endian 1.0\n"
-                                "end_header\n"),
+    msg = ExpectError(WriteScratchFile("ply_badfmt.ply",
+                                       "ply\nformat binary_middle_endian 1.0\n"
+                                       "end_header\n"),
                       diag);
     EXPECT_NE(msg.find("badfmt.ply:2:8"), std::string::npos) << msg;
     EXPECT_NE(msg.find("bad format line"), std::string::npos) << msg;
 
-    msg = ExpectError(WriteFile("badtype.ply",
-                                "ply\nformat ascii 1.0\nelement vertex 1\n"
-                                "property quad x\nend_header\n0\n"),
+    msg = ExpectError(WriteScratchFile("ply_badtype.ply",
+                                       "ply\nformat ascii 1.0\nelement vertex 1\n"
+                                       "property quad x\nend_header\n0\n"),
                       diag);
     EXPECT_NE(msg.find("badtype.ply:4:10"), std::string::npos) << msg;
     EXPECT_NE(msg.find("unknown property type \"quad\""), std::string::npos) << msg;
 
-    msg = ExpectError(WriteFile("badnum.ply",
-                                "ply\nformat ascii 1.0\nelement vertex 1\n"
-                                "property float x\nproperty float y\n"
-                                "property float z\nend_header\n0 zero 0\n"),
+    msg = ExpectError(WriteScratchFile("ply_badnum.ply",
+                                       "ply\nformat ascii 1.0\nelement vertex 1\n"
+                                       "property float x\nproperty float y\n"
+                                       "property float z\nend_header\n0 zero 0\n"),
                       diag);
     EXPECT_NE(msg.find("badnum.ply:8"), std::string::npos) << msg;
     EXPECT_NE(msg.find("bad number \"zero\""), std::string::npos) << msg;
@@ -285,7 +286,8 @@ TEST(PlyReader, HeaderErrorsCarryLocations) {
     msg = ExpectError(TempPath("does_not_exist.ply"), diag);
     EXPECT_NE(msg.find("cannot open file"), std::string::npos) << msg;
 
-    msg = ExpectError(WriteFile("noend.ply", "ply\nformat ascii 1.0\nelement vertex 0\n"), diag);
+    msg = ExpectError(
+        WriteScratchFile("ply_noend.ply", "ply\nformat ascii 1.0\nelement vertex 0\n"), diag);
     EXPECT_NE(msg.find("end_header"), std::string::npos) << msg;
 }
 

@@ -11,7 +11,8 @@
 #include "assembly/build_scene.h"
 #include "scene/load_scene.h"
 #include "scene/ply_reader.h"
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 #include "tools/bench/ceiling.h"
 #include "tools/bench/knot.h"
 #include "tools/bench/process.h"
@@ -21,6 +22,8 @@ namespace fs = std::filesystem;
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 fs::path TempDir(const std::string &name) {
     fs::path d = fs::path(::testing::TempDir()) / ("prism_bench_" + name);

@@ -12,8 +12,9 @@
 #include <string>
 #include <thread>
 
-#include "app/run_prism.h"
-#include "test_util.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -68,24 +69,21 @@ void ExpectBitIdentical(const fs::path &dir, const std::string &scene, const std
 
 TEST_F(MpiTest, RenderIsBitIdenticalForQuadricsPbrt) {
     // The box filter's footprints overlap by a pixel, so the merge order matters already.
-    ExpectBitIdentical(dir_, std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt",
-                       "--res 72x40 --spp 2");
+    ExpectBitIdentical(dir_, test::Source + "/scenes/quadrics.pbrt", "--res 72x40 --spp 2");
 }
 
 TEST_F(MpiTest, RenderIsBitIdenticalWithGaussianFilterAndGlossyRays) {
     // Footprints 4 pixels wider than the tiles; the distribution integrator's glossy rays.
-    ExpectBitIdentical(dir_, std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/distribution.pbrt",
-                       "--res 40x24 --spp 1");
+    ExpectBitIdentical(dir_, test::Source + "/scenes/distribution.pbrt", "--res 40x24 --spp 1");
 }
 
 TEST_F(MpiTest, RenderIsBitIdenticalWithBdptSplats) {
     // Light tracing's splats land on other ranks' tiles: they travel with the tile sums.
-    ExpectBitIdentical(dir_, std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/bdpt-gap.pbrt",
-                       "--res 40x30 --spp 2");
+    ExpectBitIdentical(dir_, test::Source + "/scenes/bdpt-gap.pbrt", "--res 40x30 --spp 2");
 }
 
 TEST_F(MpiTest, TargetErrorIsRefusedOnce) {
-    std::string scene = std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt";
+    std::string scene = test::Source + "/scenes/quadrics.pbrt";
     RunResult r = RunMpi(2, "render '" + scene + "' -o t.png --target-error 0.1", dir_);
     EXPECT_EQ(r.exitCode, 2) << r.err;
     size_t first = r.err.find("--target-error");
@@ -107,7 +105,7 @@ TEST_F(MpiTest, RenderIsBitIdenticalForGltf) {
 }
 
 TEST_F(MpiTest, RenderPrintsRankStatistics) {
-    std::string scene = std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt";
+    std::string scene = test::Source + "/scenes/quadrics.pbrt";
     RunResult r = RunMpi(3, "render '" + scene + "' -o q.png --res 64x32 --no-progress", dir_);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("mpi: 3 ranks"), std::string::npos) << r.err;

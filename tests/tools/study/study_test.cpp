@@ -12,13 +12,14 @@
 
 #include "render/renderer.h"
 #include "scene/load_scene.h"
-#include "test_util.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 #include "tools/study/study_report.h"
 
 namespace prism {
 namespace {
 
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 SceneDescription Load(const std::string &path) {
     Diagnostics diag;

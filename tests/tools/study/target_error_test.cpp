@@ -8,11 +8,12 @@
 
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "support/shared.h"
 
 namespace prism {
 namespace {
 
-const std::string Source = PRISM_SOURCE_DIR_FOR_TESTS;
+using namespace test;
 
 TEST(TargetError, PowerLawFitRecoversAAndB) {
     std::vector<double> x, y;

@@ -18,10 +18,15 @@
 #include "image/image_compare.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "support/process.h"
+#include "support/shared.h"
+#include "support/temp_dir.h"
 #include "tools/validate/tessellate.h"
 
 namespace prism {
 namespace {
+
+using namespace test;
 
 namespace fs = std::filesystem;
 
@@ -221,8 +226,7 @@ TEST(Validate, ShrunkIntersectorIsCaughtAsPhantoms) {
 // `prism render --tessellate N`: every analytic shape becomes a mesh, the image stays close.
 TEST(Validate, TessellateOptionReplacesAnalyticShapes) {
     Diagnostics diag(false);
-    SceneDescription desc =
-        LoadScene(std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/quadrics.pbrt", diag);
+    SceneDescription desc = LoadScene(test::Source + "/scenes/quadrics.pbrt", diag);
     BuildSettings plain, tess;
     tess.replaceAnalyticShape = TessellateWith(48);
     RenderScene a = BuildRenderScene(desc, plain, diag), t = BuildRenderScene(desc, tess, diag);
@@ -252,7 +256,7 @@ TEST(Validate, TessellateOptionReplacesAnalyticShapes) {
 // TriangleMesh::Interaction covered Embree's own triangle-test error, 3139 of 19200 pixels
 // were acne here.
 TEST(Validate, TessellatedHugeFloorHasNoAcne) {
-    std::ifstream in(std::string(PRISM_SOURCE_DIR_FOR_TESTS) + "/scenes/bigsphere_unit.pbrt");
+    std::ifstream in(test::Source + "/scenes/bigsphere_unit.pbrt");
     std::stringstream ss;
     ss << in.rdbuf();
     const std::string scene = ss.str();
@@ -278,16 +282,10 @@ TEST(Validate, TessellatedHugeFloorHasNoAcne) {
 }
 
 TEST(Validate, CommandWritesCsvAndExitStatus) {
-    fs::path dir = fs::temp_directory_path() / ("prism_validate_cli_" + std::to_string(getpid()));
-    fs::remove_all(dir);
-    std::string cmd = "'" + std::string(PRISM_BINARY) +
-                      "' validate --shape torus --levels 8,32 "
-                      "--rays 3000 --out '" +
-                      dir.string() + "' > '" + (dir.string() + ".log") + "' 2>&1";
-    int status = std::system(cmd.c_str());
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0);
-    std::ifstream csv(dir / "results.csv");
+    fs::path dir = TempDir("cli");
+    RunResult r = RunPrism("validate --shape torus --levels 8,32 --rays 3000 --out out", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream csv(dir / "out" / "results.csv");
     ASSERT_TRUE(csv);
     std::string header, row;
     std::getline(csv, header);
@@ -295,15 +293,10 @@ TEST(Validate, CommandWritesCsvAndExitStatus) {
     int rows = 0;
     while (std::getline(csv, row)) rows += row.rfind("torus,", 0) == 0;
     EXPECT_EQ(rows, 2);
-    std::ifstream log(dir.string() + ".log");
-    std::stringstream text;
-    text << log.rdbuf();
-    EXPECT_NE(text.str().find("mesh leaks: 0"), std::string::npos) << text.str();
-    EXPECT_NE(text.str().find("convergence slope"), std::string::npos);
+    EXPECT_NE(r.Both().find("mesh leaks: 0"), std::string::npos) << r.Both();
+    EXPECT_NE(r.Both().find("convergence slope"), std::string::npos);
     // Unknown shape: bad input.
-    status = std::system(
-        ("'" + std::string(PRISM_BINARY) + "' validate --shape teapot >/dev/null 2>&1").c_str());
-    EXPECT_EQ(WEXITSTATUS(status), 2);
+    EXPECT_EQ(RunPrism("validate --shape teapot", dir).exitCode, 2);
 }
 
 }  // namespace

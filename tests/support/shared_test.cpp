@@ -1,5 +1,6 @@
-// The ../shared helper of tests/test_util.h: a skip on a developer's machine, a failure in CI.
-#include "test_util.h"
+// The ../shared helper of tests/support/shared.h: a skip on a developer's machine, a failure in CI.
+
+#include "support/shared.h"
 
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
@@ -7,6 +8,8 @@
 
 #include <optional>
 #include <string>
+
+#include "support/temp_dir.h"
 
 namespace prism::test {
 namespace {

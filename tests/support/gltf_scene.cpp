@@ -1,33 +1,14 @@
-// A glTF test scene more than one test binary renders: the unit quad with two uv sets and a
-// texture (tests/assembly/gltf_lighting_test.cpp, tests/render/volpath_test.cpp).
-#pragma once
+#include "support/gltf_scene.h"
 
 #include <cstdint>
-#include <string>
 
 #include "image/image.h"
 #include "image/image_io.h"
+#include "support/text.h"
 
 namespace prism::test {
 
-inline std::string Base64(const std::string &bin) {
-    static const char *b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string enc;
-    for (size_t i = 0; i < bin.size(); i += 3) {
-        uint32_t v = uint32_t(uint8_t(bin[i])) << 16;
-        if (i + 1 < bin.size()) v |= uint32_t(uint8_t(bin[i + 1])) << 8;
-        if (i + 2 < bin.size()) v |= uint32_t(uint8_t(bin[i + 2]));
-        enc += b64[(v >> 18) & 63];
-        enc += b64[(v >> 12) & 63];
-        enc += i + 1 < bin.size() ? b64[(v >> 6) & 63] : '=';
-        enc += i + 2 < bin.size() ? b64[v & 63] : '=';
-    }
-    return enc;
-}
-
-// The quad [0,1]^2 at z = 0 (normal +z) with TEXCOORD_0 u = x and TEXCOORD_1 u = 1 - x, one
-// material given as JSON and the texture 0 = image "tex.png".
-inline std::string GltfTwoUvQuad(const std::string &material) {
+std::string GltfTwoUvQuad(const std::string &material) {
     std::string bin;
     auto put = [&](const void *p, size_t n) { bin.append(static_cast<const char *>(p), n); };
     float P[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
@@ -58,8 +39,7 @@ inline std::string GltfTwoUvQuad(const std::string &material) {
   {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
 }
 
-// 8 x 8: white where x < 4, black elsewhere.
-inline void WriteHalfImage(const std::string &path, bool leftWhite = true) {
+void WriteHalfImage(const std::string &path, bool leftWhite) {
     Image img(8, 8, 3);
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) img.SetRGB(x, y, RGB((x < 4) == leftWhite ? 1.f : 0.f));

@@ -1,0 +1,72 @@
+#include "support/render_text.h"
+
+#include <tbb/task_arena.h>
+
+#include <filesystem>
+#include <utility>
+
+#include "scene/load_scene.h"
+#include "support/temp_dir.h"
+
+namespace prism::test {
+
+Built BuildSceneFile(const std::string &path, const BuildSettings &opts) {
+    Diagnostics diag;
+    SceneDescription desc = LoadScene(path, diag);
+    Built b;
+    b.scene = BuildRenderScene(desc, opts, diag);
+    b.warnings = diag.Warnings();
+    return b;
+}
+
+Rendered RenderSceneFile(const std::string &path, const BuildSettings &opts) {
+    Built b = BuildSceneFile(path, opts);
+    Rendered r;
+    r.scene = std::move(b.scene);
+    r.warnings = std::move(b.warnings);
+    r.image = Render(r.scene, &r.stats);
+    return r;
+}
+
+std::string WriteSceneText(const std::string &dir, const std::string &name,
+                           const std::string &text) {
+    std::string file = std::filesystem::path(name).has_extension() ? name : name + ".pbrt";
+    return WriteTestFile(ScratchDir(dir) / file, text);
+}
+
+RenderScene BuildSceneText(const std::string &dir, const std::string &name, const std::string &text,
+                           const BuildSettings &opts) {
+    Diagnostics diag;
+    SceneDescription desc = LoadScene(WriteSceneText(dir, name, text), diag);
+    return BuildRenderScene(desc, opts, diag);
+}
+
+Rendered RenderSceneText(const std::string &dir, const std::string &name, const std::string &text,
+                         const BuildSettings &opts) {
+    return RenderSceneFile(WriteSceneText(dir, name, text), opts);
+}
+
+BuildSettings SizedSettings(int w, int h, int spp, const std::string &integrator) {
+    BuildSettings s;
+    s.resolution = Vec2i(w, h);
+    s.spp = spp;
+    s.integrator = integrator;
+    return s;
+}
+
+Image RenderWithSeed(const RenderScene &scene, uint32_t seed, RenderStats *stats) {
+    RenderOptions o;
+    o.sampler = scene.sampler;
+    o.sampler.seed = seed;
+    RenderStats own;
+    return Render(scene, o, stats ? stats : &own);
+}
+
+Image RenderOnThreads(const RenderScene &scene, int threads) {
+    Image img;
+    RenderStats stats;
+    tbb::task_arena(threads).execute([&] { img = Render(scene, &stats); });
+    return img;
+}
+
+}  // namespace prism::test

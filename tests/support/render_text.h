@@ -1,0 +1,53 @@
+// Scenes from text, built and rendered as `prism render` would, for the render tests.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "assembly/build_scene.h"
+#include "core/error.h"
+#include "image/image.h"
+#include "render/renderer.h"
+
+namespace prism::test {
+
+struct Rendered {
+    RenderScene scene;  // as built
+    Image image;
+    RenderStats stats;
+    std::vector<Warning> warnings;  // what loading and building the scene warned of
+};
+
+struct Built {
+    RenderScene scene;
+    std::vector<Warning> warnings;  // what loading and building the scene warned of
+};
+
+// The scene file `path`, loaded and built with `opts`.
+Built BuildSceneFile(const std::string &path, const BuildSettings &opts = {});
+
+// The scene file `path`, loaded, built with `opts` and rendered with its own sampler.
+Rendered RenderSceneFile(const std::string &path, const BuildSettings &opts = {});
+
+// Scene text `text` written as `name` (".pbrt" appended when `name` has no extension) in the
+// scratch folder `dir` (a folder per test file), then loaded and built / rendered.
+std::string WriteSceneText(const std::string &dir, const std::string &name,
+                           const std::string &text);
+RenderScene BuildSceneText(const std::string &dir, const std::string &name, const std::string &text,
+                           const BuildSettings &opts = {});
+Rendered RenderSceneText(const std::string &dir, const std::string &name, const std::string &text,
+                         const BuildSettings &opts = {});
+
+// Build settings of a w x h image at `spp` samples a pixel (0: the file's) with integrator
+// `integrator` ("": the file's).
+BuildSettings SizedSettings(int w, int h, int spp, const std::string &integrator = "");
+
+// The scene rendered with its sampler at pattern seed `seed` (0: a plain render's); its
+// counters go to `stats` when given.
+Image RenderWithSeed(const RenderScene &scene, uint32_t seed, RenderStats *stats = nullptr);
+
+// The scene rendered on a TBB arena of `threads` threads.
+Image RenderOnThreads(const RenderScene &scene, int threads);
+
+}  // namespace prism::test

@@ -1,0 +1,44 @@
+// Scratch files of the tests. Every folder lies under the build tree's test scratch directory
+// (::testing::TempDir(), TEST_TMPDIR), so the Release and sanitizer suites, or two checkouts,
+// never share temporary files; ctest runs each test in a process of its own, in parallel.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
+
+namespace prism::test {
+
+// A folder `name` under the scratch directory, created if needed and kept as it is (a folder
+// per test file, shared by its tests).
+std::filesystem::path ScratchDir(const std::string &name);
+
+// An empty folder of the running test (named after its suite, its name and `name`; emptied
+// first if it exists). Tests that need several call it with different names.
+std::filesystem::path TempDir(const std::string &name);
+
+// Writes `contents` (bytes as given) to `path`, creating its parent folders, and returns the
+// path as a string.
+std::string WriteTestFile(const std::filesystem::path &path, const std::string &contents);
+
+// WriteTestFile of `name` directly in the scratch directory (a name unique to the test file).
+std::string WriteScratchFile(const std::string &name, const std::string &contents);
+
+// The bytes of the file at `path` ("" if it cannot be read).
+std::string ReadFile(const std::filesystem::path &path);
+
+// A fixture with a fresh, empty directory per test (TempDir("")), removed afterwards.
+class FreshDirTest : public ::testing::Test {
+  protected:
+    void SetUp() override;
+    void TearDown() override;
+
+    std::string Path(const std::string &name) const { return (dir_ / name).string(); }
+    std::set<std::string> ListDir() const;
+
+    std::filesystem::path dir_;
+};
+
+}  // namespace prism::test
