@@ -1,4 +1,4 @@
-// docs/TEXTURES.md "Why not OpenImageIO's TextureSystem": Prism's MIPMap (EWA, trilinear) against
+// docs/MATERIALS.md "Why not OpenImageIO's TextureSystem": Prism's MIPMap (EWA, trilinear) against
 // OIIO's TextureSystem on one image and the same 2 million lookups (random positions,
 // anisotropic footprints from 1/8 to 64 texels), one thread. Built with the project
 // (bench/CMakeLists.txt):

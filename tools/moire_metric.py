@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Aliasing of a render in a region against a reference (docs/TEXTURES.md).
+"""Aliasing of a render in a region against a reference (docs/MATERIALS.md).
 
 Usage: tools/moire_metric.py REFERENCE.exr X0 Y0 W H IMAGE.exr [IMAGE.exr ...]
 

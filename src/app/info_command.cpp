@@ -145,7 +145,7 @@ int RunInfo(const InfoArgs &a) {
     std::printf("instances:  %zu of %zu objects\n", desc.instances.size(), desc.objects.size());
     std::printf("materials:  %zu (%s)\n", desc.materials.size(), Counts(materials).c_str());
     std::printf("textures:   %zu (%s)\n", desc.textures.size(), Counts(textures).c_str());
-    // How textures filter (docs/TEXTURES.md): imagemap "filter" (or v3's "trilinear"; EWA by
+    // How textures filter (docs/MATERIALS.md): imagemap "filter" (or v3's "trilinear"; EWA by
     // default), 2-D checkerboard "aamode" (closedform by default).
     std::map<std::string, int> filters;
     for (const TextureDesc &t : desc.textures) {

@@ -26,7 +26,7 @@ struct RenderArgs {
     bool quiet = false, noProgress = false;
     ConfineOption confine;          // --confine [DIR]
     std::string effects = "scene";  // --effects: "scene" (specialized kernel) or "all"
-    // Accuracy knobs (docs/NUMERICS.md, `prism study`).
+    // Accuracy knobs (docs/SHAPES.md, `prism study`).
     float cutoff = 0, offsetEpsilon = 0;      // offsetEpsilon 0: not given
     std::string offset, bvhQuality = "auto";  // offset empty: not given
     bool robust = false;

@@ -1,6 +1,6 @@
 // `prism validate [SCENE | --shape NAME|all] [--levels 8,16,...] [--rays N] [--seed S]
 // [--out DIR] [--precision float|double]`: each analytic intersector against Embree triangles
-// on its tessellated twins (docs/VALIDATION.md). Exit status 3 when a disagreement lies
+// on its tessellated twins (docs/SHAPES.md). Exit status 3 when a disagreement lies
 // outside the chord-error band, 4 when only a convergence slope is off (of mean |dt| or of the
 // shading-normal error).
 #include <CLI/CLI.hpp>

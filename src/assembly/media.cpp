@@ -15,7 +15,7 @@ namespace {
 // used as σs) and σa in mm^-1, from Jensen et al. 2001, "A Practical Model for Subsurface Light
 // Transport", and Narasimhan et al. 2006, "Acquiring Scattering Properties of Participating
 // Media by Dilution". Prism includes the measured solids and the milks, coffees and juices
-// most used in scenes (not every entry of pbrt's table: docs/MEDIA.md lists them).
+// most used in scenes (not every entry of pbrt's table: docs/INTEGRATORS.md lists them).
 struct MediumPreset {
     const char *name;
     RGB sigmaPrimeS, sigmaA;

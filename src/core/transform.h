@@ -1,6 +1,6 @@
 // 4x4 affine/projective transform in double precision with its cached inverse.
 // Named destFromSource by convention (worldFromObject). Double storage keeps object-space
-// math exact enough for far-from-origin scenes (docs/HARD_CASES.md S5).
+// math exact enough for far-from-origin scenes (docs/SHAPES.md S5).
 #pragma once
 
 #include <array>

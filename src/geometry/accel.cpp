@@ -38,7 +38,7 @@ struct Device {
     DeviceErrors errors;
     Device() {
         // No "threads=N" here: on a TBB build it installs a process-wide global_control
-        // (docs/HARD_CASES.md E4). Threads are limited by the application instead.
+        // (docs/SHAPES.md E4). Threads are limited by the application instead.
         device = rtcNewDevice(nullptr);
         if (!device) throw std::runtime_error("cannot create Embree device");
         rtcSetDeviceErrorFunction(device, DeviceErrorCallback, &errors);

@@ -141,7 +141,7 @@ class AnalyticShape {
     virtual bool Revolution(RevolutionProfile *profile) const { return false; }
 
     // Render-space bounds, padded by a relative margin: Embree's user-geometry traversal is not
-    // robust (docs/HARD_CASES.md E2), so the box must absorb its rounding.
+    // robust (docs/SHAPES.md E2), so the box must absorb its rounding.
     Bounds3f RenderBounds() const;
     // Phase 2: the full render-space interaction for a hit.
     // `needs` (SurfaceNeeds) says whether uv and dpdu/dpdv are computed; the rest always is.

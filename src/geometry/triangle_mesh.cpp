@@ -207,7 +207,7 @@ SurfaceInteraction TriangleMesh::Interaction(size_t prim, float u, float v, floa
     // plane from dot(Ng, v0 - o) with a float normal Ng = e1 x e2: off by about
     // eps |v0 - o| (4 + 4 |e1| |e2| / |Ng|) as a distance. The bound above is per component and
     // small across a tilted plane whose vertices are far from p, so large triangles got acne
-    // (docs/NUMERICS.md, "Offset modes"); this isotropic term, added to every component, makes
+    // (docs/SHAPES.md, "Offset modes"); this isotropic term, added to every component, makes
     // the offset along n at least that error. It grows with the triangle's size, not with |p|.
     {
         Vec3f e1 = p1 - p0, e2 = p2 - p0;

@@ -3,7 +3,7 @@
 // camera path hitting a light, s = 1 a light sample (next-event estimation), t = 1 light
 // tracing onto the film (TileSamples splats) — weighted by multiple importance sampling
 // (the balance heuristic, as pbrt-v3). Subpaths and connections: render/bdpt_vertex.h.
-// Participating media are not rendered (a warning, Traits().media false). docs/BDPT.md.
+// Participating media are not rendered (a warning, Traits().media false). docs/INTEGRATORS.md.
 #pragma once
 
 #include "render/bdpt_camera.h"

@@ -2,7 +2,7 @@
 // lighting with multiple importance sampling of light and BSDF samples (render/light_sampling.h)
 // from every light ("strategy" "all", each light with its "nsamples") or from one light chosen
 // per sample ("one"), and recursion on the delta reflection and transmission lobes up to
-// maxdepth. docs/PATH.md.
+// maxdepth. docs/INTEGRATORS.md.
 #pragma once
 
 #include "render/integrator.h"

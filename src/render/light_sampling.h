@@ -31,7 +31,7 @@ inline float PowerHeuristic(int nf, float fPdf, int ng, float gPdf) {
 // do not depend on the thread count or tile order. Each dimension is its own correlated
 // multi-jittered pattern over the pixel's spp samples (render/sampler.h), seeded per pixel and
 // dimension: pbrt's "stratified" sampler padded per dimension, which stands in for pbrt's
-// low-discrepancy samplers (docs/PATH.md shows it converges as fast).
+// low-discrepancy samplers (docs/INTEGRATORS.md shows it converges as fast).
 struct PixelSamples {
     int x = 0, y = 0;
     uint32_t sample = 0, spp = 1;

@@ -8,7 +8,7 @@
 // acceptance probability, and the image is the splats times b / mutationsperpixel. A whole-
 // frame integrator (Integrator::RendersWholeFrame): chain i's random numbers are a pure
 // function of i and its splats are summed in chain order, so the image is the same for any
-// thread count. Participating media are not rendered (as bdpt). docs/BDPT.md.
+// thread count. Participating media are not rendered (as bdpt). docs/INTEGRATORS.md.
 #pragma once
 
 #include <cstdint>

@@ -20,7 +20,7 @@ PathParams ReadPathParams(const IntegratorInputs &in) {
     } else {
         // pbrt-v3's default "spatial" (a distribution per voxel from the lights' contributions
         // there) stands in as one scene-wide mixture, half by power and half uniform
-        // (docs/PATH.md); an unknown name is "spatial", as in pbrt-v3.
+        // (docs/INTEGRATORS.md); an unknown name is "spatial", as in pbrt-v3.
         pp.lightChoice = LightChoice::Spatial;
         if (p.Has("lightsamplestrategy") && lss == "spatial")
             p.Warn(p.Loc("lightsamplestrategy"),

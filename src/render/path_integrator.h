@@ -4,7 +4,7 @@
 // sampling (render/light_sampling.h), samples the BSDF to continue the path, and applies Russian
 // roulette after the third bounce where the throughput is below "rrthreshold". The surface
 // vertex is render/path_vertex.h's, shared with volpath; alpha cut-outs are decided by the BVH
-// (geometry/alpha.h). docs/PATH.md.
+// (geometry/alpha.h). docs/INTEGRATORS.md.
 #pragma once
 
 #include "render/integrator.h"

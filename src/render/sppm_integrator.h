@@ -7,7 +7,7 @@
 // integrator (Integrator::RendersWholeFrame): the passes share the frame's visible points.
 // Deterministic for any thread count: photon i of iteration k draws from a stream that is a
 // pure function of (k, i), and deposits are summed per visible point chunk by chunk in chunk
-// order. docs/SPPM.md.
+// order. docs/INTEGRATORS.md.
 #pragma once
 
 #include <cstdint>

@@ -6,7 +6,7 @@
 // sampling) replace the BSDF's; light samples and the MIS rays toward lights carry the
 // transmittance of the media and invisible boundaries they cross (render/medium_tracking.h).
 // Surface vertices are path's own (render/path_vertex.h), so without media volpath renders
-// path's image bit for bit. Russian roulette as in "path". docs/MEDIA.md.
+// path's image bit for bit. Russian roulette as in "path". docs/INTEGRATORS.md.
 #pragma once
 
 #include "render/path_integrator.h"

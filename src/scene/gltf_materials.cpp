@@ -211,7 +211,7 @@ std::string GltfConverter::TextureFor(int textureIndex, bool linear) {
                         TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
                     AddString(t.params, "wrap", "clamp", loc_);
                 // Pixel-art samplers (magFilter and minFilter NEAREST) look texels up
-                // unfiltered; every other texture is EWA-filtered (docs/TEXTURES.md).
+                // unfiltered; every other texture is EWA-filtered (docs/MATERIALS.md).
                 if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size() &&
                     model_.samplers[size_t(tex.sampler)].magFilter ==
                         TINYGLTF_TEXTURE_FILTER_NEAREST &&

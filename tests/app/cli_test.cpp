@@ -145,7 +145,7 @@ TEST(Cli, BadOptionsExitWithStatus2) {
     EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
 
-// The accuracy knobs of `prism render` (docs/NUMERICS.md): --cutoff 0 writes the image of a
+// The accuracy knobs of `prism render` (docs/SHAPES.md): --cutoff 0 writes the image of a
 // render without it, byte for byte; a cutoff reports the rays it saved; the other knobs are
 // echoed; bad values exit with status 2 and write nothing.
 TEST(Cli, AccuracyKnobOptions) {

@@ -68,5 +68,39 @@ TEST(Docs, ReadmeIsAFrontDoor) {
     EXPECT_NE(readme.find("docs/USAGE.md"), std::string::npos);
 }
 
+// Every document in docs/ is listed in the README, and every docs/*.md file that the README,
+// the docs, the sources, the tests, the tools or the scenes cite exists: a merged or renamed
+// document leaves no dangling reference behind.
+TEST(Docs, EveryDocIsListedAndEveryCitedDocExists) {
+    const std::string readme = test::ReadFile(Source + "/README.md");
+    size_t docs = 0;
+    for (const auto &e : fs::directory_iterator(Source + "/docs")) {
+        if (e.path().extension() != ".md") continue;
+        ++docs;
+        const std::string name = "docs/" + e.path().filename().string();
+        EXPECT_NE(readme.find("`" + name + "`"), std::string::npos)
+            << name << " is not in the README's documentation table";
+    }
+    EXPECT_GE(docs, 5u);
+    const std::regex cited(R"(docs/([A-Z][A-Z_0-9]*)\.md)");
+    size_t references = 0;
+    for (const char *dir : {"src", "tests", "tools", "scenes", "docs", "bench"}) {
+        for (const auto &e : fs::recursive_directory_iterator(Source + "/" + dir)) {
+            const std::string ext = e.path().extension().string();
+            if (!e.is_regular_file() || (ext != ".md" && ext != ".cpp" && ext != ".h" &&
+                                         ext != ".sh" && ext != ".py" && ext != ".pbrt"))
+                continue;
+            const std::string text = test::ReadFile(e.path());
+            for (std::sregex_iterator m(text.begin(), text.end(), cited), end; m != end; ++m) {
+                if ((*m)[1] == "X") continue;  // USAGE.md's "docs/X.md" placeholder
+                ++references;
+                EXPECT_TRUE(fs::exists(Source + "/docs/" + (*m)[1].str() + ".md"))
+                    << e.path() << " cites " << m->str() << ", which does not exist";
+            }
+        }
+    }
+    EXPECT_GT(references, 50u);
+}
+
 }  // namespace
 }  // namespace prism

@@ -1,4 +1,4 @@
-// The accuracy knobs of BuildSettings (`prism study`, docs/NUMERICS.md "Offset modes"), end to
+// The accuracy knobs of BuildSettings (`prism study`, docs/SHAPES.md "Offset modes"), end to
 // end through BuildRenderScene and Render: the ray-weight cutoff (bit-identical at 0, rays
 // saved and counted above), the offset modes on Whitted's 1e5-radius floor (acne with a fixed
 // epsilon or none, none with error bounds), and the BVH flags reaching Embree.
@@ -160,7 +160,7 @@ TEST(AccuracyKnobs, FixedEpsilonGivesAcneOnTheHugeFloorSceneErrorBoundsNone) {
 
 // The same floor at unit scale (a sphere of radius 1 seen from 6 units): the camera-centred hit
 // points are accurate to about 1e-7 and the sphere's intersector rejects roots within their
-// own error bound of t = 0 (docs/NUMERICS.md), so even a fixed 1e-4 gives no acne; without
+// own error bound of t = 0 (docs/SHAPES.md), so even a fixed 1e-4 gives no acne; without
 // an offset there is acne, and the error-bound offset gives none.
 TEST(AccuracyKnobs, AtUnitScaleOnlyNoOffsetGivesAcne) {
     AcneCase c("bigsphere_unit", ReadText(Source + "/scenes/bigsphere_unit.pbrt"));

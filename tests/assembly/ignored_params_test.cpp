@@ -189,7 +189,7 @@ TEST(IgnoredParams, CheckerboardClosedForm) {
     EXPECT_EQ(w.size(), 1u);
 }
 
-// The imagemap's "filter", "trilinear" and "maxanisotropy" are honoured (docs/TEXTURES.md);
+// The imagemap's "filter", "trilinear" and "maxanisotropy" are honoured (docs/MATERIALS.md);
 // an unknown filter warns, and so does an encoding other than sRGB or linear.
 TEST(IgnoredParams, ImageMapFilteringAndEncoding) {
     Image img(2, 2, 3);

@@ -82,7 +82,7 @@ std::string ShiftedScene(double offset) {
 }
 
 TEST(SceneRender, CameraFarFromOriginS5) {
-    // docs/HARD_CASES.md S5: the same scene 1e6 units from the origin renders like the original
+    // docs/SHAPES.md S5: the same scene 1e6 units from the origin renders like the original
     // (≤ 1% of pixels differ, mean |dRGB| ≤ 1/255), thanks to camera-centred render space and
     // double-precision object transforms.
     Rendered a = RenderText("near", ShiftedScene(0));

@@ -1,4 +1,4 @@
-// Named hard cases from docs/HARD_CASES.md that are not sphere-only: S3 (grazing band, sphere and
+// Named hard cases from docs/SHAPES.md that are not sphere-only: S3 (grazing band, sphere and
 // cylinder), S6 (thin and degenerate quadrics), S7 (partial-shape boundaries). Each compares
 // against a long-double evaluation of the same float ray.
 #include <gtest/gtest.h>

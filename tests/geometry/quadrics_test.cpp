@@ -148,7 +148,7 @@ void CheckReintersect(Kind k, bool partial, Precision prec, uint64_t seed, int n
                 } else if (!outward && !partial && (k == Kind::Sphere || k == Kind::Torus)) {
                     // In float, a far wall closer than the object-space origin's transform error
                     // divided by the grazing cosine cannot be told from a self-hit and is
-                    // conservatively rejected (docs/NUMERICS.md); double must always find it.
+                    // conservatively rejected (docs/SHAPES.md); double must always find it.
                     ++inward;
                     if (!again) {
                         ++inwardMisses;

@@ -1,4 +1,4 @@
-// Property tests of the sphere intersector (docs/HARD_CASES.md S1–S3 style; pbrt's
+// Property tests of the sphere intersector (docs/SHAPES.md S1–S3 style; pbrt's
 // Reintersect/Normal patterns).
 #include "geometry/sphere.h"
 

@@ -1,4 +1,4 @@
-// The torus hard cases of docs/HARD_CASES.md S8 (a-e), against long-double references.
+// The torus hard cases of docs/SHAPES.md S8 (a-e), against long-double references.
 #include "geometry/torus.h"
 
 #include <gtest/gtest.h>
@@ -107,7 +107,7 @@ TEST(Torus, S8c_TangentToTopCircle) {
                     // |n . d| at the hit: the tube angle's cosine s / r times the azimuth's.
                     double cosInc = double(w / (R + s) * (s / r));
                     double err = std::abs(double(hit.t - tRef));
-                    // docs/NUMERICS.md, transversal roots: sqrt(eps) * scale, and the first
+                    // docs/SHAPES.md, transversal roots: sqrt(eps) * scale, and the first
                     // order error eps * scale / |cos| of the root model (scale 5: the origin).
                     EXPECT_LE(err, std::sqrt(Eps) * 5) << "z0 " << z0 << " y0 " << y0;
                     EXPECT_LE(err, Eps * 5 / cosInc) << "z0 " << z0 << " y0 " << y0;
@@ -125,7 +125,7 @@ TEST(Torus, S8c_TangentToTopCircle) {
 TEST(Torus, S8c_TangentRaysGrazeTheTopCircle) {
     // z0 = r exactly: the plane z = r touches the torus only along the top circle, so every
     // such ray is tangent, with double roots at x = -+sqrt(R^2 - y0^2). A computed double root
-    // may or may not be reported (docs/NUMERICS.md); if one is, it is one of the two tangent
+    // may or may not be reported (docs/SHAPES.md); if one is, it is one of the two tangent
     // points within the tangent bound sqrt(2 eps scale / kappa) of the root model, kappa the
     // normal curvature along the ray: (1 / r) cos^2 of the angle to the meridian plane.
     const double R = 1, r = 0.25;

@@ -1,4 +1,4 @@
-// Texture filtering (docs/TEXTURES.md): camera ray differentials against finite differences of
+// Texture filtering (docs/MATERIALS.md): camera ray differentials against finite differences of
 // GenerateRay, reflection differentials off a flat mirror against the mirrored camera, the
 // closed-form checkerboard against a numerical box average, image lookups at one texel per
 // pixel (unchanged by filtering), and a plane at grazing angles at 1 spp against a

@@ -1,6 +1,6 @@
 // Triangle twins of the analytic shapes: every shape is a profile curve (rho(v), z(v)) swept
 // about z, so one tessellator and one set of distance functions serve them all. Used by
-// `prism render --tessellate N` and by `prism validate` (docs/VALIDATION.md).
+// `prism render --tessellate N` and by `prism validate` (docs/SHAPES.md).
 #pragma once
 
 #include <cstdint>

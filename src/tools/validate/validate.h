@@ -1,5 +1,5 @@
 // `prism validate`: cross-checks each analytic intersector against Embree's triangles on its
-// tessellated twin (docs/HARD_CASES.md V1), with every disagreement explained by the chord-error
+// tessellated twin (docs/SHAPES.md V1), with every disagreement explained by the chord-error
 // band or reported. The library half, so tests can run it on test-only (broken) shapes.
 #pragma once
 

@@ -272,7 +272,7 @@ TEST(Tessellate, ClosedShapesAreWatertight) {
     }
 }
 
-// docs/HARD_CASES.md T2 on the twins: rays from inside toward every vertex and edge midpoint
+// docs/SHAPES.md T2 on the twins: rays from inside toward every vertex and edge midpoint
 // (the hardest targets for watertightness) never escape the robust BVH.
 TEST(Tessellate, NoLeaksTowardVerticesAndEdges) {
     for (const Case &c : kCases) {
@@ -300,7 +300,7 @@ TEST(Tessellate, NoLeaksTowardVerticesAndEdges) {
             }
             EXPECT_EQ(edgeLeaks, 0) << total << " rays";
             // Rays aimed exactly at a vertex may slip through Embree's ROBUST mode
-            // (docs/HARD_CASES.md T2 accepts <= 0.5% as a documented Embree limitation).
+            // (docs/SHAPES.md T2 accepts <= 0.5% as a documented Embree limitation).
             EXPECT_LE(vertexLeaks, total / 200) << total << " rays";
         }
     }
@@ -321,7 +321,7 @@ TEST(Tessellate, ChordErrorIsSecondOrder) {
         EXPECT_GT(ratio, 8) << c.name;
         EXPECT_LT(ratio, 20) << c.name;
     }
-    // The sphere's band is the classic sagitta r (1 - cos(pi/n)) (docs/HARD_CASES.md V1), up to
+    // The sphere's band is the classic sagitta r (1 - cos(pi/n)) (docs/SHAPES.md V1), up to
     // the contribution of the theta direction.
     auto s = kCases[0].make(Transform(), false);
     RevolutionProfile pr;
