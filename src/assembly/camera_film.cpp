@@ -133,7 +133,9 @@ void ReadProjection(const CameraDesc &cd, const BuildSettings &settings, CameraP
 //   simpleweighting   bool    true  weights cos^4 times the exit pupil's area over the
 //                                   centre's (else times the shutter time over the rear
 //                                   distance squared: pbrt-v3's physical weighting)
-// and the Film's "diagonal" (mm, 35): the film's physical size.
+//   shutteropen, shutterclose  float  0, 1  the shutter interval (every camera's; the
+//                                           physical weighting's shutter time)
+//   diagonal                   float  35    the Film's (not the camera's): its diagonal, mm
 std::shared_ptr<const LensSystem> ReadLens(BuildContext &ctx, CameraParams *params) {
     const CameraDesc &cd = ctx.desc.camera;
     const ParamSet &cp = cd.params;

@@ -359,9 +359,15 @@ std::shared_ptr<const MaterialModel> CreateUberMaterial(const MaterialParams &p,
 
 // Material "coateddiffuse" (pbrt-v4; material_list.inc): the layered coat approximated as
 // uber, the diffuse base plus the coat's dielectric reflection (a highlight when rough, a
-// Fresnel mirror when smooth). Parameters: reflectance (0.5), roughness (0; u/v override),
-// eta (1.5), remaproughness; thickness, albedo, g, maxdepth, nsamples and seed are read and
-// have no effect.
+// Fresnel mirror when smooth). Parameters:
+//   reflectance                        spectrum texture  0.5   the diffuse base
+//   roughness                          float texture     0     the coat's
+//   uroughness, vroughness             float texture     0     override roughness
+//   eta                                float texture     1.5   the coat's index of refraction
+//   remaproughness                     bool              true
+//   thickness, albedo, g, maxdepth     (various)         —     read, no effect (the layer is
+//                                                              not simulated)
+//   nsamples, seed                     integer           —     read, no effect
 std::shared_ptr<const MaterialModel> CreateCoatedDiffuseMaterial(const MaterialParams &p,
                                                                  const FileLoc &) {
     UberMaterial::Params u;
@@ -446,12 +452,15 @@ bool TranslucentMaterial::MayTransmitGlossily() const {
 }
 
 // Material "translucent" (pbrt-v4 "diffusetransmission"; material_list.inc). Parameters:
-//   Kd, Ks            spectrum texture  0.25  diffuse and glossy colour
-//   reflect, transmit spectrum texture  0.5   the shares reflected and transmitted
-//   roughness         float texture     0.1
-//   remaproughness    bool              true
-// diffusetransmission: reflectance and transmittance (0.25 each) times the float "scale" (1),
-// no glossy part.
+//   Kd, Ks                      spectrum texture  0.25  diffuse and glossy colour
+//   reflect, transmit           spectrum texture  0.5   the shares reflected and transmitted
+//   roughness                   float texture     0.1
+//   remaproughness              bool              true
+//   reflectance, transmittance  spectrum texture  0.25  (v4 diffusetransmission) the shares
+//                                                       reflected and transmitted, no glossy
+//                                                       part
+//   scale                       float             1     (v4 diffusetransmission) multiplies
+//                                                       both
 std::shared_ptr<const MaterialModel> CreateTranslucentMaterial(const MaterialParams &p,
                                                                const FileLoc &) {
     TexturePtr kd, ks, reflect, transmit;

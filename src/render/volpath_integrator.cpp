@@ -11,8 +11,13 @@ namespace {
 constexpr uint32_t VolPathPurpose = 0x766f6c70;
 }  // namespace
 
-// Integrator "volpath" (integrator_list.inc): path's parameters (maxdepth, rrthreshold,
-// lightsamplestrategy; render/path_integrator.cpp).
+// Integrator "volpath" (integrator_list.inc), read by path's reader (path_integrator.cpp).
+// Parameters:
+//   maxdepth             integer  5          the longest path (--maxdepth wins)
+//   rrthreshold          float    1          Russian roulette below this throughput, after the
+//                                            third bounce
+//   lightsamplestrategy  string   "spatial"  uniform | power | spatial (half by power, half
+//                                            uniform)
 std::unique_ptr<Integrator> CreateVolPathIntegrator(const IntegratorInputs &in) {
     return std::make_unique<VolPathIntegrator>(ReadPathParams(in));
 }

@@ -102,5 +102,15 @@ TEST(Docs, EveryDocIsListedAndEveryCitedDocExists) {
     EXPECT_GT(references, 50u);
 }
 
+// docs/PARAMETERS.md is what tools/param_tables.py generates from the comment tables beside
+// each Create, every registered integrator, light and material has a table, and every name a
+// table lists is one its code reads (the script's --check).
+TEST(Docs, ParameterTablesMatchTheCode) {
+    RunResult r =
+        RunShell("python3 " + ShellQuoted(Source + "/tools/param_tables.py") + " --check",
+                 TempDir("params"));
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
 }  // namespace
 }  // namespace prism

@@ -1,0 +1,197 @@
+#!/usr/bin/env python3
+"""The parameter tables of docs/PARAMETERS.md, generated from the comment tables that stand
+beside each Create in src/ (docs/ARCHITECTURE.md, "Checklists"), and checked against the code.
+
+A comment table is a comment line ending in "Parameters:" whose first quoted word is the type
+(`// Integrator "path" (integrator_list.inc). Parameters:`), then rows
+`//   NAMES  TYPE  DEFAULT  DESCRIPTION`, columns separated by two or more spaces, a row's
+continuation lines indented under its description. NAMES is one name or several
+(`from, to`), each optionally with aliases in parentheses (`index (eta)`, `Kd (v4: reflectance)`).
+
+  tools/param_tables.py --write   regenerate docs/PARAMETERS.md
+  tools/param_tables.py --check   exit 1 if docs/PARAMETERS.md is not what --write writes, or if
+                                  a table names a parameter its source file never reads as a
+                                  string literal, or the Create below a table reads a literal
+                                  parameter name the table does not list
+"""
+import pathlib
+import re
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+DOC = ROOT / "docs" / "PARAMETERS.md"
+HEADER = re.compile(r'^\s*//\s*(\w+)\s+"([^"]+)"(.*)Parameters(?: \([^)]*\))?:\s*$')
+# A header's directive may be on the comment's first line and "Parameters:" on a later one.
+HEAD_NAME = re.compile(r'^\s*//\s*(\w+)\s+"([^"]+)"')
+TAIL = re.compile(r'^\s*//.*Parameters(?: \([^)]*\))?:\s*$')
+ROW = re.compile(r'^\s*//   (\S.*?)\s{2,}(\S.*)$')
+CONT = re.compile(r'^\s*//\s{4,}(\S.*)$')
+# A parameter read in a Create: p.Float("name", ...), in.params.Int("name"), ps.GetString(...
+READ = re.compile(r'\.(?:Get)?(?:Float|Int|Bool|String|Spectrum|SpectrumTex|FloatTex|Tex|'
+                  r'Point|Point3|Vector|Normal|PositiveFloat|OptionalImage|Loc|Has)\(\s*"(\w+)"')
+
+
+def names_of(cell):
+    """["index", "eta"] of "index (eta)"; ["Kd", "reflectance"] of "Kd (v4: reflectance)"."""
+    out = []
+    for part in re.split(r',\s*', re.sub(r'\(([^)]*)\)', lambda m: ',' + m.group(1), cell)):
+        part = part.strip()
+        part = re.sub(r'^v\d:\s*', '', part)
+        if re.fullmatch(r'\w+', part):
+            out.append(part)
+    return out
+
+
+def split_row(rest):
+    """TYPE, DEFAULT, DESCRIPTION of a row's text after the names (columns: 2+ spaces)."""
+    cols = re.split(r'\s{2,}', rest.strip(), maxsplit=2)
+    while len(cols) < 3:
+        cols.append('')
+    return cols
+
+
+def tables():
+    found = []
+    for path in sorted((ROOT / "src").rglob("*.cpp")):
+        lines = path.read_text().split('\n')
+        i = 0
+        while i < len(lines):
+            m = HEADER.match(lines[i])
+            if not m and TAIL.match(lines[i]):
+                # Look back over the same comment block for the directive and its name.
+                j = i - 1
+                while j >= 0 and lines[j].lstrip().startswith('//') and not m:
+                    m = HEAD_NAME.match(lines[j])
+                    j -= 1
+            if not m:
+                i += 1
+                continue
+            table = {"kind": m.group(1), "name": m.group(2), "file": path.relative_to(ROOT),
+                     "line": i + 1, "rows": []}
+            i += 1
+            while i < len(lines):
+                c = CONT.match(lines[i])
+                r = ROW.match(lines[i])
+                if table["rows"] and c and not r:
+                    table["rows"][-1]["desc"] += ' ' + c.group(1)
+                elif r:
+                    typ, default, desc = split_row(r.group(2))
+                    table["rows"].append({"cell": r.group(1), "names": names_of(r.group(1)),
+                                          "type": typ, "default": default, "desc": desc})
+                else:
+                    break
+                i += 1
+            table["end"] = i
+            if table["rows"]:
+                found.append(table)
+    return found
+
+
+def create_body(lines, start):
+    """The lines of the function that follows a table: to its closing brace at column 0."""
+    body = []
+    for line in lines[start:]:
+        body.append(line)
+        if line.startswith('}'):
+            break
+    return '\n'.join(body)
+
+
+# Parameters every directive of a kind shares are read once, by the scene assembly: a table's
+# name may be read there instead of in its own file.
+SHARED = {
+    "Integrator": ["src/assembly/camera_film.cpp",      # maxdepth
+                   "src/render/path_integrator.cpp"],   # path's reader, volpath's too
+    "LightSource": ["src/assembly/build_context.h"],    # scale (LightParams::Scale)
+    "Camera": ["src/assembly/camera_film.cpp"],
+}
+
+
+# The registries (src/render/*_list.inc) whose every entry needs a table, and the entries that
+# need none, with why.
+REGISTRIES = ["src/render/integrator_list.inc", "src/render/light_list.inc",
+              "src/render/material_list.inc"]
+UNTABLED = {
+    "CreateGltfMaterial": "made by the glTF reader from a file's materials, not written in pbrt "
+                          "files; its parameters are in the comment above it",
+    "CreateInterfaceMaterial": "no parameters",
+}
+ENTRY = re.compile(r'^PRISM_\w+\("([^"]*)",\s*(\w+)\)', re.M)
+CREATE = re.compile(r'\b(Create\w+)\(')
+
+
+def problems(found):
+    out = []
+    tabled = set()
+    for t in found:
+        lines = (ROOT / t["file"]).read_text().split('\n')
+        m = CREATE.search(create_body(lines, t["end"]).split('{')[0])
+        if m:
+            tabled.add(m.group(1))
+    for reg in REGISTRIES:
+        for name, fn in ENTRY.findall((ROOT / reg).read_text()):
+            if fn not in tabled and fn not in UNTABLED:
+                out.append(f'{reg}: "{name}" ({fn}) has no parameter table beside its Create')
+    for t in found:
+        text = (ROOT / t["file"]).read_text()
+        shared = ''.join((ROOT / f).read_text() for f in SHARED.get(t["kind"], []))
+        listed = {n for r in t["rows"] for n in r["names"]}
+        for r in t["rows"]:
+            for n in r["names"]:
+                if '"' + n + '"' not in text and '"' + n + '"' not in shared:
+                    out.append(f'{t["file"]}:{t["line"]}: {t["kind"]} "{t["name"]}" lists '
+                               f'"{n}", which neither {t["file"].name} nor the assembly reads')
+        body = create_body(text.split('\n'), t["end"])
+        for n in sorted(set(READ.findall(body))):
+            if n not in listed:
+                out.append(f'{t["file"]}:{t["line"]}: {t["kind"]} "{t["name"]}": its Create '
+                           f'reads "{n}", which the table does not list')
+    return out
+
+
+def markdown(found):
+    out = ["# Parameters", "",
+           "Every parameter of every integrator, light, camera and material that has a table",
+           "beside its `Create` in src/, generated from those tables by",
+           "`tools/param_tables.py --write` (the test `Docs.ParameterTablesMatchTheCode` runs",
+           "`--check`: this page, the tables and the names the code reads cannot drift apart).",
+           "pbrt-v3's parameter types apply (`spectrum` takes `rgb`, `spectrum` or `blackbody`;",
+           "`texture` means a value or a named texture). Directives not listed here are described",
+           "in docs/USAGE.md (\"pbrt-v3 support\") and docs/FORMAT.md.", ""]
+    kinds = {}
+    for t in found:
+        kinds.setdefault(t["kind"], []).append(t)
+    for kind in sorted(kinds):
+        out += ["## " + kind, ""]
+        for t in sorted(kinds[kind], key=lambda t: t["name"]):
+            out += [f'### {kind} "{t["name"]}"', "", f'`{t["file"]}`', "",
+                    "| parameter | type | default | meaning |", "|---|---|---|---|"]
+            for r in t["rows"]:
+                cells = [r["cell"], r["type"], r["default"], r["desc"]]
+                out.append("| " + " | ".join(c.replace('|', '\\|') for c in cells) + " |")
+            out.append("")
+    return '\n'.join(out).rstrip('\n') + '\n'
+
+
+def main():
+    if len(sys.argv) != 2 or sys.argv[1] not in ("--write", "--check"):
+        sys.exit(__doc__)
+    found = tables()
+    text = markdown(found)
+    if sys.argv[1] == "--write":
+        DOC.write_text(text)
+        print(f"wrote {DOC.relative_to(ROOT)}: {len(found)} tables, "
+              f"{sum(len(t['rows']) for t in found)} rows")
+        bad = problems(found)
+    else:
+        bad = problems(found)
+        if not DOC.exists() or DOC.read_text() != text:
+            bad.append(f"{DOC.relative_to(ROOT)} is not generated from the tables: run "
+                       "tools/param_tables.py --write")
+    for b in bad:
+        print(b, file=sys.stderr)
+    sys.exit(1 if bad else 0)
+
+
+if __name__ == "__main__":
+    main()
