@@ -104,17 +104,20 @@ SHARED = {
                    "src/render/path_integrator.cpp"],   # path's reader, volpath's too
     "LightSource": ["src/assembly/build_context.h"],    # scale (LightParams::Scale)
     "Camera": ["src/assembly/camera_film.cpp"],
+    "Texture": ["src/assembly/textures.cpp"],          # the 2-D mapping
 }
 
 
 # The registries (src/render/*_list.inc) whose every entry needs a table, and the entries that
 # need none, with why.
 REGISTRIES = ["src/render/integrator_list.inc", "src/render/light_list.inc",
-              "src/render/material_list.inc"]
+              "src/render/material_list.inc", "src/render/texture_list.inc"]
 UNTABLED = {
     "CreateGltfMaterial": "made by the glTF reader from a file's materials, not written in pbrt "
                           "files; its parameters are in the comment above it",
     "CreateInterfaceMaterial": "no parameters",
+    "CreateWindyTexture": "no parameters (pbrt-v3's windy waves)",
+    "CreatePtexStandIn": "not supported: a constant 0.5 after a warning",
 }
 ENTRY = re.compile(r'^PRISM_\w+\("([^"]*)",\s*(\w+)\)', re.M)
 CREATE = re.compile(r'\b(Create\w+)\(')
@@ -151,7 +154,7 @@ def problems(found):
 
 def markdown(found):
     out = ["# Parameters", "",
-           "Every parameter of every integrator, light, camera and material that has a table",
+           "Every parameter of every integrator, light, camera, material and texture that has a table",
            "beside its `Create` in src/, generated from those tables by",
            "`tools/param_tables.py --write` (the test `Docs.ParameterTablesMatchTheCode` runs",
            "`--check`: this page, the tables and the names the code reads cannot drift apart).",

@@ -299,13 +299,16 @@ int Octaves(const TextureParams &p, const std::string &type) {
 
 }  // namespace
 
-// "constant": value (texture or value, 1).
+// Texture "constant" (texture_list.inc). Parameters:
+//   value  texture  1  the value everywhere
 TexturePtr CreateConstantTexture(const TextureParams &p, const FileLoc &) {
     return p.Tex("value", p.IsFloat(), RGB(1));
 }
 
-// "scale": tex1 times tex2 (each a texture or value, 1); pbrt-v4's spelling "tex" times the
-// float "scale".
+// Texture "scale" (texture_list.inc). Parameters:
+//   tex1, tex2  texture        1  the product tex1 tex2
+//   tex         texture        1  (v4, without tex1 and tex2) times scale
+//   scale       float texture  1  (v4) the factor
 TexturePtr CreateScaleTexture(const TextureParams &p, const FileLoc &) {
     const bool f = p.IsFloat();
     if (!p.Has("tex1") && !p.Has("tex2") && (p.Has("tex") || p.Has("scale")))
@@ -314,16 +317,27 @@ TexturePtr CreateScaleTexture(const TextureParams &p, const FileLoc &) {
     return std::make_shared<ScaleTexture>(p.Tex("tex1", f, RGB(1)), p.Tex("tex2", f, RGB(1)));
 }
 
-// "mix": tex1 (0) and tex2 (1) blended by the float texture amount (0.5).
+// Texture "mix" (texture_list.inc). Parameters:
+//   tex1    texture        0    the value at amount 0
+//   tex2    texture        1    the value at amount 1
+//   amount  float texture  0.5  the blend
 TexturePtr CreateMixTexture(const TextureParams &p, const FileLoc &) {
     const bool f = p.IsFloat();
     return std::make_shared<MixTexture>(p.Tex("tex1", f, RGB(0)), p.Tex("tex2", f, RGB(1)),
                                         p.Tex("amount", true, RGB(0.5f)));
 }
 
-// "checkerboard": dimension (2 or 3), tex1 (1), tex2 (0), aamode ("closedform" box-filters a
-// 2-D board over the ray's footprint; "none" point-samples; 3-D boards are point-sampled),
-// and the 2-D mapping parameters.
+// Texture "checkerboard" (texture_list.inc). Parameters:
+//   dimension               integer        2        2 (over the 2-D mapping) or 3 (in the
+//                                                   texture's space, point-sampled)
+//   tex1, tex2              texture        1, 0     the two squares
+//   aamode                  string         "closedform"  closedform box-filters a 2-D board over
+//                                                   the ray's footprint; none point-samples
+//   mapping                 string         "uv"     uv | spherical | cylindrical | planar
+//   uscale, vscale          float          1        the 2-D mapping's scales (read by the
+//                                                   assembly, assembly/textures.cpp)
+//   udelta, vdelta          float          0        its offsets
+//   v1, v2                  vector         1 0 0, 0 1 0  the planar mapping's axes
 TexturePtr CreateCheckerboardTexture(const TextureParams &p, const FileLoc &loc) {
     const int dim = p.Int("dimension", 2);
     if (dim != 2 && dim != 3) throw SceneError(loc, "checkerboard dimension must be 2 or 3");
@@ -340,10 +354,24 @@ TexturePtr CreateCheckerboardTexture(const TextureParams &p, const FileLoc &loc)
                                                  p.Tex("tex2", f, RGB(0)), dim, aa);
 }
 
-// "imagemap": filename (required), wrap (repeat | black | clamp), scale (1), invert (false),
-// gamma (sRGB for 8-bit files by default) or pbrt-v4's encoding ("sRGB", "linear"), filter
-// (ewa | trilinear | bilinear | point; pbrt-v3's "trilinear" bool), maxanisotropy (8), the 2-D
-// mapping, and for float textures Prism's "channel" (luminance | alpha | alphaorluminance).
+// Texture "imagemap" (texture_list.inc). Parameters:
+//   filename                string         ""       the image, relative to the scene; required
+//   wrap                    string         "repeat"  repeat | black | clamp
+//   scale                   float          1        multiplies the texels
+//   invert                  bool           false    1 - the texel
+//   gamma                   bool           —        true: sRGB, false: linear (default: sRGB for
+//                                                   8-bit files)
+//   encoding                string         —        (v4) "sRGB" or "linear"
+//   filter                  string         "ewa"    ewa | trilinear | bilinear | point
+//   trilinear               bool           false    (v3) trilinear instead of EWA
+//   maxanisotropy           float          8        EWA's longest ellipse axis over its shortest
+//   channel                 string         "luminance"  float textures: luminance | alpha |
+//                                                   alphaorluminance (a Prism extension)
+//   mapping                 string         "uv"     uv | spherical | cylindrical | planar
+//   uscale, vscale          float          1        the 2-D mapping's scales (read by the
+//                                                   assembly, assembly/textures.cpp)
+//   udelta, vdelta          float          0        its offsets
+//   v1, v2                  vector         1 0 0, 0 1 0  the planar mapping's axes
 TexturePtr CreateImageTexture(const TextureParams &p, const FileLoc &loc) {
     const std::string file = p.String("filename", "");
     if (file.empty()) throw SceneError(loc, "imagemap texture needs a \"filename\"");
@@ -413,7 +441,13 @@ TexturePtr CreateImageTexture(const TextureParams &p, const FileLoc &loc) {
                                           p.Bool("invert", false), filter, mip, maxAniso);
 }
 
-// "bilerp": the corner values v00 (0), v01 (1), v10 (0), v11 (1) over the 2-D mapping.
+// Texture "bilerp" (texture_list.inc). Parameters:
+//   v00, v01, v10, v11      texture        0, 1, 0, 1  the corner values, bilinear between
+//   mapping                 string         "uv"     uv | spherical | cylindrical | planar
+//   uscale, vscale          float          1        the 2-D mapping's scales (read by the
+//                                                   assembly, assembly/textures.cpp)
+//   udelta, vdelta          float          0        its offsets
+//   v1, v2                  vector         1 0 0, 0 1 0  the planar mapping's axes
 TexturePtr CreateBilerpTexture(const TextureParams &p, const FileLoc &) {
     auto v = [&](const char *n, float d) {
         return p.IsFloat() ? RGB(p.Float(n, d)) : p.Spectrum(n, RGB(d));
@@ -422,27 +456,42 @@ TexturePtr CreateBilerpTexture(const TextureParams &p, const FileLoc &) {
                                            v("v11", 1));
 }
 
-// "uv" (spectrum only): (s, t, 0) of the 2-D mapping.
+// Texture "uv" (texture_list.inc; spectrum only): (s, t, 0) of the 2-D mapping. Parameters:
+//   mapping                 string         "uv"     uv | spherical | cylindrical | planar
+//   uscale, vscale          float          1        the 2-D mapping's scales (read by the
+//                                                   assembly, assembly/textures.cpp)
+//   udelta, vdelta          float          0        its offsets
+//   v1, v2                  vector         1 0 0, 0 1 0  the planar mapping's axes
 TexturePtr CreateUVTexture(const TextureParams &p, const FileLoc &loc) {
     if (p.IsFloat()) return SpectrumOnly(p, loc, "uv");
     return std::make_shared<UVTexture>(p.Mapping());
 }
 
-// "dots": inside (1) and outside (0) textures over the 2-D mapping.
+// Texture "dots" (texture_list.inc). Parameters:
+//   inside, outside         texture        1, 0     the dots and the rest
+//   mapping                 string         "uv"     uv | spherical | cylindrical | planar
+//   uscale, vscale          float          1        the 2-D mapping's scales (read by the
+//                                                   assembly, assembly/textures.cpp)
+//   udelta, vdelta          float          0        its offsets
+//   v1, v2                  vector         1 0 0, 0 1 0  the planar mapping's axes
 TexturePtr CreateDotsTexture(const TextureParams &p, const FileLoc &) {
     const bool f = p.IsFloat();
     return std::make_shared<DotsTexture>(p.Mapping(), p.Tex("inside", f, RGB(1)),
                                          p.Tex("outside", f, RGB(0)));
 }
 
-// "fbm" and "wrinkled": octaves (8, 0 to 32) and roughness (0.5) of Perlin noise in the
-// texture's space.
+// Texture "fbm" (texture_list.inc): Perlin noise in the texture's space. Parameters:
+//   octaves    integer  8    0 to 32
+//   roughness  float    0.5  each octave's share of the one before
 TexturePtr CreateFBmTexture(const TextureParams &p, const FileLoc &) {
     const int n = Octaves(p, "fbm");
     return std::make_shared<NoiseTexture>(NoiseTexture::Kind::FBm, p.Mapping3D(), n,
                                           p.Float("roughness", .5f));
 }
 
+// Texture "wrinkled" (texture_list.inc): the absolute value of fbm's noise. Parameters:
+//   octaves    integer  8    0 to 32
+//   roughness  float    0.5  each octave's share of the one before
 TexturePtr CreateWrinkledTexture(const TextureParams &p, const FileLoc &) {
     const int n = Octaves(p, "wrinkled");
     return std::make_shared<NoiseTexture>(NoiseTexture::Kind::Wrinkled, p.Mapping3D(), n,
@@ -454,7 +503,11 @@ TexturePtr CreateWindyTexture(const TextureParams &p, const FileLoc &) {
     return std::make_shared<NoiseTexture>(NoiseTexture::Kind::Windy, p.Mapping3D(), 0, 0.f);
 }
 
-// "marble" (spectrum only): octaves (8), roughness (0.5), scale (1), variation (0.2).
+// Texture "marble" (texture_list.inc; spectrum only). Parameters:
+//   octaves    integer  8    0 to 32
+//   roughness  float    0.5  each octave's share of the one before
+//   scale      float    1    the noise's frequency
+//   variation  float    0.2  the noise's amplitude
 TexturePtr CreateMarbleTexture(const TextureParams &p, const FileLoc &loc) {
     if (p.IsFloat()) return SpectrumOnly(p, loc, "marble");
     const int n = Octaves(p, "marble");

@@ -106,9 +106,8 @@ TEST(Docs, EveryDocIsListedAndEveryCitedDocExists) {
 // each Create, every registered integrator, light and material has a table, and every name a
 // table lists is one its code reads (the script's --check).
 TEST(Docs, ParameterTablesMatchTheCode) {
-    RunResult r =
-        RunShell("python3 " + ShellQuoted(Source + "/tools/param_tables.py") + " --check",
-                 TempDir("params"));
+    RunResult r = RunShell("python3 " + ShellQuoted(Source + "/tools/param_tables.py") + " --check",
+                           TempDir("params"));
     EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
