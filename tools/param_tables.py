@@ -105,6 +105,7 @@ SHARED = {
     "LightSource": ["src/assembly/build_context.h"],    # scale (LightParams::Scale)
     "Camera": ["src/assembly/camera_film.cpp"],
     "Texture": ["src/assembly/textures.cpp"],          # the 2-D mapping
+    "Shape": ["src/geometry/shape_params.cpp"],        # phimax (ShapeParams::PhiMax)
 }
 
 
@@ -120,7 +121,8 @@ UNTABLED = {
     "CreatePtexStandIn": "not supported: a constant 0.5 after a warning",
 }
 ENTRY = re.compile(r'^PRISM_\w+\("([^"]*)",\s*(\w+)\)', re.M)
-CREATE = re.compile(r'\b(Create\w+)\(')
+SHAPE_ENTRY = re.compile(r'^PRISM_SHAPE\((\w+),\s*"([^"]*)"\)', re.M)
+CREATE = re.compile(r'\b(Create\w+(?:<\w+>)?)\(')
 
 
 def problems(found):
@@ -135,6 +137,10 @@ def problems(found):
         for name, fn in ENTRY.findall((ROOT / reg).read_text()):
             if fn not in tabled and fn not in UNTABLED:
                 out.append(f'{reg}: "{name}" ({fn}) has no parameter table beside its Create')
+    for cls, name in SHAPE_ENTRY.findall((ROOT / "src/geometry/shape_list.inc").read_text()):
+        if f"CreateShape<{cls}>" not in tabled:
+            out.append(f'src/geometry/shape_list.inc: "{name}" (CreateShape<{cls}>) has no '
+                       'parameter table beside its Create')
     for t in found:
         text = (ROOT / t["file"]).read_text()
         shared = ''.join((ROOT / f).read_text() for f in SHARED.get(t["kind"], []))
@@ -154,13 +160,15 @@ def problems(found):
 
 def markdown(found):
     out = ["# Parameters", "",
-           "Every parameter of every integrator, light, camera, material and texture that has a table",
-           "beside its `Create` in src/, generated from those tables by",
+           "Every parameter of every integrator, light, camera, material, texture and analytic shape",
+           "that has a table beside its `Create` in src/, generated from those tables by",
            "`tools/param_tables.py --write` (the test `Docs.ParameterTablesMatchTheCode` runs",
            "`--check`: this page, the tables and the names the code reads cannot drift apart).",
            "pbrt-v3's parameter types apply (`spectrum` takes `rgb`, `spectrum` or `blackbody`;",
            "`texture` means a value or a named texture). Directives not listed here are described",
-           "in docs/USAGE.md (\"pbrt-v3 support\") and docs/FORMAT.md.", ""]
+           "in docs/USAGE.md (\"pbrt-v3 support\") and docs/FORMAT.md: the meshes, curves, nurbs",
+           "and heightfields, `alpha`/`shadowalpha` and `bumpmap`/`normalmap` (every shape's and",
+           "material's), Film, Sampler, PixelFilter and the media.", ""]
     kinds = {}
     for t in found:
         kinds.setdefault(t["kind"], []).append(t)

@@ -82,8 +82,11 @@ bool Cone::Revolution(RevolutionProfile *pr) const {
     return true;
 }
 
-// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
-// at the offending parameter.
+// Shape "cone" (shape_list.inc; pbrt-v3's names and defaults, each value checked so the error
+// points at the offending parameter). Parameters:
+//   radius       float  1     the base's, > 0
+//   height       float  1     the apex's z, > 0
+//   phimax       float  360   the swept angle, degrees, in (0, 360]
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Cone>(const ShapeParams &params,
                                                  const Transform &renderFromObject,

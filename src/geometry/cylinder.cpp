@@ -119,8 +119,11 @@ bool Cylinder::Revolution(RevolutionProfile *pr) const {
     return true;
 }
 
-// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
-// at the offending parameter.
+// Shape "cylinder" (shape_list.inc; pbrt-v3's names and defaults, each value checked so the
+// error points at the offending parameter). Parameters:
+//   radius       float  1      > 0
+//   zmin, zmax   float  -1, 1  its extent along z; they must differ
+//   phimax       float  360   the swept angle, degrees, in (0, 360]
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Cylinder>(const ShapeParams &params,
                                                      const Transform &renderFromObject,

@@ -98,8 +98,12 @@ bool Disk::Revolution(RevolutionProfile *pr) const {
     return true;
 }
 
-// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
-// at the offending parameter.
+// Shape "disk" (shape_list.inc; pbrt-v3's names and defaults, each value checked so the error
+// points at the offending parameter). Parameters:
+//   height       float  0     its z
+//   radius       float  1     > 0
+//   innerradius  float  0     in [0, radius): an annulus
+//   phimax       float  360   the swept angle, degrees, in (0, 360]
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Disk>(const ShapeParams &params,
                                                  const Transform &renderFromObject,

@@ -130,8 +130,11 @@ bool Hyperboloid::Revolution(RevolutionProfile *pr) const {
     return true;
 }
 
-// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
-// at the offending parameter.
+// Shape "hyperboloid" (shape_list.inc; pbrt-v3's names and defaults, each value checked so the
+// error points at the offending parameter). Parameters:
+//   p1, p2       point  0 0 0, 1 1 1  the segment swept about z (the defaults, a cone, are
+//                                     refused)
+//   phimax       float  360   the swept angle, degrees, in (0, 360]
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Hyperboloid>(const ShapeParams &params,
                                                         const Transform &renderFromObject,

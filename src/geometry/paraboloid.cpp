@@ -94,8 +94,11 @@ bool Paraboloid::Revolution(RevolutionProfile *pr) const {
     return pr->c > pr->b;
 }
 
-// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
-// at the offending parameter.
+// Shape "paraboloid" (shape_list.inc; pbrt-v3's names and defaults, each value checked so the
+// error points at the offending parameter). Parameters:
+//   radius       float  1     at zmax, > 0
+//   zmin, zmax   float  0, 1  its extent along z; zmax > 0, and they must differ
+//   phimax       float  360   the swept angle, degrees, in (0, 360]
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Paraboloid>(const ShapeParams &params,
                                                        const Transform &renderFromObject,

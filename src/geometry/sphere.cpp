@@ -173,8 +173,11 @@ bool Sphere::Revolution(RevolutionProfile *pr) const {
     return thetaZMin_ > thetaZMax_;
 }
 
-// pbrt parameters (pbrt-v3 names and defaults); each value is checked so the error points
-// at the offending parameter.
+// Shape "sphere" (shape_list.inc; pbrt-v3's names and defaults, each value checked so the
+// error points at the offending parameter). Parameters:
+//   radius       float  1        > 0
+//   zmin, zmax   float  -radius, radius  the cut-off heights
+//   phimax       float  360   the swept angle, degrees, in (0, 360]
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Sphere>(const ShapeParams &params,
                                                    const Transform &renderFromObject,

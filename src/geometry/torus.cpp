@@ -252,8 +252,11 @@ bool Torus::Revolution(RevolutionProfile *pr) const {
     return true;
 }
 
-// pbrt parameters (pbrt-v3 names and defaults; the torus is Prism's own); each value is checked so
-// the error points at the offending parameter.
+// Shape "torus" (shape_list.inc; a Prism extension, each value checked so the error points at
+// the offending parameter). Parameters:
+//   majorradius  float  1     the centre circle's, > 0
+//   minorradius  float  0.25  the tube's, > 0
+//   phimax       float  360   the swept angle, degrees, in (0, 360]
 template <>
 std::unique_ptr<AnalyticShape> CreateShape<Torus>(const ShapeParams &params,
                                                   const Transform &renderFromObject,
