@@ -184,8 +184,8 @@ std::unique_ptr<AnalyticShape> CreateShape<Sphere>(const ShapeParams &params,
                                                    bool reverseOrientation) {
     float radius = params.PositiveFloat("radius", 1.f);
     return std::make_unique<Sphere>(renderFromObject, reverseOrientation, radius,
-                                    params.Float("zmin", -radius), params.Float("zmax", radius),
-                                    params.Float("phimax", 360.f));
+                                    params.FiniteFloat("zmin", -radius),
+                                    params.FiniteFloat("zmax", radius), params.PhiMax());
 }
 
 template <>
