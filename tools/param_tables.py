@@ -20,9 +20,9 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DOC = ROOT / "docs" / "PARAMETERS.md"
-HEADER = re.compile(r'^\s*//\s*(\w+)\s+"([^"]+)"(.*)Parameters(?: \([^)]*\))?:\s*$')
+HEADER = re.compile(r'^\s*//\s*(\w+)\s+("[^"]+"(?:,\s*"[^"]+")*)(.*)Parameters(?: \([^)]*\))?:\s*$')
 # A header's directive may be on the comment's first line and "Parameters:" on a later one.
-HEAD_NAME = re.compile(r'^\s*//\s*(\w+)\s+"([^"]+)"')
+HEAD_NAME = re.compile(r'^\s*//\s*(\w+)\s+("[^"]+"(?:,\s*"[^"]+")*)')
 TAIL = re.compile(r'^\s*//.*Parameters(?: \([^)]*\))?:\s*$')
 ROW = re.compile(r'^\s*//   (\S.*?)\s{2,}(\S.*)$')
 CONT = re.compile(r'^\s*//\s{4,}(\S.*)$')
@@ -66,7 +66,9 @@ def tables():
             if not m:
                 i += 1
                 continue
-            table = {"kind": m.group(1), "name": m.group(2), "file": path.relative_to(ROOT),
+            # One table may serve several types: `// PixelFilter "box", "gaussian" ...`.
+            name = '", "'.join(re.findall(r'"([^"]+)"', m.group(2)))
+            table = {"kind": m.group(1), "name": name, "file": path.relative_to(ROOT),
                      "line": i + 1, "rows": []}
             i += 1
             while i < len(lines):
@@ -160,15 +162,16 @@ def problems(found):
 
 def markdown(found):
     out = ["# Parameters", "",
-           "Every parameter of every integrator, light, camera, material, texture and analytic shape",
-           "that has a table beside its `Create` in src/, generated from those tables by",
+           "Every parameter of every integrator, light, camera, film, sampler, pixel filter, medium,",
+           "material, texture and analytic shape, from the table beside the code that reads it in",
+           "src/, generated from those tables by",
            "`tools/param_tables.py --write` (the test `Docs.ParameterTablesMatchTheCode` runs",
            "`--check`: this page, the tables and the names the code reads cannot drift apart).",
            "pbrt-v3's parameter types apply (`spectrum` takes `rgb`, `spectrum` or `blackbody`;",
            "`texture` means a value or a named texture). Directives not listed here are described",
            "in docs/USAGE.md (\"pbrt-v3 support\") and docs/FORMAT.md: the meshes, curves, nurbs",
-           "and heightfields, `alpha`/`shadowalpha` and `bumpmap`/`normalmap` (every shape's and",
-           "material's), Film, Sampler, PixelFilter and the media.", ""]
+           "and heightfields, and `alpha`/`shadowalpha` and `bumpmap`/`normalmap` (every shape's",
+           "and material's).", ""]
     kinds = {}
     for t in found:
         kinds.setdefault(t["kind"], []).append(t)

@@ -15,6 +15,20 @@
 
 namespace prism {
 
+// Film "image" (pbrt-v3's). Parameters:
+//   xresolution, yresolution  integer  1280, 720  the image's size (--res wins)
+//   cropwindow                float[4]  0 1 0 1  x0 x1 y0 y1 of the part rendered
+//   filename                  string   ""        the output when -o is not given
+//   scale                     float    1         multiplies every pixel
+//   maxsampleluminance        float    infinity  samples brighter than this are scaled down
+//   diagonal                  float    35        mm: read by the realistic camera only
+//   exposure                  float    0         EV, in [-64, 64] (a Prism extension; --exposure
+//                                                wins)
+//   tonemap                   string   —         none | neutral | aces | filmic for 8-bit
+//                                                outputs (a Prism extension; default none for pbrt,
+//                                                neutral for OBJ, glTF and PLY; --tonemap wins)
+//   aovs                      string   ""        the AOVs of an EXR output (a Prism extension;
+//                                                --aov wins)
 void BuildFilm(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     const BuildSettings &settings = ctx.settings;
@@ -107,6 +121,15 @@ void ChargeFilmMemory(BuildContext &ctx) {
 namespace {
 
 // The perspective and orthographic cameras' fov, screen window and thin lens.
+// Camera "perspective", "orthographic" (pbrt-v3's). Parameters:
+//   fov            float     90       perspective: the field of view across the image's
+//                                     shorter side, degrees
+//   halffov        float     —        perspective: half of fov (pbrt-v3's alternative)
+//   screenwindow   float[4]  —        x0 x1 y0 y1 of the image plane (default: the aspect
+//                                     ratio's, [-1, 1] across the shorter side)
+//   lensradius     float     0        the thin lens's radius (depth of field when > 0)
+//   focaldistance  float     1e6      the distance in focus
+// Every camera also reads shutteropen, shutterclose and frameaspectratio (BuildCamera).
 void ReadProjection(const CameraDesc &cd, const BuildSettings &settings, CameraParams *params) {
     const ParamSet &cp = cd.params;
     params->fovDeg = cp.GetFloat("fov", PbrtDefaultFovDeg);
@@ -195,6 +218,13 @@ std::shared_ptr<const LensSystem> ReadLens(BuildContext &ctx, CameraParams *para
 
 }  // namespace
 
+// Camera "environment" (pbrt-v3's), and the parameters every camera reads. Parameters:
+//   shutteropen, shutterclose  float  0, 1   the interval the image integrates over (a reversed
+//                                            pair is swapped with a warning)
+//   frameaspectratio           float  —      the film's width over its height (default: the
+//                                            resolution's)
+//   screenwindow               float[4]  —   environment and realistic: read and ignored, as in
+//                                            pbrt-v3
 void BuildCamera(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     const BuildSettings &settings = ctx.settings;
@@ -294,6 +324,11 @@ void BuildCamera(BuildContext &ctx) {
             }
 }
 
+// Sampler "stratified", "random", "02sequence", "lowdiscrepancy", "halton", "sobol"
+// (pbrt-v3's; only the sample count is read, docs/USAGE.md "pbrt-v3 support"). Parameters:
+//   xsamples, ysamples  integer  4, 4  stratified: the samples per pixel are their product
+//   jitter              bool     true  stratified: read, no effect
+//   pixelsamples        integer  16    the others (random: 4); --spp wins
 void BuildSampler(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     const BuildSettings &settings = ctx.settings;
@@ -334,6 +369,10 @@ void BuildSampler(BuildContext &ctx) {
     scene.sampler.spp = spp;
 }
 
+// PixelFilter "box", "gaussian", "triangle", "mitchell" (pbrt-v3's). Parameters:
+//   xwidth, ywidth  float  0.5 (box), 2  the filter's radius, in (0, 16] pixels
+//   alpha           float  2             gaussian: its falloff
+//   B, C            float  1/3, 1/3      mitchell: its two parameters
 void BuildPixelFilter(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     RenderScene &scene = ctx.scene;

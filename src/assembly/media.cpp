@@ -68,6 +68,18 @@ void CheckNonNegative(const MediumDesc &m, const char *name, const RGB &v) {
                                                 "\" must be finite and not negative");
 }
 
+// MakeNamedMedium "homogeneous", "heterogeneous" (pbrt-v3's). Parameters:
+//   preset            string    ""     a measured medium of pbrt's table (its sigma_a and
+//                                      sigma_s; unknown: whole milk, with a warning)
+//   sigma_a, sigma_s  spectrum  .0011 .0024 .014, 2.55 3.21 3.77  absorption and scattering,
+//                                      per unit length (pbrt-v3's whole milk)
+//   scale             float     1      multiplies both, >= 0
+//   g                 float     0      Henyey-Greenstein asymmetry, in (-1, 1)
+//   stepsize          float     0      the single-scattering ray march's step (a Prism
+//                                      extension; 0: an eighth of the mean free path)
+//   nx, ny, nz        integer   1      heterogeneous: the density grid's size, 1 to 4096
+//   density           float[]   —      heterogeneous: nx ny nz values, x fastest; required
+//   p0, p1            point     0 0 0, 1 1 1  heterogeneous: the grid's box
 std::unique_ptr<Medium> MakeMedium(BuildContext &ctx, const MediumDesc &m) {
     const ParamSet &ps = m.params;
     const std::string context = "medium " + Quote(m.name);
