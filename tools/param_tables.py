@@ -163,15 +163,14 @@ def problems(found):
 def markdown(found):
     out = ["# Parameters", "",
            "Every parameter of every integrator, light, camera, film, sampler, pixel filter, medium,",
-           "material, texture and analytic shape, from the table beside the code that reads it in",
+           "material, texture and shape, from the table beside the code that reads it in",
            "src/, generated from those tables by",
            "`tools/param_tables.py --write` (the test `Docs.ParameterTablesMatchTheCode` runs",
            "`--check`: this page, the tables and the names the code reads cannot drift apart).",
            "pbrt-v3's parameter types apply (`spectrum` takes `rgb`, `spectrum` or `blackbody`;",
            "`texture` means a value or a named texture). Directives not listed here are described",
-           "in docs/USAGE.md (\"pbrt-v3 support\") and docs/FORMAT.md: the meshes, curves, nurbs",
-           "and heightfields, and `alpha`/`shadowalpha` and `bumpmap`/`normalmap` (every shape's",
-           "and material's).", ""]
+           "in docs/USAGE.md (\"pbrt-v3 support\") and docs/FORMAT.md: `alpha`/`shadowalpha` and",
+           "`bumpmap`/`normalmap`, which every shape and material takes.", ""]
     kinds = {}
     for t in found:
         kinds.setdefault(t["kind"], []).append(t)

@@ -63,6 +63,14 @@ std::unique_ptr<TriangleMesh> MakeMesh(const ShapeDesc &s, const Transform &rend
     }
 }
 
+// Shape "trianglemesh" (pbrt-v3's). Parameters:
+//   indices   integer[]  —   three per triangle; required
+//   P         point[]    —   the vertices; required
+//   N         normal[]   —   shading normals, one per vertex
+//   uv (st)   point2[]   —   texture coordinates, one per vertex
+//   uv1       point2[]   —   a second uv set (glTF's TEXCOORD_1; a Prism extension)
+//   tangent   float[]    —   four per vertex: tangent-space normal maps' tangents (a Prism
+//                            extension)
 ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
                                 Diagnostics &diag, MemoryBudget &budget) {
     const ParamSet &ps = s.params;
@@ -104,6 +112,9 @@ ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromO
     return g;
 }
 
+// Shape "plymesh" (pbrt-v3's). Parameters:
+//   filename  string  ""  the PLY file (ASCII or binary, with normals and uv when it has
+//                         them), relative to the scene; required
 ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
                            const ShapeFactoryContext &ctx, MemoryBudget &budget) {
     std::string file = s.params.GetString("filename", "");
@@ -142,7 +153,11 @@ class ShapeDescParams final : public ShapeParams {
     const ShapeDesc &s_;
 };
 
-// [loopsubdiv] Loop subdivision on the CPU into a triangle mesh with limit normals.
+// Shape "loopsubdiv" (pbrt-v3's): Loop subdivision on the CPU into a triangle mesh with limit
+// normals. Parameters:
+//   levels (nlevels)  integer    3  subdivision steps
+//   indices           integer[]  —  three per triangle; required
+//   P                 point[]    —  the control mesh's vertices; required
 ShapeGeometry LoopSubdivShape(const ShapeDesc &s, const Transform &renderFromObject,
                               const ShapeFactoryContext &ctx, MemoryBudget &budget) {
     const ParamSet &ps = s.params;
@@ -226,9 +241,14 @@ void ReadNurbsDirection(const ShapeDesc &s, const char *count, const char *order
 // the patch mesh, and the render-space mesh), for the memory budget.
 constexpr uint64_t NurbsBytesPerTriangle = 128;
 
-// [nurbs] A NURBS patch (pbrt-v3's parameters: nu, nv, uorder, vorder, uknots, vknots, u0, u1,
-// v0, v1, and "point P" or rational "float Pw"), tessellated by geometry/nurbs_patch.h's rule
-// into a mesh with normals and the parametric (u, v) as uv.
+// Shape "nurbs" (pbrt-v3's): a NURBS patch tessellated by geometry/nurbs_patch.h's rule into a
+// mesh with normals and the parametric (u, v) as uv. Parameters:
+//   nu, nv          integer  —  control points in u and v; required
+//   uorder, vorder  integer  —  the orders (degree + 1); required
+//   uknots, vknots  float[]  —  nu + uorder and nv + vorder knots; required
+//   u0, u1, v0, v1  float    —  the parameter range drawn; required
+//   P               point[]  —  nu nv control points, u fastest (or Pw)
+//   Pw              float[]  —  nu nv rational control points x y z w (or P)
 ShapeGeometry NurbsShape(const ShapeDesc &s, const Transform &renderFromObject,
                          const ShapeFactoryContext &ctx, MemoryBudget &budget) {
     const ParamSet &ps = s.params;
@@ -287,7 +307,10 @@ ShapeGeometry NurbsShape(const ShapeDesc &s, const Transform &renderFromObject,
     return g;
 }
 
-// [heightfield] nu x nv heights "float Pz" over the unit square (geometry/heightfield.h).
+// Shape "heightfield" (pbrt-v3's): heights over the unit square (geometry/heightfield.h).
+// Parameters:
+//   nu, nv  integer  —  the grid's size; required
+//   Pz      float[]  —  nu nv heights, u fastest; required
 ShapeGeometry HeightfieldShape(const ShapeDesc &s, const Transform &renderFromObject,
                                MemoryBudget &budget) {
     int nu = RequiredInt(s, "nu"), nv = RequiredInt(s, "nv");
@@ -305,19 +328,23 @@ ShapeGeometry HeightfieldShape(const ShapeDesc &s, const Transform &renderFromOb
     return g;
 }
 
-// [curve] pbrt-v3's curve (docs/FORMAT.md "Curves"), as Embree's native Bézier curves:
-//   point P            control points: degree*n + 1 for "bezier", n + degree for "bspline"
-//   string basis       "bezier" (default) | "bspline"
-//   integer degree     3 (default) | 2 (elevated to cubic, exactly)
-//   string type        "flat" (default; faces each ray) | "cylinder" (a swept tube) |
-//                      "ribbon" (oriented by N)
-//   float width        1; width0, width1 (default width): the width at the curve's start and
-//                      end, linear in between
-//   normal N           ribbon: one per segment end (n + 1)
-//   integer splitdepth 3: pbrt-v3 splits each segment 2^splitdepth times for its own
-//                      intersector; here the number of ray-facing quads per segment Embree
-//                      tessellates a flat curve into (2^splitdepth, 1 to 64; the geometry of
-//                      cylinders and ribbons does not change)
+// Shape "curve" (pbrt-v3's; docs/FORMAT.md "Curves"), as Embree's native Bézier curves.
+// Parameters:
+//   P               point[]   —         control points: degree n + 1 for bezier, n + degree
+//                                       for bspline (n segments)
+//   basis           string    "bezier"  bezier | bspline
+//   degree          integer   3         3 | 2 (elevated to cubic, exactly)
+//   type            string    "flat"    flat (faces each ray) | cylinder (a swept tube) |
+//                                       ribbon (oriented by N)
+//   width           float     1         the width everywhere, unless width0 and width1
+//   width0, width1  float     width     the width at the curve's start and end, linear in
+//                                       between
+//   N               normal[]  —         ribbon: one per segment end (n + 1)
+//   splitdepth      integer   3         pbrt-v3 splits each segment 2^splitdepth times for
+//                                       its own intersector; here the ray-facing quads per
+//                                       segment Embree tessellates a flat curve into
+//                                       (2^splitdepth, 1 to 64; cylinders and ribbons do not
+//                                       change)
 ShapeGeometry CurveShape(const ShapeDesc &s, const Transform &renderFromObject,
                          const ShapeFactoryContext &ctx, MemoryBudget &budget) {
     const ParamSet &ps = s.params;
