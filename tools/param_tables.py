@@ -20,8 +20,8 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DOC = ROOT / "docs" / "PARAMETERS.md"
-HEADER = re.compile(r'^\s*//\s*(\w+)\s+("[^"]+"(?:,\s*"[^"]+")*)(.*)Parameters(?: \([^)]*\))?:\s*$')
-# A header's directive may be on the comment's first line and "Parameters:" on a later one.
+# A table's header: a comment line ending in "Parameters:" (TAIL), with the directive and its
+# quoted names (HEAD_NAME) on that line or on an earlier line of the same comment.
 HEAD_NAME = re.compile(r'^\s*//\s*(\w+)\s+("[^"]+"(?:,\s*"[^"]+")*)')
 TAIL = re.compile(r'^\s*//.*Parameters(?: \([^)]*\))?:\s*$')
 ROW = re.compile(r'^\s*//   (\S.*?)\s{2,}(\S.*)$')
@@ -53,13 +53,13 @@ def split_row(rest):
 def tables():
     found = []
     for path in sorted((ROOT / "src").rglob("*.cpp")):
-        lines = path.read_text().split('\n')
+        text = path.read_text()
+        lines = text.split('\n')
         i = 0
         while i < len(lines):
-            m = HEADER.match(lines[i])
-            if not m and TAIL.match(lines[i]):
-                # Look back over the same comment block for the directive and its name.
-                j = i - 1
+            m = None
+            if TAIL.match(lines[i]):
+                j = i
                 while j >= 0 and lines[j].lstrip().startswith('//') and not m:
                     m = HEAD_NAME.match(lines[j])
                     j -= 1
@@ -83,8 +83,9 @@ def tables():
                 else:
                     break
                 i += 1
-            table["end"] = i
             if table["rows"]:
+                table["text"] = text
+                table["body"] = create_body(lines, i)
                 found.append(table)
     return found
 
@@ -131,8 +132,7 @@ def problems(found):
     out = []
     tabled = set()
     for t in found:
-        lines = (ROOT / t["file"]).read_text().split('\n')
-        m = CREATE.search(create_body(lines, t["end"]).split('{')[0])
+        m = CREATE.search(t["body"].split('{')[0])
         if m:
             tabled.add(m.group(1))
     for reg in REGISTRIES:
@@ -144,7 +144,7 @@ def problems(found):
             out.append(f'src/geometry/shape_list.inc: "{name}" (CreateShape<{cls}>) has no '
                        'parameter table beside its Create')
     for t in found:
-        text = (ROOT / t["file"]).read_text()
+        text = t["text"]
         shared = ''.join((ROOT / f).read_text() for f in SHARED.get(t["kind"], []))
         listed = {n for r in t["rows"] for n in r["names"]}
         for r in t["rows"]:
@@ -152,8 +152,7 @@ def problems(found):
                 if '"' + n + '"' not in text and '"' + n + '"' not in shared:
                     out.append(f'{t["file"]}:{t["line"]}: {t["kind"]} "{t["name"]}" lists '
                                f'"{n}", which neither {t["file"].name} nor the assembly reads')
-        body = create_body(text.split('\n'), t["end"])
-        for n in sorted(set(READ.findall(body))):
+        for n in sorted(set(READ.findall(t["body"]))):
             if n not in listed:
                 out.append(f'{t["file"]}:{t["line"]}: {t["kind"]} "{t["name"]}": its Create '
                            f'reads "{n}", which the table does not list')
@@ -191,16 +190,14 @@ def main():
         sys.exit(__doc__)
     found = tables()
     text = markdown(found)
+    bad = problems(found)
     if sys.argv[1] == "--write":
         DOC.write_text(text)
         print(f"wrote {DOC.relative_to(ROOT)}: {len(found)} tables, "
               f"{sum(len(t['rows']) for t in found)} rows")
-        bad = problems(found)
-    else:
-        bad = problems(found)
-        if not DOC.exists() or DOC.read_text() != text:
-            bad.append(f"{DOC.relative_to(ROOT)} is not generated from the tables: run "
-                       "tools/param_tables.py --write")
+    elif not DOC.exists() or DOC.read_text() != text:
+        bad.append(f"{DOC.relative_to(ROOT)} is not generated from the tables: run "
+                   "tools/param_tables.py --write")
     for b in bad:
         print(b, file=sys.stderr)
     sys.exit(1 if bad else 0)
