@@ -15,8 +15,9 @@ namespace prism::test {
 
 RunResult RunShell(const std::string &command, const std::filesystem::path &cwd) {
     std::filesystem::path outFile = cwd / "stdout.txt", errFile = cwd / "stderr.txt";
-    std::string cmd = "cd '" + cwd.string() + "' && " + command + " >'" + outFile.string() +
-                      "' 2>'" + errFile.string() + "' </dev/null";
+    std::string cmd = "cd " + ShellQuoted(cwd.string()) + " && " + command + " >" +
+                      ShellQuoted(outFile.string()) + " 2>" + ShellQuoted(errFile.string()) +
+                      " </dev/null";
     int status = std::system(cmd.c_str());
     RunResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -29,7 +30,7 @@ RunResult RunShell(const std::string &command, const std::filesystem::path &cwd)
 
 RunResult RunPrism(const std::string &args, const std::filesystem::path &cwd,
                    const std::string &env) {
-    return RunShell(env + " '" + std::string(PRISM_BINARY) + "' " + args, cwd);
+    return RunShell(env + " " + ShellQuoted(PRISM_BINARY) + " " + args, cwd);
 }
 
 std::string ShellQuoted(const std::string &s) {

@@ -36,9 +36,7 @@ std::string WriteSceneText(const std::string &dir, const std::string &name,
 
 RenderScene BuildSceneText(const std::string &dir, const std::string &name, const std::string &text,
                            const BuildSettings &opts) {
-    Diagnostics diag;
-    SceneDescription desc = LoadScene(WriteSceneText(dir, name, text), diag);
-    return BuildRenderScene(desc, opts, diag);
+    return BuildSceneFile(WriteSceneText(dir, name, text), opts).scene;
 }
 
 Rendered RenderSceneText(const std::string &dir, const std::string &name, const std::string &text,

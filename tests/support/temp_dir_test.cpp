@@ -1,16 +1,12 @@
-// The scratch folders and error catchers of the test-support library: each test gets a folder
-// of its own, empty when handed out, and ErrorOf reports what is thrown.
+// The scratch folders of the test-support library: each test gets a folder of its own, empty
+// when handed out.
 
 #include "support/temp_dir.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <stdexcept>
 #include <string>
-
-#include "core/error.h"
-#include "support/errors.h"
 
 namespace prism::test {
 namespace {
@@ -35,14 +31,6 @@ TEST(TempDir, ASlashInANameMakesOneFolderNotANest) {
     fs::path d = TempDir("p/q");
     EXPECT_TRUE(fs::is_directory(d));
     EXPECT_EQ(d.parent_path(), fs::path(::testing::TempDir()).parent_path());
-}
-
-TEST(ErrorOf, ReturnsWhatOfTheCaughtTypeOrNoError) {
-    EXPECT_EQ(ErrorOf<SceneError>([] { throw SceneError("bad"); }), "bad");
-    EXPECT_EQ(ErrorOf<SceneError>([] {}), kNoError);
-    EXPECT_THROW(ErrorOf<SceneError>([] { throw std::logic_error("other"); }), std::logic_error);
-    EXPECT_EQ(PbrtErrorOf("WorldBegin WorldBegin"),
-              "s.pbrt:1:12: error: WorldBegin inside the world block");
 }
 
 }  // namespace
