@@ -554,8 +554,8 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
 
 void AddRenderCommand(CLI::App &app, int *exitCode) {
     auto args = std::make_shared<RenderArgs>();
-    CLI::App *cmd =
-        app.add_subcommand("render", "Render a scene (.pbrt, .obj, .gltf, .glb, .ply) to an image");
+    CLI::App *cmd = app.add_subcommand(
+        "render", "Render a scene (.pbrt, .obj, .gltf, .glb, .ply, .stl) to an image");
     std::function<void()> recordGiven = AddRenderOptions(cmd, args.get());
     cmd->callback([args, exitCode, recordGiven] {
         recordGiven();

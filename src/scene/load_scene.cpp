@@ -19,6 +19,7 @@
 #include "scene/obj_reader.h"
 #include "scene/param_builders.h"
 #include "scene/ply_reader.h"
+#include "scene/stl_reader.h"
 #include "scene/tokenizer.h"
 
 namespace prism {
@@ -104,7 +105,7 @@ SceneDescription LoadPlyScene(const std::string &path, Bounds3f *bounds, MemoryB
 }  // namespace
 
 // Every format LoadScene reads, in the order messages list them.
-constexpr const char *kSceneExtensions[] = {".pbrt", ".obj", ".gltf", ".glb", ".ply"};
+constexpr const char *kSceneExtensions[] = {".pbrt", ".obj", ".gltf", ".glb", ".ply", ".stl"};
 
 bool IsSceneExtension(const std::string &extension) {
     const std::string lower = ToLowerAscii(extension);
@@ -327,6 +328,9 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
         bounds = SceneMeshBounds(desc);
     } else if (ext == ".gltf" || ext == ".glb") {
         desc = ReadGltfFile(path, diag, budget);
+        bounds = SceneMeshBounds(desc);
+    } else if (ext == ".stl") {
+        desc = ReadStlFile(path, diag, &budget);
         bounds = SceneMeshBounds(desc);
     } else {
         desc = LoadPlyScene(path, &bounds, budget);

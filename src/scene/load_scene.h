@@ -1,5 +1,5 @@
 // Entry point for reading any supported scene file: dispatches on the extension (.pbrt, .obj,
-// .gltf/.glb, .ply) and, for formats without a camera or lights, supplies sensible defaults.
+// .gltf/.glb, .ply, .stl) and, for formats without a camera or lights, supplies sensible defaults.
 #pragma once
 
 #include <string>
@@ -42,7 +42,7 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag,
 // Whether LoadScene reads files with this extension (".pbrt", ".obj", ".gltf", ".glb",
 // ".ply"; any case). The one list of scene formats: `prism batch` collects scenes with it.
 bool IsSceneExtension(const std::string &extension);
-// The same list for messages: ".pbrt, .obj, .gltf, .glb or .ply".
+// The same list for messages: ".pbrt, .obj, .gltf, .glb, .ply or .stl".
 std::string SceneExtensionList();
 
 // The files a scene file names directly, as canonical paths (CanonicalPath): for pbrt, the

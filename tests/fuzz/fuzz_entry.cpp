@@ -16,6 +16,7 @@
 #include "scene/obj_reader.h"
 #include "scene/pbrt_parser.h"
 #include "scene/ply_reader.h"
+#include "scene/stl_reader.h"
 
 namespace fs = std::filesystem;
 
@@ -73,6 +74,16 @@ void FuzzPly(const uint8_t *data, size_t size, std::string *rejected) {
     Diagnostics diag;
     try {
         ReadPlyFile(path, diag);
+    } catch (const SceneError &e) {
+        if (rejected) *rejected = e.what();
+    }
+}
+
+void FuzzStl(const uint8_t *data, size_t size, std::string *rejected) {
+    std::string path = WriteInput("mesh.stl", data, size);
+    Diagnostics diag;
+    try {
+        ReadStlFile(path, diag);
     } catch (const SceneError &e) {
         if (rejected) *rejected = e.what();
     }
@@ -149,6 +160,8 @@ bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
         FuzzPbrt(data, size, rejected);
     else if (target == "ply")
         FuzzPly(data, size, rejected);
+    else if (target == "stl")
+        FuzzStl(data, size, rejected);
     else if (target == "obj")
         FuzzObj(data, size, rejected);
     else if (target == "gltf")

@@ -15,6 +15,7 @@ namespace prism::fuzz {
 void FuzzPbrt(const uint8_t *data, size_t size,
               std::string *rejected = nullptr);  // ParsePbrtString, includes confined
 void FuzzPly(const uint8_t *data, size_t size, std::string *rejected = nullptr);  // ReadPlyFile
+void FuzzStl(const uint8_t *data, size_t size, std::string *rejected = nullptr);  // ReadStlFile
 void FuzzObj(const uint8_t *data, size_t size,
              std::string *rejected = nullptr);  // ReadObjFile (+ MTL after a "#%MTL" line)
 void FuzzGltf(const uint8_t *data, size_t size,
@@ -31,7 +32,7 @@ void FuzzTextureGraph(const uint8_t *data, size_t size,
 std::string GltfJsonScene(const uint8_t *data, size_t size);
 std::string TextureGraphScene(const uint8_t *data, size_t size);
 
-// Dispatch by target name ("pbrt", "ply", "obj", "gltf", "image", "gltf_json", "texture");
+// Dispatch by target name ("pbrt", "ply", "stl", "obj", "gltf", "image", "gltf_json", "texture");
 // false if unknown.
 bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
                 std::string *rejected = nullptr);

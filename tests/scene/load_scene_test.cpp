@@ -44,8 +44,9 @@ bool HasNote(const SceneDescription &d, const std::string &text) {
 
 TEST(LoadScene, Errors) {
     std::string xyz = WriteScratchFile("ls_scene.xyz", "whatever");
-    EXPECT_EQ(ErrorOf(xyz),
-              "unsupported scene format \".xyz\" (expected .pbrt, .obj, .gltf, .glb or .ply)");
+    EXPECT_EQ(
+        ErrorOf(xyz),
+        "unsupported scene format \".xyz\" (expected .pbrt, .obj, .gltf, .glb, .ply or .stl)");
     std::string missing = ::testing::TempDir() + "ls_missing.obj";
     EXPECT_EQ(ErrorOf(missing), "cannot open file \"" + missing + "\"");
 }

@@ -192,11 +192,12 @@ TEST(SceneBuilder, GraphicsStateErrorsAreLocated) {
 }
 
 TEST(LoadScene, OneListOfSceneExtensions) {
-    for (const char *e : {".pbrt", ".obj", ".gltf", ".glb", ".ply", ".PLY", ".Pbrt"})
+    for (const char *e :
+         {".pbrt", ".obj", ".gltf", ".glb", ".ply", ".PLY", ".Pbrt", ".stl", ".STL"})
         EXPECT_TRUE(IsSceneExtension(e)) << e;
     for (const char *e : {"", ".xyz", ".png", ".pbr", ".pbrtx", "pbrt"})
         EXPECT_FALSE(IsSceneExtension(e)) << e;
-    EXPECT_EQ(SceneExtensionList(), ".pbrt, .obj, .gltf, .glb or .ply");
+    EXPECT_EQ(SceneExtensionList(), ".pbrt, .obj, .gltf, .glb, .ply or .stl");
 }
 
 TEST(ParamSet, MarkAllUsed) {
