@@ -431,7 +431,7 @@ void SkipElement(const PlyElement &e, DataReader &r) {
     if (e.props.empty()) return;
     for (uint64_t i = 0; i < e.count; ++i)
         for (const PlyProperty &p : e.props) {
-            double n;
+            double n = 0;
             uint64_t c;
             bool ok = p.isList
                           ? r.Read(p.countType, &n) && ListCount(n, &c) && r.Skip(p.valueType, c)

@@ -124,7 +124,7 @@ WorldEnd
     RenderStats stats;
     Built plain = BuildFile(Write("plain.pbrt", scene("")));
     Image ref = Render(plain.scene, &stats);
-    for (const std::string extra :
+    for (const std::string &extra :
          {std::string(R"("string normalmap" "flat_n.exr")"),
           std::string(R"("rgb normalmap" [0.5 0.5 1] "float normalscale" [3])")}) {
         SCOPED_TRACE(extra);

@@ -145,7 +145,7 @@ double TotalDark(const Image &img) {
 // The same motions applied to an analytic sphere, to a mesh sphere (Embree time steps) and to
 // an instance of the sphere: a translation, and a rotation (many time steps).
 TEST(MotionBlur, MeshAnalyticShapeAndInstanceAgree) {
-    for (const std::string motion :
+    for (const std::string &motion :
          {std::string("ActiveTransform StartTime\nTranslate -2 0 0\nActiveTransform EndTime\n"
                       "Translate 2 0.3 0\nActiveTransform All\n"),
           std::string("ActiveTransform EndTime\nRotate 150 0 0 1\nActiveTransform All\n"
