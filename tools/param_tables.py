@@ -91,13 +91,28 @@ def tables():
 
 
 def create_body(lines, start):
-    """The lines of the function that follows a table: to its closing brace at column 0."""
+    """The lines of the function that follows a table: to its closing brace, at the indentation
+    of the function's first line (column 0, or a member function's)."""
     body = []
+    indent = ''
+    if start < len(lines):
+        indent = lines[start][:len(lines[start]) - len(lines[start].lstrip())]
     for line in lines[start:]:
         body.append(line)
-        if line.startswith('}'):
+        if line.startswith(indent + '}'):
             break
     return '\n'.join(body)
+
+
+# WithTexCoordParams(t, primary, fallback, "NAME") reads "NAMEtransform" and "NAMEtexcoord".
+TEXCOORD = re.compile(r'WithTexCoordParams\([^;]*?"(\w+)"\)')
+
+
+def literals(text):
+    """The quoted parameter names a source text can read: its literals and the names
+    WithTexCoordParams builds."""
+    built = ''.join(f'"{n}transform" "{n}texcoord"' for n in TEXCOORD.findall(text))
+    return text + built
 
 
 # Parameters every directive of a kind shares are read once, by the scene assembly: a table's
@@ -144,8 +159,8 @@ def problems(found):
             out.append(f'src/geometry/shape_list.inc: "{name}" (CreateShape<{cls}>) has no '
                        'parameter table beside its Create')
     for t in found:
-        text = t["text"]
-        shared = ''.join((ROOT / f).read_text() for f in SHARED.get(t["kind"], []))
+        text = literals(t["text"])
+        shared = literals(''.join((ROOT / f).read_text() for f in SHARED.get(t["kind"], [])))
         listed = {n for r in t["rows"] for n in r["names"]}
         for r in t["rows"]:
             for n in r["names"]:
@@ -168,8 +183,9 @@ def markdown(found):
            "`--check`: this page, the tables and the names the code reads cannot drift apart).",
            "pbrt-v3's parameter types apply (`spectrum` takes `rgb`, `spectrum` or `blackbody`;",
            "`texture` means a value or a named texture). Directives not listed here are described",
-           "in docs/USAGE.md (\"pbrt-v3 support\") and docs/FORMAT.md: `alpha`/`shadowalpha` and",
-           "`bumpmap`/`normalmap`, which every shape and material takes.", ""]
+           "in docs/USAGE.md (\"pbrt-v3 support\") and docs/FORMAT.md. `Shape \"(every shape)\"` and",
+           "`Material \"(every material)\"` are the parameters every shape and every material takes.",
+           ""]
     kinds = {}
     for t in found:
         kinds.setdefault(t["kind"], []).append(t)

@@ -149,10 +149,20 @@ std::shared_ptr<const Material> MaterialBuilder::NamedMaterialRef(const std::str
     return m;
 }
 
-// pbrt-v3 "bumpmap" (v4 "displacement"): a float texture; a tangent-space normal map, as
-// pbrt-v4's "string normalmap" (an image file, read linearly) or a Prism "texture normalmap",
-// with the Prism extension "float normalscale" (glTF's normalTexture.scale; default 1) and
-// "normalmaptexcoord" / "normalmaptransform" (WithTexCoordParams).
+// Material "(every material)": the shading normal's perturbation (render/bump.cpp), read here
+// for each material, from the material or, for a shape's own material parameters, the shape.
+// Parameters:
+//   bumpmap (v4: displacement)  texture   (none)  a float height texture: the shading normal
+//                                                 follows its gradient (a constant moves
+//                                                 nothing)
+//   normalmap                   texture   (none)  a tangent-space normal map: pbrt-v4's "string
+//                                                 normalmap" (an image file, read linearly) or
+//                                                 a Prism "texture normalmap"
+//   normalscale                 float     1       Prism: the map's x and y scale (glTF's
+//                                                 normalTexture.scale)
+//   normalmaptexcoord           integer   0       Prism: the uv set the map reads
+//   normalmaptransform          float[5]  (none)  Prism: a transform of the map's uv (offset u v,
+//                                                 rotation in radians, scale u v)
 void MaterialBuilder::ShadingPerturbation(Material &mat, const SceneMaterialParams &mp,
                                           const MaterialDesc &m) {
     for (const char *n : {"bumpmap", "displacement"})

@@ -58,15 +58,23 @@ struct ShapeBuilder : BuildStep {
     MaterialBuilder &materials;
     std::vector<const AreaLightDesc *> usedAreaLights;  // unused parameters reported at the end
 
-    // pbrt's "alpha" / "shadowalpha": a constant 0 removes the shape from all rays / from
-    // shadow rays (pbrt-v3 cuts out only where alpha is exactly 0); a texture becomes a
-    // cut-out test on each hit (geometry/alpha.h). "shadowalpha" defaults to "alpha". Prism
-    // extensions, written by the glTF and OBJ readers: "string alphamode" "mask" (kept where
-    // alpha >= "float alphacutoff", default 0.5) or "blend" (stochastic transparency: a hit is
-    // kept where alpha exceeds a hash of the ray and the primitive, for camera, secondary and
-    // shadow rays alike, so a surface of alpha a passes 1 - a of them and its shadow darkens
-    // by a on average); "alphatexcoord" / "alphatransform" (WithTexCoordParams) for a glTF
-    // base colour on TEXCOORD_1 or with KHR_texture_transform.
+    // Shape "(every shape)": the cut-outs (geometry/alpha.h), read here for each shape; the
+    // glTF and OBJ readers write the Prism extensions. Parameters:
+    //   alpha           texture   1         1 keeps the surface; a constant 0 removes it from
+    //                                       every ray (pbrt-v3 cuts out only where alpha is
+    //                                       exactly 0); a texture is a cut-out test on each hit
+    //   shadowalpha     texture   alpha     the same, for shadow rays only
+    //   alphamode       string    (none)    Prism: "mask" keeps a hit where alpha >= alphacutoff;
+    //                                       "blend" is stochastic transparency: a hit is kept
+    //                                       where alpha exceeds a hash of the ray and the
+    //                                       primitive, for camera, secondary and shadow rays
+    //                                       alike, so a surface of alpha a passes 1 - a of them
+    //                                       and its shadow darkens by a on average
+    //   alphacutoff     float     0.5       Prism: the "mask" threshold
+    //   alphatexcoord   integer   0         Prism: the uv set the test reads (1: the mesh's "uv1")
+    //   alphatransform  float[5]  (none)    Prism: a transform of the alpha texture's uv (offset
+    //                                       u v, rotation in radians, scale u v), glTF's
+    //                                       KHR_texture_transform
     unsigned VisibilityMask(const ShapeDesc &s, ShapeAlpha *cutouts) {
         const ParamSet &ps = s.params;
         float alpha = 1, shadowAlpha = 1;
