@@ -157,7 +157,7 @@ struct Picker {
         std::string next;
         if (depth < maxBounces && depth + 1 < scene.trace.maxDepth) {
             const Material &mat = scene.materials[size_t(info.material)];
-            BSDF bsdf = mat.GetBSDF(si, TextureContext{si.uv, si.p, si.uv1});
+            BSDF bsdf = mat.GetBSDF(si, SurfaceTextureContext(si));
             for (int part = 0; part < bsdf.NumParts(); ++part) {
                 Vec3f wi;
                 RGB weight;

@@ -137,6 +137,9 @@ struct TextureBuilder : BuildStep {
             return b_.TexParam(ps_, name, isFloat, def);
         }
         RGB Spectrum(const char *name, RGB def) const override { return ps_.GetRGB(name, def); }
+        Vec3f Vector(const char *name, Vec3f def) const override {
+            return ps_.GetVector3(name, def);
+        }
         TextureMapping Mapping() const override { return b_.Mapping(t_); }
         TextureMapping3D Mapping3D() const override {
             return TextureMapping3D{(b_.scene.renderFromWorld * t_.worldFromTexture).Inverse()};

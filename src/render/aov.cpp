@@ -251,7 +251,7 @@ void AovFrame::AddGeometry(const TileContext &ctx, const Bounds2i &tb) {
                 SurfaceInteraction si;
                 if (albedo_ && firstHit(camera.GenerateRay(cs), &si)) {
                     const Material &m = scene.materials[size_t(scene.Info(si).material)];
-                    BSDF bsdf = m.GetBSDF(si, TextureContext{si.uv, si.p, si.uv1});
+                    BSDF bsdf = m.GetBSDF(si, SurfaceTextureContext(si));
                     for (int part = 0; part < bsdf.NumParts(); ++part)
                         albedoSum += bsdf.Weight(part) * bsdf.Part(part).kd;
                 }

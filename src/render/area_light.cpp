@@ -25,10 +25,12 @@ RGB TriangleMean(const Texture &t, const TriangleMesh &mesh, size_t tri, int max
     const uint32_t *v = mesh.Triangle(tri);
     const Vec3f p0 = mesh.Position(v[0]), p1 = mesh.Position(v[1]), p2 = mesh.Position(v[2]);
     RGB sum;
+    const Vec3f normal = mesh.GeometricNormal(tri);
     auto at = [&](double b1, double b2) {
         const float u = float(b1), w = float(b2);
         TextureContext tc{mesh.UVAt(tri, u, w, 0), p0 * (1 - u - w) + p1 * u + p2 * w,
                           mesh.UVAt(tri, u, w, 1)};
+        tc.n = normal;
         sum += t.Evaluate(tc).Clamped(0.f);
     };
     for (int i = 0; i < m; ++i)
@@ -126,6 +128,7 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
             const float eu = float(b1), ev = float(1 - b0 - b1);
             TextureContext tc{mesh_->UVAt(size_t(tri), eu, ev, 0), p,
                               mesh_->UVAt(size_t(tri), eu, ev, 1)};
+            tc.n = n;
             Le = Lemit_ * radiance_->Evaluate(tc).Clamped(0.f);
         }
     }
@@ -173,6 +176,7 @@ bool DiffuseAreaLight::SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &,
             const float eu = float(b1), ev = float(1 - b0 - b1);
             TextureContext tc{mesh_->UVAt(size_t(tri), eu, ev, 0), p,
                               mesh_->UVAt(size_t(tri), eu, ev, 1)};
+            tc.n = n;
             Le = Lemit_ * radiance_->Evaluate(tc).Clamped(0.f);
         }
     }

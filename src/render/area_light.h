@@ -39,7 +39,7 @@ class DiffuseAreaLight final : public Light {
     // AreaLight::L(intr, w)): L × the texture at the hit's uv (the hit needs NeedUV).
     RGB L(const SurfaceInteraction &si, const Vec3f &w) const {
         if (!(twoSided_ || Dot(si.n, w) > 0)) return RGB(0);
-        return radiance_ ? Lemit_ * radiance_->Evaluate({si.uv, si.p, si.uv1}).Clamped(0.f)
+        return radiance_ ? Lemit_ * radiance_->Evaluate(SurfaceTextureContext(si)).Clamped(0.f)
                          : Lemit_;
     }
     bool IsArea() const override { return true; }

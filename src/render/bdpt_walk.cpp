@@ -86,7 +86,7 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
         v.wo = -ray.d;
         v.beta = beta;
         v.light = info.areaLight;
-        TextureContext tc{si.uv, si.p, si.uv1};
+        TextureContext tc = SurfaceTextureContext(si);
         if (cameraHit) ComputeDifferentials(si, *diff, &tc);
         if (!importance && mat.HasEmission()) v.emitted = mat.Emitted(tc);
         v.bsdf.emplace(mat.GetBSDF(v.si, tc));

@@ -18,9 +18,15 @@ namespace {
 void Bump(const Texture &d, SurfaceInteraction &si) {
     constexpr float du = .0005f, dv = .0005f;
     const Vec3f n = si.ns;
-    const float displace = d.Evaluate({si.uv, si.p, si.uv1}).r;
-    const float uDisplace = d.Evaluate({si.uv + Vec2f(du, 0), si.p + si.dpdu * du, si.uv1}).r;
-    const float vDisplace = d.Evaluate({si.uv + Vec2f(0, dv), si.p + si.dpdv * dv, si.uv1}).r;
+    const TextureContext at = SurfaceTextureContext(si);
+    TextureContext atU = at, atV = at;
+    atU.uv = at.uv + Vec2f(du, 0);
+    atU.p += si.dpdu * du;
+    atV.uv = at.uv + Vec2f(0, dv);
+    atV.p += si.dpdv * dv;
+    const float displace = d.Evaluate(at).r;
+    const float uDisplace = d.Evaluate(atU).r;
+    const float vDisplace = d.Evaluate(atV).r;
     const Vec3f dpdu = si.dpdu + n * ((uDisplace - displace) / du);
     const Vec3f dpdv = si.dpdv + n * ((vDisplace - displace) / dv);
     Vec3f ns = Cross(dpdu, dpdv);
@@ -53,7 +59,7 @@ void NormalMap(const Texture &map, float scale, SurfaceInteraction &si) {
     } else {
         CoordinateSystem(n, &t, &b);
     }
-    const RGB c = map.Evaluate({si.uv, si.p, si.uv1});
+    const RGB c = map.Evaluate(SurfaceTextureContext(si));
     const Vec3f m((2 * c.r - 1) * scale, (2 * c.g - 1) * scale, 2 * c.b - 1);
     Vec3f ns = t * m.x + b * m.y + n * m.z;
     const float len = Length(ns);

@@ -69,7 +69,7 @@ RGB DirectLightingIntegrator::Li(const RenderScene &scene, const Ray &rayIn, con
         L += static_cast<const DiffuseAreaLight &>(*scene.lights[size_t(info->areaLight)])
                  .L(si, si.wo);
     if (mat.PerturbsShading()) mat.PerturbShading(si);
-    TextureContext tc{si.uv, si.p, si.uv1};
+    TextureContext tc = SurfaceTextureContext(si);
     // The ray's footprint (not behind pass-through surfaces, whose continued rays carry no
     // differentials).
     if (diff && !(ray.o == rayIn.o)) diff = nullptr;

@@ -93,7 +93,7 @@ RGB Kernel<K>::Shade(const Ray &rayIn, SurfaceInteraction si, int depth, RayCoun
     // Bump and normal maps move the shading normal before anything reads it (one test of a
     // flag per hit for scenes without them: no kernel bit).
     if (mat->PerturbsShading()) mat->PerturbShading(si);
-    TextureContext tc{si.uv, si.p, si.uv1};
+    TextureContext tc = SurfaceTextureContext(si);
     // The footprint, where the ray carries differentials (only in scenes whose textures
     // filter: RenderScene::differentials); specular bounces pass it on.
     if (diff) ComputeDifferentials(si, *diff, &tc);

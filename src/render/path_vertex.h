@@ -41,7 +41,7 @@ bool SurfaceVertex(const RenderScene &scene, const LightChooser &chooser, Surfac
                    const RayDifferential *diff, const Visibility &vis, PathState &path, Vec3f *wi,
                    RayCounters &counters) {
     if (mat.PerturbsShading()) mat.PerturbShading(si);
-    TextureContext tc{si.uv, si.p, si.uv1};
+    TextureContext tc = SurfaceTextureContext(si);
     if (diff) ComputeDifferentials(si, *diff, &tc);
     // Emission a material carries itself (glTF emissive textures; no light samples it).
     if (mat.HasEmission()) path.L += path.beta * mat.Emitted(tc);

@@ -100,7 +100,7 @@ void SppmIntegrator::CameraPass(const FrameContext &frame, int iter, SppmPass &p
                                          *scene.lights[size_t(info.areaLight)])
                                          .L(si, si.wo);
                     if (mat.PerturbsShading()) mat.PerturbShading(si);
-                    TextureContext tc{si.uv, si.p, si.uv1};
+                    TextureContext tc = SurfaceTextureContext(si);
                     if (depth == 0 && camera.Differentials() && ray.o == cameraOrigin)
                         ComputeDifferentials(si, rd, &tc);
                     if (mat.HasEmission()) Ld += beta * mat.Emitted(tc);

@@ -183,7 +183,7 @@ struct PhotonTracer {
             // The first surface's light is the camera pass's direct lighting.
             if (depth > 0) Deposit(si.p, si.wo, beta, sums);
             if (mat.PerturbsShading()) mat.PerturbShading(si);
-            const TextureContext tc{si.uv, si.p, si.uv1};
+            const TextureContext tc = SurfaceTextureContext(si);
             BSDF bsdf = mat.GetBSDF(si, tc);
             bsdf.MakeRoughSpecularGlossy();
             BSDFSample bs;

@@ -3,11 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/interaction.h"
 #include "image/image.h"
 #include "render/mipmap.h"
 #include "render/noise.h"
 
 namespace prism {
+
+TextureContext SurfaceTextureContext(const SurfaceInteraction &si) {
+    TextureContext tc{si.uv, si.p, si.uv1};
+    tc.n = si.n;
+    return tc;
+}
 
 Vec2f TextureMapping::Map(const TextureContext &ctx) const {
     switch (kind) {
@@ -325,6 +332,23 @@ TexturePtr CreateMixTexture(const TextureParams &p, const FileLoc &) {
     const bool f = p.IsFloat();
     return std::make_shared<MixTexture>(p.Tex("tex1", f, RGB(0)), p.Tex("tex2", f, RGB(1)),
                                         p.Tex("amount", true, RGB(0.5f)));
+}
+
+// Texture "directionmix" (pbrt-v4; texture_list.inc). Parameters:
+//   tex1  texture  0      the value where the surface's normal is along dir
+//   tex2  texture  1      the value where it is perpendicular to dir
+//   dir   vector   0 1 0  the direction, in the texture's space (the transform at the
+//                         Texture directive), normalized; the weight of tex1 is |n . dir|
+TexturePtr CreateDirectionMixTexture(const TextureParams &p, const FileLoc &loc) {
+    const bool f = p.IsFloat();
+    const Vec3f d = p.Vector("dir", Vec3f(0, 1, 0));
+    const Vec3f dir = Vec3f(p.Mapping3D().textureFromRender.Inverse().Vector(Vec3d(d)));
+    const float len = Length(dir);
+    if (!(len > 0) || !std::isfinite(len))
+        throw SceneError(p.Has("dir") ? p.Loc("dir") : loc,
+                         "directionmix \"dir\" must be a nonzero, finite vector");
+    return std::make_shared<DirectionMixTexture>(p.Tex("tex1", f, RGB(0)), p.Tex("tex2", f, RGB(1)),
+                                                 dir / len);
 }
 
 // Texture "checkerboard" (texture_list.inc). Parameters:

@@ -1,9 +1,12 @@
 // Textures (pbrt-v3 §10): constant, scale, mix, checkerboard (2-D and 3-D), imagemap, bilerp,
-// uv, dots and the noise textures fbm, wrinkled, windy and marble, with the uv / spherical /
+// uv, dots and the noise textures fbm, wrinkled, windy and marble, pbrt-v4's directionmix,
+// with the uv / spherical /
 // cylindrical / planar mappings. Float textures are RGB textures whose channels are equal;
 // materials read .r for float parameters.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -15,6 +18,7 @@
 namespace prism {
 
 struct Image;
+struct SurfaceInteraction;
 
 struct TextureContext {
     Vec2f uv;
@@ -25,7 +29,11 @@ struct TextureContext {
     // differentials; filtered lookups then read the finest level, bilinearly.
     Vec3f dpdx{}, dpdy{};
     float dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
+    Vec3f n{};  // the unit geometric normal (directionmix); zero where there is no surface
 };
+
+// The context of a surface hit: its uv, p, uv1 and normal, without a footprint.
+TextureContext SurfaceTextureContext(const SurfaceInteraction &si);
 
 class Texture {
   public:
@@ -64,6 +72,28 @@ struct TextureMapping {
 struct TextureMapping3D {
     Transform textureFromRender;
     Vec3f Map(const TextureContext &ctx) const;
+};
+
+// pbrt-v4 DirectionMixTexture: tex1 where the normal is along `dir` (render space, unit),
+// tex2 where it is perpendicular; the weight of tex1 is |n . dir|.
+class DirectionMixTexture final : public Texture {
+  public:
+    DirectionMixTexture(TexturePtr tex1, TexturePtr tex2, Vec3f dir)
+        : tex1_(std::move(tex1)), tex2_(std::move(tex2)), dir_(dir) {}
+    RGB Evaluate(const TextureContext &c) const override {
+        const float amount = std::min(std::abs(Dot(c.n, dir_)), 1.f);
+        RGB v(0);
+        if (amount != 0) v = tex1_->Evaluate(c) * amount;
+        if (amount != 1) v = v + tex2_->Evaluate(c) * (1 - amount);
+        return v;
+    }
+    bool UsesDifferentials() const override {
+        return tex1_->UsesDifferentials() || tex2_->UsesDifferentials();
+    }
+
+  private:
+    TexturePtr tex1_, tex2_;
+    Vec3f dir_;
 };
 
 class ScaleTexture final : public Texture {
@@ -239,6 +269,8 @@ class TextureParams : public Params {
     // else def.
     virtual TexturePtr Tex(const char *name, bool isFloat, RGB def) const = 0;
     virtual RGB Spectrum(const char *name, RGB def) const = 0;
+    // A "vector" parameter as written (in the texture's space), else def.
+    virtual Vec3f Vector(const char *name, Vec3f def) const = 0;
     // pbrt's 2-D mapping ("mapping", "uscale", ...) and the texture space of 3-D textures.
     virtual TextureMapping Mapping() const = 0;
     virtual TextureMapping3D Mapping3D() const = 0;

@@ -1,5 +1,6 @@
 // Texture values at known points: Perlin noise (against an independent evaluation of the
-// published algorithm), fbm/wrinkled/windy/marble, bilerp, uv, dots, and the 3-D mapping.
+// published algorithm), fbm/wrinkled/windy/marble, bilerp, uv, dots, directionmix, and the
+// 3-D mapping.
 #include "render/texture.h"
 
 #include <gtest/gtest.h>
@@ -10,9 +11,12 @@
 #include "render/materials.h"
 #include "render/noise.h"
 #include "scene/pbrt_parser.h"
+#include "support/errors.h"
 
 namespace prism {
 namespace {
+
+using test::ErrorOf;
 
 TexturePtr Const(float v) { return std::make_shared<ConstantTexture>(RGB(v)); }
 
@@ -99,6 +103,20 @@ TEST(Texture, BilerpUVAndDots) {
     EXPECT_LT(withDot, 90);
 }
 
+TEST(Texture, DirectionMixWeighsTex1ByTheNormalAlongDir) {
+    const DirectionMixTexture t(std::make_shared<ConstantTexture>(RGB(1, 0, 0)),
+                                std::make_shared<ConstantTexture>(RGB(0, 0, 1)), Vec3f(0, 0, 1));
+    TextureContext c = AtUV(0, 0);
+    c.n = Vec3f(0, 0, -1);  // either side of the surface
+    EXPECT_EQ(t.Evaluate(c), RGB(1, 0, 0));
+    c.n = Vec3f(1, 0, 0);
+    EXPECT_EQ(t.Evaluate(c), RGB(0, 0, 1));
+    c.n = Vec3f(std::sqrt(0.75f), 0, 0.5f);  // 60 degrees from dir
+    const RGB v = t.Evaluate(c);
+    EXPECT_NEAR(v.r, 0.5f, 1e-6f);
+    EXPECT_NEAR(v.b, 0.5f, 1e-6f);
+}
+
 SceneDescription Parse(const std::string &world, Diagnostics &diag) {
     return ParsePbrtString("WorldBegin\nLightSource \"point\"\n" + world, "tex.pbrt", diag);
 }
@@ -121,6 +139,39 @@ TEST(TextureScene, ThreeDTexturesUseTheInverseCTM) {
     EXPECT_NEAR(m.ModelAs<MatteMaterial>()->Kd()->Evaluate(AtP(pRender)).g,
                 FBm(pWorld * 0.5f, 0.5f, 4), 1e-5f);
     EXPECT_EQ(diag.Count(), size_t(0));
+}
+
+// "dir" is in the texture's space: Rotate 90 about x turns its y into world z.
+TEST(TextureScene, DirectionMixDirFollowsTheTextureTransform) {
+    Diagnostics diag;
+    SceneDescription d = Parse(
+        "AttributeBegin\nRotate 90 1 0 0\n"
+        "Texture \"t\" \"spectrum\" \"directionmix\" \"rgb tex1\" [1 0 0] \"rgb tex2\" [0 0 1] "
+        "\"vector dir\" [0 2 0]\n"
+        "AttributeEnd\n"
+        "Material \"matte\" \"texture Kd\" \"t\"\nShape \"sphere\"\n",
+        diag);
+    BuildSettings o;
+    o.resolution = {4, 4};
+    RenderScene s = BuildRenderScene(d, o, diag);
+    EXPECT_EQ(diag.Count(), size_t(0));
+    const Material &m = s.materials[size_t(s.shapes[0].material)];
+    ASSERT_TRUE(m.ModelAs<MatteMaterial>());
+    const Texture &kd = *m.ModelAs<MatteMaterial>()->Kd();
+    TextureContext c = AtUV(0, 0);
+    c.n = Normalize(Vec3f(s.renderFromWorld.Vector(Vec3d(0, 0, 1))));
+    EXPECT_NEAR(kd.Evaluate(c).r, 1, 1e-5f);
+    c.n = Normalize(Vec3f(s.renderFromWorld.Vector(Vec3d(0, 1, 0))));
+    EXPECT_NEAR(kd.Evaluate(c).b, 1, 1e-5f);
+
+    Diagnostics d2;
+    SceneDescription bad = Parse(
+        "Texture \"t\" \"float\" \"directionmix\" \"vector dir\" [0 0 0]\nShape \"sphere\"\n", d2);
+    const std::string err = ErrorOf<SceneError>([&] { BuildRenderScene(bad, o, d2); });
+    EXPECT_NE(
+        err.find("tex.pbrt:3:36: error: directionmix \"dir\" must be a nonzero, finite vector"),
+        std::string::npos)
+        << err;
 }
 
 TEST(TextureScene, EveryClassBuildsAndPtexWarns) {
