@@ -92,6 +92,8 @@ SceneDescription LoadPlyScene(const std::string &path, Bounds3f *bounds, MemoryB
     budget.Release(budget.Used() - usedBefore);
     SceneDescription desc;
     desc.format = "ply";
+    // A PLY file names no integrator: Prism's distribution integrator, as for OBJ and glTF.
+    desc.integrator.type = "distribution";
     desc.sourceFile = path;
     desc.baseDir = DirectoryOf(path);
     ShapeDesc s;

@@ -256,6 +256,8 @@ SceneDescription ReadStlFile(const std::string &path, Diagnostics &diag, MemoryB
     const std::string data = ReadFileOrThrow(path, fileLoc, b, "scene file");
     SceneDescription desc;
     desc.format = "stl";
+    // STL names no integrator: Prism's distribution integrator, as for OBJ, glTF and PLY.
+    desc.integrator.type = "distribution";
     desc.sourceFile = path;
     desc.baseDir = DirectoryOf(path);
     bool binary = false;

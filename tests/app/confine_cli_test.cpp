@@ -17,6 +17,7 @@
 #include "support/process.h"
 #include "support/shared.h"
 #include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
@@ -25,14 +26,8 @@ namespace {
 
 using namespace test;
 
-// Six lines; the directive under test goes on line 7.
-const char *const kPbrtHead =
-    "LookAt 0 0 5  0 0 0  0 1 0\n"
-    "Camera \"perspective\" \"float fov\" 40\n"
-    "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\n"
-    "Sampler \"random\" \"integer pixelsamples\" 1\n"
-    "WorldBegin\n"
-    "LightSource \"point\" \"rgb I\" [10 10 10] \"point from\" [0 0 5]\n";
+// Five lines (test::kCliHead); the directive under test goes on line 6.
+const std::string kPbrtHead = kCliHead;
 
 const char *const kTriangleObj =
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n";
@@ -92,7 +87,7 @@ std::vector<EscapeCase> WriteCorpus(const fs::path &root) {
     auto pbrt = [&](const std::string &name, const std::string &line, const std::string &names,
                     bool readable) {
         std::ofstream(sc / name) << kPbrtHead << line << "\n";
-        cases.push_back({name, "scene/" + name + ":7:", names, readable});
+        cases.push_back({name, "scene/" + name + ":6:", names, readable});
     };
     // pbrt: Include, plymesh, imagemap and spectrum files.
     pbrt("include_dotdot.pbrt", "Include \"../outside/secret.pbrt\"", "secret.pbrt", true);
@@ -235,12 +230,12 @@ TEST(Confine, InfoAndValidateAreConfinedToo) {
     WriteCorpus(root);
     RunResult info = RunPrism("info --confine scene/include_dotdot.pbrt", root);
     EXPECT_EQ(info.exitCode, 2) << info.err;
-    EXPECT_NE(info.err.find("scene/include_dotdot.pbrt:7:1: error:"), std::string::npos)
+    EXPECT_NE(info.err.find("scene/include_dotdot.pbrt:6:1: error:"), std::string::npos)
         << info.err;
     EXPECT_EQ(RunPrism("info scene/include_dotdot.pbrt", root).exitCode, 0);
     RunResult val = RunPrism("validate scene/plymesh_dotdot.pbrt --confine --out v -q", root);
     EXPECT_EQ(val.exitCode, 2) << val.err;
-    EXPECT_NE(val.err.find("scene/plymesh_dotdot.pbrt:7:"), std::string::npos) << val.err;
+    EXPECT_NE(val.err.find("scene/plymesh_dotdot.pbrt:6:"), std::string::npos) << val.err;
 }
 
 TEST(Confine, AnExplicitFolderAllowsWhatLiesInsideIt) {
@@ -251,7 +246,7 @@ TEST(Confine, AnExplicitFolderAllowsWhatLiesInsideIt) {
     EXPECT_EQ(r.exitCode, 0) << r.err;
     r = RunPrism("render scene/include_dev_zero.pbrt --confine=. -o b.png -q", root);
     EXPECT_EQ(r.exitCode, 2) << r.err;
-    EXPECT_NE(r.err.find("scene/include_dev_zero.pbrt:7:1:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("scene/include_dev_zero.pbrt:6:1:"), std::string::npos) << r.err;
     // The scene itself outside DIR.
     r = RunPrism("render scene/include_dotdot.pbrt --confine outside -o c.png -q", root);
     EXPECT_EQ(r.exitCode, 2) << r.err;
@@ -460,7 +455,7 @@ TEST(Confine, BatchConfinesEachSceneToItsOwnFolder) {
     std::string evilLine = report.substr(evil, report.find('\n', evil) - evil);
     EXPECT_NE(goodLine.find("\"status\": \"ok\""), std::string::npos) << goodLine;
     EXPECT_NE(evilLine.find("\"status\": \"failed\""), std::string::npos) << evilLine;
-    EXPECT_NE(evilLine.find("evil.pbrt:7:1: error:"), std::string::npos) << evilLine;
+    EXPECT_NE(evilLine.find("evil.pbrt:6:1: error:"), std::string::npos) << evilLine;
     EXPECT_NE(evilLine.find("outside the confined folder"), std::string::npos) << evilLine;
     // --confine=in: every scene may read anything under in/.
     r = RunPrism("batch in -o out2 --confine=in -q", root);

@@ -16,6 +16,7 @@
 
 #include "support/process.h"
 #include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace fs = std::filesystem;
 
@@ -24,14 +25,7 @@ namespace {
 
 using namespace test;
 
-const char *const kScene =
-    "LookAt 0 0 5  0 0 0  0 1 0\n"
-    "Camera \"perspective\" \"float fov\" 40\n"
-    "Film \"image\" \"integer xresolution\" 32 \"integer yresolution\" 32\n"
-    "Sampler \"random\" \"integer pixelsamples\" 1\n"
-    "WorldBegin\n"
-    "LightSource \"point\" \"rgb I\" [10 10 10] \"point from\" [0 0 5]\n"
-    "Shape \"sphere\"\n";
+const std::string kScene = std::string(kCliHead) + "Shape \"sphere\"\n";
 
 // The environment that preloads the fault library with `faults` ("NAME=value ..."). The
 // sanitizer build's processes accept a preloaded library before the ASan runtime only with

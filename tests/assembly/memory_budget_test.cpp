@@ -25,7 +25,7 @@ namespace {
 
 using namespace test;
 
-fs::path Dir() { return test::ScratchDir("prism_assembly_budget"); }
+const ScratchFiles kFiles("prism_assembly_budget");
 
 // A 64x64 film with the box filter (radius 0.5), one light, and `world`.
 SceneDescription Parse(const std::string &world, Diagnostics &diag) {
@@ -33,7 +33,7 @@ SceneDescription Parse(const std::string &world, Diagnostics &diag) {
         "Film \"image\" \"integer xresolution\" [64] \"integer yresolution\" [64]\n"
         "PixelFilter \"box\"\nWorldBegin\nLightSource \"point\"\n" +
             world,
-        (Dir() / "budget.pbrt").string(), diag);
+        kFiles.Path("budget.pbrt"), diag);
 }
 const uint64_t FilmBytes = EstimateFilmBytes(64, 64, 0.5, 0.5, RenderTileSize);
 
@@ -73,7 +73,7 @@ TEST(BuildBudget, FilmEstimateIsChargedWithTheTileMargins) {
 }
 
 TEST(BuildBudget, FilmAndTextureEachUnderTheLimitAreRefusedTogether) {
-    std::string png = (Dir() / "tex128.png").string();
+    std::string png = kFiles.Path("tex128.png");
     WriteImage(png, Image(128, 128, 3));
     const uint64_t textureBytes = 128 * 128 * 3 * sizeof(float);
     Diagnostics diag;
@@ -114,7 +114,7 @@ TEST(BuildBudget, FilmAndPlyMeshEachUnderTheLimitAreRefusedTogether) {
     for (int i = 0; i < n; ++i)
         ply += "3 " + std::to_string(3 * i) + " " + std::to_string(3 * i + 1) + " " +
                std::to_string(3 * i + 2) + "\n";
-    std::string path = (Dir() / "budget500.ply").string();
+    std::string path = kFiles.Path("budget500.ply");
     std::ofstream(path, std::ios::binary) << ply;
     const uint64_t plyBytes = PlyMeshBytes(ply.size(), 3 * n, n);
     const uint64_t meshBytes = TriangleMesh::Bytes(3 * n, 3 * n, false, false);

@@ -23,14 +23,11 @@ namespace {
 
 using namespace test;
 
-fs::path Dir() { return test::ScratchDir("prism_limits"); }
+const ScratchFiles kFiles("prism_limits");
 
-std::string Write(const std::string &name, const std::string &contents) {
-    return test::WriteTestFile(Dir() / name, contents);
-}
 
 TEST(Limits, PlyMeshMustFitTheMemoryBudget) {
-    std::string path = Write("budget.ply", AsciiPly(1000));
+    std::string path = kFiles.Write("budget.ply", AsciiPly(1000));
     Diagnostics diag;
     EXPECT_EQ(ReadPlyFile(path, diag, 1 << 20).P.size(), 1000u);
     std::string err = ErrorOf<SceneError>([&] { ReadPlyFile(path, diag, 20000); });
@@ -43,7 +40,7 @@ TEST(Limits, PlyMeshMustFitTheMemoryBudget) {
 }
 
 TEST(Limits, PlyHeaderClaimingATrillionVertices) {
-    std::string path = Write("trillion.ply",
+    std::string path = kFiles.Write("trillion.ply",
                              "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\n"
                              "property float x\nproperty float y\nproperty float z\nend_header\n" +
                                  std::string(24, '\0'));
@@ -53,7 +50,7 @@ TEST(Limits, PlyHeaderClaimingATrillionVertices) {
 }
 
 TEST(Limits, LoadSceneRejectsFilesBeyondTheBudget) {
-    std::string path = Write("big.ply", AsciiPly(100));
+    std::string path = kFiles.Write("big.ply", AsciiPly(100));
     LoadOptions opts;
     opts.maxMemory = 100;
     Diagnostics diag;
@@ -74,8 +71,8 @@ std::string TriangleGltf(const std::string &bufferUri, int byteLength) {
 }
 
 TEST(Limits, GltfBuffersMustFitTheBudgetAndBeRegularFiles) {
-    Write("tri.bin", std::string(36, '\0'));
-    std::string path = Write("tri.gltf", TriangleGltf("tri.bin", 36));
+    kFiles.Write("tri.bin", std::string(36, '\0'));
+    std::string path = kFiles.Write("tri.gltf", TriangleGltf("tri.bin", 36));
     Diagnostics diag;
     EXPECT_NO_THROW(ReadGltfFile(path, diag, 1 << 20));
     // The .gltf itself fits but the buffer does not.
@@ -84,16 +81,16 @@ TEST(Limits, GltfBuffersMustFitTheBudgetAndBeRegularFiles) {
     EXPECT_NE(err.find("exceeds the memory budget"), std::string::npos) << err;
     // A buffer that is a device (hostile URI) is refused before it is read.
     std::string rel;
-    for (fs::path p = Dir(); p.has_relative_path() && p != p.root_path(); p = p.parent_path())
+    for (fs::path p = kFiles.Dir(); p.has_relative_path() && p != p.root_path(); p = p.parent_path())
         rel += "../";
-    path = Write("zero.gltf", TriangleGltf(rel + "dev/zero", 36));
+    path = kFiles.Write("zero.gltf", TriangleGltf(rel + "dev/zero", 36));
     err = ErrorOf<SceneError>([&] { ReadGltfFile(path, diag); });
     EXPECT_NE(err.find("not a regular file"), std::string::npos) << err;
 }
 
 TEST(Limits, GltfAccessorPastItsBuffer) {
-    Write("short.bin", std::string(24, '\0'));
-    std::string path = Write("short.gltf", TriangleGltf("short.bin", 24));
+    kFiles.Write("short.bin", std::string(24, '\0'));
+    std::string path = kFiles.Write("short.gltf", TriangleGltf("short.bin", 24));
     Diagnostics diag;
     std::string err = ErrorOf<SceneError>([&] { ReadGltfFile(path, diag); });
     EXPECT_NE(err.find("reaches past the end of its buffer"), std::string::npos) << err;
@@ -102,25 +99,25 @@ TEST(Limits, GltfAccessorPastItsBuffer) {
 TEST(Limits, IncludeDepthAndCycles) {
     // a0 includes a1 includes ... a9: fine with depth 10, an error with depth 5.
     for (int i = 0; i < 10; ++i)
-        Write(
+        kFiles.Write(
             "chain" + std::to_string(i) + ".pbrt",
             i < 9 ? "Include \"chain" + std::to_string(i + 1) + ".pbrt\"\n" : "Shape \"sphere\"\n");
     Diagnostics diag;
     PbrtParseOptions opts;
     opts.maxIncludeDepth = 10;
-    EXPECT_NO_THROW(ParsePbrtFile((Dir() / "chain0.pbrt").string(), diag, opts));
+    EXPECT_NO_THROW(ParsePbrtFile(kFiles.Path("chain0.pbrt"), diag, opts));
     opts.maxIncludeDepth = 5;
     std::string err =
-        ErrorOf<SceneError>([&] { ParsePbrtFile((Dir() / "chain0.pbrt").string(), diag, opts); });
+        ErrorOf<SceneError>([&] { ParsePbrtFile(kFiles.Path("chain0.pbrt"), diag, opts); });
     EXPECT_NE(err.find("includes nested deeper than"), std::string::npos) << err;
-    Write("self.pbrt", "WorldBegin\nInclude \"self.pbrt\"\n");
-    err = ErrorOf<SceneError>([&] { ParsePbrtFile((Dir() / "self.pbrt").string(), diag); });
+    kFiles.Write("self.pbrt", "WorldBegin\nInclude \"self.pbrt\"\n");
+    err = ErrorOf<SceneError>([&] { ParsePbrtFile(kFiles.Path("self.pbrt"), diag); });
     EXPECT_NE(err.find("self.pbrt:2:1: error: include cycle"), std::string::npos) << err;
     // Confined includes may not leave the top-level file's directory.
-    Write("escape.pbrt", "Include \"../escape-target.pbrt\"\n");
-    std::ofstream(Dir().parent_path() / "escape-target.pbrt") << "\n";
+    kFiles.Write("escape.pbrt", "Include \"../escape-target.pbrt\"\n");
+    std::ofstream(kFiles.Dir().parent_path() / "escape-target.pbrt") << "\n";
     opts.confineIncludes = true;
-    err = ErrorOf<SceneError>([&] { ParsePbrtFile((Dir() / "escape.pbrt").string(), diag, opts); });
+    err = ErrorOf<SceneError>([&] { ParsePbrtFile(kFiles.Path("escape.pbrt"), diag, opts); });
     EXPECT_NE(err.find("escape.pbrt:1:1: error:"), std::string::npos) << err;
 }
 

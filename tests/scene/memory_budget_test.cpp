@@ -25,11 +25,8 @@ namespace {
 
 using namespace test;
 
-fs::path Dir() { return test::ScratchDir("prism_memory_budget"); }
+const ScratchFiles kFiles("prism_memory_budget");
 
-std::string Write(const std::string &name, const std::string &contents) {
-    return test::WriteTestFile(Dir() / name, contents);
-}
 
 // A pbrt file of exactly `bytes` bytes: `body`, then comment lines.
 std::string PaddedPbrt(const std::string &body, size_t bytes) {
@@ -43,12 +40,12 @@ std::string PaddedPbrt(const std::string &body, size_t bytes) {
 // The MemoryBudgetError `f` throws ("" if none; "not a MemoryBudgetError" for another error).
 
 TEST(MemoryBudgetScene, IncludedFilesEachUnderTheLimitAreRefusedTogether) {
-    Write("part_a.pbrt", PaddedPbrt("", 3000));
-    Write("part_b.pbrt", PaddedPbrt("", 3000));
-    std::string top = Write("two_parts.pbrt",
+    kFiles.Write("part_a.pbrt", PaddedPbrt("", 3000));
+    kFiles.Write("part_b.pbrt", PaddedPbrt("", 3000));
+    std::string top = kFiles.Write("two_parts.pbrt",
                             "Camera \"perspective\"\nWorldBegin\n"
                             "Include \"part_a.pbrt\"\nInclude \"part_b.pbrt\"\n");
-    std::string onlyA = Write("one_part.pbrt", "WorldBegin\nInclude \"part_a.pbrt\"\n");
+    std::string onlyA = kFiles.Write("one_part.pbrt", "WorldBegin\nInclude \"part_a.pbrt\"\n");
     const uint64_t topSize = fs::file_size(top);
     Diagnostics diag;
     LoadOptions opts;
@@ -75,7 +72,7 @@ TEST(MemoryBudgetScene, IncludedFilesEachUnderTheLimitAreRefusedTogether) {
 }
 
 TEST(MemoryBudgetScene, TheTopFileCountsWithWhatIsAlreadyCommitted) {
-    std::string path = Write("top.pbrt", PaddedPbrt("WorldBegin\n", 2000));
+    std::string path = kFiles.Write("top.pbrt", PaddedPbrt("WorldBegin\n", 2000));
     MemoryBudget budget(5000);
     budget.Charge(4000, "film");
     Diagnostics diag;
@@ -90,10 +87,10 @@ TEST(MemoryBudgetScene, TheTopFileCountsWithWhatIsAlreadyCommitted) {
 }
 
 TEST(MemoryBudgetScene, PlyUnderTheLimitWithTheSceneFileOverIt) {
-    std::string ply = Write("mesh.ply", AsciiPly(200));
+    std::string ply = kFiles.Write("mesh.ply", AsciiPly(200));
     const uint64_t meshBytes = PlyMeshBytes(fs::file_size(ply), 200, 1);
     std::string scene =
-        Write("with_mesh.pbrt", PaddedPbrt("WorldBegin\nShape \"plymesh\" \"string filename\" "
+        kFiles.Write("with_mesh.pbrt", PaddedPbrt("WorldBegin\nShape \"plymesh\" \"string filename\" "
                                            "\"mesh.ply\"\n",
                                            3000));
     const uint64_t limit = meshBytes + 2000;  // the mesh alone fits, not with the scene file
@@ -116,7 +113,7 @@ TEST(MemoryBudgetScene, PlyUnderTheLimitWithTheSceneFileOverIt) {
 }
 
 TEST(MemoryBudgetScene, TopLevelPlyIsCheckedAndItsChargeGivenBack) {
-    std::string ply = Write("top.ply", AsciiPly(200));
+    std::string ply = kFiles.Write("top.ply", AsciiPly(200));
     const uint64_t meshBytes = PlyMeshBytes(fs::file_size(ply), 200, 1);
     Diagnostics diag;
     MemoryBudget budget(meshBytes + 100);
@@ -134,7 +131,7 @@ TEST(MemoryBudgetScene, TriangleMeshParametersAreCharged) {
     std::string points, indices;
     for (int i = 0; i < 300; ++i) points += "0 0 " + std::to_string(i) + " ";
     for (int i = 0; i < 100; ++i) indices += "0 1 2 ";
-    std::string path = Write("mesh.pbrt", "WorldBegin\nShape \"trianglemesh\" \"point P\" [" +
+    std::string path = kFiles.Write("mesh.pbrt", "WorldBegin\nShape \"trianglemesh\" \"point P\" [" +
                                               points + "] \"integer indices\" [" + indices + "]\n");
     const uint64_t fileSize = fs::file_size(path);
     const uint64_t numbers = (900 + 300) * sizeof(double);  // P and indices, as doubles
@@ -159,7 +156,7 @@ TEST(MemoryBudgetScene, TriangleMeshParametersAreCharged) {
 }
 
 TEST(MemoryBudgetScene, ObjFileAndGeometryAreCharged) {
-    std::string path = Write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::string path = kFiles.Write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const uint64_t fileSize = fs::file_size(path);
     Diagnostics diag;
     MemoryBudget budget(1 << 20);
@@ -171,9 +168,9 @@ TEST(MemoryBudgetScene, ObjFileAndGeometryAreCharged) {
 }
 
 TEST(MemoryBudgetScene, GltfBufferRefusedWithWhatIsCommitted) {
-    Write("tri2.bin", std::string(36, '\0'));
+    kFiles.Write("tri2.bin", std::string(36, '\0'));
     std::string path =
-        Write("tri2.gltf",
+        kFiles.Write("tri2.gltf",
               R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],

@@ -57,6 +57,7 @@ TEST(StlReader, AsciiTetrahedronIsWeldedIntoFourVertices) {
     Diagnostics diag;
     SceneDescription d = ReadStlFile(path, diag);
     EXPECT_EQ(d.format, "stl");
+    EXPECT_EQ(d.integrator.type, "distribution") << "as OBJ, glTF and PLY";
     ASSERT_EQ(d.shapes.size(), 1u);
     const ShapeDesc &s = d.shapes[0];
     EXPECT_EQ(s.type, "trianglemesh");

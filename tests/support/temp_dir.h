@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <utility>
 
 namespace prism::test {
 
@@ -28,6 +29,23 @@ std::string WriteScratchFile(const std::string &name, const std::string &content
 
 // The bytes of the file at `path` ("" if it cannot be read).
 std::string ReadFile(const std::filesystem::path &path);
+
+// The scratch folder `name` of one test file, named once at file scope
+// (`const ScratchFiles kFiles("prism_limits");`) and created when first used.
+class ScratchFiles {
+  public:
+    explicit ScratchFiles(std::string name) : name_(std::move(name)) {}
+    std::filesystem::path Dir() const { return ScratchDir(name_); }
+    // The path of `rel` in the folder, as a string.
+    std::string Path(const std::string &rel) const { return (Dir() / rel).string(); }
+    // WriteTestFile of `rel` in the folder.
+    std::string Write(const std::string &rel, const std::string &contents) const {
+        return WriteTestFile(Dir() / rel, contents);
+    }
+
+  private:
+    std::string name_;
+};
 
 // A fixture with a fresh, empty directory per test (TempDir("")), removed afterwards.
 class FreshDirTest : public ::testing::Test {
