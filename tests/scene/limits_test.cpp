@@ -25,7 +25,6 @@ using namespace test;
 
 const ScratchFiles kFiles("prism_limits");
 
-
 TEST(Limits, PlyMeshMustFitTheMemoryBudget) {
     std::string path = kFiles.Write("budget.ply", AsciiPly(1000));
     Diagnostics diag;
@@ -40,10 +39,11 @@ TEST(Limits, PlyMeshMustFitTheMemoryBudget) {
 }
 
 TEST(Limits, PlyHeaderClaimingATrillionVertices) {
-    std::string path = kFiles.Write("trillion.ply",
-                             "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\n"
-                             "property float x\nproperty float y\nproperty float z\nend_header\n" +
-                                 std::string(24, '\0'));
+    std::string path =
+        kFiles.Write("trillion.ply",
+                     "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\n"
+                     "property float x\nproperty float y\nproperty float z\nend_header\n" +
+                         std::string(24, '\0'));
     Diagnostics diag;
     std::string err = ErrorOf<SceneError>([&] { ReadPlyFile(path, diag); });
     EXPECT_NE(err.find("file ends after 2 of 1000000000000 vertices"), std::string::npos) << err;
@@ -81,7 +81,8 @@ TEST(Limits, GltfBuffersMustFitTheBudgetAndBeRegularFiles) {
     EXPECT_NE(err.find("exceeds the memory budget"), std::string::npos) << err;
     // A buffer that is a device (hostile URI) is refused before it is read.
     std::string rel;
-    for (fs::path p = kFiles.Dir(); p.has_relative_path() && p != p.root_path(); p = p.parent_path())
+    for (fs::path p = kFiles.Dir(); p.has_relative_path() && p != p.root_path();
+         p = p.parent_path())
         rel += "../";
     path = kFiles.Write("zero.gltf", TriangleGltf(rel + "dev/zero", 36));
     err = ErrorOf<SceneError>([&] { ReadGltfFile(path, diag); });

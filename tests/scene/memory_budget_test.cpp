@@ -27,7 +27,6 @@ using namespace test;
 
 const ScratchFiles kFiles("prism_memory_budget");
 
-
 // A pbrt file of exactly `bytes` bytes: `body`, then comment lines.
 std::string PaddedPbrt(const std::string &body, size_t bytes) {
     std::string s = body;
@@ -43,8 +42,8 @@ TEST(MemoryBudgetScene, IncludedFilesEachUnderTheLimitAreRefusedTogether) {
     kFiles.Write("part_a.pbrt", PaddedPbrt("", 3000));
     kFiles.Write("part_b.pbrt", PaddedPbrt("", 3000));
     std::string top = kFiles.Write("two_parts.pbrt",
-                            "Camera \"perspective\"\nWorldBegin\n"
-                            "Include \"part_a.pbrt\"\nInclude \"part_b.pbrt\"\n");
+                                   "Camera \"perspective\"\nWorldBegin\n"
+                                   "Include \"part_a.pbrt\"\nInclude \"part_b.pbrt\"\n");
     std::string onlyA = kFiles.Write("one_part.pbrt", "WorldBegin\nInclude \"part_a.pbrt\"\n");
     const uint64_t topSize = fs::file_size(top);
     Diagnostics diag;
@@ -89,10 +88,10 @@ TEST(MemoryBudgetScene, TheTopFileCountsWithWhatIsAlreadyCommitted) {
 TEST(MemoryBudgetScene, PlyUnderTheLimitWithTheSceneFileOverIt) {
     std::string ply = kFiles.Write("mesh.ply", AsciiPly(200));
     const uint64_t meshBytes = PlyMeshBytes(fs::file_size(ply), 200, 1);
-    std::string scene =
-        kFiles.Write("with_mesh.pbrt", PaddedPbrt("WorldBegin\nShape \"plymesh\" \"string filename\" "
-                                           "\"mesh.ply\"\n",
-                                           3000));
+    std::string scene = kFiles.Write("with_mesh.pbrt",
+                                     PaddedPbrt("WorldBegin\nShape \"plymesh\" \"string filename\" "
+                                                "\"mesh.ply\"\n",
+                                                3000));
     const uint64_t limit = meshBytes + 2000;  // the mesh alone fits, not with the scene file
     Diagnostics diag;
     {
@@ -131,8 +130,9 @@ TEST(MemoryBudgetScene, TriangleMeshParametersAreCharged) {
     std::string points, indices;
     for (int i = 0; i < 300; ++i) points += "0 0 " + std::to_string(i) + " ";
     for (int i = 0; i < 100; ++i) indices += "0 1 2 ";
-    std::string path = kFiles.Write("mesh.pbrt", "WorldBegin\nShape \"trianglemesh\" \"point P\" [" +
-                                              points + "] \"integer indices\" [" + indices + "]\n");
+    std::string path =
+        kFiles.Write("mesh.pbrt", "WorldBegin\nShape \"trianglemesh\" \"point P\" [" + points +
+                                      "] \"integer indices\" [" + indices + "]\n");
     const uint64_t fileSize = fs::file_size(path);
     const uint64_t numbers = (900 + 300) * sizeof(double);  // P and indices, as doubles
     Diagnostics diag;
@@ -169,9 +169,9 @@ TEST(MemoryBudgetScene, ObjFileAndGeometryAreCharged) {
 
 TEST(MemoryBudgetScene, GltfBufferRefusedWithWhatIsCommitted) {
     kFiles.Write("tri2.bin", std::string(36, '\0'));
-    std::string path =
-        kFiles.Write("tri2.gltf",
-              R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    std::string path = kFiles.Write(
+        "tri2.gltf",
+        R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
  "bufferViews": [{"buffer": 0, "byteLength": 36}],

@@ -22,9 +22,9 @@ TEST(PbrtParser, IncludeResolvesAgainstTopLevelDirectory) {
     WriteTestFile(dir / "geom/a.pbrt", "Include \"geom/b.pbrt\"\nShape \"a\"\n");
     WriteTestFile(dir / "geom/b.pbrt", "Translate 1 0 0\n\n  Shape \"b\"\n");
     WriteTestFile(dir / "sub/abs.pbrt", "Shape \"abs\"\n");
-    std::string top = WriteTestFile(dir / "scene.pbrt", "WorldBegin\nInclude \"geom/a.pbrt\"\nImport \"" +
-                                                  (dir / "sub" / "abs.pbrt").string() +
-                                                  "\"\nShape \"top\"\n");
+    std::string top = WriteTestFile(
+        dir / "scene.pbrt", "WorldBegin\nInclude \"geom/a.pbrt\"\nImport \"" +
+                                (dir / "sub" / "abs.pbrt").string() + "\"\nShape \"top\"\n");
     Diagnostics diag;
     SceneDescription s = ParsePbrtFile(top, diag);
     EXPECT_EQ(s.baseDir, dir.string());
@@ -82,7 +82,8 @@ TEST(PbrtParser, IncludeDepthAndConfinement) {
     } catch (const SceneError &e) {
         EXPECT_EQ(e.Message(), "includes nested deeper than 3 levels");
     }
-    std::string esc = WriteTestFile(dir / "escape.pbrt", "Include \"../prism_parser_outside.pbrt\"\n");
+    std::string esc =
+        WriteTestFile(dir / "escape.pbrt", "Include \"../prism_parser_outside.pbrt\"\n");
     EXPECT_NO_THROW(ParsePbrtFile(esc, diag));
     opts = {};
     opts.confineIncludes = true;
