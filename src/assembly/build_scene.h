@@ -30,6 +30,10 @@ inline constexpr int MaxTraceDepth = 1000;
 using ShapeReplacement =
     std::function<std::unique_ptr<TriangleMesh>(const AnalyticShape &, const MeshCharge &charge)>;
 
+// The sample count the description's Sampler asks for (pbrt-v3's defaults: 16, "random" 4,
+// "stratified" xsamples x ysamples), before BuildSettings::spp replaces it; unchecked.
+int SceneSamplesPerPixel(const SceneDescription &desc);
+
 struct BuildSettings {
     // Replacements for what the description says; the default keeps the description's value.
     int spp = 0;                               // 0: the Sampler's

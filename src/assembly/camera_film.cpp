@@ -329,21 +329,24 @@ void BuildCamera(BuildContext &ctx) {
 //   xsamples, ysamples  integer  4, 4  stratified: the samples per pixel are their product
 //   jitter              bool     true  stratified: read, no effect
 //   pixelsamples        integer  16    the others (random: 4); --spp wins
+int SceneSamplesPerPixel(const SceneDescription &desc) {
+    const ParamSet &sp = desc.sampler.params;
+    if (desc.sampler.type == "stratified") {
+        // In 64 bits: the product of two file values must not overflow.
+        int64_t n = int64_t(sp.GetInt("xsamples", 4)) * sp.GetInt("ysamples", 4);
+        return int(std::clamp<int64_t>(n, -(int64_t(1) << 30), int64_t(1) << 30));
+    }
+    return sp.GetInt("pixelsamples", desc.sampler.type == "random" ? 4 : 16);
+}
+
 void BuildSampler(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     const BuildSettings &settings = ctx.settings;
     RenderScene &scene = ctx.scene;
     Diagnostics &diag = ctx.diag;
     const ParamSet &sp = desc.sampler.params;
-    int spp;
-    if (desc.sampler.type == "stratified") {
-        // In 64 bits: the product of two file values must not overflow.
-        int64_t n = int64_t(sp.GetInt("xsamples", 4)) * sp.GetInt("ysamples", 4);
-        spp = int(std::clamp<int64_t>(n, -(int64_t(1) << 30), int64_t(1) << 30));
-        sp.MarkUsed("jitter");
-    } else {
-        spp = sp.GetInt("pixelsamples", desc.sampler.type == "random" ? 4 : 16);
-    }
+    int spp = SceneSamplesPerPixel(desc);
+    if (desc.sampler.type == "stratified") sp.MarkUsed("jitter");
     // Prism draws its own stratified (correlated multi-jittered) samples whatever the file
     // names; only the sample count is read. The default (no Sampler directive) is not named.
     // The path integrators (directlighting, path, volpath, ao) draw "02sequence"/

@@ -15,6 +15,6 @@ void BuildPixelFilter(BuildContext &ctx);
 // Charges the film's memory (EstimateFilmBytes: film, tiles with the filter's margins, image
 // and its encoded copy) to the budget; after BuildFilm and BuildPixelFilter.
 void ChargeFilmMemory(BuildContext &ctx);
-void BuildIntegratorSettings(BuildContext &ctx);  // maxdepth (every integrator renders Whitted)
+void BuildIntegratorSettings(BuildContext &ctx);  // the integrator, why, and maxdepth
 
 }  // namespace prism

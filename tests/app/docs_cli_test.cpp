@@ -45,7 +45,7 @@ TEST(Docs, UsageNamesEveryFlag) {
     const fs::path dir = TempDir("usage");
     size_t checked = 0;
     for (const char *command : {"render", "batch", "info", "trace", "pick", "validate", "study",
-                                "bench ceiling", "bench knot", "bench suite"}) {
+                                "bench ceiling", "bench compare", "bench knot", "bench suite"}) {
         const test::RunResult r = test::RunPrism(std::string(command) + " --help", dir);
         ASSERT_EQ(r.exitCode, 0) << command << ": " << r.err;
         const std::set<std::string> flags = LongFlags(r.out);

@@ -29,13 +29,15 @@ std::string ReadAll(std::FILE *f) {
 
 }  // namespace
 
-ChildRun RunChild(const std::vector<std::string> &argv, const std::string &workDir) {
+ChildRun RunChild(const std::vector<std::string> &argv, const std::string &workDir,
+                  const std::string &stdinFile) {
     if (argv.empty()) throw std::runtime_error("RunChild: no command");
     std::FILE *out = std::tmpfile(), *err = std::tmpfile();
     if (!out || !err) throw std::runtime_error("RunChild: cannot create temporary files");
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 0, stdinFile.empty() ? "/dev/null" : stdinFile.c_str(),
+                                     O_RDONLY, 0);
     posix_spawn_file_actions_adddup2(&fa, fileno(out), 1);
     posix_spawn_file_actions_adddup2(&fa, fileno(err), 2);
     if (!workDir.empty()) posix_spawn_file_actions_addchdir_np(&fa, workDir.c_str());
@@ -59,6 +61,8 @@ ChildRun RunChild(const std::vector<std::string> &argv, const std::string &workD
     }
     run.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     run.maxRssKiB = ru.ru_maxrss;
+    run.cpuSeconds = double(ru.ru_utime.tv_sec) + double(ru.ru_utime.tv_usec) * 1e-6 +
+                     double(ru.ru_stime.tv_sec) + double(ru.ru_stime.tv_usec) * 1e-6;
     run.exitStatus = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     run.out = ReadAll(out);
     run.err = ReadAll(err);

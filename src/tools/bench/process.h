@@ -1,4 +1,5 @@
-// Child processes for `prism bench suite`: wall time and the child's own peak RSS (wait4).
+// Child processes for `prism bench suite` and `compare`: wall and CPU time and the child's own
+// peak RSS (wait4).
 #pragma once
 
 #include <string>
@@ -9,13 +10,15 @@ namespace prism {
 struct ChildRun {
     int exitStatus = -1;     // -1: did not start or was killed by a signal
     double wallSeconds = 0;  // spawn to exit
+    double cpuSeconds = 0;   // user + system time of the child (all its threads)
     long maxRssKiB = 0;      // ru_maxrss of this child alone
     std::string out, err;    // captured stdout and stderr
 };
 
 // Runs argv[0] (looked up on PATH) with the arguments, in workDir when not empty, with stdin
-// from /dev/null. Throws std::runtime_error when it cannot be started.
-ChildRun RunChild(const std::vector<std::string> &argv, const std::string &workDir = "");
+// from stdinFile (default /dev/null). Throws std::runtime_error when it cannot be started.
+ChildRun RunChild(const std::vector<std::string> &argv, const std::string &workDir = "",
+                  const std::string &stdinFile = "");
 
 // The path of the running executable (/proc/self/exe).
 std::string SelfExecutable();

@@ -25,20 +25,6 @@ namespace {
 
 using namespace test;
 
-fs::path TempDir(const std::string &name) {
-    fs::path d = fs::path(::testing::TempDir()) / ("prism_bench_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
-
-std::string ReadFile(const fs::path &p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 TEST(Knot, TriangleCountBoundsAndNormals) {
     KnotMesh m = BuildKnot(40, 8);
     EXPECT_EQ(m.p.size(), 320u);
