@@ -19,9 +19,11 @@ namespace prism {
 
 class Material;
 
-// Roughness (after remapping) below which a metal is treated as a polished conductor: a delta
-// reflection that recursion follows, instead of a highlight that point lights would miss.
-inline constexpr float SpecularMetalAlpha = 0.02f;
+// Roughness (after remapping) up to which a metal is treated as a polished conductor: a delta
+// reflection that recursion follows. pbrt-v4's threshold (TrowbridgeReitzDistribution::
+// EffectivelySmooth); above it a microfacet lobe, however sharp, as pbrt-v3 and pbrt-v4 render
+// it (pbrt-v3's remapped roughness never comes below 0.047).
+inline constexpr float SpecularMetalAlpha = 1e-3f;
 
 // One material model: the lobes it adds at a hit, and what can be known of them before
 // rendering (the effects a scene calls for, the surface data a hit reads).

@@ -279,7 +279,7 @@ TEST(GltfMaterial, RoughnessToZeroConvergesToTheMirror) {
     Params p;
     p.base = RGB(0.9f, 0.6f, 0.3f);
     p.metallic = 1;
-    p.roughness = 0.145f;  // alpha 0.021
+    p.roughness = 0.033f;  // alpha 0.00109
     BSDF b = FlatBSDF(Gltf(p));
     ASSERT_TRUE(b.HasGlossy());
     Vec3f wo = Dir(0.6, 0);

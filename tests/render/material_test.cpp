@@ -314,6 +314,27 @@ TEST(Material, SurfaceNeedsFollowTexturesAndAnisotropy) {
               unsigned(NeedUV));
 }
 
+// A metal is a delta mirror only at pbrt-v4's "effectively smooth" alpha (< 1e-3); sharper
+// lobes above it stay microfacet lobes, as pbrt-v3 and pbrt-v4 render them (veach-mis's
+// smoothest plates are alpha 0.005).
+TEST(Material, OnlyAnEffectivelySmoothMetalIsAMirror) {
+    auto metal = [](float alpha) {
+        return Material(std::make_shared<MetalMaterial>(
+                            RGB(0.2f), RGB(3), Roughness{Const(alpha), Const(alpha), false}),
+                        "metal");
+    };
+    EXPECT_TRUE(metal(0).MayReflectSpecularly());
+    EXPECT_FALSE(metal(0).MayReflectGlossily());
+    EXPECT_TRUE(metal(0.0009f).MayReflectSpecularly());
+    for (float a : {0.002f, 0.005f, 0.02f}) {
+        const Material m = metal(a);
+        EXPECT_FALSE(m.MayReflectSpecularly()) << a;
+        EXPECT_TRUE(m.MayReflectGlossily()) << a;
+        BSDF b = m.GetBSDF(FlatHit(), {});
+        EXPECT_TRUE(b.HasGlossy()) << a;
+    }
+}
+
 // Prepare builds the parts once; the BSDF a hit gets must be exactly the one built per hit.
 TEST(Material, PreparedPartsEqualPerHitParts) {
     auto uber = std::make_shared<Material>(Uber(0.3f, 0.4f, 0.2f, 0.1f, 0.7f));
