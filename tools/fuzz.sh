@@ -3,7 +3,7 @@
 # executions per target and in total. Crashing inputs are saved under
 # $BUILD/fuzz-work/artifacts/<target>/; the run goes on past a crash until the time is used.
 #   tools/fuzz.sh [SECONDS_PER_TARGET=60] [TARGET...]
-#   (targets: pbrt ply obj gltf image gltf_json texture)
+#   (targets: pbrt ply stl obj gltf image gltf_json texture)
 # Builds into $PRISM_FUZZ_BUILD_DIR (default build-fuzz) with clang++-14 and PRISM_FUZZ=ON.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,7 +11,7 @@ SRC="$PWD"
 SECONDS_PER_TARGET="${1:-60}"
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(pbrt ply obj gltf image gltf_json texture)
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(pbrt ply stl obj gltf image gltf_json texture)
 BUILD="${PRISM_FUZZ_BUILD_DIR:-build-fuzz}"
 CXX_FUZZ="${CXX_FUZZ:-clang++-14}"
 CC_FUZZ="${CC_FUZZ:-clang-14}"
@@ -26,7 +26,7 @@ cmake --build "$BUILD" -j "${PRISM_FUZZ_JOBS:-2}" --target $(printf 'fuzz_%s ' "
 # repository; the working corpus lives in the build directory and grows across runs).
 # The structure-aware targets (gltf_json, texture) read generator choices, not files: no
 # shared seeds.
-declare -A EXTS=([pbrt]="pbrt" [ply]="ply" [obj]="obj" [gltf]="gltf glb" [image]="png jpg tga exr hdr pfm bmp" [gltf_json]="" [texture]="")
+declare -A EXTS=([pbrt]="pbrt" [ply]="ply" [stl]="stl" [obj]="obj" [gltf]="gltf glb" [image]="png jpg tga exr hdr pfm bmp" [gltf_json]="" [texture]="")
 SHARED="$SRC/../shared/scenes"
 WORK="$BUILD/fuzz-work"
 export LSAN_OPTIONS="suppressions=$SRC/tools/lsan.supp:print_suppressions=0"

@@ -1,9 +1,11 @@
 // The measurements of `prism bench suite`, one function per section of the report.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <thread>
 
 #include "tools/bench/ceiling.h"
 #include "tools/bench/knot.h"
@@ -145,31 +147,44 @@ void MeasureThreadScalingSection(SuiteContext &ctx) {
         std::string shared = ctx.sharedDir + "/peers/whitted.pbrt";
         ctx.whittedScene = fs::exists(shared) ? shared : ctx.sourceDir + "/scenes/whitted.pbrt";
     }
-    // Prism's runs alone, 1 and 2 threads interleaved: the runs of the POV-Ray comparison
+    // Prism's runs alone, every thread count interleaved: the runs of the POV-Ray comparison
     // were used before, but each follows a POV-Ray run, and their 2-thread rates moved with
-    // it (1.68 to 1.93 between suite runs of one kernel).
+    // it (1.68 to 1.93 between suite runs of one kernel). The counts are 1, 2, 4, ... up to
+    // the machine's (and the machine's own count), so the section runs unchanged on a larger
+    // machine.
     Progress("thread scaling");
-    ctx.whittedMrays1.clear();
-    ctx.whittedMrays2.clear();
-    for (int i = 0; i < ctx.scalingRuns; ++i) {
-        for (int threads : {1, 2}) {
-            ChildRun p = RunPrism(ctx, PrismWhittedArgs(ctx, 1, threads));
-            (threads == 1 ? ctx.whittedMrays1 : ctx.whittedMrays2)
-                .push_back(ParsePrismStats(p.err).mrays);
+    const int cores = std::max(1, int(std::thread::hardware_concurrency()));
+    std::vector<int> counts{1};
+    while (counts.back() * 2 <= cores) counts.push_back(counts.back() * 2);
+    if (counts.back() != cores) counts.push_back(cores);
+    std::vector<std::vector<double>> rates(counts.size());
+    for (int i = 0; i < ctx.scalingRuns; ++i)
+        for (size_t k = 0; k < counts.size(); ++k) {
+            ChildRun p = RunPrism(ctx, PrismWhittedArgs(ctx, 1, counts[k]));
+            rates[k].push_back(ParsePrismStats(p.err).mrays);
         }
+    ctx.whittedMrays1 = rates[0];
+    ctx.whittedMrays2 = counts.size() > 1 ? rates[1] : std::vector<double>{};
+    const double r1 = Median(rates[0]);
+    std::string header = "| |", rule = "|---|", rateRow = "| render-phase rays |",
+                ratioRow = "| to 1 thread |";
+    for (size_t k = 0; k < counts.size(); ++k) {
+        const double r = Median(rates[k]);
+        header += fmt::format(" {} thread{} |", counts[k], counts[k] == 1 ? "" : "s");
+        rule += "---|";
+        rateRow += fmt::format(" {:.2f} Mrays/s |", r);
+        ratioRow += fmt::format(" {:.2f} |", r1 > 0 ? r / r1 : 0);
+        ctx.Add("threads", fmt::format("whitted render {}T", counts[k]), r, "Mrays/s");
+        if (k > 0)
+            ctx.Add("threads", fmt::format("whitted {}T/1T", counts[k]), r1 > 0 ? r / r1 : 0, "",
+                    counts[k] == 2 ? ">= 1.9" : "");
     }
-    double r1 = Median(ctx.whittedMrays1), r2 = Median(ctx.whittedMrays2);
-    double ratio = r1 > 0 ? r2 / r1 : 0;
     ctx.markdown += fmt::format(
         "## Thread scaling (render phase)\n\n{} at {}, 1 spp: render-phase ray rate, median "
-        "of {} runs of each, 1 and 2 threads interleaved (Prism only).\n\n"
-        "| 1 thread | 2 threads | ratio |\n|---|---|---|\n"
-        "| {:.2f} Mrays/s | {:.2f} Mrays/s | {:.2f} |\n\n",
-        fs::path(ctx.whittedScene).filename().string(), ctx.povRes, ctx.whittedMrays1.size(), r1,
-        r2, ratio);
-    ctx.Add("threads", "whitted render 1T", r1, "Mrays/s");
-    ctx.Add("threads", "whitted render 2T", r2, "Mrays/s");
-    ctx.Add("threads", "whitted 2T/1T", ratio, "", ">= 1.9");
+        "of {} runs of each, the thread counts interleaved (Prism only; {} cores).\n\n"
+        "{}\n{}\n{}\n{}\n\n",
+        fs::path(ctx.whittedScene).filename().string(), ctx.povRes, rates[0].size(), cores,
+        header, rule, rateRow, ratioRow);
 }
 
 void MeasureStartupSection(SuiteContext &ctx) {
