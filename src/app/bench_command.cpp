@@ -160,6 +160,9 @@ void AddBenchCommand(CLI::App &app, int *exitCode) {
                     "The ladder, e.g. 4,8,16 (default: the scene's spp /8 /4 /2 x1 x2)");
     cmp->add_option("--repeats", args->repeats, "Interleaved repeats (medians reported)")
         ->check(CLI::Range(1, 1000));
+    cmp->add_option("--res", args->res,
+                    "Every renderer's image size WxH (default: the file's; pbrt gets its Film "
+                    "rewritten)");
     cmp->callback([args, exitCode] {
         *exitCode = RunGuarded([&] {
             CompareOptions o;
@@ -174,6 +177,11 @@ void AddBenchCommand(CLI::App &app, int *exitCode) {
             o.referenceSpp = args->referenceSpp;
             if (!args->sppList.empty()) o.spp = ParseSppList(args->sppList);
             o.repeats = args->repeats;
+            if (!args->res.empty()) {
+                const Vec2i r = ParseResolution(args->res);
+                o.width = r.x;
+                o.height = r.y;
+            }
             o.commandLine = CommandLine();
             o.sourceDir = PRISM_SOURCE_DIR;
             return RunCompare(o, stdout);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -50,38 +51,39 @@ struct Edit {
 
 }  // namespace
 
-std::string SetPbrtV3SampleCount(const std::string &text, int spp, const std::string &file) {
+// The integer parameters `values(name)` of every `directive` before WorldBegin set (the values
+// replaced, or added after the directive's name), and `insert` put before WorldBegin when the
+// file has no such directive.
+std::string SetDirectiveInts(
+    const std::string &text, const std::string &directive,
+    const std::function<std::vector<std::pair<std::string, int>>(const std::string &)> &values,
+    const std::string &insert, const std::string &file) {
     const std::vector<size_t> starts = LineStarts(text);
     auto offset = [&](const Token &t) { return starts[size_t(t.line - 1)] + size_t(t.column - 1); };
     // A token's end: a string's text excludes its quotes.
     auto end = [&](const Token &t) {
         return offset(t) + t.text.size() + (t.kind == TokenKind::String ? 2 : 0);
     };
-    // pbrt-v4's split of --spp for the stratified sampler: the largest divisor up to sqrt(n).
-    int xs = std::max(1, int(std::sqrt(double(spp))));
-    while (spp % xs) --xs;
-    const int ys = spp / xs;
     Tokenizer tok(text, file);
     std::vector<Edit> edits;
-    bool sawSampler = false;
+    bool seen = false;
     while (true) {
         Token t = tok.Next();
         if (t.kind == TokenKind::End)
             throw SceneError(FileLoc{file}, "no WorldBegin: not a pbrt-v3 scene");
         if (t.kind != TokenKind::Word) continue;
         if (t.text == "WorldBegin") {
-            if (!sawSampler)
-                edits.push_back({offset(t), offset(t),
-                                 "Sampler \"halton\" \"integer pixelsamples\" [ " +
-                                     std::to_string(spp) + " ]\n"});
+            if (!seen) edits.push_back({offset(t), offset(t), insert});
             break;
         }
-        if (t.text != "Sampler") continue;
-        sawSampler = true;
+        if (t.text != directive) continue;
+        seen = true;
         Token name = tok.Next();
-        if (name.kind != TokenKind::String) throw SceneError(name.Loc(), "Sampler needs a name");
-        const bool stratified = Tokenizer::StringValue(name) == "stratified";
-        std::map<std::string, bool> done;
+        if (name.kind != TokenKind::String)
+            throw SceneError(name.Loc(), directive + " needs a name");
+        const std::vector<std::pair<std::string, int>> wanted =
+            values(Tokenizer::StringValue(name));
+        std::vector<bool> done(wanted.size(), false);
         while (tok.Peek().kind == TokenKind::String) {
             Token decl = tok.Next();
             std::istringstream words(Tokenizer::StringValue(decl));
@@ -100,21 +102,17 @@ std::string SetPbrtV3SampleCount(const std::string &text, int spp, const std::st
                 vBegin = offset(v);
                 vEnd = end(v);
             }
-            int value = -1;
-            if (!stratified && param == "pixelsamples") value = spp;
-            if (stratified && param == "xsamples") value = xs;
-            if (stratified && param == "ysamples") value = ys;
-            if (value < 0) continue;
-            edits.push_back({vBegin, vEnd, "[ " + std::to_string(value) + " ]"});
-            done[param] = true;
+            for (size_t i = 0; i < wanted.size(); ++i)
+                if (param == wanted[i].first) {
+                    edits.push_back({vBegin, vEnd, "[ " + std::to_string(wanted[i].second) + " ]"});
+                    done[i] = true;
+                }
         }
         std::string add;
-        if (!stratified && !done["pixelsamples"])
-            add += " \"integer pixelsamples\" [ " + std::to_string(spp) + " ]";
-        if (stratified && !done["xsamples"])
-            add += " \"integer xsamples\" [ " + std::to_string(xs) + " ]";
-        if (stratified && !done["ysamples"])
-            add += " \"integer ysamples\" [ " + std::to_string(ys) + " ]";
+        for (size_t i = 0; i < wanted.size(); ++i)
+            if (!done[i])
+                add += " \"integer " + wanted[i].first + "\" [ " +
+                       std::to_string(wanted[i].second) + " ]";
         if (!add.empty()) edits.push_back({end(name), end(name), add});
     }
     std::sort(edits.begin(), edits.end(),
@@ -128,6 +126,32 @@ std::string SetPbrtV3SampleCount(const std::string &text, int spp, const std::st
     }
     out.append(text, pos, std::string::npos);
     return out;
+}
+
+std::string SetPbrtV3SampleCount(const std::string &text, int spp, const std::string &file) {
+    // pbrt-v4's split of --spp for the stratified sampler: the largest divisor up to sqrt(n).
+    int xs = std::max(1, int(std::sqrt(double(spp))));
+    while (spp % xs) --xs;
+    const int ys = spp / xs;
+    return SetDirectiveInts(
+        text, "Sampler",
+        [&](const std::string &name) -> std::vector<std::pair<std::string, int>> {
+            if (name == "stratified") return {{"xsamples", xs}, {"ysamples", ys}};
+            return {{"pixelsamples", spp}};
+        },
+        "Sampler \"halton\" \"integer pixelsamples\" [ " + std::to_string(spp) + " ]\n", file);
+}
+
+std::string SetPbrtResolution(const std::string &text, int width, int height,
+                              const std::string &defaultFilm, const std::string &file) {
+    return SetDirectiveInts(
+        text, "Film",
+        [&](const std::string &) -> std::vector<std::pair<std::string, int>> {
+            return {{"xresolution", width}, {"yresolution", height}};
+        },
+        "Film \"" + defaultFilm + "\" \"integer xresolution\" [ " + std::to_string(width) +
+            " ] \"integer yresolution\" [ " + std::to_string(height) + " ]\n",
+        file);
 }
 
 LogLogFit FitLogLog(const std::vector<double> &seconds, const std::vector<double> &errors) {
@@ -306,9 +330,15 @@ std::vector<std::string> CompareRun::Argv(const Contender &c, const std::string 
         *stdinPath = (dir_ / "inputs" / (c.renderer.name + "-" + n + ".pbrt")).string();
     }
     switch (c.renderer.kind) {
-        case CompareKind::Prism:
-            return {c.renderer.path, "render", scene_.string(), "--spp", n, "--threads", t, "-o",
-                    image,           "-q"};
+        case CompareKind::Prism: {
+            std::vector<std::string> a{
+                c.renderer.path, "render", scene_.string(), "--spp", n, "--threads", t, "-o",
+                image,           "-q"};
+            if (o_.width > 0)
+                a.insert(a.end(),
+                         {"--res", std::to_string(o_.width) + "x" + std::to_string(o_.height)});
+            return a;
+        }
         case CompareKind::PbrtV3:
             return {c.renderer.path,          "--nthreads", t,    "--quiet", "--logdir",
                     (dir_ / "logs").string(), "--outfile",  image};
@@ -374,7 +404,9 @@ void CompareRun::Prepare() {
 
     Contender prism;
     prism.renderer = {"prism", CompareKind::Prism, SelfExecutable()};
-    prism.why = "the file itself, --spp N";
+    const std::string res =
+        o_.width > 0 ? std::to_string(o_.width) + "x" + std::to_string(o_.height) : std::string();
+    prism.why = "the file itself, --spp N" + (res.empty() ? "" : " --res " + res);
     cs_.push_back(prism);
     const std::string sceneText =
         desc_.format == "pbrt" ? ReadFileOrThrow(scene_.string(), FileLoc{scene_.string()}) : "";
@@ -386,9 +418,12 @@ void CompareRun::Prepare() {
             c.failed = true;
             c.failure = "cannot render " + desc_.format + " scenes (pbrt files only)";
         } else if (r.kind == CompareKind::PbrtV3) {
-            c.stdinText = sceneText;
-            SetPbrtV3SampleCount(sceneText, 1, scene_.string());  // fails early if it cannot
-            c.why = "the file on stdin, its Sampler's count set to N";
+            c.stdinText = res.empty() ? sceneText
+                                      : SetPbrtResolution(sceneText, o_.width, o_.height, "image",
+                                                          scene_.string());
+            SetPbrtV3SampleCount(c.stdinText, 1, scene_.string());  // fails early if it cannot
+            c.why = "the file on stdin, its Sampler's count set to N" +
+                    (res.empty() ? "" : ", its Film's size to " + res);
         } else {
             // A pbrt-v3 file goes through pbrt-v4's own --upgrade; a file it cannot upgrade
             // (a pbrt-v4 file) is given as it is.
@@ -399,12 +434,19 @@ void CompareRun::Prepare() {
                 c.failed = true;
                 c.failure = e.what();
             }
+            const std::string size = res.empty() ? "" : ", its Film's size set to " + res;
             if (!c.failed && up.exitStatus == 0 && !up.out.empty()) {
-                c.stdinText = up.out;
                 WriteText(dir_ / "inputs" / (r.name + "-upgraded.pbrt"), up.out);
-                c.why = "the file converted by its --upgrade, on stdin, --spp N";
+                c.stdinText = res.empty() ? up.out
+                                          : SetPbrtResolution(up.out, o_.width, o_.height, "rgb",
+                                                              scene_.string());
+                c.why = "the file converted by its --upgrade, on stdin, --spp N" + size;
             } else if (!c.failed) {
-                c.why = "the file itself (--upgrade refused it: " + LastLine(up.err) + "), --spp N";
+                if (!res.empty())
+                    c.stdinText =
+                        SetPbrtResolution(sceneText, o_.width, o_.height, "rgb", scene_.string());
+                c.why = "the file " + std::string(res.empty() ? "itself" : "on stdin") +
+                        " (--upgrade refused it: " + LastLine(up.err) + "), --spp N" + size;
             }
         }
         cs_.push_back(std::move(c));

@@ -25,14 +25,15 @@ struct CompareOptions {
     std::string scene;
     std::vector<CompareRenderer> against;  // the reference renderers, the first one the reference
     int threads = 1;
-    double targetError = 0;   // 0: the first reference renderer's error at the scene's spp
-    std::string outDir;       // "": a temporary folder, removed at the end
-    std::string reference;    // a converged image; "": rendered (referenceSpp)
-    std::vector<int> spp;     // the ladder; empty: DefaultLadder of the scene's spp
-    int referenceSpp = 0;     // 0: 8 x the ladder's largest count
-    int repeats = 3;          // timing repeats (medians); the images of the first are measured
-    std::string commandLine;  // printed and written to the CSV's folder
-    std::string sourceDir;    // for tools/plot_compare.py
+    double targetError = 0;     // 0: the first reference renderer's error at the scene's spp
+    std::string outDir;         // "": a temporary folder, removed at the end
+    std::string reference;      // a converged image; "": rendered (referenceSpp)
+    std::vector<int> spp;       // the ladder; empty: DefaultLadder of the scene's spp
+    int referenceSpp = 0;       // 0: 8 x the ladder's largest count
+    int repeats = 3;            // timing repeats (medians); the images of the first are measured
+    int width = 0, height = 0;  // --res: every renderer's image size (0: the file's)
+    std::string commandLine;    // printed and written to the CSV's folder
+    std::string sourceDir;      // for tools/plot_compare.py
 };
 
 // Returns the exit status: 0 when every renderer rendered and reached the error, 3 when one
@@ -50,6 +51,12 @@ std::vector<int> DefaultLadder(int sceneSpp);
 // "halton" (pbrt-v3's default) inserted before WorldBegin when the file has none. `file` labels
 // errors (SceneError: the text does not tokenize, or has no WorldBegin).
 std::string SetPbrtV3SampleCount(const std::string &text, int spp, const std::string &file);
+
+// pbrt text with every Film before WorldBegin at width x height ("xresolution",
+// "yresolution"), and a Film `defaultFilm` ("image" for pbrt-v3, "rgb" for pbrt-v4) of that size
+// inserted before WorldBegin when the file has none. SceneError as above.
+std::string SetPbrtResolution(const std::string &text, int width, int height,
+                              const std::string &defaultFilm, const std::string &file);
 
 // log(y) = a + b log(x), least squares over the points with positive, finite values; ok needs
 // two distinct x.

@@ -183,8 +183,8 @@ void MeasureThreadScalingSection(SuiteContext &ctx) {
         "## Thread scaling (render phase)\n\n{} at {}, 1 spp: render-phase ray rate, median "
         "of {} runs of each, the thread counts interleaved (Prism only; {} cores).\n\n"
         "{}\n{}\n{}\n{}\n\n",
-        fs::path(ctx.whittedScene).filename().string(), ctx.povRes, rates[0].size(), cores,
-        header, rule, rateRow, ratioRow);
+        fs::path(ctx.whittedScene).filename().string(), ctx.povRes, rates[0].size(), cores, header,
+        rule, rateRow, ratioRow);
 }
 
 void MeasureStartupSection(SuiteContext &ctx) {

@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "assembly/build_scene.h"
+#include "image/image_io.h"
 #include "scene/pbrt_parser.h"
 #include "support/errors.h"
 #include "support/process.h"
@@ -73,6 +74,17 @@ TEST(Compare, SampleCountRewriteAddsWhatTheFileLeavesToDefaults) {
                   SetPbrtV3SampleCount("Shape \"sphere\"\n", 4, "s.pbrt");
               }).find("s.pbrt: error: no WorldBegin"),
               std::string::npos);
+}
+
+TEST(Compare, ResolutionRewriteSetsOrAddsTheFilm) {
+    EXPECT_EQ(SetPbrtResolution("Film \"image\" \"integer xresolution\" [ 640 ] "
+                                "\"string filename\" \"a.exr\"\nWorldBegin\n",
+                                32, 24, "image", "s.pbrt"),
+              "Film \"image\" \"integer yresolution\" [ 24 ] \"integer xresolution\" [ 32 ] "
+              "\"string filename\" \"a.exr\"\nWorldBegin\n");
+    EXPECT_EQ(SetPbrtResolution("WorldBegin\n", 8, 6, "rgb", "s.pbrt"),
+              "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 6 ]\n"
+              "WorldBegin\n");
 }
 
 TEST(Compare, FitsAndTheCountAndTimeOfATarget) {
@@ -163,7 +175,7 @@ TEST(CompareCli, FakeRenderersAtTwiceTheCostComeOutSlower) {
     const std::string v3 = FakeRenderer(dir, "fake-v3", 2), v4 = FakeRenderer(dir, "fake-v4", 2);
     const RunResult r =
         RunPrism("bench compare s.pbrt --against pbrt-v3=" + v3 + " --against pbrt-v4=" + v4 +
-                     " --spp 1,2,4 --reference-spp 16 --repeats 1 --out out",
+                     " --spp 1,2,4 --reference-spp 16 --repeats 1 --res 20x16 --out out",
                  dir);
     ASSERT_EQ(r.exitCode, 0) << r.Both();
     const std::string last = LastLine(r.out);
@@ -193,6 +205,9 @@ TEST(CompareCli, FakeRenderersAtTwiceTheCostComeOutSlower) {
     EXPECT_NE(log3.find("--nthreads 1 --quiet --logdir"), std::string::npos) << log3;
     EXPECT_NE(log4.find("--upgrade " + (dir / "s.pbrt").string()), std::string::npos) << log4;
     EXPECT_NE(log4.find("--nthreads 1 --quiet --spp 2 --outfile"), std::string::npos) << log4;
+    // --res reached every renderer: the images are 20x16.
+    for (const char *image : {"prism-4.exr", "pbrt-v3-4.exr", "pbrt-v4-1.exr"})
+        EXPECT_EQ(ReadImage((dir / "out/images" / image).string()).width, 20) << image;
     // One CSV row per renderer and count, the fits, the plot.
     const std::string csv = ReadFile(dir / "out/compare.csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 3 * 3) << csv;
