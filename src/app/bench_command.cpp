@@ -26,10 +26,11 @@ struct BenchArgs {
     int nu = 2000, nv = 100;
     bool pov = false, quick = false;
     // compare
-    std::vector<std::string> against;
+    std::vector<std::string> against, only;
     std::string reference, sppList;
     double targetError = 0;
-    int referenceSpp = 0;
+    int referenceSpp = 0, targetSpp = 0;
+    bool ownReference = false;
 };
 
 int RunCeilingCommand(const BenchArgs &a) {
@@ -148,6 +149,12 @@ void AddBenchCommand(CLI::App &app, int *exitCode) {
                     "Relative RMSE to reach (default: the first reference renderer's at the "
                     "scene's own spp)")
         ->check(CLI::PositiveNumber);
+    cmp->add_flag("--own-reference", args->ownReference,
+                  "Measure each renderer against its own --reference-spp image (noise alone; "
+                  "the references' differences are printed)");
+    cmp->add_option("--target-spp", args->targetSpp,
+                    "The count whose error is the default target (default: the file's)")
+        ->check(CLI::Range(1, 1 << 16));
     cmp->add_option("--out", args->outDir,
                     "Keep compare.csv, fit.csv, compare.png and the images here");
     cmp->add_option("--reference", args->reference,
@@ -175,6 +182,8 @@ void AddBenchCommand(CLI::App &app, int *exitCode) {
                 CheckWritableDirectory(o.outDir);
             o.reference = args->reference;
             o.referenceSpp = args->referenceSpp;
+            o.targetSpp = args->targetSpp;
+            o.ownReference = args->ownReference;
             if (!args->sppList.empty()) o.spp = ParseSppList(args->sppList);
             o.repeats = args->repeats;
             if (!args->res.empty()) {
@@ -204,10 +213,18 @@ void AddBenchCommand(CLI::App &app, int *exitCode) {
         "start-up, memory)");
     suite->add_flag("--quick", args->quick, "Smaller images, fewer runs (well under a minute)");
     suite->add_option("--out", args->outDir, "Also write results.csv, report.md and plots here");
+    suite
+        ->add_option("--only", args->only,
+                     "Run only these sections: ceiling, povray, threads, startup, memory, "
+                     "batch, equal-error (repeatable)")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->check(CLI::IsMember(SuiteSectionNames()));
     suite->callback([args, exitCode] {
         *exitCode = RunGuarded([&] {
             SuiteOptions o;
             o.quick = args->quick;
+            o.only = args->only;
             o.outDir = args->outDir;
             o.commandLine = CommandLine();
             return RunSuite(o);

@@ -288,11 +288,14 @@ struct Contender {
         double error = std::nan("");
     };
     std::vector<Rung> rungs;
+    Image reference;  // its own converged image (CompareOptions::ownReference)
 };
 
 class CompareRun {
   public:
     CompareRun(const CompareOptions &o, std::FILE *out) : o_(o), out_(out) {}
+    std::vector<CompareOutcome> resultOutcomes;
+    double resultTarget = 0;
     CompareRun(const CompareRun &) = delete;
     CompareRun &operator=(const CompareRun &) = delete;
     ~CompareRun() {
@@ -507,6 +510,36 @@ int CompareRun::Run() {
             std::fprintf(out_, "%s: %s\n", c->renderer.name.c_str(), c->failure.c_str());
         }
         if (!done) throw std::runtime_error("no renderer rendered the reference");
+        // Each renderer's noise against its own converged image, and how far that image is
+        // from the shared reference (the bias between the renderers, which more samples do not
+        // remove).
+        if (o_.ownReference)
+            for (Contender &c : cs_) {
+                if (c.failed) continue;
+                const std::string image =
+                    (dir_ / "images" / ("reference-" + c.renderer.name + ".exr")).string();
+                if (!fs::exists(image)) {
+                    ChildRun run;
+                    std::fprintf(stderr, "rendering %s's own reference at %d spp\n",
+                                 c.renderer.name.c_str(), refSpp);
+                    if (!Render(c, refSpp, image, &run)) {
+                        std::fprintf(out_, "%s: %s\n", c.renderer.name.c_str(), c.failure.c_str());
+                        continue;
+                    }
+                }
+                c.reference = ReadImage(image);
+                if (c.reference.width != reference.width ||
+                    c.reference.height != reference.height) {
+                    c.failed = true;
+                    c.failure = "its image is not the reference's size";
+                    continue;
+                }
+                std::fprintf(out_,
+                             "%s's own reference at %d spp: rel. RMSE %s against the "
+                             "shared one\n",
+                             c.renderer.name.c_str(), refSpp,
+                             ErrorText(RelativeRmse(c.reference, reference)).c_str());
+            }
     }
 
     for (Contender &c : cs_)
@@ -537,7 +570,8 @@ int CompareRun::Run() {
                     std::fprintf(out_, "%s: %s\n", c.renderer.name.c_str(), c.failure.c_str());
                     continue;
                 }
-                c.rungs[k].error = RelativeRmse(img, reference);
+                c.rungs[k].error =
+                    RelativeRmse(img, c.reference.width > 0 ? c.reference : reference);
             }
 
     // The table, the CSV and the fits.
@@ -564,12 +598,13 @@ int CompareRun::Run() {
         fits.push_back(c.failed ? CompareFit{} : FitRenderer(n, e, t));
     }
 
-    // The target error: the first reference renderer's at the scene's own count.
+    // The target error: the first reference renderer's at targetSpp (the scene's own count).
     double target = o_.targetError;
     std::string targetWhy = "--target-error";
     if (!(target > 0)) {
+        const int at = o_.targetSpp > 0 ? o_.targetSpp : sceneSpp_;
         const size_t k =
-            size_t(std::lower_bound(ladder_.begin(), ladder_.end(), sceneSpp_) - ladder_.begin());
+            size_t(std::lower_bound(ladder_.begin(), ladder_.end(), at) - ladder_.begin());
         const size_t rung = std::min(k, ladder_.size() - 1);
         for (size_t i = 1; i <= cs_.size(); ++i) {
             const Contender &c = cs_[i % cs_.size()];  // the references first, then Prism
@@ -638,16 +673,22 @@ int CompareRun::Run() {
                      dir_.string().c_str());
     }
     std::fprintf(out_, "%s\n", EqualErrorLine(target, outcomes).c_str());
+    resultOutcomes = outcomes;
+    resultTarget = target;
     return complete ? 0 : 3;
 }
 
 }  // namespace
 
-int RunCompare(const CompareOptions &options, std::FILE *out) {
+int RunCompare(const CompareOptions &options, std::FILE *out, std::vector<CompareOutcome> *outcomes,
+               double *target) {
     if (options.threads < 1) throw std::invalid_argument("threads must be at least 1");
     if (options.repeats < 1) throw std::invalid_argument("repeats must be at least 1");
     CompareRun run(options, out);
-    return run.Run();
+    const int status = run.Run();
+    if (outcomes) *outcomes = run.resultOutcomes;
+    if (target) *target = run.resultTarget;
+    return status;
 }
 
 }  // namespace prism

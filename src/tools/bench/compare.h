@@ -25,21 +25,28 @@ struct CompareOptions {
     std::string scene;
     std::vector<CompareRenderer> against;  // the reference renderers, the first one the reference
     int threads = 1;
-    double targetError = 0;     // 0: the first reference renderer's error at the scene's spp
-    std::string outDir;         // "": a temporary folder, removed at the end
-    std::string reference;      // a converged image; "": rendered (referenceSpp)
-    std::vector<int> spp;       // the ladder; empty: DefaultLadder of the scene's spp
-    int referenceSpp = 0;       // 0: 8 x the ladder's largest count
+    double targetError = 0;  // 0: the first reference renderer's error at targetSpp
+    int targetSpp = 0;       // 0: the file's count
+    std::string outDir;      // "": a temporary folder, removed at the end
+    std::string reference;   // a converged image; "": rendered (referenceSpp)
+    std::vector<int> spp;    // the ladder; empty: DefaultLadder of the scene's spp
+    int referenceSpp = 0;    // 0: 8 x the ladder's largest count
+    // Each renderer measured against its own referenceSpp image (its noise alone), not the
+    // shared one; the references' differences are printed. Ignored with `reference`.
+    bool ownReference = false;
     int repeats = 3;            // timing repeats (medians); the images of the first are measured
     int width = 0, height = 0;  // --res: every renderer's image size (0: the file's)
     std::string commandLine;    // printed and written to the CSV's folder
     std::string sourceDir;      // for tools/plot_compare.py
 };
 
+struct CompareOutcome;
 // Returns the exit status: 0 when every renderer rendered and reached the error, 3 when one
 // failed or never reaches it (each is reported as such). Throws SceneError (the scene, or a
-// pbrt-v3 Sampler that cannot be rewritten) and std::runtime_error.
-int RunCompare(const CompareOptions &options, std::FILE *out);
+// pbrt-v3 Sampler that cannot be rewritten) and std::runtime_error. With `outcomes`, also each
+// renderer's outcome (Prism first) and the target error.
+int RunCompare(const CompareOptions &options, std::FILE *out,
+               std::vector<CompareOutcome> *outcomes = nullptr, double *target = nullptr);
 
 // --- pieces, exposed for the tests -----------------------------------------------------------
 

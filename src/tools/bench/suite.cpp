@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <stdlib.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -117,6 +118,12 @@ std::string MetricsCsv(const std::vector<BenchMetric> &metrics) {
     return s;
 }
 
+const std::vector<std::string> &SuiteSectionNames() {
+    static const std::vector<std::string> names{"ceiling", "povray", "threads",    "startup",
+                                                "memory",  "batch",  "equal-error"};
+    return names;
+}
+
 int RunSuite(const SuiteOptions &options) {
     SuiteContext ctx;
     ctx.options = options;
@@ -160,11 +167,16 @@ int RunSuite(const SuiteOptions &options) {
     // the report lists the sections in the order.
     using Section = void (*)(SuiteContext &);
     const std::vector<std::pair<int, Section>> order{
-        {4, MeasureMemorySection}, {3, MeasureStartupSection},       {0, MeasureCeilingSection},
-        {1, MeasurePovRaySection}, {2, MeasureThreadScalingSection}, {5, MeasureBatchSection}};
+        {4, MeasureMemorySection},    {3, MeasureStartupSection},       {0, MeasureCeilingSection},
+        {1, MeasurePovRaySection},    {2, MeasureThreadScalingSection}, {5, MeasureBatchSection},
+        {6, MeasureEqualErrorSection}};
     std::vector<std::string> sections(order.size());
     std::vector<std::vector<BenchMetric>> sectionMetrics(order.size());
     for (const auto &[slot, measure] : order) {
+        const std::string &name = SuiteSectionNames()[size_t(slot)];
+        if (!options.only.empty() &&
+            std::find(options.only.begin(), options.only.end(), name) == options.only.end())
+            continue;
         ctx.markdown.clear();
         ctx.metrics.clear();
         measure(ctx);

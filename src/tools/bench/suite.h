@@ -8,10 +8,11 @@
 namespace prism {
 
 struct SuiteOptions {
-    bool quick = false;       // smaller images and fewer runs: well under a minute
-    std::string outDir;       // "" : report on stdout only
-    std::string commandLine;  // quoted in the report
-    std::string sharedDir;    // ../shared (peers/whitted.pbrt, whitted.pov); "" : the default
+    bool quick = false;             // smaller images and fewer runs: well under a minute
+    std::string outDir;             // "" : report on stdout only
+    std::string commandLine;        // quoted in the report
+    std::string sharedDir;          // ../shared (peers/whitted.pbrt, whitted.pov); "" : the default
+    std::vector<std::string> only;  // section names (SuiteSectionNames); empty: all
 };
 
 // One measured value, as written to results.csv.
@@ -22,6 +23,10 @@ struct BenchMetric {
     std::string target;  // e.g. ">= 0.75"; "" : no target
     std::string status;  // "met", "missed" or ""
 };
+
+// The sections, in the report's order: ceiling, povray, threads, startup, memory, batch,
+// equal-error.
+const std::vector<std::string> &SuiteSectionNames();
 
 // Runs the suite; returns the exit status (0, also when targets are missed).
 int RunSuite(const SuiteOptions &options);

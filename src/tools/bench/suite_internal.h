@@ -33,5 +33,6 @@ void MeasureThreadScalingSection(SuiteContext &ctx);
 void MeasureStartupSection(SuiteContext &ctx);
 void MeasureMemorySection(SuiteContext &ctx);
 void MeasureBatchSection(SuiteContext &ctx);
+void MeasureEqualErrorSection(SuiteContext &ctx);  // suite_equal_error.cpp
 
 }  // namespace prism
