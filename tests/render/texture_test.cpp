@@ -121,6 +121,13 @@ SceneDescription Parse(const std::string &world, Diagnostics &diag) {
     return ParsePbrtString("WorldBegin\nLightSource \"point\"\n" + world, "tex.pbrt", diag);
 }
 
+// `d` built at 4x4 pixels (the textures are what the tests read).
+RenderScene BuildTiny(const SceneDescription &d, Diagnostics &diag) {
+    BuildSettings o;
+    o.resolution = {4, 4};
+    return BuildRenderScene(d, o, diag);
+}
+
 TEST(TextureScene, ThreeDTexturesUseTheInverseCTM) {
     Diagnostics diag;
     SceneDescription d = Parse(
@@ -129,9 +136,7 @@ TEST(TextureScene, ThreeDTexturesUseTheInverseCTM) {
         "AttributeEnd\n"
         "Material \"matte\" \"texture Kd\" \"n\"\nShape \"sphere\"\n",
         diag);
-    BuildSettings o;
-    o.resolution = {4, 4};
-    RenderScene s = BuildRenderScene(d, o, diag);
+    RenderScene s = BuildTiny(d, diag);
     const Material &m = s.materials[size_t(s.shapes[0].material)];
     Vec3f pWorld(0.7f, -0.4f, 1.3f);
     Vec3f pRender = Vec3f(s.renderFromWorld.Point(Vec3d(pWorld)));
@@ -151,9 +156,7 @@ TEST(TextureScene, DirectionMixDirFollowsTheTextureTransform) {
         "AttributeEnd\n"
         "Material \"matte\" \"texture Kd\" \"t\"\nShape \"sphere\"\n",
         diag);
-    BuildSettings o;
-    o.resolution = {4, 4};
-    RenderScene s = BuildRenderScene(d, o, diag);
+    RenderScene s = BuildTiny(d, diag);
     EXPECT_EQ(diag.Count(), size_t(0));
     const Material &m = s.materials[size_t(s.shapes[0].material)];
     ASSERT_TRUE(m.ModelAs<MatteMaterial>());
@@ -167,7 +170,7 @@ TEST(TextureScene, DirectionMixDirFollowsTheTextureTransform) {
     Diagnostics d2;
     SceneDescription bad = Parse(
         "Texture \"t\" \"float\" \"directionmix\" \"vector dir\" [0 0 0]\nShape \"sphere\"\n", d2);
-    const std::string err = ErrorOf<SceneError>([&] { BuildRenderScene(bad, o, d2); });
+    const std::string err = ErrorOf<SceneError>([&] { BuildTiny(bad, d2); });
     EXPECT_NE(
         err.find("tex.pbrt:3:36: error: directionmix \"dir\" must be a nonzero, finite vector"),
         std::string::npos)
@@ -187,16 +190,14 @@ TEST(TextureScene, EveryClassBuildsAndPtexWarns) {
         "Texture \"h\" \"spectrum\" \"scale\" \"texture tex\" \"c\" \"float scale\" 2\n"
         "Shape \"sphere\"\n",
         diag);
-    BuildSettings o;
-    o.resolution = {4, 4};
-    RenderScene s = BuildRenderScene(d, o, diag);
+    RenderScene s = BuildTiny(d, diag);
     ASSERT_EQ(diag.Count(), size_t(1)) << diag.Warnings()[0].ToString();
     EXPECT_NE(diag.Warnings()[0].message.find("ptex"), std::string::npos);
     EXPECT_TRUE(s.features.textures);
     Diagnostics d2;
     SceneDescription bad =
         Parse("Texture \"n\" \"float\" \"fbm\" \"integer octaves\" 100000\n", d2);
-    EXPECT_THROW(BuildRenderScene(bad, o, d2), SceneError);
+    EXPECT_THROW(BuildTiny(bad, d2), SceneError);
 }
 
 // Every class of render/texture_list.inc is made by its own Create; a class the list lacks and
@@ -209,9 +210,7 @@ TEST(TextureScene, UnknownClassesAndMissingFloatVariantsAreIgnoredWithAWarning) 
         "Texture \"z\" \"spectrum\" \"zigzag\"\n"
         "Shape \"sphere\"\n",
         diag);
-    BuildSettings o;
-    o.resolution = {4, 4};
-    RenderScene s = BuildRenderScene(d, o, diag);
+    RenderScene s = BuildTiny(d, diag);
     ASSERT_EQ(diag.Count(), size_t(3));
     const std::vector<Warning> w = diag.Warnings();
     EXPECT_NE(w[0].message.find("\"uv\" has no float variant"), std::string::npos) << w[0].message;

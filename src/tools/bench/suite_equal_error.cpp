@@ -20,8 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct EqualErrorScene {
-    const char *name;      // the table's row
-    std::string path;      // the file ("" : left out, with `missing` said)
+    const char *name;        // the table's row
+    std::string path;        // the file ("" : left out, with `missing` said)
     const char *integrator;  // for the row
 };
 
@@ -92,8 +92,8 @@ void MeasureEqualErrorSection(SuiteContext &ctx) {
             for (const CompareRenderer &r : against) a += " --against " + r.name + "=" + r.path;
             return a;
         }(),
-        res, res, fmt::join(base.spp, ","), top, base.referenceSpp, base.repeats,
-        against[0].name, top, base.referenceSpp);
+        res, res, fmt::join(base.spp, ","), top, base.referenceSpp, base.repeats, against[0].name,
+        top, base.referenceSpp);
     std::string header = "| scene | integrator | target error | Prism";
     std::string rule = "|---|---|---:|---:";
     for (const CompareRenderer &r : against) header += " | " + r.name, rule += "|---:";
@@ -103,8 +103,8 @@ void MeasureEqualErrorSection(SuiteContext &ctx) {
     ctx.markdown += header + " |\n" + rule + "|\n";
     for (const EqualErrorScene &sc : scenes) {
         if (sc.path.empty() || !fs::exists(sc.path)) {
-            ctx.markdown += fmt::format("| {} | {} | (scene not present) | | |\n", sc.name,
-                                        sc.integrator);
+            ctx.markdown +=
+                fmt::format("| {} | {} | (scene not present) | | |\n", sc.name, sc.integrator);
             continue;
         }
         std::fprintf(stderr, "bench: equal error, %s\n", sc.name);
@@ -150,8 +150,9 @@ void MeasureEqualErrorSection(SuiteContext &ctx) {
             if (fs::exists(images / "reference-pbrt-v3.exr") &&
                 fs::exists(images / "reference-prism.exr"))
                 diff = fmt::format(
-                    " {:.4g} |", RelativeRmse(ReadImage((images / "reference-prism.exr").string()),
-                                              ReadImage((images / "reference-pbrt-v3.exr").string())));
+                    " {:.4g} |",
+                    RelativeRmse(ReadImage((images / "reference-prism.exr").string()),
+                                 ReadImage((images / "reference-pbrt-v3.exr").string())));
         } catch (const std::exception &) {
         }
         ctx.markdown += row + diff + "\n";
