@@ -291,12 +291,6 @@ std::vector<int> ParseLevels(const std::string &s) {
     return v;
 }
 
-std::string ShellQuote(const std::string &s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
 std::string CheckExposureText(const std::string &text) {
     float ev;
     bool isAuto;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/file_io.h"  // ShellQuote
 #include "core/transform.h"
 #include "core/vecmath.h"
 #include "geometry/shape.h"
@@ -85,8 +86,6 @@ std::string FindDefaultScene();
 std::string FindToolScript(const std::string &given, const std::string &rel);
 // --levels "8,16,32": tessellation segment counts, each from 3 to 4096.
 std::vector<int> ParseLevels(const std::string &s);
-// s in single quotes for /bin/sh (a quote inside becomes '\'').
-std::string ShellQuote(const std::string &s);
 inline double SecondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }

@@ -229,6 +229,12 @@ void CheckReadConfinement(const std::string &path, const FileLoc &loc, std::stri
     if (!why.empty()) throw SceneError(loc, std::string(what) + " " + Quote(name) + ": " + why);
 }
 
+std::string ShellQuote(const std::string &s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
 std::string ToLowerAscii(std::string_view s) {
     std::string r(s);
     for (char &c : r) c = char(std::tolower(static_cast<unsigned char>(c)));

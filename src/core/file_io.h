@@ -83,6 +83,10 @@ std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc,
 std::string ReadFileOrThrow(const std::string &path, const FileLoc &loc, MemoryBudget &budget,
                             std::string_view what);
 
+// `s` in single quotes for /bin/sh (a quote inside becomes '\''): prism bench, study and
+// validate build shell commands with it.
+std::string ShellQuote(const std::string &s);
+
 // `s` with ASCII letters in lower case (file extensions, format names).
 std::string ToLowerAscii(std::string_view s);
 

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/file_io.h"
 #include "core/output_file.h"
 #include "tools/bench/process.h"
 #include "tools/bench/suite_internal.h"
@@ -40,12 +41,6 @@ std::string LoadAverage() {
     double a = 0, b = 0, c = 0;
     if (!(in >> a >> b >> c)) return "unknown";
     return fmt::format("{:.2f} {:.2f} {:.2f}", a, b, c);
-}
-
-std::string ShellQuote(const std::string &s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
 }
 
 std::string GitCommit(const std::string &sourceDir) {
