@@ -15,9 +15,10 @@
 #include "assembly/build_scene.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/output_file.h"
 #include "image/image_io.h"
 #include "scene/load_scene.h"
-#include "scene/tokenizer.h"
+#include "tools/bench/ceiling.h"
 #include "tools/bench/process.h"
 #include "tools/study/target_error.h"
 
@@ -34,142 +35,20 @@ std::vector<int> DefaultLadder(int sceneSpp) {
     return out;
 }
 
-namespace {
-
-// Byte offsets of the starts of the lines of `text` (Token::line and column are 1-based).
-std::vector<size_t> LineStarts(const std::string &text) {
-    std::vector<size_t> starts{0};
-    for (size_t i = 0; i < text.size(); ++i)
-        if (text[i] == '\n') starts.push_back(i + 1);
-    return starts;
-}
-
-struct Edit {
-    size_t begin, end;
-    std::string text;
-};
-
-}  // namespace
-
-// The integer parameters `values(name)` of every `directive` before WorldBegin set (the values
-// replaced, or added after the directive's name), and `insert` put before WorldBegin when the
-// file has no such directive.
-std::string SetDirectiveInts(
-    const std::string &text, const std::string &directive,
-    const std::function<std::vector<std::pair<std::string, int>>(const std::string &)> &values,
-    const std::string &insert, const std::string &file) {
-    const std::vector<size_t> starts = LineStarts(text);
-    auto offset = [&](const Token &t) { return starts[size_t(t.line - 1)] + size_t(t.column - 1); };
-    // A token's end: a string's text excludes its quotes.
-    auto end = [&](const Token &t) {
-        return offset(t) + t.text.size() + (t.kind == TokenKind::String ? 2 : 0);
-    };
-    Tokenizer tok(text, file);
-    std::vector<Edit> edits;
-    bool seen = false;
-    while (true) {
-        Token t = tok.Next();
-        if (t.kind == TokenKind::End)
-            throw SceneError(FileLoc{file}, "no WorldBegin: not a pbrt-v3 scene");
-        if (t.kind != TokenKind::Word) continue;
-        if (t.text == "WorldBegin") {
-            if (!seen) edits.push_back({offset(t), offset(t), insert});
-            break;
-        }
-        if (t.text != directive) continue;
-        seen = true;
-        Token name = tok.Next();
-        if (name.kind != TokenKind::String)
-            throw SceneError(name.Loc(), directive + " needs a name");
-        const std::vector<std::pair<std::string, int>> wanted =
-            values(Tokenizer::StringValue(name));
-        std::vector<bool> done(wanted.size(), false);
-        while (tok.Peek().kind == TokenKind::String) {
-            Token decl = tok.Next();
-            std::istringstream words(Tokenizer::StringValue(decl));
-            std::string type, param;
-            words >> type >> param;
-            size_t vBegin = 0, vEnd = 0;
-            if (tok.Peek().kind == TokenKind::LBracket) {
-                vBegin = offset(tok.Next());
-                Token v = tok.Next();
-                while (v.kind != TokenKind::RBracket && v.kind != TokenKind::End) v = tok.Next();
-                if (v.kind == TokenKind::End)
-                    throw SceneError(decl.Loc(), "unterminated values of \"" + param + "\"");
-                vEnd = end(v);
-            } else {
-                Token v = tok.Next();
-                vBegin = offset(v);
-                vEnd = end(v);
-            }
-            for (size_t i = 0; i < wanted.size(); ++i)
-                if (param == wanted[i].first) {
-                    edits.push_back({vBegin, vEnd, "[ " + std::to_string(wanted[i].second) + " ]"});
-                    done[i] = true;
-                }
-        }
-        std::string add;
-        for (size_t i = 0; i < wanted.size(); ++i)
-            if (!done[i])
-                add += " \"integer " + wanted[i].first + "\" [ " +
-                       std::to_string(wanted[i].second) + " ]";
-        if (!add.empty()) edits.push_back({end(name), end(name), add});
-    }
-    std::sort(edits.begin(), edits.end(),
-              [](const Edit &a, const Edit &b) { return a.begin < b.begin; });
-    std::string out;
-    size_t pos = 0;
-    for (const Edit &e : edits) {
-        out.append(text, pos, e.begin - pos);
-        out += e.text;
-        pos = e.end;
-    }
-    out.append(text, pos, std::string::npos);
-    return out;
-}
-
-std::string SetPbrtV3SampleCount(const std::string &text, int spp, const std::string &file) {
-    // pbrt-v4's split of --spp for the stratified sampler: the largest divisor up to sqrt(n).
-    int xs = std::max(1, int(std::sqrt(double(spp))));
-    while (spp % xs) --xs;
-    const int ys = spp / xs;
-    return SetDirectiveInts(
-        text, "Sampler",
-        [&](const std::string &name) -> std::vector<std::pair<std::string, int>> {
-            if (name == "stratified") return {{"xsamples", xs}, {"ysamples", ys}};
-            return {{"pixelsamples", spp}};
-        },
-        "Sampler \"halton\" \"integer pixelsamples\" [ " + std::to_string(spp) + " ]\n", file);
-}
-
-std::string SetPbrtResolution(const std::string &text, int width, int height,
-                              const std::string &defaultFilm, const std::string &file) {
-    return SetDirectiveInts(
-        text, "Film",
-        [&](const std::string &) -> std::vector<std::pair<std::string, int>> {
-            return {{"xresolution", width}, {"yresolution", height}};
-        },
-        "Film \"" + defaultFilm + "\" \"integer xresolution\" [ " + std::to_string(width) +
-            " ] \"integer yresolution\" [ " + std::to_string(height) + " ]\n",
-        file);
-}
-
-LogLogFit FitLogLog(const std::vector<double> &seconds, const std::vector<double> &errors) {
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    int n = 0;
-    for (size_t i = 0; i < seconds.size() && i < errors.size(); ++i) {
-        if (!(seconds[i] > 0) || !(errors[i] > 0) || !std::isfinite(seconds[i]) ||
-            !std::isfinite(errors[i]))
-            continue;
-        const double x = std::log(seconds[i]), y = std::log(errors[i]);
-        sx += x, sy += y, sxx += x * x, sxy += x * y;
-        ++n;
-    }
+LogLogFit FitLogLog(const std::vector<double> &x, const std::vector<double> &y) {
+    // FitPowerLaw (tools/study) leaves out non-positive points; non-finite ones go here.
+    std::vector<double> fx, fy;
+    for (size_t i = 0; i < x.size() && i < y.size(); ++i)
+        if (std::isfinite(x[i]) && std::isfinite(y[i])) fx.push_back(x[i]), fy.push_back(y[i]);
     LogLogFit f;
-    const double d = n * sxx - sx * sx;
-    if (n < 2 || !(std::abs(d) > 1e-12)) return f;
-    f.b = (n * sxy - sx * sy) / d;
-    f.a = (sy - f.b * sx) / n;
+    PowerLaw p;
+    try {
+        p = FitPowerLaw(fx, fy);  // y = p.a x^-p.b
+    } catch (const std::invalid_argument &) {
+        return f;  // fewer than two distinct x
+    }
+    f.a = std::log(p.a);
+    f.b = -p.b;
     f.ok = std::isfinite(f.a) && std::isfinite(f.b);
     return f;
 }
@@ -241,13 +120,6 @@ std::string EqualErrorLine(double error, const std::vector<CompareOutcome> &outc
 
 namespace {
 
-double Median(std::vector<double> v) {
-    if (v.empty()) return std::nan("");
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // The last non-empty line of a child's stderr (or stdout), for a failure's reason.
 std::string LastLine(const std::string &s) {
     std::istringstream in(s);
@@ -257,19 +129,19 @@ std::string LastLine(const std::string &s) {
     return last;
 }
 
+// Through AtomicOutputFile, as every output Prism writes (core/output_file.h).
 void WriteText(const fs::path &path, const std::string &text) {
-    std::ofstream f(path, std::ios::binary);
-    f << text;
-    if (!f) throw std::runtime_error("cannot write " + path.string());
+    WriteFileAtomically(path.string(), text);
 }
 
+// A command line as a shell reads it (arguments with other characters than these quoted).
 std::string Joined(const std::vector<std::string> &argv) {
     std::string s;
     for (const std::string &a : argv) {
-        const bool plain = a.find_first_not_of(
-                               "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                               "0123456789-_./=:,+") == std::string::npos;
-        s += (s.empty() ? "" : " ") + (plain && !a.empty() ? a : "'" + a + "'");
+        const bool plain = !a.empty() && a.find_first_not_of(
+                                             "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                             "0123456789-_./=:,+") == std::string::npos;
+        s += (s.empty() ? "" : " ") + (plain ? a : ShellQuote(a));
     }
     return s;
 }

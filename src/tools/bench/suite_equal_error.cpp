@@ -5,11 +5,12 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "core/file_io.h"
+#include "core/output_file.h"
 #include "image/image_io.h"
 #include "tools/bench/compare.h"
+#include "tools/bench/knot.h"
 #include "tools/bench/suite_internal.h"
 #include "tools/study/target_error.h"
 
@@ -29,18 +30,15 @@ struct EqualErrorScene {
 std::string KnotUnderPath(const SuiteContext &ctx) {
     const fs::path dir = fs::path(ctx.tmp) / "knot-path";
     fs::create_directories(dir);
-    const std::string make = ctx.prism + " bench knot '" + dir.string() + "' > /dev/null";
-    if (std::system(make.c_str()) != 0) return "";
-    std::ifstream in(dir / "knot.pbrt");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    std::string text = ss.str();
+    const KnotFiles kf = WriteKnotScene(dir.string(), 2000, 100, false);
+    std::string text = ReadFileOrThrow(kf.pbrt, FileLoc{kf.pbrt});
     const std::string whitted = "Integrator \"whitted\"";
     const size_t at = text.find(whitted);
     if (at == std::string::npos) return "";
     text.replace(at, whitted.size(), "Integrator \"path\"");
-    std::ofstream(dir / "knot-path.pbrt") << text;
-    return (dir / "knot-path.pbrt").string();
+    const std::string path = (dir / "knot-path.pbrt").string();
+    WriteFileAtomically(path, text);
+    return path;
 }
 
 }  // namespace
