@@ -22,7 +22,9 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 DOC = ROOT / "docs" / "PARAMETERS.md"
 # A table's header: a comment line ending in "Parameters:" (TAIL), with the directive and its
 # quoted names (HEAD_NAME) on that line or on an earlier line of the same comment.
-HEAD_NAME = re.compile(r'^\s*//\s*(\w+)\s+("[^"]+"(?:,\s*"[^"]+")*)')
+HEAD_NAME = re.compile(r'^\s*//\s*([A-Z]\w*)\s+("[^"]+"(?:,\s*"[^"]+")*)')
+# A head's list of names may go on over the next lines: `//   "zsobol", "paddedsobol" ...`.
+HEAD_MORE = re.compile(r'^\s*//\s*("[^"]+"(?:,\s*"[^"]+")*)')
 TAIL = re.compile(r'^\s*//.*Parameters(?: \([^)]*\))?:\s*$')
 ROW = re.compile(r'^\s*//   (\S.*?)\s{2,}(\S.*)$')
 CONT = re.compile(r'^\s*//\s{4,}(\S.*)$')
@@ -67,7 +69,12 @@ def tables():
                 i += 1
                 continue
             # One table may serve several types: `// PixelFilter "box", "gaussian" ...`.
-            name = '", "'.join(re.findall(r'"([^"]+)"', m.group(2)))
+            names = re.findall(r'"([^"]+)"', m.group(2))
+            k = j + 2
+            while k <= i and (more := HEAD_MORE.match(lines[k])):
+                names += re.findall(r'"([^"]+)"', more.group(1))
+                k += 1
+            name = '", "'.join(names)
             table = {"kind": m.group(1), "name": name, "file": path.relative_to(ROOT),
                      "line": i + 1, "rows": []}
             i += 1

@@ -175,6 +175,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     opts.fovDeg = a.fov;
     opts.lightSamples = a.lightSamples;
     opts.integrator = a.integrator;
+    opts.sampler = a.sampler;
     opts.glossySamples = a.glossySamples;
     opts.textureFilter = a.textureFilter;
     opts.rayCutoff = a.cutoff;
@@ -443,6 +444,11 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "ambientocclusion (ao) (pbrt-v3's); "
                     "default: the scene's Integrator (OBJ and glTF: distribution)")
         ->check(CLI::IsMember(IntegratorNames()));
+    cmd->add_option("--sampler", args->sampler,
+                    "Draw the samples as this pbrt sampler does, keeping the scene's count: "
+                    "zsobol, paddedsobol, 02sequence, stratified, independent, ... "
+                    "(docs/USAGE.md \"Samplers\"); default: the scene's Sampler")
+        ->check(CLI::IsMember(SamplerNames()));
     cmd->add_option("--glossy-samples", args->glossySamples,
                     "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "
                     "(distribution integrator; overrides \"glossysamples\", default 8)")

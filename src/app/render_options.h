@@ -20,6 +20,7 @@ struct RenderArgs {
     std::string scene, output, res, crop, precision = "double", lookAt, maxMemory;
     int spp = 0, threads = 0, maxDepth = -1, lightSamples = 0, glossySamples = 0;
     std::string integrator;     // empty: the scene's
+    std::string sampler;        // --sampler; empty: the scene's
     std::string textureFilter;  // --texture-filter; empty: each texture's own
     int tessellate = 0;         // [validate hook]
     float fov = 0;

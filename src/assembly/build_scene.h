@@ -34,6 +34,9 @@ using ShapeReplacement =
 // "stratified" xsamples x ysamples), before BuildSettings::spp replaces it; unchecked.
 int SceneSamplesPerPixel(const SceneDescription &desc);
 
+// The Sampler types Prism reads (pbrt-v3's and pbrt-v4's), for --sampler.
+std::vector<std::string> SamplerNames();
+
 struct BuildSettings {
     // Replacements for what the description says; the default keeps the description's value.
     int spp = 0;                               // 0: the Sampler's
@@ -44,6 +47,8 @@ struct BuildSettings {
     float fovDeg = 0;                          // 0: the Camera's; degrees on the shorter axis
     int lightSamples = 0;                      // 0: each area/infinite light's own nsamples
     std::string integrator;  // a name of render/integrator_list.inc; "": the scene's
+    // A sampler type whose samples replace the Sampler's (its count stays): "": the scene's.
+    std::string sampler;
     // The integrator of a pbrt scene without an Integrator directive ("": pbrt-v3's default,
     // "path"); tests written for Whitted set "whitted".
     std::string defaultIntegrator;

@@ -324,11 +324,78 @@ void BuildCamera(BuildContext &ctx) {
             }
 }
 
-// Sampler "stratified", "random", "02sequence", "lowdiscrepancy", "halton", "sobol"
-// (pbrt-v3's; only the sample count is read, docs/USAGE.md "pbrt-v3 support"). Parameters:
+namespace {
+
+// How Prism draws each pbrt sampler's samples (render/sampler.h SamplePattern). A name that is
+// not its own pattern is drawn as another (SamplerSubstitute), with a warning saying why.
+struct SamplerRule {
+    const char *name;
+    SamplePattern pattern;
+    const char *substitute;  // null: drawn as itself
+    const char *reason;
+};
+constexpr SamplerRule SamplerRules[] = {
+    {"stratified", SamplePattern::Stratified, nullptr, nullptr},
+    {"random", SamplePattern::Independent, nullptr, nullptr},
+    {"independent", SamplePattern::Independent, nullptr, nullptr},
+    {"02sequence", SamplePattern::ZeroTwo, nullptr, nullptr},
+    {"lowdiscrepancy", SamplePattern::ZeroTwo, nullptr, nullptr},
+    {"paddedsobol", SamplePattern::PaddedSobol, nullptr, nullptr},
+    {"zsobol", SamplePattern::ZSobol, nullptr, nullptr},
+    {"sobol", SamplePattern::Stratified, "stratified",
+     "Prism has no global Sobol sequence (one dimension per sample dimension)"},
+    {"halton", SamplePattern::Stratified, "stratified", "Prism has no Halton sequence"},
+    {"pmj02bn", SamplePattern::PaddedSobol, "paddedsobol",
+     "pmj02bn's points are per-pixel (0,2)-sequences like paddedsobol's, without the "
+     "blue-noise selection"},
+    {"maxmindist", SamplePattern::Stratified, "stratified",
+     "Prism has no max-min-distance sequence"},
+};
+
+const SamplerRule *FindSamplerRule(const std::string &name) {
+    for (const SamplerRule &r : SamplerRules)
+        if (name == r.name) return &r;
+    return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> SamplerNames() {
+    std::vector<std::string> names;
+    for (const SamplerRule &r : SamplerRules) names.push_back(r.name);
+    return names;
+}
+
+namespace {
+
+std::string SamplerSubstitute(const std::string &name) {
+    const SamplerRule *r = FindSamplerRule(name);
+    if (!r) return "stratified";
+    return r->substitute ? r->substitute : "";
+}
+
+std::string SamplerSubstituteReason(const std::string &name) {
+    const SamplerRule *r = FindSamplerRule(name);
+    return r ? r->reason : "Prism does not know this sampler";
+}
+
+SamplePattern PatternOfSampler(const std::string &name) {
+    const SamplerRule *r = FindSamplerRule(name);
+    return r ? r->pattern : SamplePattern::Stratified;
+}
+
+}  // namespace
+
+// Sampler "stratified", "random", "02sequence", "lowdiscrepancy", "halton", "sobol",
+//   "zsobol", "paddedsobol", "pmj02bn", "independent", "maxmindist" (pbrt-v3's and pbrt-v4's;
+// how each is drawn: SamplerRules above, docs/USAGE.md "Samplers"). Parameters:
 //   xsamples, ysamples  integer  4, 4  stratified: the samples per pixel are their product
 //   jitter              bool     true  stratified: read, no effect
 //   pixelsamples        integer  16    the others (random: 4); --spp wins
+//   randomization       string   "fastowen"  zsobol, paddedsobol: "fastowen" and
+//                                "owen" (a nested uniform scramble), "permutedigits" (XOR),
+//                                "none"
+//   seed                integer  0     zsobol, paddedsobol: another scramble
 int SceneSamplesPerPixel(const SceneDescription &desc) {
     const ParamSet &sp = desc.sampler.params;
     if (desc.sampler.type == "stratified") {
@@ -347,22 +414,53 @@ void BuildSampler(BuildContext &ctx) {
     const ParamSet &sp = desc.sampler.params;
     int spp = SceneSamplesPerPixel(desc);
     if (desc.sampler.type == "stratified") sp.MarkUsed("jitter");
-    // Prism draws its own stratified (correlated multi-jittered) samples whatever the file
-    // names; only the sample count is read. The default (no Sampler directive) is not named.
-    // The path integrators (directlighting, path, volpath, ao) draw "02sequence"/
-    // "lowdiscrepancy" and "random" samples as pbrt-v3 does (render/sampler.h SamplePattern).
-    const std::string context = "sampler " + Quote(desc.sampler.type);
-    // The integrators that draw PixelSamples (render/integrator.h IntegratorTraits).
+    // The integrators that draw PixelSamples draw each sampler's samples as SamplerRules says;
+    // the others, and a sampler Prism does not have, draw Prism's stratified (correlated
+    // multi-jittered) samples, with a warning. The default (no Sampler directive) is not named.
+    // --sampler replaces the type (and its parameters but the count).
+    const bool replaced = !settings.sampler.empty();
+    const std::string &st = replaced ? settings.sampler : desc.sampler.type;
+    const FileLoc loc = replaced ? FileLoc{} : desc.sampler.loc;
+    if (replaced) sp.MarkAllUsed();
+    const std::string context = "sampler " + Quote(st);
+    // render/integrator.h IntegratorTraits: whitted, distribution, bdpt, mlt and sppm do not.
     const bool patterns = scene.integrator->Traits().samplePatterns;
-    const std::string &st = desc.sampler.type;
-    SamplePattern &pattern = scene.sampler.pattern;
-    if (patterns && st == "random")
-        pattern = SamplePattern::Independent;
-    else if (patterns && (st == "02sequence" || st == "lowdiscrepancy"))
-        pattern = SamplePattern::ZeroTwo;
-    if (st != "stratified" && desc.sampler.loc.Valid() && pattern == SamplePattern::Stratified)
-        diag.Warn(desc.sampler.loc, context + " is replaced by Prism's stratified sampler");
-    WarnIgnoredRest(sp, diag, context, "Prism's stratified sampler reads only the sample count");
+    SamplerSettings &ss = scene.sampler;
+    const std::string substitute = SamplerSubstitute(st);
+    const std::string drawn = substitute.empty() ? st : substitute;
+    if (patterns) ss.pattern = PatternOfSampler(drawn);
+    if (!substitute.empty() && (replaced || loc.Valid()))
+        diag.Warn(loc,
+                  context +
+                      (substitute == "stratified" ? " is replaced by Prism's stratified sampler"
+                                                  : " is drawn as " + Quote(substitute)) +
+                      ": " + SamplerSubstituteReason(st));
+    else if (!patterns && st != "stratified" && (replaced || loc.Valid()))
+        diag.Warn(loc, context +
+                           " is replaced by Prism's stratified sampler: "
+                           "the integrator " +
+                           Quote(scene.integrator->Name()) + " draws its own");
+    if (ss.pattern == SamplePattern::PaddedSobol || ss.pattern == SamplePattern::ZSobol) {
+        const std::string r = replaced ? "fastowen" : sp.GetString("randomization", "fastowen");
+        if (r == "fastowen" || r == "owen")
+            ss.scramble = SobolScramble::Owen;
+        else if (r == "permutedigits")
+            ss.scramble = SobolScramble::Xor;
+        else if (r == "none")
+            ss.scramble = SobolScramble::None;
+        else
+            throw SceneError(
+                sp.Find("randomization") ? sp.Find("randomization")->loc : desc.sampler.loc,
+                context + ": randomization " + Quote(r) +
+                    " is not one of fastowen, owen, permutedigits, none");
+        if (!replaced) ss.seed = uint32_t(sp.GetInt("seed", 0));
+        const int res = std::max(scene.resolution.x, scene.resolution.y);
+        ss.log2Res = uint8_t(CeilLog2(uint64_t(std::max(res, 1))));
+    }
+    WarnIgnoredRest(sp, diag, context,
+                    ss.pattern == SamplePattern::PaddedSobol || ss.pattern == SamplePattern::ZSobol
+                        ? "Prism reads its sample count, randomization and seed"
+                        : "Prism reads only its sample count");
     if (settings.spp > 0) spp = settings.spp;
     const int maxSpp = MaxSamplesPerPixel;
     if (spp <= 0 || spp > maxSpp)

@@ -15,11 +15,26 @@ CameraSampler::CameraSampler(const RenderScene &scene, const SamplerSettings &sa
       spp_(uint32_t(sampler.spp)),
       seed_(sampler.seed),
       cmj_(uint32_t(sampler.spp)),
+      pattern_(sampler.pattern),
+      log2Res_(sampler.log2Res),
+      scramble_(sampler.scramble),
+      sobol_(pattern_ == SamplePattern::PaddedSobol || pattern_ == SamplePattern::ZSobol),
       jitter_(sampler.JitterFilm()),
       lens_(scene.features.lens),
       motion_(scene.features.effects.Has(Effect::MotionBlur)),
       differentials_(scene.differentials),
       diffScale_(std::max(.125f, 1 / std::sqrt(float(sampler.spp)))) {}
+
+CameraSample CameraSampler::SobolSample(int x, int y, uint32_t s) const {
+    PixelSamples ps{x, y, s, spp_, pattern_, seed_, {}};
+    ps.log2Res = log2Res_;
+    ps.scramble = scramble_;
+    CameraSample cs;
+    cs.pFilm = FilmPosition(x, y, jitter_ ? ps.Get2D(0) : Vec2f(0.5f, 0.5f));
+    if (motion_) cs.time = ps.Get1D(1);
+    if (lens_) cs.uLens = ps.Get2D(2);
+    return cs;
+}
 
 void TileSamples::Reset(const Bounds2i &b, uint32_t samples) {
     bounds = b;
@@ -45,6 +60,8 @@ void Integrator::RenderTile(const TileContext &ctx, TileSamples &out, RayCounter
                 const Ray ray = camera.GenerateRay(cs);
                 rc.camera++;
                 PixelSamples ps{x, y, s, spp, ctx.sampler.pattern, ctx.sampler.seed, ctx.trace};
+                ps.log2Res = ctx.sampler.log2Res;
+                ps.scramble = ctx.sampler.scramble;
                 RayDifferential rd;
                 if (camera.Differentials()) {
                     rd = camera.GenerateDifferential(ray, cs);

@@ -42,6 +42,10 @@ struct SamplerSettings {
     int spp = 1;
     uint32_t seed = 0;
     SamplePattern pattern = SamplePattern::Stratified;
+    // The Sobol patterns': pixels lie within 2^log2Res squared (the full film's resolution
+    // rounded up to a power of two), and how their points are randomised.
+    uint8_t log2Res = 0;
+    SobolScramble scramble = SobolScramble::Owen;
     // One sample per pixel sits at the pixel centre, except in the later passes of a
     // progressive render, whose pattern seeds differ.
     bool JitterFilm() const { return spp > 1 || seed != 0; }
@@ -76,6 +80,7 @@ class CameraSampler {
     }
     // Sample s of pixel (x, y).
     CameraSample Sample(int x, int y, uint32_t s, const Seeds &seeds) const {
+        if (sobol_) return SobolSample(x, y, s);
         CameraSample cs;
         cs.pFilm = FilmPosition(x, y, jitter_ ? cmj_.Sample(s, seeds.film) : Vec2f(0.5f, 0.5f));
         if (lens_) cs.uLens = cmj_.Sample(s, seeds.lens);
@@ -100,10 +105,18 @@ class CameraSampler {
     bool Differentials() const { return differentials_; }
 
   private:
+    // The camera dimensions of the Sobol patterns (pbrt-v4 draws the film position, time and
+    // lens sample from its sampler first): PixelSamples dimensions 0 to 2, which no vertex
+    // uses (render/light_sampling.h PathDimBase).
+    CameraSample SobolSample(int x, int y, uint32_t s) const;
+
     const Camera &camera_;
     uint32_t spp_, seed_;
     CMJPattern cmj_;
-    bool jitter_, lens_, motion_, differentials_;
+    SamplePattern pattern_;
+    uint8_t log2Res_;
+    SobolScramble scramble_;
+    bool sobol_, jitter_, lens_, motion_, differentials_;
     float diffScale_;
 };
 

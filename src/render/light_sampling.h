@@ -42,25 +42,38 @@ struct PixelSamples {
     // else null; read at the first hit only (pbrt-v3's path tracer drops them after it).
     const RayDifferential *diff = nullptr;
 
+    // The Sobol patterns' film size (pixels within 2^log2Res squared) and randomisation
+    // (SamplerSettings).
+    uint8_t log2Res = 0;
+    SobolScramble scramble = SobolScramble::Owen;
+
     Vec2f Get2D(uint32_t dim) const { return Get2D(dim, 0, 1); }
     // Sample k of n of this camera sample (strategy "all": n light samples stratified over
     // spp × n).
     Vec2f Get2D(uint32_t dim, uint32_t k, uint32_t n) const {
-        const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim, passSeed);
         const uint32_t i = sample * n + k;
+        if (pattern == SamplePattern::ZSobol)
+            return ZSobolSample2D(x, y, i, spp * n, log2Res, dim, passSeed, scramble);
+        const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim, passSeed);
         switch (pattern) {
             case SamplePattern::Independent:
                 return {HashFloat(i, seed), HashFloat(i, seed ^ 0x9e3779b9u)};
             case SamplePattern::ZeroTwo:
                 return Sample02(PermuteIndex(i, spp * n, seed), seed * 0x68bc21ebu,
                                 seed * 0x02e5be93u);
+            case SamplePattern::PaddedSobol:
+                return PaddedSobolSample2D(i, spp * n, seed, scramble);
             default:
                 return CMJSample(i, spp * n, seed);
         }
     }
     float Get1D(uint32_t dim) const {
+        if (pattern == SamplePattern::ZSobol)
+            return ZSobolSample1D(x, y, sample, spp, log2Res, dim, passSeed, scramble);
         const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim, passSeed);
         if (pattern == SamplePattern::Independent) return HashFloat(sample, seed);
+        if (pattern == SamplePattern::PaddedSobol)
+            return PaddedSobolSample1D(sample, spp, seed, scramble);
         const uint32_t stratum = PermuteIndex(sample, spp, seed);
         if (pattern == SamplePattern::ZeroTwo) return Sample02(stratum, seed * 0x68bc21ebu, 0).x;
         const float u = (float(stratum) + HashFloat(sample, seed * 0x68bc21ebu)) / float(spp);

@@ -64,8 +64,9 @@ Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, Render
         RenderOptions options;
         options.sampler = scene.sampler;
         options.sampler.spp = spp;
-        // Pass 0 keeps seed 0: a budget of one pass renders what a plain render would.
-        options.sampler.seed = pass * 0x9E3779B9u;
+        // Pass 0 keeps the scene's seed: a budget of one pass renders what a plain render
+        // would.
+        options.sampler.seed = scene.sampler.seed + pass * 0x9E3779B9u;
         // The AOVs take a pass's tiles as they finish (the variance merges them at once), so a
         // pass cut short would leave part of itself in them: with AOVs only the first pass
         // (no image without it) is cut at the deadline; later ones are sized to fit and finish.

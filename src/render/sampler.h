@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "core/vecmath.h"
+#include "render/sobol.h"
 
 namespace prism {
 
@@ -171,10 +172,13 @@ class CMJPattern {
 
 // The samples the path and directlighting integrators draw per dimension
 // (render/light_sampling.h PixelSamples): Stratified, a correlated multi-jittered pattern per
-// dimension (the stand-in for pbrt's "sobol" and "halton"); ZeroTwo, pbrt-v3's
-// ZeroTwoSequenceSampler ("02sequence", "lowdiscrepancy": a scrambled (0,2)-sequence per
-// dimension, its samples shuffled across the pixel); Independent, pbrt's RandomSampler.
-enum class SamplePattern : uint8_t { Stratified, ZeroTwo, Independent };
+// dimension (pbrt's "stratified"); ZeroTwo, pbrt-v3's ZeroTwoSequenceSampler ("02sequence",
+// "lowdiscrepancy": a scrambled (0,2)-sequence per dimension, its samples shuffled across the
+// pixel); Independent, pbrt's RandomSampler; PaddedSobol, pbrt-v4's "paddedsobol" (an
+// Owen-scrambled (0,2)-sequence per dimension, shuffled like ZeroTwo); ZSobol, pbrt-v4's
+// "zsobol" (one Owen-scrambled Sobol sequence over the film, its pixels in permuted Morton
+// order: render/sobol.h ZSobolIndex).
+enum class SamplePattern : uint8_t { Stratified, ZeroTwo, Independent, PaddedSobol, ZSobol };
 
 // pbrt-v3's scrambled (0,2)-sequence point n: van der Corput in x, Sobol's second dimension in
 // y, each XORed with a scramble (lowdiscrepancy.h Sample02).
@@ -218,6 +222,37 @@ inline uint32_t PatternSeed(int x, int y, uint32_t purpose, uint32_t seed = 0) {
     h *= 0xc4ceb9fe1a85ec53ULL;
     h ^= h >> 33;
     return uint32_t(h);
+}
+
+// PaddedSobol's sample i of n: point PermuteIndex(i) of the scrambled (0,2)-sequence's first
+// n, so every dimension's n points are a prefix of the sequence (a (0,m,2)-net when n = 2^m)
+// and the shuffle pairs them with the other dimensions' at random.
+inline Vec2f PaddedSobolSample2D(uint32_t i, uint32_t n, uint32_t seed, SobolScramble s) {
+    const uint64_t h = MixBits64(uint64_t(seed) * 0x9e3779b97f4a7c15ull + 1);
+    return SobolSample2D(PermuteIndex(i, n, seed), uint32_t(h), uint32_t(h >> 32), s);
+}
+inline float PaddedSobolSample1D(uint32_t i, uint32_t n, uint32_t seed, SobolScramble s) {
+    const uint32_t h = uint32_t(MixBits64(uint64_t(seed) * 0x9e3779b97f4a7c15ull + 2) >> 32);
+    return BitsToUnit(Scramble(SobolBits0(PermuteIndex(i, n, seed)), h, s));
+}
+
+// ZSobol's sample i of n of pixel (x, y) in dimension dim: one scramble per dimension for the
+// whole film (the index tells pixels apart). Index bits above the 32 the points resolve (films
+// and counts past 2^32 samples) pick the scramble, so no two pixels share their samples.
+inline Vec2f ZSobolSample2D(int x, int y, uint32_t i, uint32_t n, int log2Res, uint32_t dim,
+                            uint32_t passSeed, SobolScramble s) {
+    const uint64_t index = ZSobolIndex(uint32_t(x), uint32_t(y), i, CeilLog2(n), log2Res, dim);
+    const uint64_t h =
+        MixBits64((uint64_t(dim) << 32 | passSeed) ^ MixBits64((index >> 32) + 0x2d));
+    return SobolSample2D(uint32_t(index), uint32_t(h), uint32_t(h >> 32), s);
+}
+inline float ZSobolSample1D(int x, int y, uint32_t i, uint32_t n, int log2Res, uint32_t dim,
+                            uint32_t passSeed, SobolScramble s) {
+    // 1-D dimensions are their own family, as PixelSamples' seeds are.
+    const uint32_t d = dim | 0x80000000u;
+    const uint64_t index = ZSobolIndex(uint32_t(x), uint32_t(y), i, CeilLog2(n), log2Res, d);
+    const uint64_t h = MixBits64((uint64_t(d) << 32 | passSeed) ^ MixBits64((index >> 32) + 0x2d));
+    return BitsToUnit(Scramble(SobolBits0(uint32_t(index)), uint32_t(h), s));
 }
 
 }  // namespace prism

@@ -71,6 +71,8 @@ void SppmIntegrator::CameraPass(const FrameContext &frame, int iter, SppmPass &p
                 rc.camera++;
                 PixelSamples ps{x,          y,       uint32_t(iter), uint32_t(params_.iterations),
                                 ss.pattern, ss.seed, frame.trace};
+                ps.log2Res = ss.log2Res;
+                ps.scramble = ss.scramble;
                 RayDifferential rd;
                 if (camera.Differentials()) rd = camera.GenerateDifferential(ray, cs);
                 const Vec3f cameraOrigin = ray.o;

@@ -82,6 +82,17 @@ TEST(Cli, IntegratorAndGlossySamplesOptions) {
     ASSERT_EQ(p.exitCode, 0) << p.err;
     EXPECT_NE(p.err.find("path integrator"), std::string::npos) << p.err;
     EXPECT_NE(RunPrism(scene + "--integrator nosuchintegrator -o p.png", dir).exitCode, 0);
+    // --sampler draws another sampler's samples; the path integrator draws pbrt-v4's zsobol.
+    RunResult z = RunPrism(scene + "--integrator path --sampler zsobol -o z.png", dir);
+    ASSERT_EQ(z.exitCode, 0) << z.err;
+    EXPECT_NE(ReadFile(dir / "z.png"), ReadFile(dir / "p.png"));
+    RunResult h = RunPrism(scene + "--integrator path --sampler halton -o h.png", dir);
+    ASSERT_EQ(h.exitCode, 0) << h.err;
+    EXPECT_NE(h.err.find("sampler \"halton\" is replaced by Prism's stratified sampler"),
+              std::string::npos)
+        << h.err;
+    EXPECT_EQ(RunPrism(scene + "--sampler nosuchsampler -o s.png", dir).exitCode, 2);
+    EXPECT_FALSE(fs::exists(dir / "s.png"));
     EXPECT_NE(RunPrism(scene + "--glossy-samples 0 -o p.png", dir).exitCode, 0);
 }
 

@@ -126,8 +126,8 @@ TEST(VolPath, WithoutMediaIsPathOnATexturedGltfUnderEverySampler) {
         test::GltfTwoUvQuad(R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
           "texCoord": 1}, "metallicRoughnessTexture": {"index": 0}, "metallicFactor": 0.5},
           "normalTexture": {"index": 0, "texCoord": 1}})"));
-    for (const char *sampler :
-         {"stratified", "random", "02sequence", "lowdiscrepancy", "halton", "sobol"}) {
+    for (const char *sampler : {"stratified", "random", "02sequence", "lowdiscrepancy", "halton",
+                                "sobol", "zsobol", "paddedsobol"}) {
         SCOPED_TRACE(sampler);
         auto render = [&](const std::string &integrator) {
             Diagnostics diag(false);
