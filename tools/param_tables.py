@@ -128,6 +128,7 @@ SHARED = {
     "Integrator": ["src/assembly/camera_film.cpp",      # maxdepth
                    "src/render/path_integrator.cpp"],   # path's reader, volpath's too
     "LightSource": ["src/assembly/build_context.h"],    # scale (LightParams::Scale)
+    "AreaLightSource": ["src/assembly/build_context.h"],  # scale (ScaleParam)
     "Camera": ["src/assembly/camera_film.cpp"],
     "Texture": ["src/assembly/textures.cpp"],          # the 2-D mapping
     "Shape": ["src/geometry/shape_params.cpp"],        # phimax (ShapeParams::PhiMax)

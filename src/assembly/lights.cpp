@@ -1,5 +1,7 @@
 #include "assembly/lights.h"
 
+#include <cmath>
+
 #include "assembly/directive_params.h"
 #include "assembly/scene_effects.h"
 #include "assembly/textures.h"
@@ -20,6 +22,10 @@ class SceneLightParams : public DirectiveParamsOf<LightParams> {
     RGB Spectrum(const char *name, RGB def) const override { return ps_.GetRGB(name, def); }
     Vec3f Point3(const char *name, Vec3f def) const override { return ps_.GetPoint3(name, def); }
     RGB Scale() const override { return ScaleParam(ps_); }
+    bool IsRGBSpectrum(const char *name) const override {
+        const Param *q = ps_.Find(name);
+        return !q || q->spelledType == "rgb" || q->spelledType == "color";
+    }
     std::shared_ptr<const Image> LoadImage(const char *name,
                                            const std::string &file) const override {
         return LoadSceneImage(ctx_, light_, file, ReadImageOptions::Encoding::Auto, name);
@@ -57,6 +63,15 @@ void BuildLights(BuildContext &ctx) {
     }
 }
 
+// AreaLightSource "diffuse", "area" (pbrt-v3 accepts both names). Parameters:
+//   L                   spectrum  1       emitted radiance
+//   scale               spectrum  1       multiplies L
+//   twosided            bool      false   emits from both sides
+//   nsamples (samples)  integer   1       light samples per shading point, 1 to 4096;
+//                                         --light-samples wins
+//   power               float     (none)  pbrt-v4: the radiant power; L is scaled by it over
+//                                         pi x area (x 2 two-sided)
+//   emissionmap         texture   (none)  Prism: L x the texture (triangle meshes)
 const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int shape) {
     const SceneDescription &desc = ctx.desc;
     RenderScene &scene = ctx.scene;
@@ -99,6 +114,21 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
     }
     auto light = std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L, twoSided,
                                                     n, radiance);
+    // pbrt-v4's "power": L scaled so the light emits it (render/light.h PhotometricScale:
+    // an RGB L keeps its magnitude). Power() is pi x area (x2 two-sided) x L's luminance, or
+    // for a textured light the sum over its triangles of area x mean radiance.
+    if (ps.Has("power")) {
+        const Param *pp = ps.Find("power");
+        const float power = ps.GetFloat("power", 0);
+        if (!(power >= 0) || !std::isfinite(power))
+            throw SceneError(pp->loc, "area light: \"power\" must be finite and not negative");
+        const bool rgb = !ps.Find("L") || ps.Find("L")->spelledType == "rgb" ||
+                         ps.Find("L")->spelledType == "color";
+        const double P = light->Power(0), y = L.Luminance();
+        const double f = P > 0 && y > 0 ? double(power) / P * (rgb ? y : 1) : 0;
+        light = std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L * float(f),
+                                                   twoSided, n, radiance);
+    }
     const DiffuseAreaLight &al = *light;
     scene.lights.push_back(std::move(light));
     ShapeInfo &info = scene.shapes[size_t(shape)];

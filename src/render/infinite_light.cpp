@@ -1,5 +1,6 @@
 #include "render/infinite_light.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "image/image.h"
@@ -155,10 +156,31 @@ inline constexpr int MaxInfiniteLightSamples = 4096;
 //   mapname             string    ""  an equirectangular image, z the pole (u = phi / 2 pi)
 //   nsamples (samples)  integer   1   light samples per shading point, 1 to 4096;
 //                                     --light-samples wins
+//   illuminance         float     (none)  pbrt-v4: the irradiance on an upward (+z in the
+//                                     light's space) surface from the upper hemisphere; L is
+//                                     scaled by it over the map's own (pi without a map)
 std::unique_ptr<Light> CreateInfiniteLight(const LightInputs &in) {
     const LightParams &p = in.params;
-    const RGB L = p.Spectrum("L", RGB(1)) * p.Scale();
     const std::shared_ptr<const Image> map = p.OptionalImage("mapname");
+    // The map's irradiance on an upward surface: each row's mean luminance times the integral
+    // of cos theta over its band of the upper hemisphere, 2 pi (sin^2 theta1 - sin^2 theta0)
+    // / 2 (rows from theta 0 at the +z pole: exact for texels constant over their band).
+    double k_e = Pi;
+    if (map && p.Has("illuminance")) {
+        k_e = 0;
+        const int w = map->width, h = map->height;
+        for (int y = 0; y < h && 2 * y < h; ++y) {
+            const double t0 = Pi * y / h, t1 = std::min(Pi * (y + 1) / h, Pi / 2);
+            double row = 0;
+            for (int x = 0; x < w; ++x) row += double(map->GetRGB(x, y).Luminance());
+            const double s0 = std::sin(t0), s1 = std::sin(t1);
+            k_e += row / w * Pi * (s1 * s1 - s0 * s0);
+        }
+    }
+    const RGB L0 = p.Spectrum("L", RGB(1)) * p.Scale();
+    const RGB L = p.Has("illuminance") && !(k_e > 0)
+                      ? RGB(0)
+                      : PhotometricScale(p, "L", L0, "illuminance", k_e, in.loc);
     int n = p.Int("nsamples", p.Int("samples", 1));
     if (in.lightSamples > 0) n = in.lightSamples;
     if (n < 1 || n > MaxInfiniteLightSamples)

@@ -153,13 +153,31 @@ bool DistantLight::SampleLi(const SurfaceInteraction &, Vec2f, LightSample *ls) 
     return true;
 }
 
+RGB PhotometricScale(const LightParams &p, const char *spectrum, const RGB &value,
+                     const char *param, double k_e, const FileLoc &loc) {
+    if (!p.Has(param)) return value;
+    const float v = p.Float(param, 0);
+    if (!(v >= 0) || !std::isfinite(v))
+        throw SceneError(p.Loc(param).Valid() ? p.Loc(param) : loc,
+                         p.Context() + ": \"" + param + "\" must be finite and not negative");
+    double unit = 1;
+    if (!p.IsRGBSpectrum(spectrum)) {
+        const double y = value.Luminance();
+        if (!(y > 0)) return RGB(0);
+        unit = 1 / y;
+    }
+    return value * float(double(v) / k_e * unit);
+}
+
 // LightSource "point" (light_list.inc). Parameters:
 //   I      spectrum  1        radiant intensity
 //   scale  spectrum  1        multiplies I
+//   power  float     (none)   pbrt-v4: the radiant power; I is scaled by power / 4 pi
 //   from   point     0 0 0    position, in the light's coordinate system
 std::unique_ptr<Light> CreatePointLight(const LightInputs &in) {
     const LightParams &p = in.params;
-    const RGB I = p.Spectrum("I", RGB(1)) * p.Scale();
+    const RGB I =
+        PhotometricScale(p, "I", p.Spectrum("I", RGB(1)) * p.Scale(), "power", 4 * Pi, in.loc);
     const Vec3f from = p.Point3("from", Vec3f(0, 0, 0));
     return std::make_unique<PointLight>(Vec3f(in.renderFromLight.Point(Vec3d(from))), I);
 }
@@ -170,12 +188,21 @@ std::unique_ptr<Light> CreatePointLight(const LightInputs &in) {
 //   from, to        point     0 0 0, 0 0 1  position and a point on the axis
 //   coneangle       float     30      the cone's half angle, degrees
 //   conedeltaangle  float     5       the falloff band inside it, degrees
+//   power           float     (none)  pbrt-v4: the radiant power; I is scaled by power over
+//                                     2 pi (1 - (cos(coneangle - conedeltaangle) +
+//                                     cos(coneangle)) / 2)
 std::unique_ptr<Light> CreateSpotLight(const LightInputs &in) {
     const LightParams &p = in.params;
-    const RGB I = p.Spectrum("I", RGB(1)) * p.Scale();
     const Vec3f from = p.Point3("from", Vec3f(0, 0, 0)), to = p.Point3("to", Vec3f(0, 0, 1));
     if (from == to) throw SceneError(in.loc, "spot light \"from\" and \"to\" are the same point");
     const float cone = p.Float("coneangle", 30.f), delta = p.Float("conedeltaangle", 5.f);
+    const double cosStart = std::cos(double(cone - delta) * Pi / 180),
+                 cosEnd = std::cos(double(cone) * Pi / 180);
+    const double k_e = 2 * Pi * (1 - 0.5 * (cosStart + cosEnd));
+    const RGB I =
+        p.Has("power") && !(k_e > 0)
+            ? RGB(0)
+            : PhotometricScale(p, "I", p.Spectrum("I", RGB(1)) * p.Scale(), "power", k_e, in.loc);
     const Vec3d dir = Normalize(in.renderFromLight.Vector(Vec3d(to) - Vec3d(from)));
     return std::make_unique<SpotLight>(Vec3f(in.renderFromLight.Point(Vec3d(from))), Vec3f(dir), I,
                                        cone, delta);
@@ -185,9 +212,12 @@ std::unique_ptr<Light> CreateSpotLight(const LightInputs &in) {
 //   L         spectrum  1              radiance
 //   scale     spectrum  1              multiplies L
 //   from, to  point     0 0 0, 0 0 1   light travels from "from" toward "to"
+//   illuminance  float  (none)  pbrt-v4: the irradiance on a surface facing the light; L is
+//                               scaled by it
 std::unique_ptr<Light> CreateDistantLight(const LightInputs &in) {
     const LightParams &p = in.params;
-    const RGB L = p.Spectrum("L", RGB(1)) * p.Scale();
+    const RGB L =
+        PhotometricScale(p, "L", p.Spectrum("L", RGB(1)) * p.Scale(), "illuminance", 1, in.loc);
     const Vec3f from = p.Point3("from", Vec3f(0, 0, 0)), to = p.Point3("to", Vec3f(0, 0, 1));
     const Vec3d w = in.renderFromLight.Vector(Vec3d(from) - Vec3d(to));
     if (!(Length(w) > 0))

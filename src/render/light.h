@@ -160,6 +160,9 @@ class LightParams : public Params {
     virtual Vec3f Point3(const char *name, Vec3f def) const = 0;
     // pbrt's "scale": a float or a spectrum, 1 by default.
     virtual RGB Scale() const = 0;
+    // Whether spectrum parameter `name` is RGB (written "rgb" or "color", or absent: the
+    // default white) rather than a blackbody, a named spectrum or samples.
+    virtual bool IsRGBSpectrum(const char *name) const = 0;
     // The image file named by string parameter `name` (relative to the scene), linear.
     virtual std::shared_ptr<const Image> LoadImage(const char *name,
                                                    const std::string &file) const = 0;
@@ -169,6 +172,16 @@ class LightParams : public Params {
         return file.empty() ? nullptr : LoadImage(name, file);
     }
 };
+
+// pbrt-v4's photometric parameters ("power" of point, spot and area lights, "illuminance" of
+// distant and infinite lights): the spectrum `spectrum` (already times "scale") multiplied by
+// `param`'s value over k_e, the power or illuminance the light has per unit of it. pbrt-v4
+// measures an RGB spectrum by its colour space's white, so an RGB value keeps its magnitude
+// (measured with pbrt-v4: "rgb I" [2 2 2] at "power" 100 is twice as bright as [1 1 1]); any
+// other spectrum (a blackbody) counts as luminance 1. The value unchanged without `param`;
+// SceneError for a negative or non-finite one.
+RGB PhotometricScale(const LightParams &p, const char *spectrum, const RGB &value,
+                     const char *param, double k_e, const FileLoc &loc);
 
 // What a light's Create reads.
 struct LightInputs {

@@ -215,3 +215,96 @@ TEST(ImageLights, TheSceneAssemblyReadsTheirMapsBesideTheScene) {
 
 }  // namespace
 }  // namespace prism
+
+namespace prism {
+namespace {
+
+// The lights of `lights` (LightSource and AreaLightSource lines, then a sphere), built.
+RenderScene BuildLights(const std::string &name, const std::string &lights) {
+    const std::filesystem::path dir = test::ScratchDir("photometric");
+    Image white(16, 8, 3);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x) white.SetRGB(x, y, RGB(1));
+    WriteImage((dir / "white.exr").string(), white);
+    Diagnostics diag(false);
+    SceneDescription desc =
+        LoadScene(test::WriteTestFile(dir / (name + ".pbrt"),
+                                      "WorldBegin\n" + lights + "\nShape \"sphere\"\nWorldEnd\n"),
+                  diag);
+    BuildSettings s;
+    s.resolution = Vec2i(4, 4);
+    s.cameraRelative = false;
+    RenderScene scene = BuildRenderScene(desc, s, diag);
+    for (const Warning &w : diag.Warnings()) ADD_FAILURE() << w.ToString();
+    return scene;
+}
+
+// pbrt-v4's "power" and "illuminance" (render/light.h PhotometricScale): the light emits that
+// much, an RGB spectrum keeping its magnitude (so Power(), which is luminance-weighted, is the
+// power times the RGB's luminance) and a blackbody counting as luminance 1. The figures the
+// light makes on a diffuse plane match pbrt-v4's within 0.5% (docs/USAGE.md "Light power").
+TEST(PhotometricLights, PowerAndIlluminanceScaleTheEmission) {
+    const double y = RGB(2, 1, 0.5f).Luminance();
+    struct Case {
+        const char *text;
+        double power;  // Power(1) expected
+    };
+    const Case cases[] = {
+        {"LightSource \"point\" \"rgb I\" [2 1 0.5] \"float power\" 100", 100 * y},
+        {"LightSource \"point\" \"rgb I\" [2 1 0.5] \"float power\" 100 \"float scale\" 3",
+         300 * y},
+        {"LightSource \"point\" \"blackbody I\" 3000 \"float power\" 100", 100},
+        {"LightSource \"spot\" \"rgb I\" [2 1 0.5] \"float power\" 50 \"float coneangle\" 40",
+         50 * y},
+        {"LightSource \"distant\" \"rgb L\" [2 1 0.5] \"float illuminance\" 10", Pi * 10 * y},
+        {"LightSource \"infinite\" \"rgb L\" [2 1 0.5] \"float illuminance\" 10", 10 * y},
+        // The map's upper hemisphere gives pi per unit of L, up to its 8 rows.
+        {"LightSource \"infinite\" \"string mapname\" \"white.exr\" \"float illuminance\" 10", 10},
+        {"AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 1 0.5] \"float power\" 100\n"
+         "Shape \"disk\" \"float radius\" 0.5\nAttributeEnd",
+         100 * y},
+        {"AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 1 0.5] \"float power\" 100 "
+         "\"bool twosided\" true\nShape \"trianglemesh\" \"point3 P\" [0 0 0 2 0 0 2 2 0] "
+         "\"integer indices\" [0 1 2]\nAttributeEnd",
+         100 * y},
+    };
+    int i = 0;
+    for (const Case &c : cases) {
+        SCOPED_TRACE(c.text);
+        const RenderScene scene = BuildLights("power" + std::to_string(i++), c.text);
+        ASSERT_GE(scene.lights.size(), 1u);
+        const double tolerance =
+            std::string(c.text).find("mapname") != std::string::npos
+                ? 1e-3 * c.power
+                : (std::string(c.text).find("blackbody") != std::string::npos ? 1e-3 * c.power
+                                                                              : 1e-4 * c.power);
+        EXPECT_NEAR(scene.lights[0]->Power(1), c.power, tolerance);
+    }
+    // Without the parameter, I and L are as written.
+    const RenderScene plain = BuildLights("plain", "LightSource \"point\" \"rgb I\" [2 1 0.5]");
+    EXPECT_NEAR(plain.lights[0]->Power(1), 4 * Pi * y, 1e-4);
+}
+
+TEST(PhotometricLights, ANegativePowerIsAnErrorAtTheParameter) {
+    const std::pair<const char *, const char *> cases[] = {
+        {"LightSource \"point\"\n  \"float power\" -1", ":3:3:"},
+        {"LightSource \"distant\"\n  \"float illuminance\" -1", ":3:3:"},
+        {"AttributeBegin\nAreaLightSource \"diffuse\"\n  \"float power\" -1\nShape \"sphere\"\n"
+         "AttributeEnd",
+         ":4:3:"}};
+    for (const auto &[text, at] : cases) {
+        SCOPED_TRACE(text);
+        try {
+            BuildLights("negative", text);
+            ADD_FAILURE() << "no error";
+        } catch (const SceneError &e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("negative.pbrt:"), std::string::npos) << what;
+            EXPECT_NE(what.find(at), std::string::npos) << what;
+            EXPECT_NE(what.find("must be finite and not negative"), std::string::npos) << what;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace prism
