@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "assembly/directive_params.h"
+#include "assembly/film_sensor.h"
 #include "assembly/lens_file.h"
 #include "core/file_io.h"
 #include "core/memory.h"
@@ -103,6 +104,7 @@ void BuildFilm(BuildContext &ctx) {
     if (desc.camera.type != "realistic")
         WarnIgnored(film, {"diagonal"}, diag, "film",
                     "the film's physical size is not simulated (only the realistic camera's)");
+    BuildFilmSensor(ctx);  // pbrt-v4's iso and white balance
     film.ReportUnused(diag, "film");
 }
 

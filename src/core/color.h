@@ -51,6 +51,12 @@ struct RGB {
 };
 
 inline RGB operator*(float s, const RGB &c) { return c * s; }
+// m (row-major 3x3, as std::array<float, 9> or a float[9]) times c.
+template <class M>
+RGB ApplyColorMatrix(const M &m, const RGB &c) {
+    return {m[0] * c.r + m[1] * c.g + m[2] * c.b, m[3] * c.r + m[4] * c.g + m[5] * c.b,
+            m[6] * c.r + m[7] * c.g + m[8] * c.b};
+}
 inline RGB Sqrt(const RGB &c) { return {std::sqrt(c.r), std::sqrt(c.g), std::sqrt(c.b)}; }
 
 }  // namespace prism

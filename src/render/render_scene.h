@@ -2,6 +2,7 @@
 // immutable while rendering.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -76,6 +77,9 @@ struct RenderScene {
     Bounds2i pixelBounds;  // crop window in pixels
     Filter filter;
     float filmScale = 1;
+    // A linear map of each sample's sRGB after filmScale (row-major; pbrt-v4's white balance:
+    // assembly/film_sensor.h), or none.
+    std::optional<std::array<float, 9>> filmColor;
     float maxSampleLuminance = Infinity;
     // The sampler: spp, the pattern of the path integrators' dimensions and the seed (0: a
     // render's; progressive passes render with seeds of their own, render/progressive.h).

@@ -183,10 +183,15 @@ bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
     // The film's scale, and pbrt's clamp of bright samples (Film "maxsampleluminance"); the
     // direct part is scaled as its sample is.
     const float scale = scene_.filmScale, maxLum = scene_.maxSampleLuminance;
+    const std::optional<std::array<float, 9>> &color = scene_.filmColor;
     // Scale 1 without a clamp changes no sample (x * 1 is x): no pass over them.
-    const size_t n = scale != 1 || maxLum < Infinity ? size_t(tb.Area()) * buf.spp : 0;
+    const size_t n = scale != 1 || maxLum < Infinity || color ? size_t(tb.Area()) * buf.spp : 0;
     for (size_t i = 0; i < n; ++i) {
         RGB L = buf.L[i] * scale;
+        if (color) {
+            L = ApplyColorMatrix(*color, L);
+            if (buf.wantDirect) buf.direct[i] = ApplyColorMatrix(*color, buf.direct[i]);
+        }
         float clamp = 1;
         if (maxLum < Infinity && L.IsFinite()) {
             const float lum = L.Luminance();
@@ -434,6 +439,7 @@ Image FrameContext::MakeImage(const std::function<RGB(int x, int y)> &pixel) con
         const size_t row = size_t(y - pb.pMin.y);
         for (int x = pb.pMin.x; x < pb.pMax.x; ++x) {
             RGB L = pixel(x, y) * scale;
+            if (scene.filmColor) L = ApplyColorMatrix(*scene.filmColor, L);
             if (!L.IsFinite()) {
                 if (bad[row]++ == 0) firstBadX[row] = x;
                 L = RGB(0);
