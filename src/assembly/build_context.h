@@ -8,6 +8,7 @@
 #include <string>
 
 #include "assembly/build_scene.h"
+#include "assembly/scene_options.h"
 #include "core/animated_transform.h"
 #include "image/image.h"
 #include "render/texture.h"
@@ -28,6 +29,8 @@ struct BuildContext {
     // The camera's shutter (pbrt-v3 "shutteropen"/"shutterclose", default 0 1; BuildCamera):
     // motion is sampled over it, rays carrying their time as a fraction of it (Ray::time).
     double shutterOpen = 0, shutterClose = 1;
+    // pbrt-v4's Option directives that change the image (ReadSceneOptions).
+    SceneOptions options;
 };
 
 // A directive's render-space transform at the shutter's opening (*atOpen) and, when it moves

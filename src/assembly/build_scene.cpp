@@ -18,7 +18,16 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     RenderScene scene;
     MemoryBudget ownBudget;  // the default limit, when the caller passes no budget
     MemoryBudget &budget = settings.budget ? *settings.budget : ownBudget;
-    BuildContext ctx{desc, settings, diag, scene, budget, {}, {}, {}};
+    // Option "disabletexturefiltering" is --texture-filter point unless the caller chose.
+    const SceneOptions options = ReadSceneOptions(desc, diag);
+    BuildSettings optioned;
+    const bool pointLookups = options.disableTextureFiltering && settings.textureFilter.empty();
+    if (pointLookups) {
+        optioned = settings;
+        optioned.textureFilter = "point";
+    }
+    BuildContext ctx{desc, pointLookups ? optioned : settings, diag, scene, budget, {}, {}, {}};
+    ctx.options = options;
     BuildFilm(ctx);
     BuildCamera(ctx);  // sets renderFromWorld, which every later step uses
     BuildIntegratorSettings(ctx);

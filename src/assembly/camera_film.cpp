@@ -428,6 +428,8 @@ void BuildSampler(BuildContext &ctx) {
     // render/integrator.h IntegratorTraits: whitted, distribution, bdpt, mlt and sppm do not.
     const bool patterns = scene.integrator->Traits().samplePatterns;
     SamplerSettings &ss = scene.sampler;
+    ss.seed = ctx.options.seed;  // Option "seed"; a Sobol sampler's own "seed" wins
+    ss.centres = ctx.options.disablePixelJitter;
     const std::string substitute = SamplerSubstitute(st);
     const std::string drawn = substitute.empty() ? st : substitute;
     if (patterns) ss.pattern = PatternOfSampler(drawn);
@@ -455,7 +457,7 @@ void BuildSampler(BuildContext &ctx) {
                 sp.Find("randomization") ? sp.Find("randomization")->loc : desc.sampler.loc,
                 context + ": randomization " + Quote(r) +
                     " is not one of fastowen, owen, permutedigits, none");
-        if (!replaced) ss.seed = uint32_t(sp.GetInt("seed", 0));
+        if (!replaced && sp.Find("seed")) ss.seed = uint32_t(sp.GetInt("seed", 0));
         const int res = std::max(scene.resolution.x, scene.resolution.y);
         ss.log2Res = uint8_t(CeilLog2(uint64_t(std::max(res, 1))));
     }

@@ -48,7 +48,9 @@ struct SamplerSettings {
     SobolScramble scramble = SobolScramble::Owen;
     // One sample per pixel sits at the pixel centre, except in the later passes of a
     // progressive render, whose pattern seeds differ.
-    bool JitterFilm() const { return spp > 1 || seed != 0; }
+    bool JitterFilm() const { return !centres && (spp > 1 || seed != 0); }
+    // pbrt-v4's Option "disablepixeljitter": every sample at its pixel's centre.
+    bool centres = false;
 };
 
 // Where on the film, on the lens and in the shutter one camera sample lies.

@@ -307,8 +307,7 @@ void SceneBuilder::Accelerator(const std::string &type, ParsedParameterVector pa
 
 void SceneBuilder::Option(ParsedParameterVector params, const FileLoc &) {
     ParamSet ps = Params(std::move(params));
-    for (const Param &p : ps.Params())
-        diag_.Warn(p.loc, "Option " + Quote(p.name) + " is not supported; ignored");
+    for (const Param &p : ps.Params()) scene_.options.Add(p);
 }
 
 void SceneBuilder::ColorSpace(const std::string &, const FileLoc &loc) {

@@ -137,6 +137,9 @@ struct SceneDescription {
     CameraDesc camera;
     SceneEntity film{"image", {}, {}};
     SceneEntity sampler{"halton", {}, {}};
+    // pbrt-v4's Option directives, merged (a later value of a name wins): what the assembly
+    // reads of them, assembly/scene_options.h.
+    ParamSet options;
     SceneEntity filter{"box", {}, {}};
     SceneEntity integrator{"path", {}, {}};
     std::vector<ShapeDesc> shapes;
