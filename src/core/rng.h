@@ -6,6 +6,16 @@
 
 namespace prism {
 
+// SplitMix64's finaliser (Stafford's mix 13): a 64-bit hash whose every output bit depends on
+// every input bit, for seeds that must not correlate with their neighbours'.
+inline uint64_t MixBits64(uint64_t v) {
+    v ^= v >> 30;
+    v *= 0xbf58476d1ce4e5b9ull;
+    v ^= v >> 27;
+    v *= 0x94d049bb133111ebull;
+    return v ^ (v >> 31);
+}
+
 // PCG32 (O'Neill 2014): small, fast, statistically good stream generator.
 class PCG32 {
   public:

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/rng.h"
 #include "core/vecmath.h"
 
 namespace prism {
@@ -68,16 +69,6 @@ inline float BitsToUnit(uint32_t v) { return std::min(float(v) * 0x1p-32f, 0x1.f
 inline Vec2f SobolSample2D(uint32_t n, uint32_t seedX, uint32_t seedY, SobolScramble s) {
     return {BitsToUnit(Scramble(SobolBits0(n), seedX, s)),
             BitsToUnit(Scramble(SobolBits1(n), seedY, s))};
-}
-
-// 64-bit finaliser (Stafford's mix 13 of MurmurHash3's): seeds from pixel and dimension.
-inline uint64_t MixBits64(uint64_t v) {
-    v ^= v >> 30;
-    v *= 0xbf58476d1ce4e5b9ull;
-    v ^= v >> 27;
-    v *= 0x94d049bb133111ebull;
-    v ^= v >> 31;
-    return v;
 }
 
 // The Morton code of pixel (x, y): x's bits at the even positions, y's at the odd ones.

@@ -123,16 +123,6 @@ struct ChunkSums {
     std::vector<uint32_t> touched;
 };
 
-// A 64-bit mix (the finalizer of SplitMix64), so that neighbouring photons and iterations
-// get unrelated random streams.
-uint64_t Mix64(uint64_t v) {
-    v ^= v >> 30;
-    v *= 0xbf58476d1ce4e5b9ull;
-    v ^= v >> 27;
-    v *= 0x94d049bb133111ebull;
-    return v ^ (v >> 31);
-}
-
 struct PhotonTracer {
     const RenderScene &scene;
     const LightChooser &chooser;
@@ -228,7 +218,7 @@ void SppmIntegrator::PhotonPass(const FrameContext &frame, int iter, int64_t pho
     tbb::enumerable_thread_specific<ChunkSums> scratch;
     const int64_t nChunks = (photons + SppmPhotonChunk - 1) / SppmPhotonChunk;
     // Photon i of iteration k: a stream of its own, a function of (k, i) and the render's seed.
-    const uint64_t iterKey = Mix64((uint64_t(frame.sampler.seed) << 32) ^ uint64_t(iter));
+    const uint64_t iterKey = MixBits64((uint64_t(frame.sampler.seed) << 32) ^ uint64_t(iter));
     std::vector<std::vector<Deposit>> out(static_cast<size_t>(SppmChunksInFlight));
     for (int64_t first = 0; first < nChunks; first += SppmChunksInFlight) {
         const int64_t last = std::min(nChunks, first + SppmChunksInFlight);
@@ -242,7 +232,7 @@ void SppmIntegrator::PhotonPass(const FrameContext &frame, int iter, int64_t pho
             const int64_t begin = chunk * SppmPhotonChunk;
             const int64_t end = std::min(photons, begin + SppmPhotonChunk);
             for (int64_t i = begin; i < end; ++i) {
-                PCG32 rng(Mix64(uint64_t(i) ^ iterKey), iterKey);
+                PCG32 rng(MixBits64(uint64_t(i) ^ iterKey), iterKey);
                 tracer.Trace(rng, sums, rc);
             }
             std::vector<Deposit> &list = out[size_t(k)];
