@@ -10,23 +10,27 @@
 # samples, or of its sppm iterations: e.g. bdpt-gap, sppm-caustic) is rendered by Prism at
 # that quarter too, and the last column gives pbrt-v3's own quarter-vs-full relative L1: Prism
 # is within pbrt-v3's noise when its rel L1 is about that.
+# PBRT_VERSION=4 (tools/compare_pbrt4.sh) compares the pbrt-v4 renders of scenes/pbrt4-reference
+# the same way (there is no shared pbrt-v4 folder).
 # Usage: tools/compare_pbrt3.sh [OUTDIR] [FACTOR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-OUT="${1:-docs/pbrt3}"
+V="${PBRT_VERSION:-3}"
+OUT="${1:-docs/pbrt$V}"
 FACTOR="${2:-4}"
 PRISM="${PRISM:-$PWD/build/prism}"
 SHARED_REF="${SHARED:-$PWD/../shared}/pbrt3-reference"
-OWN_REF="$PWD/scenes/pbrt3-reference"
+[ "$V" = 3 ] || SHARED_REF=""
+OWN_REF="$PWD/scenes/pbrt$V-reference"
 SCENES="${SHARED:-$PWD/../shared}/scenes"
 mkdir -p "$OUT"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
-cp "$SHARED_REF"/*.pbrt "$WORK/"
+[ -z "$SHARED_REF" ] || cp "$SHARED_REF"/*.pbrt "$WORK/"
 cp -r "$OWN_REF"/. "$WORK/"
 # The texture the spheres scene needs sits with the original scene.
 cp -r "$SCENES/pbrt-spheres-differentials-texfilt/textures" "$WORK/"
-echo "| scene | Prism render (s) | RMSE | PSNR (dB) | max abs error | mean of reference | rel L1 | pbrt-v3 at Prism's spp: rel L1 |"
+echo "| scene | Prism render (s) | RMSE | PSNR (dB) | max abs error | mean of reference | rel L1 | pbrt-v$V at Prism's spp: rel L1 |"
 echo "|---|---|---|---|---|---|---|---|"
 # The mean over R, G and B of oiiotool --printstats' "Stats Avg".
 avg3() {
@@ -36,7 +40,7 @@ avg3() {
 for f in "$WORK"/*.pbrt; do
     name="$(basename "$f" .pbrt)"
     REF="$SHARED_REF"
-    [ -f "$OWN_REF/$name.pbrt" ] && REF="$OWN_REF"
+    [ -z "$REF" ] || [ -f "$OWN_REF/$name.pbrt" ] && REF="$OWN_REF"
     ref="$REF/$name.exr"
     [ -f "$ref" ] || continue
     if [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]]; then continue; fi
@@ -82,5 +86,5 @@ for f in "$WORK"/*.pbrt; do
     echo "| $name | $secs | $rmse | $psnr | $maxe | $mean | $rel | $own |"
     oiiotool "$WORK/$name.exr" --colorconvert linear sRGB -d uint8 -o "$WORK/p.png"
     oiiotool "$ref" --colorconvert linear sRGB -d uint8 -o "$WORK/r.png"
-    oiiotool "$WORK/p.png" "$WORK/r.png" --mosaic 2x1 --resize 50% -o "$OUT/$name-prism-vs-pbrt3.png"
+    oiiotool "$WORK/p.png" "$WORK/r.png" --mosaic 2x1 --resize 50% -o "$OUT/$name-prism-vs-pbrt$V.png"
 done

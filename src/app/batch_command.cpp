@@ -268,7 +268,8 @@ void Launch(Job &j, const BatchArgs &a, const std::string &exe, int threadsPerJo
                                {"--env-mode", &a.envMode},
                                {"--time-limit", &a.timeLimit},
                                {"--integrator", &a.integrator},
-                               {"--texture-filter", &a.textureFilter}})
+                               {"--texture-filter", &a.textureFilter},
+                               {"--pbrt-version", &a.pbrtVersion}})
         if (!value->empty()) {
             args.push_back(flag);
             args.push_back(*value);
@@ -510,6 +511,7 @@ void AddBatchOptions(CLI::App *cmd, BatchArgs *args) {
     cmd->add_option("--max-memory", args->maxMemory,
                     "Memory budget of each render, e.g. 4G (default: 75% of RAM)");
     AddConfineOption(cmd, &args->confine);
+    AddPbrtVersionOption(cmd, &args->pbrtVersion);
     cmd->add_option("--effects", args->effects,
                     "Kernel for every scene: \"scene\" (specialized) or \"all\" (general)")
         ->check(CLI::IsMember({"scene", "all"}));

@@ -28,7 +28,8 @@ struct BatchArgs {
     bool force = false, quiet = false;
     ConfineOption confine;  // --confine [DIR]: each scene confined to DIR or its own folder
     // Passed on to every `prism render` (empty: not given).
-    std::string exposure, toneMap, env, envRotate, envMode, timeLimit, integrator, textureFilter;
+    std::string exposure, toneMap, env, envRotate, envMode, timeLimit, integrator, textureFilter,
+        pbrtVersion;
     // `prism batch --scene-timeout S`: a render still running after S seconds is stopped
     // (SIGTERM, then SIGKILL after kSceneTimeoutGrace) and reported "timeout"; 0: no limit.
     double sceneTimeout = 3600;

@@ -196,6 +196,18 @@ void CheckWritableDirectory(const std::string &dir) {
     ::unlink(probe.c_str());
 }
 
+void AddPbrtVersionOption(CLI::App *cmd, std::string *version) {
+    cmd->add_option("--pbrt-version", *version,
+                    "Read a pbrt file by pbrt-v3's or pbrt-v4's rules (default: the version its "
+                    "version-specific constructs name; pbrt-v3 when there are none)")
+        ->check(CLI::IsMember({"3", "4"}))
+        ->type_name("3|4");
+}
+
+int PbrtVersionNumber(const std::string &version) {
+    return version.empty() ? 0 : std::stoi(version);
+}
+
 bool ConfineOption::Given() const { return option && option->count() > 0; }
 
 void AddConfineOption(CLI::App *cmd, ConfineOption *confine) {

@@ -69,6 +69,10 @@ struct ConfineOption {
     bool Given() const;
 };
 void AddConfineOption(CLI::App *cmd, ConfineOption *confine);
+// --pbrt-version 3|4 for render, info and batch: the pbrt rules a pbrt file is read by
+// (scene/pbrt_version.h); empty: detected from the file. PbrtVersionNumber gives 0 for empty.
+void AddPbrtVersionOption(CLI::App *cmd, std::string *version);
+int PbrtVersionNumber(const std::string &version);
 // The folder reads of `scene` are confined to ("" when --confine is not given); a DIR that is
 // not a folder is a UsageError.
 std::string ConfinementFolderFor(const ConfineOption &confine, const std::string &scene);

@@ -19,7 +19,7 @@ namespace prism {
 namespace {
 
 struct InfoArgs {
-    std::string scene, maxMemory;
+    std::string scene, maxMemory, pbrtVersion;
     ConfineOption confine;
 };
 
@@ -69,6 +69,7 @@ int RunInfo(const InfoArgs &a) {
     MemoryBudget budget(ParseMaxMemory(a.maxMemory));
     LoadOptions loadOpts;
     loadOpts.budget = &budget;
+    loadOpts.pbrt.pbrtVersion = PbrtVersionNumber(a.pbrtVersion);
     SceneDescription desc = LoadScene(a.scene, diag, loadOpts);
     double loadSeconds = SecondsSince(t0);
 
@@ -129,6 +130,16 @@ int RunInfo(const InfoArgs &a) {
 
     std::printf("scene:      %s (%s), loaded in %.3f s\n", EscapeControlChars(a.scene).c_str(),
                 desc.format.c_str(), loadSeconds);
+    if (desc.format == "pbrt") {
+        const PbrtVersionChoice &v = desc.pbrtVersion;
+        std::printf("rules:      pbrt-v%d (%s%s)\n", v.version, EscapeControlChars(v.why).c_str(),
+                    v.loc.Valid() ? (" at " + EscapeControlChars(v.loc.ToString())).c_str() : "");
+        // A file that mixes the versions renders (Prism reads both); pbrt would refuse it.
+        if (!v.conflict.empty())
+            std::printf("            though %s at %s is not; --pbrt-version chooses\n",
+                        EscapeControlChars(v.conflict).c_str(),
+                        EscapeControlChars(v.conflictLoc.ToString()).c_str());
+    }
     int operandShapes = 0;  // CSG operands
     for (const auto &[k, v] : csgOperands) operandShapes += v;
     std::printf("shapes:     %zu (%s)\n", desc.shapes.size() + size_t(operandShapes),
@@ -194,6 +205,7 @@ void AddInfoCommand(CLI::App &app, int *exitCode) {
     CLI::App *cmd = app.add_subcommand("info", "Describe what a scene contains (no BVH build)");
     cmd->add_option("scene", args->scene, "Scene file")->required();
     AddConfineOption(cmd, &args->confine);
+    AddPbrtVersionOption(cmd, &args->pbrtVersion);
     cmd->add_option("--max-memory", args->maxMemory,
                     "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM); a scene that "
                     "needs more is refused");

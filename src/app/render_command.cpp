@@ -187,6 +187,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     opts.budget = s_->budget.get();
     LoadOptions loadOpts;
     loadOpts.budget = s_->budget.get();
+    loadOpts.pbrt.pbrtVersion = PbrtVersionNumber(a.pbrtVersion);
     if (a.tessellate > 0) opts.replaceAnalyticShape = TessellateWith(a.tessellate);
 
     if (a.threads > 0)
@@ -498,6 +499,7 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "Memory budget, e.g. 512M or 8G (default: 75% of physical RAM), for scene "
                     "files, meshes, BVH, textures and film together; more is an error");
     AddConfineOption(cmd, &args->confine);
+    AddPbrtVersionOption(cmd, &args->pbrtVersion);
     cmd->add_option("--effects", args->effects,
                     "Kernel: \"scene\" (specialized for the scene's effects; `prism info` lists "
                     "them) or \"all\" (the general kernel: the same image, for comparison)")

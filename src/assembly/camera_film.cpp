@@ -444,7 +444,7 @@ void BuildSampler(BuildContext &ctx) {
                            " is replaced by Prism's stratified sampler: "
                            "the integrator " +
                            Quote(scene.integrator->Name()) + " draws its own");
-    if (ss.pattern == SamplePattern::PaddedSobol || ss.pattern == SamplePattern::ZSobol) {
+    if (IsSobolPattern(ss.pattern)) {
         const std::string r = replaced ? "fastowen" : sp.GetString("randomization", "fastowen");
         if (r == "fastowen" || r == "owen")
             ss.scramble = SobolScramble::Owen;
@@ -462,7 +462,7 @@ void BuildSampler(BuildContext &ctx) {
         ss.log2Res = uint8_t(CeilLog2(uint64_t(std::max(res, 1))));
     }
     WarnIgnoredRest(sp, diag, context,
-                    ss.pattern == SamplePattern::PaddedSobol || ss.pattern == SamplePattern::ZSobol
+                    IsSobolPattern(ss.pattern)
                         ? "Prism reads its sample count, randomization and seed"
                         : "Prism reads only its sample count");
     if (settings.spp > 0) spp = settings.spp;
@@ -523,11 +523,13 @@ void BuildIntegratorSettings(BuildContext &ctx) {
     Diagnostics &diag = ctx.diag;
     const ParamSet &ip = desc.integrator.params;
     // --integrator replaces the scene's choice (its parameters still apply). A pbrt file
-    // without an Integrator directive leaves the directive's default type, pbrt-v3's "path"
-    // (maxdepth 5), unless the settings name another default; OBJ and glTF scenes set theirs
-    // ("distribution") without a location.
+    // without an Integrator directive leaves the default of its version, pbrt-v3's "path" or
+    // pbrt-v4's "volpath" (maxdepth 5 both), unless the settings name another default; OBJ and
+    // glTF scenes set theirs ("distribution") without a location.
+    const bool v4 = desc.format == "pbrt" && desc.pbrtVersion.version == 4;
+    const char *pbrtDefault = v4 ? "volpath" : "path";
     const bool unnamed = settings.integrator.empty() && !desc.integrator.loc.Valid() &&
-                         desc.integrator.type == "path";
+                         desc.integrator.type == pbrtDefault;
     const std::string type = !settings.integrator.empty() ? settings.integrator
                              : unnamed && !settings.defaultIntegrator.empty()
                                  ? settings.defaultIntegrator
@@ -537,10 +539,11 @@ void BuildIntegratorSettings(BuildContext &ctx) {
         scene.integratorWhy = "--integrator " + settings.integrator;
     else if (desc.integrator.loc.Valid())
         scene.integratorWhy = "Integrator " + Quote(type) + " at " + desc.integrator.loc.ToString();
-    else if (type != "path")
+    else if (type != pbrtDefault)
         scene.integratorWhy = "default of the scene's format";
     else
-        scene.integratorWhy = "pbrt-v3's default: the scene names no Integrator";
+        scene.integratorWhy =
+            std::string(v4 ? "pbrt-v4" : "pbrt-v3") + "'s default: the scene names no Integrator";
     int maxDepth = ip.GetInt("maxdepth", 5);
     const bool known = std::find(IntegratorNames().begin(), IntegratorNames().end(), name) !=
                        IntegratorNames().end();

@@ -12,6 +12,19 @@ namespace prism {
 
 namespace {
 
+// A light's emission spectrum `name` ("I", "L"). pbrt-v4 divides a light's spectrum by its
+// photometric value: an RGB one (written "rgb" or "color", or absent: the default white) is
+// measured by the colour space's white and keeps its magnitude; any other (a blackbody, a named
+// illuminant, samples) comes out at luminance 1. pbrt-v3 uses the spectrum as it is.
+RGB EmissionSpectrum(const BuildContext &ctx, const ParamSet &ps, const char *name, RGB def) {
+    const RGB value = ps.GetRGB(name, def);
+    const Param *q = ps.Find(name);
+    const bool rgb = !q || q->spelledType == "rgb" || q->spelledType == "color";
+    if (rgb || ctx.desc.pbrtVersion.version != 4) return value;
+    const double y = value.Luminance();
+    return y > 0 ? value * float(1 / y) : RGB(0);
+}
+
 // A LightSource's parameters over its ParamSet, images read relative to the scene.
 class SceneLightParams : public DirectiveParamsOf<LightParams> {
   public:
@@ -19,13 +32,12 @@ class SceneLightParams : public DirectiveParamsOf<LightParams> {
         : DirectiveParamsOf(l.params, ctx.diag, "light " + Quote(l.type), l.loc),
           ctx_(ctx),
           light_(l) {}
-    RGB Spectrum(const char *name, RGB def) const override { return ps_.GetRGB(name, def); }
+    RGB Spectrum(const char *name, RGB def) const override {
+        return std::string_view(name) == "scale" ? ps_.GetRGB(name, def)
+                                                 : EmissionSpectrum(ctx_, ps_, name, def);
+    }
     Vec3f Point3(const char *name, Vec3f def) const override { return ps_.GetPoint3(name, def); }
     RGB Scale() const override { return ScaleParam(ps_); }
-    bool IsRGBSpectrum(const char *name) const override {
-        const Param *q = ps_.Find(name);
-        return !q || q->spelledType == "rgb" || q->spelledType == "color";
-    }
     std::shared_ptr<const Image> LoadImage(const char *name,
                                            const std::string &file) const override {
         return LoadSceneImage(ctx_, light_, file, ReadImageOptions::Encoding::Auto, name);
@@ -46,7 +58,7 @@ void BuildLights(BuildContext &ctx) {
         const ParamSet &ps = l.params;
         const SceneLightParams params(ctx, l);
         const LightInputs in{params, scene.renderFromWorld * l.worldFromLight, l.loc,
-                             ctx.settings.lightSamples};
+                             ctx.settings.lightSamples, desc.pbrtVersion.version};
         std::unique_ptr<Light> light = CreateLight(l.type, in);
         if (!light) {
             diag.WarnOnce(
@@ -84,7 +96,7 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
             "area light " + Quote(a.type) + " is not supported; shapes using it do not emit");
         return nullptr;
     }
-    RGB L = ps.GetRGB("L", RGB(1)) * ScaleParam(ps);
+    RGB L = EmissionSpectrum(ctx, ps, "L", RGB(1)) * ScaleParam(ps);
     bool twoSided = ps.GetBool("twosided", false);
     int n = ps.GetInt("nsamples", ps.GetInt("samples", 1));
     if (ctx.settings.lightSamples > 0) n = ctx.settings.lightSamples;
@@ -122,10 +134,8 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
         const float power = ps.GetFloat("power", 0);
         if (!(power >= 0) || !std::isfinite(power))
             throw SceneError(pp->loc, "area light: \"power\" must be finite and not negative");
-        const bool rgb = !ps.Find("L") || ps.Find("L")->spelledType == "rgb" ||
-                         ps.Find("L")->spelledType == "color";
         const double P = light->Power(0), y = L.Luminance();
-        const double f = P > 0 && y > 0 ? double(power) / P * (rgb ? y : 1) : 0;
+        const double f = P > 0 && y > 0 ? double(power) / P * y : 0;
         light = std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L * float(f),
                                                    twoSided, n, radiance);
     }

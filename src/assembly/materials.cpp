@@ -57,7 +57,21 @@ class MaterialBuilder::SceneMaterialParams : public MaterialParams {
         return TextureParam(b_.ctx, Src(n), n, false, def);
     }
     TexturePtr FloatTex(const char *n, float def) const override {
-        return TextureParam(b_.ctx, Src(n), n, true, RGB(def));
+        const ParamSet &ps = Src(n);
+        const Param *p = ps.Find(n);
+        if (p && p->type == ParamType::RGB) {
+            // pbrt-v4 takes a spectrum where Prism reads a number (a dielectric's "spectrum
+            // eta", "glass-BK7"): its luminance-weighted mean. An RGB renderer has no
+            // wavelengths to disperse, so a varying one is said.
+            const RGB c = ps.GetRGB(n, RGB(def));
+            const float v = c.Luminance();
+            if (c.r != c.g || c.g != c.b)
+                Warn(p->loc, context_ + ": \"" + n + "\" varies with wavelength; rendered as " +
+                                 std::to_string(v) +
+                                 " (its luminance-weighted mean), without dispersion");
+            return Constant(RGB(v));
+        }
+        return TextureParam(b_.ctx, ps, n, true, RGB(def));
     }
     TexturePtr AnyTex(const char *n, RGB def) const override {
         const ParamSet &ps = Src(n);

@@ -180,7 +180,7 @@ std::unique_ptr<Light> CreateInfiniteLight(const LightInputs &in) {
     const RGB L0 = p.Spectrum("L", RGB(1)) * p.Scale();
     const RGB L = p.Has("illuminance") && !(k_e > 0)
                       ? RGB(0)
-                      : PhotometricScale(p, "L", L0, "illuminance", k_e, in.loc);
+                      : PhotometricScale(p, L0, "illuminance", k_e, in.loc);
     int n = p.Int("nsamples", p.Int("samples", 1));
     if (in.lightSamples > 0) n = in.lightSamples;
     if (n < 1 || n > MaxInfiniteLightSamples)

@@ -18,7 +18,7 @@ CameraSampler::CameraSampler(const RenderScene &scene, const SamplerSettings &sa
       pattern_(sampler.pattern),
       log2Res_(sampler.log2Res),
       scramble_(sampler.scramble),
-      sobol_(pattern_ == SamplePattern::PaddedSobol || pattern_ == SamplePattern::ZSobol),
+      sobol_(IsSobolPattern(pattern_)),
       jitter_(sampler.JitterFilm()),
       lens_(scene.features.lens),
       motion_(scene.features.effects.Has(Effect::MotionBlur)),

@@ -120,19 +120,21 @@ bool PointLight::SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) 
 }
 
 SpotLight::SpotLight(const Vec3f &pos, const Vec3f &dir, const RGB &I, float coneAngle,
-                     float coneDelta)
+                     float coneDelta, FalloffCurve curve)
     : pos_(pos),
       dir_(dir),
       I_(I),
       cosTotalWidth_(float(std::cos(Radians(coneAngle)))),
-      cosFalloffStart_(float(std::cos(Radians(coneAngle - coneDelta)))) {}
+      cosFalloffStart_(float(std::cos(Radians(coneAngle - coneDelta)))),
+      curve_(curve) {}
 
 float SpotLight::Falloff(const Vec3f &w) const {
     float cosTheta = Dot(w, dir_);
     if (cosTheta < cosTotalWidth_) return 0;
     if (cosTheta >= cosFalloffStart_) return 1;
-    // pbrt-v3 SpotLight::Falloff: the fourth power of the normalized cosine.
+    // pbrt-v3: the fourth power of the normalized cosine; pbrt-v4: its smoothstep.
     float delta = (cosTheta - cosTotalWidth_) / (cosFalloffStart_ - cosTotalWidth_);
+    if (curve_ == FalloffCurve::SmoothStep) return delta * delta * (3 - 2 * delta);
     return (delta * delta) * (delta * delta);
 }
 
@@ -153,20 +155,14 @@ bool DistantLight::SampleLi(const SurfaceInteraction &, Vec2f, LightSample *ls) 
     return true;
 }
 
-RGB PhotometricScale(const LightParams &p, const char *spectrum, const RGB &value,
-                     const char *param, double k_e, const FileLoc &loc) {
+RGB PhotometricScale(const LightParams &p, const RGB &value, const char *param, double k_e,
+                     const FileLoc &loc) {
     if (!p.Has(param)) return value;
     const float v = p.Float(param, 0);
     if (!(v >= 0) || !std::isfinite(v))
         throw SceneError(p.Loc(param).Valid() ? p.Loc(param) : loc,
                          p.Context() + ": \"" + param + "\" must be finite and not negative");
-    double unit = 1;
-    if (!p.IsRGBSpectrum(spectrum)) {
-        const double y = value.Luminance();
-        if (!(y > 0)) return RGB(0);
-        unit = 1 / y;
-    }
-    return value * float(double(v) / k_e * unit);
+    return value * float(double(v) / k_e);
 }
 
 // LightSource "point" (light_list.inc). Parameters:
@@ -176,8 +172,7 @@ RGB PhotometricScale(const LightParams &p, const char *spectrum, const RGB &valu
 //   from   point     0 0 0    position, in the light's coordinate system
 std::unique_ptr<Light> CreatePointLight(const LightInputs &in) {
     const LightParams &p = in.params;
-    const RGB I =
-        PhotometricScale(p, "I", p.Spectrum("I", RGB(1)) * p.Scale(), "power", 4 * Pi, in.loc);
+    const RGB I = PhotometricScale(p, p.Spectrum("I", RGB(1)) * p.Scale(), "power", 4 * Pi, in.loc);
     const Vec3f from = p.Point3("from", Vec3f(0, 0, 0));
     return std::make_unique<PointLight>(Vec3f(in.renderFromLight.Point(Vec3d(from))), I);
 }
@@ -202,10 +197,12 @@ std::unique_ptr<Light> CreateSpotLight(const LightInputs &in) {
     const RGB I =
         p.Has("power") && !(k_e > 0)
             ? RGB(0)
-            : PhotometricScale(p, "I", p.Spectrum("I", RGB(1)) * p.Scale(), "power", k_e, in.loc);
+            : PhotometricScale(p, p.Spectrum("I", RGB(1)) * p.Scale(), "power", k_e, in.loc);
     const Vec3d dir = Normalize(in.renderFromLight.Vector(Vec3d(to) - Vec3d(from)));
     return std::make_unique<SpotLight>(Vec3f(in.renderFromLight.Point(Vec3d(from))), Vec3f(dir), I,
-                                       cone, delta);
+                                       cone, delta,
+                                       in.pbrtVersion == 4 ? SpotLight::FalloffCurve::SmoothStep
+                                                           : SpotLight::FalloffCurve::Quartic);
 }
 
 // LightSource "distant" (light_list.inc). Parameters:
@@ -217,7 +214,7 @@ std::unique_ptr<Light> CreateSpotLight(const LightInputs &in) {
 std::unique_ptr<Light> CreateDistantLight(const LightInputs &in) {
     const LightParams &p = in.params;
     const RGB L =
-        PhotometricScale(p, "L", p.Spectrum("L", RGB(1)) * p.Scale(), "illuminance", 1, in.loc);
+        PhotometricScale(p, p.Spectrum("L", RGB(1)) * p.Scale(), "illuminance", 1, in.loc);
     const Vec3f from = p.Point3("from", Vec3f(0, 0, 0)), to = p.Point3("to", Vec3f(0, 0, 1));
     const Vec3d w = in.renderFromLight.Vector(Vec3d(from) - Vec3d(to));
     if (!(Length(w) > 0))

@@ -105,8 +105,11 @@ class PointLight final : public Light {
 
 class SpotLight final : public Light {
   public:
+    // The curve between the cone's full-intensity core and its edge.
+    enum class FalloffCurve { Quartic, SmoothStep };  // pbrt-v3's, pbrt-v4's
     // dir: unit axis from the light toward `to`; angles in degrees.
-    SpotLight(const Vec3f &pos, const Vec3f &dir, const RGB &I, float coneAngle, float coneDelta);
+    SpotLight(const Vec3f &pos, const Vec3f &dir, const RGB &I, float coneAngle, float coneDelta,
+              FalloffCurve curve = FalloffCurve::Quartic);
     const char *Name() const override { return "spot"; }
     bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
@@ -123,6 +126,7 @@ class SpotLight final : public Light {
     Vec3f pos_, dir_;
     RGB I_;
     float cosTotalWidth_, cosFalloffStart_;
+    FalloffCurve curve_;
 };
 
 class DistantLight final : public Light {
@@ -156,13 +160,13 @@ Vec3f DiskOrigin(const SceneSphere &sphere, const Vec3f &d, Vec2f u);
 // spectra (rgb, blackbody, spectrum: as RGB), points, and images (relative to the scene).
 class LightParams : public Params {
   public:
+    // Spectrum parameter `name`. In a pbrt-v4 file, an emission spectrum ("I", "L") that is
+    // not RGB (a blackbody, a named illuminant, samples) comes normalised to luminance 1, as
+    // pbrt-v4 divides a light's spectrum by its photometric value.
     virtual RGB Spectrum(const char *name, RGB def) const = 0;
     virtual Vec3f Point3(const char *name, Vec3f def) const = 0;
     // pbrt's "scale": a float or a spectrum, 1 by default.
     virtual RGB Scale() const = 0;
-    // Whether spectrum parameter `name` is RGB (written "rgb" or "color", or absent: the
-    // default white) rather than a blackbody, a named spectrum or samples.
-    virtual bool IsRGBSpectrum(const char *name) const = 0;
     // The image file named by string parameter `name` (relative to the scene), linear.
     virtual std::shared_ptr<const Image> LoadImage(const char *name,
                                                    const std::string &file) const = 0;
@@ -174,14 +178,15 @@ class LightParams : public Params {
 };
 
 // pbrt-v4's photometric parameters ("power" of point, spot and area lights, "illuminance" of
-// distant and infinite lights): the spectrum `spectrum` (already times "scale") multiplied by
+// distant and infinite lights): the spectrum `value` (already times "scale") multiplied by
 // `param`'s value over k_e, the power or illuminance the light has per unit of it. pbrt-v4
 // measures an RGB spectrum by its colour space's white, so an RGB value keeps its magnitude
 // (measured with pbrt-v4: "rgb I" [2 2 2] at "power" 100 is twice as bright as [1 1 1]); any
-// other spectrum (a blackbody) counts as luminance 1. The value unchanged without `param`;
-// SceneError for a negative or non-finite one.
-RGB PhotometricScale(const LightParams &p, const char *spectrum, const RGB &value,
-                     const char *param, double k_e, const FileLoc &loc);
+// other spectrum (a blackbody) counts as luminance 1, which in a pbrt-v4 file it already is
+// (LightParams::Spectrum normalises it). The value unchanged without `param`; SceneError for a
+// negative or non-finite one.
+RGB PhotometricScale(const LightParams &p, const RGB &value, const char *param, double k_e,
+                     const FileLoc &loc);
 
 // What a light's Create reads.
 struct LightInputs {
@@ -189,6 +194,7 @@ struct LightInputs {
     Transform renderFromLight;  // the CTM at the LightSource, in render space
     FileLoc loc;                // the directive
     int lightSamples = 0;       // --light-samples (0: the file's "nsamples")
+    int pbrtVersion = 3;        // the pbrt rules the file is read by (scene/pbrt_version.h)
 };
 
 // The light registered as `type` (light_list.inc), or null when none is. Throws SceneError for

@@ -179,6 +179,9 @@ class CMJPattern {
 // "zsobol" (one Owen-scrambled Sobol sequence over the film, its pixels in permuted Morton
 // order: render/sobol.h ZSobolIndex).
 enum class SamplePattern : uint8_t { Stratified, ZeroTwo, Independent, PaddedSobol, ZSobol };
+inline bool IsSobolPattern(SamplePattern p) {
+    return p == SamplePattern::PaddedSobol || p == SamplePattern::ZSobol;
+}
 
 // pbrt-v3's scrambled (0,2)-sequence point n: van der Corput in x, Sobol's second dimension in
 // y, each XORed with a scramble (lowdiscrepancy.h Sample02).

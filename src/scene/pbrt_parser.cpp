@@ -394,9 +394,14 @@ void PbrtParser::ParseDirective(Tokenizer &tok, const Token &dir) {
             worldEnded_ = true;
             break;
         case Directive::Include:
-        case Directive::Import:
             Include(dir, str("file name"));
             break;
+        case Directive::Import: {
+            std::string file = str("file name");
+            t.Import(file, loc);
+            Include(dir, file);
+            break;
+        }
         case Directive::Material: {
             std::string type = str("material type");
             t.Material(type, params(), loc);

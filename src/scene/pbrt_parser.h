@@ -23,6 +23,9 @@ struct PbrtParseOptions {
     // When set, the top-level file (ParsePbrtFile), every included file and the parameters of
     // every shape are charged to it (core/memory.h); MemoryBudgetError once they exceed it.
     MemoryBudget *budget = nullptr;
+    // The pbrt version whose rules apply (3 or 4); 0 detects it from the file
+    // (scene/pbrt_version.h). --pbrt-version.
+    int pbrtVersion = 0;
 };
 
 enum class ActiveTransformKind { StartTime, EndTime, All };
@@ -66,6 +69,11 @@ class PbrtTarget {
     virtual void Accelerator(const std::string &type, ParsedParameterVector params,
                              const FileLoc &loc) = 0;
     virtual void Option(ParsedParameterVector params, const FileLoc &loc) = 0;
+    // An Import directive (pbrt-v4), before the parser reads the file as it reads Include.
+    virtual void Import(const std::string &file, const FileLoc &loc) {
+        (void)file;
+        (void)loc;
+    }
     virtual void ColorSpace(const std::string &name, const FileLoc &loc) = 0;
 
     // World block.

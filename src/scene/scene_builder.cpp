@@ -7,6 +7,7 @@
 
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "scene/named_spectra.h"
 #include "scene/spectrum.h"
 
 namespace prism {
@@ -53,12 +54,29 @@ ParamSet SceneBuilder::Params(ParsedParameterVector params) {
     });
 }
 
-SceneEntity SceneBuilder::Entity(const std::string &type, ParsedParameterVector params,
-                                 const FileLoc &loc) {
+SceneEntity SceneBuilder::Entity(const char *directive, const std::string &type,
+                                 ParsedParameterVector params, const FileLoc &loc) {
+    Observe(directive, type, params, loc);
     return SceneEntity{type, Params(std::move(params)), loc};
 }
 
+void SceneBuilder::Observe(const char *directive, const std::string &type,
+                           const ParsedParameterVector &params, const FileLoc &loc) {
+    std::string_view t = type;
+    if (t.empty())
+        for (const ParsedParameter &p : params)
+            if (p.name == "type" && p.strings.size() == 1) t = p.strings[0];
+    version_.Observe(directive, t, params, loc);
+}
+
 RGB SceneBuilder::SpectrumFile(const std::string &name, const FileLoc &loc) {
+    // pbrt-v4 looks a name up among its named spectra before it looks for a file.
+    std::string why;
+    if (std::optional<RGB> named = NamedSpectrumRGB(name, &why)) return *named;
+    if (IsNamedSpectrum(name)) {
+        diag_.Warn(loc, why + "; using a constant 1");
+        return RGB(1.f);
+    }
     std::string path = ResolveScenePath(scene_.baseDir, name);
     auto cached = spdCache_.find(path);
     if (cached != spdCache_.end()) return cached->second;
@@ -257,7 +275,7 @@ void SceneBuilder::ReverseOrientation(const FileLoc &) {
 
 void SceneBuilder::Camera(const std::string &type, ParsedParameterVector params,
                           const FileLoc &loc) {
-    SceneEntity e = Entity(type, std::move(params), loc);
+    SceneEntity e = Entity("Camera", type, std::move(params), loc);
     if (!OptionAllowed("Camera", loc)) return;
     CameraDesc &cam = scene_.camera;
     static_cast<SceneEntity &>(cam) = std::move(e);
@@ -273,44 +291,50 @@ void SceneBuilder::Camera(const std::string &type, ParsedParameterVector params,
 }
 
 void SceneBuilder::Film(const std::string &type, ParsedParameterVector params, const FileLoc &loc) {
-    SceneEntity e = Entity(type, std::move(params), loc);
+    SceneEntity e = Entity("Film", type, std::move(params), loc);
     if (OptionAllowed("Film", loc)) scene_.film = std::move(e);
 }
 
 void SceneBuilder::Sampler(const std::string &type, ParsedParameterVector params,
                            const FileLoc &loc) {
-    SceneEntity e = Entity(type, std::move(params), loc);
+    SceneEntity e = Entity("Sampler", type, std::move(params), loc);
     if (OptionAllowed("Sampler", loc)) scene_.sampler = std::move(e);
 }
 
 void SceneBuilder::PixelFilter(const std::string &type, ParsedParameterVector params,
                                const FileLoc &loc) {
-    SceneEntity e = Entity(type, std::move(params), loc);
+    SceneEntity e = Entity("PixelFilter", type, std::move(params), loc);
     if (OptionAllowed("PixelFilter", loc)) scene_.filter = std::move(e);
 }
 
 void SceneBuilder::Integrator(const std::string &type, ParsedParameterVector params,
                               const FileLoc &loc) {
-    SceneEntity e = Entity(type, std::move(params), loc);
+    SceneEntity e = Entity("Integrator", type, std::move(params), loc);
     if (OptionAllowed("Integrator", loc)) scene_.integrator = std::move(e);
 }
 
 void SceneBuilder::Accelerator(const std::string &type, ParsedParameterVector params,
                                const FileLoc &loc) {
     // Embree builds its own BVH: the parameters are checked and dropped, with a warning.
-    SceneEntity e = Entity(type, std::move(params), loc);
+    SceneEntity e = Entity("Accelerator", type, std::move(params), loc);
     if (!OptionAllowed("Accelerator", loc)) return;
     const std::string context = "Accelerator " + Quote(type);
     diag_.Warn(loc, context + " is replaced by Embree's BVH");
     WarnIgnoredRest(e.params, diag_, context, "Embree builds its own BVH");
 }
 
-void SceneBuilder::Option(ParsedParameterVector params, const FileLoc &) {
+void SceneBuilder::Option(ParsedParameterVector params, const FileLoc &loc) {
+    version_.Note(4, "Option", loc);
     ParamSet ps = Params(std::move(params));
     for (const Param &p : ps.Params()) scene_.options.Add(p);
 }
 
+void SceneBuilder::Import(const std::string &, const FileLoc &loc) {
+    version_.Note(4, "Import", loc);
+}
+
 void SceneBuilder::ColorSpace(const std::string &, const FileLoc &loc) {
+    version_.Note(4, "ColorSpace", loc);
     diag_.Warn(loc, "ColorSpace is not supported; using sRGB");
 }
 
@@ -333,7 +357,7 @@ void SceneBuilder::Material(const std::string &type, ParsedParameterVector param
                             const FileLoc &loc) {
     CheckWorld("Material", loc);
     MaterialDesc m;
-    static_cast<SceneEntity &>(m) = Entity(type, std::move(params), loc);
+    static_cast<SceneEntity &>(m) = Entity("Material", type, std::move(params), loc);
     gs_.material = int(scene_.materials.size());
     scene_.materials.push_back(std::move(m));
 }
@@ -343,6 +367,7 @@ void SceneBuilder::MakeNamedMaterial(const std::string &name, ParsedParameterVec
     CheckWorld("MakeNamedMaterial", loc);
     MaterialDesc m;
     m.name = name;
+    Observe("MakeNamedMaterial", "", params, loc);
     m.params = Params(std::move(params));
     m.loc = loc;
     const Param *type = m.params.Find("type");
@@ -375,6 +400,7 @@ void SceneBuilder::Texture(const std::string &name, const std::string &kind,
         throw SceneError(loc, "texture " + Quote(t.name) + ": unknown texture type " + Quote(kind) +
                                   " (expected \"float\" or \"spectrum\")");
     t.type = type;
+    Observe("Texture", type, params, loc);
     t.params = Params(std::move(params));
     t.loc = loc;
     t.worldFromTexture = ctm_;
@@ -413,7 +439,7 @@ void SceneBuilder::LightSource(const std::string &type, ParsedParameterVector pa
                                const FileLoc &loc) {
     CheckWorld("LightSource", loc);
     LightDesc l;
-    static_cast<SceneEntity &>(l) = Entity(type, std::move(params), loc);
+    static_cast<SceneEntity &>(l) = Entity("LightSource", type, std::move(params), loc);
     l.worldFromLight = ctm_;
     scene_.lights.push_back(std::move(l));
 }
@@ -422,7 +448,7 @@ void SceneBuilder::AreaLightSource(const std::string &type, ParsedParameterVecto
                                    const FileLoc &loc) {
     CheckWorld("AreaLightSource", loc);
     AreaLightDesc a;
-    static_cast<SceneEntity &>(a) = Entity(type, std::move(params), loc);
+    static_cast<SceneEntity &>(a) = Entity("AreaLightSource", type, std::move(params), loc);
     gs_.areaLight = int(scene_.areaLights.size());
     scene_.areaLights.push_back(std::move(a));
 }
@@ -431,7 +457,7 @@ void SceneBuilder::Shape(const std::string &type, ParsedParameterVector params,
                          const FileLoc &loc) {
     CheckWorld("Shape", loc);
     ShapeDesc s;
-    static_cast<SceneEntity &>(s) = Entity(type, std::move(params), loc);
+    static_cast<SceneEntity &>(s) = Entity("Shape", type, std::move(params), loc);
     // The shape's description (its transforms, names and locations, about 600 bytes) and its
     // parameters (meshes given inline as "trianglemesh" arrays) live until the render: an
     // Include fan-out of parameterless shapes is refused at the shape that does not fit.
@@ -533,11 +559,17 @@ void SceneBuilder::CSGEnd(const FileLoc &loc) {
 
 void SceneBuilder::Attribute(const std::string &, ParsedParameterVector params,
                              const FileLoc &loc) {
+    version_.Note(4, "Attribute", loc);
     Params(std::move(params));
     diag_.Warn(loc, "Attribute is not supported; ignored");
 }
 
 void SceneBuilder::EndOfFiles() {
+    PbrtVersionChoice &v = scene_.pbrtVersion;
+    v = version_.Choose(opts_.pbrtVersion);
+    // pbrt-v4's defaults where the file names no Sampler or Integrator.
+    if (v.version == 4 && !scene_.sampler.loc.Valid()) scene_.sampler.type = "zsobol";
+    if (v.version == 4 && !scene_.integrator.loc.Valid()) scene_.integrator.type = "volpath";
     if (!cameraMedium_.empty())
         scene_.camera.medium = MediumIndex(cameraMedium_, scene_.camera.mediumLoc);
     if (!csgStack_.empty())

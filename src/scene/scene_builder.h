@@ -62,6 +62,7 @@ class SceneBuilder final : public PbrtTarget {
     void Accelerator(const std::string &type, ParsedParameterVector params,
                      const FileLoc &loc) override;
     void Option(ParsedParameterVector params, const FileLoc &loc) override;
+    void Import(const std::string &file, const FileLoc &loc) override;
     void ColorSpace(const std::string &name, const FileLoc &loc) override;
 
     void WorldBegin(const FileLoc &loc) override;
@@ -125,7 +126,13 @@ class SceneBuilder final : public PbrtTarget {
 
     uint64_t FrameBytes(const FileLoc &loc) const;
     ParamSet Params(ParsedParameterVector params);
-    SceneEntity Entity(const std::string &type, ParsedParameterVector params, const FileLoc &loc);
+    // `directive` names the directive for the version detector (pbrt_version.h).
+    SceneEntity Entity(const char *directive, const std::string &type, ParsedParameterVector params,
+                       const FileLoc &loc);
+    // Shows a directive to the version detector; an empty `type` is read from the directive's
+    // "string type" parameter (MakeNamedMaterial, MakeNamedMedium).
+    void Observe(const char *directive, const std::string &type,
+                 const ParsedParameterVector &params, const FileLoc &loc);
     RGB SpectrumFile(const std::string &name, const FileLoc &loc);
     // An options-block entity (Camera, Film, ...): false, with a warning, inside the world.
     bool OptionAllowed(const char *directive, const FileLoc &loc);
@@ -168,6 +175,7 @@ class SceneBuilder final : public PbrtTarget {
     };
     std::vector<TextureCost> textureCosts_;
     std::unordered_map<std::string, RGB> spdCache_;
+    PbrtVersionDetector version_;
     // Named media are global, as in pbrt-v3 (not scoped by AttributeBegin/End).
     std::unordered_map<std::string, int> namedMedia_;
     std::string cameraMedium_;  // the outside medium at Camera, resolved at EndOfFiles

@@ -10,6 +10,7 @@ void SceneBuilder::MakeNamedMedium(const std::string &name, ParsedParameterVecto
                                    const FileLoc &loc) {
     MediumDesc m;
     m.name = name;
+    Observe("MakeNamedMedium", "", params, loc);
     m.params = Params(std::move(params));
     m.loc = loc;
     m.worldFromMedium = ctm_;

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/transform.h"
 #include "scene/paramset.h"
+#include "scene/pbrt_version.h"
 
 namespace prism {
 
@@ -154,7 +155,10 @@ struct SceneDescription {
     std::string baseDir;            // directory of the top-level file: relative paths resolve here
     std::string sourceFile;         // the top-level file
     std::string format;             // "pbrt", "obj", "gltf", "ply"
-    bool studioRig = false;         // the lights are Prism's studio rig (AddStudioRig)
+    // The version of the pbrt format whose rules the file was read by (pbrt files only;
+    // scene/pbrt_version.h) and what chose it.
+    PbrtVersionChoice pbrtVersion;
+    bool studioRig = false;  // the lights are Prism's studio rig (AddStudioRig)
     std::vector<EmbeddedImage> embeddedImages;
     // Informational notes from the reader about what it supplied or interpreted, e.g. "no
     // camera in file: framed the bounding box" (not warnings: nothing is wrong with the file).
