@@ -22,6 +22,8 @@ namespace prism {
 //   filename                  string   ""        the output when -o is not given
 //   scale                     float    1         multiplies every pixel
 //   maxsampleluminance        float    infinity  samples brighter than this are scaled down
+//   maxcomponentvalue         float    infinity  pbrt-v4: a sample whose largest component
+//                                                exceeds this is scaled down to it
 //   diagonal                  float    35        mm: read by the realistic camera only
 //   exposure                  float    0         EV, in [-64, 64] (a Prism extension; --exposure
 //                                                wins)
@@ -71,6 +73,10 @@ void BuildFilm(BuildContext &ctx) {
     scene.outputFilename = film.GetString("filename", "");
     scene.filmScale = film.GetFloat("scale", 1.f);
     scene.maxSampleLuminance = film.GetFloat("maxsampleluminance", Infinity);
+    scene.maxComponentValue = film.GetFloat("maxcomponentvalue", Infinity);
+    for (const char *clamp : {"maxsampleluminance", "maxcomponentvalue"})
+        if (const Param *p = film.Find(clamp); p && !(film.GetFloat(clamp, 1) > 0))
+            throw SceneError(p->loc, std::string("film \"") + clamp + "\" must be positive");
     // Prism extensions (docs/FORMAT.md): exposure in EV and the tone map of 8-bit outputs;
     // the command line's --exposure and --tonemap replace them.
     scene.filmExposure = film.GetFloat("exposure", 0.f);

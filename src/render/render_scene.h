@@ -81,6 +81,7 @@ struct RenderScene {
     // assembly/film_sensor.h), or none.
     std::optional<std::array<float, 9>> filmColor;
     float maxSampleLuminance = Infinity;
+    float maxComponentValue = Infinity;  // pbrt-v4's Film "maxcomponentvalue"
     // The sampler: spp, the pattern of the path integrators' dimensions and the seed (0: a
     // render's; progressive passes render with seeds of their own, render/progressive.h).
     SamplerSettings sampler;

@@ -180,12 +180,16 @@ bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
         scene_.integrator->RenderTile(ctx, buf, rc);
         if (*cancel) return false;
     }
-    // The film's scale, and pbrt's clamp of bright samples (Film "maxsampleluminance"); the
+    // The film's scale, and pbrt's clamps of bright samples (Film "maxsampleluminance",
+    // pbrt-v4's "maxcomponentvalue", after the sensor's colour matrix as in pbrt-v4); the
     // direct part is scaled as its sample is.
-    const float scale = scene_.filmScale, maxLum = scene_.maxSampleLuminance;
+    const float scale = scene_.filmScale, maxLum = scene_.maxSampleLuminance,
+                maxComp = scene_.maxComponentValue;
     const std::optional<std::array<float, 9>> &color = scene_.filmColor;
     // Scale 1 without a clamp changes no sample (x * 1 is x): no pass over them.
-    const size_t n = scale != 1 || maxLum < Infinity || color ? size_t(tb.Area()) * buf.spp : 0;
+    const size_t n = scale != 1 || maxLum < Infinity || maxComp < Infinity || color
+                         ? size_t(tb.Area()) * buf.spp
+                         : 0;
     for (size_t i = 0; i < n; ++i) {
         RGB L = buf.L[i] * scale;
         if (color) {
@@ -198,6 +202,13 @@ bool TileDriver::RenderTile(int t, const Bounds2i &tb, FilmTile *tile, TileSampl
             if (lum > maxLum) {
                 clamp = maxLum / lum;
                 L *= clamp;
+            }
+        }
+        if (maxComp < Infinity && L.IsFinite()) {
+            const float m = std::max({L.r, L.g, L.b});
+            if (m > maxComp) {
+                clamp *= maxComp / m;
+                L *= maxComp / m;
             }
         }
         buf.L[i] = L;

@@ -92,6 +92,31 @@ TEST(FilmSensor, WhiteBalanceMatchesPbrtV4) {
     }
 }
 
+// pbrt-v4's Film "maxcomponentvalue" scales a sample down to it by its largest component,
+// after the film's scale (the plane's pixels are 0.159 each, 0.637 at ISO 400).
+TEST(FilmSensor, MaxComponentValueClampsSamplesAfterTheScale) {
+    struct Case {
+        const char *film;
+        float mean;
+    };
+    for (const Case &c :
+         {Case{"\"rgb\" \"float maxcomponentvalue\" 0.1", 0.1f},
+          Case{"\"rgb\" \"float maxcomponentvalue\" 1", 0.159155f},
+          Case{"\"rgb\" \"float iso\" 400 \"float maxcomponentvalue\" 0.5", 0.5f}}) {
+        SCOPED_TRACE(c.film);
+        const Built b = BuildFilm("maxcomp", c.film);
+        for (const Warning &w : b.warnings) ADD_FAILURE() << w.ToString();
+        const RGB m = MeanRGB(RenderOnThreads(b.scene, 1));
+        EXPECT_NEAR(m.r, c.mean, 2e-3f);
+        EXPECT_NEAR(m.b, c.mean, 2e-3f);
+    }
+    const std::string err = ErrorOf<SceneError>(
+        [&] { BuildFilm("badmaxcomp", "\"rgb\"\n  \"float maxcomponentvalue\" 0"); });
+    EXPECT_NE(err.find("badmaxcomp.pbrt:4:3: error: film \"maxcomponentvalue\" must be positive"),
+              std::string::npos)
+        << err;
+}
+
 TEST(FilmSensor, BadAndUnsimulatedValues) {
     const std::string text = PlaneScene("\"rgb\"\n  \"float iso\" -5");
     const std::string err = ErrorOf<SceneError>([&] {
