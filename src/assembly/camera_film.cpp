@@ -532,7 +532,7 @@ void BuildIntegratorSettings(BuildContext &ctx) {
     // without an Integrator directive leaves the default of its version, pbrt-v3's "path" or
     // pbrt-v4's "volpath" (maxdepth 5 both), unless the settings name another default; OBJ and
     // glTF scenes set theirs ("distribution") without a location.
-    const bool v4 = desc.format == "pbrt" && desc.pbrtVersion.version == 4;
+    const bool v4 = desc.pbrtVersion.version == 4;  // 3 for every file that is not pbrt
     const char *pbrtDefault = v4 ? "volpath" : "path";
     const bool unnamed = settings.integrator.empty() && !desc.integrator.loc.Valid() &&
                          desc.integrator.type == pbrtDefault;

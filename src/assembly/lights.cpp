@@ -32,9 +32,9 @@ class SceneLightParams : public DirectiveParamsOf<LightParams> {
         : DirectiveParamsOf(l.params, ctx.diag, "light " + Quote(l.type), l.loc),
           ctx_(ctx),
           light_(l) {}
+    // Every spectrum a light reads through this is its emission ("I", "L"); "scale" is Scale().
     RGB Spectrum(const char *name, RGB def) const override {
-        return std::string_view(name) == "scale" ? ps_.GetRGB(name, def)
-                                                 : EmissionSpectrum(ctx_, ps_, name, def);
+        return EmissionSpectrum(ctx_, ps_, name, def);
     }
     Vec3f Point3(const char *name, Vec3f def) const override { return ps_.GetPoint3(name, def); }
     RGB Scale() const override { return ScaleParam(ps_); }

@@ -121,31 +121,51 @@ RGB GlassRGB(const Glass &g) {
     return UnboundedToRGB(std::move(s));
 }
 
-}  // namespace
+// The built-in spectrum `name` names, found by the name alone (nothing is computed): one of
+// a metal's two tables, a glass or an illuminant.
+struct Found {
+    const Metal *metal = nullptr;
+    bool k = false;  // the metal's k rather than its eta
+    const Glass *glass = nullptr;
+    const Illuminant *illuminant = nullptr;
+};
 
-bool IsNamedSpectrum(std::string_view name) {
-    return NamedSpectrumRGB(name) ||
-           std::find(std::begin(kNotBuiltIn), std::end(kNotBuiltIn), name) != std::end(kNotBuiltIn);
-}
-
-std::optional<RGB> NamedSpectrumRGB(std::string_view name, std::string *why) {
+std::optional<Found> Find(std::string_view name) {
     if (name.starts_with("metal-")) {
+        const std::string_view rest = name.substr(6);  // "Cu-eta"
         for (const Metal &m : kMetals) {
-            const std::string base = "metal-" + std::string(m.name);
-            if (name == base + "-eta") return MetalRGB(m.table, false);
-            if (name == base + "-k") return MetalRGB(m.table, true);
+            if (!rest.starts_with(m.name)) continue;
+            const std::string_view part = rest.substr(m.name.size());
+            if (part == "-eta" || part == "-k") return Found{&m, part == "-k", nullptr, nullptr};
         }
     } else if (name.starts_with("glass-")) {
         for (const Glass &g : kGlasses)
-            if (name.substr(6) == g.name) return GlassRGB(g);
+            if (name.substr(6) == g.name) return Found{nullptr, false, &g, nullptr};
     } else {
         for (const Illuminant &i : kIlluminants)
-            if (name == i.name) return XYZToRGB(i.x / i.y, 1.0, (1 - i.x - i.y) / i.y);
+            if (name == i.name) return Found{nullptr, false, nullptr, &i};
+    }
+    return std::nullopt;
+}
+
+bool NotBuiltIn(std::string_view name) {
+    return std::find(std::begin(kNotBuiltIn), std::end(kNotBuiltIn), name) != std::end(kNotBuiltIn);
+}
+
+}  // namespace
+
+bool IsNamedSpectrum(std::string_view name) { return Find(name) || NotBuiltIn(name); }
+
+std::optional<RGB> NamedSpectrumRGB(std::string_view name, std::string *why) {
+    if (const std::optional<Found> f = Find(name)) {
+        if (f->metal) return MetalRGB(f->metal->table, f->k);
+        if (f->glass) return GlassRGB(*f->glass);
+        const Illuminant &i = *f->illuminant;
+        return XYZToRGB(i.x / i.y, 1.0, (1 - i.x - i.y) / i.y);
     }
     if (why) {
         // Appended piece by piece: g++ 12 warns (-Wrestrict, falsely) of "..." + std::string.
-        const bool pbrtName = std::find(std::begin(kNotBuiltIn), std::end(kNotBuiltIn), name) !=
-                              std::end(kNotBuiltIn);
+        const bool pbrtName = NotBuiltIn(name);
         why->assign(pbrtName ? "pbrt-v4's named spectrum \"" : "\"");
         why->append(name);
         why->append(pbrtName ? "\" is not built into Prism" : "\" is not a named spectrum");

@@ -22,7 +22,8 @@ struct PbrtVersionChoice {
     int version = 3;  // 3 or 4
     std::string why;  // "Film \"rgb\" (pbrt-v4 only)", "--pbrt-version 4", ...
     FileLoc loc;      // the construct, when a construct decided
-    // The first construct of the other version, when the file mixes them (a warning).
+    // The first construct of the other version, when the file mixes them (`prism info`
+    // prints it; the file renders).
     std::string conflict;
     FileLoc conflictLoc;
 };

@@ -54,9 +54,9 @@ TEST(PbrtRules, APbrtV4BlackbodyLightHasLuminanceOne) {
         Build("rgb4", "Film \"rgb\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [2 2 2]\n");
     EXPECT_NEAR(rgb.scene.lights[0]->Power(1), 2 * 4 * Pi, 1e-4);
     // A named illuminant is its chromaticity at luminance 1.
-    const test::Built d65 =
-        Build("d65", "WorldBegin\nLightSource \"point\" \"spectrum I\" \"stdillum-A\"\n");
-    EXPECT_NEAR(d65.scene.lights[0]->Power(1), 4 * Pi, 1e-2);
+    const test::Built illuminant =
+        Build("illuminant", "WorldBegin\nLightSource \"point\" \"spectrum I\" \"stdillum-A\"\n");
+    EXPECT_NEAR(illuminant.scene.lights[0]->Power(1), 4 * Pi, 1e-2);
 }
 
 // pbrt-v3's quartic falloff and pbrt-v4's smoothstep, halfway through the falloff band.
