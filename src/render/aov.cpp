@@ -252,8 +252,12 @@ void AovFrame::AddGeometry(const TileContext &ctx, const Bounds2i &tb) {
                 if (albedo_ && firstHit(camera.GenerateRay(cs), &si)) {
                     const Material &m = scene.materials[size_t(scene.Info(si).material)];
                     BSDF bsdf = m.GetBSDF(si, SurfaceTextureContext(si));
-                    for (int part = 0; part < bsdf.NumParts(); ++part)
-                        albedoSum += bsdf.Weight(part) * bsdf.Part(part).kd;
+                    for (int part = 0; part < bsdf.NumParts(); ++part) {
+                        const BxDFLobes &l = bsdf.Part(part);
+                        // A coated diffuse base (coateddiffuse) is its material's diffuse colour.
+                        const bool coated = l.layered.base == LayeredLobe::Base::Diffuse;
+                        albedoSum += bsdf.Weight(part) * (coated ? l.layered.reflectance : l.kd);
+                    }
                 }
             }
             if (albedo_) {

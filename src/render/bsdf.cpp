@@ -100,21 +100,6 @@ inline float Sin2Phi(const Vec3f &w) {
     return s2 == 0 ? 0.f : Clamp(w.y * w.y / s2, 0.f, 1.f);
 }
 
-float TrowbridgeReitzD(const Vec3f &wh, float ax, float ay) {
-    float tan2 = Tan2Theta(wh);
-    if (std::isinf(tan2)) return 0;
-    float cos4 = Cos2Theta(wh) * Cos2Theta(wh);
-    float e = (Cos2Phi(wh) / (ax * ax) + Sin2Phi(wh) / (ay * ay)) * tan2;
-    return 1 / (float(Pi) * ax * ay * cos4 * (1 + e) * (1 + e));
-}
-
-float TrowbridgeReitzLambda(const Vec3f &w, float ax, float ay) {
-    float tan2 = Tan2Theta(w);
-    if (std::isinf(tan2)) return 0;
-    float alpha2 = Cos2Phi(w) * ax * ax + Sin2Phi(w) * ay * ay;
-    return (-1 + std::sqrt(1 + alpha2 * tan2)) / 2;
-}
-
 // glTF: the share of light that passes the dielectric specular layer, 1 - max(F_d(cos)).
 float DielectricPass(const BxDFLobes &l, float cosTheta) {
     return 1 - FrSchlick(cosTheta, l.dielectricF0, l.dielectricF90).MaxComponent();
@@ -135,6 +120,21 @@ float CosHalf(const Vec3f &wo, const Vec3f &wi) {
 }
 
 }  // namespace
+
+float TrowbridgeReitzD(const Vec3f &wh, float ax, float ay) {
+    float tan2 = Tan2Theta(wh);
+    if (std::isinf(tan2)) return 0;
+    float cos4 = Cos2Theta(wh) * Cos2Theta(wh);
+    float e = (Cos2Phi(wh) / (ax * ax) + Sin2Phi(wh) / (ay * ay)) * tan2;
+    return 1 / (float(Pi) * ax * ay * cos4 * (1 + e) * (1 + e));
+}
+
+float TrowbridgeReitzLambda(const Vec3f &w, float ax, float ay) {
+    float tan2 = Tan2Theta(w);
+    if (std::isinf(tan2)) return 0;
+    float alpha2 = Cos2Phi(w) * ax * ax + Sin2Phi(w) * ay * ay;
+    return (-1 + std::sqrt(1 + alpha2 * tan2)) / 2;
+}
 
 namespace {
 
@@ -269,7 +269,7 @@ float VisibleNormalPdf(const Vec3f &w, const Vec3f &wh, float ax, float ay) {
 }  // namespace
 
 RGB BxDFLobes::fDiffuse(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
-    RGB result;
+    RGB result = HasLayered() ? layered.f(wo, wi) : RGB(0);
     if (reflect) {
         if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
         if (fresnelBlend) result += FresnelBlendDiffuseF(*this, wo, wi);
@@ -292,6 +292,12 @@ RGB BxDFLobes::fGlossy(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
 }
 
 RGB BxDFLobes::f(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
+    RGB result = fUnlayered(wo, wi, reflect);
+    if (HasLayered()) result += layered.f(wo, wi);
+    return result;
+}
+
+RGB BxDFLobes::fUnlayered(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     RGB result;
     if (reflect) {
         if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
@@ -423,7 +429,15 @@ bool BSDF::SampleGlossy(int part, const Vec3f &woW, Vec2f u, float uc, Vec3f *wi
 
 bool BSDF::SampleSpecularReflection(int part, const Vec3f &woW, Vec3f *wiW, RGB *weight) const {
     const BxDFLobes &l = parts_[part];
-    if (l.kr.IsBlack() || weight_[part].IsBlack()) return false;
+    if (weight_[part].IsBlack()) return false;
+    if (l.layered.Active()) {
+        // A smooth coat's mirror reflection (and, over polished metal, the paths beneath it).
+        const Vec3f wo = ToLocal(woW);
+        *weight = weight_[part] * l.layered.SpecularReflectance(wo);
+        *wiW = FromLocal(Vec3f(-wo.x, -wo.y, wo.z));
+        return !weight->IsBlack();
+    }
+    if (l.kr.IsBlack()) return false;
     Vec3f wo = ToLocal(woW);
     Vec3f wi(-wo.x, -wo.y, wo.z);
     if (wi.z == 0) return false;

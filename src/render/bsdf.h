@@ -8,6 +8,7 @@
 
 #include "core/color.h"
 #include "core/vecmath.h"
+#include "render/layered_bxdf.h"
 
 namespace prism {
 
@@ -65,14 +66,23 @@ struct BxDFLobes {
     // BSDF::MakeRoughSpecularGlossy turns them into glossy lobes for DistributionIntegrator.
     float roughAlphaX = 0, roughAlphaY = 0;
 
+    // pbrt-v4's layered BSDF (coateddiffuse, coatedconductor), alone in its part: its own delta
+    // reflection (a smooth coat) and its stochastic non-delta part. It counts as a diffuse lobe
+    // (light samples estimate it; Whitted and distribution trace no rays from it); BSDF::
+    // Sample_f samples it by its walk.
+    LayeredLobe layered;
+    bool HasLayered() const { return layered.Active() && !layered.IsSpecular(); }
+
     bool HasNonSpecular() const {
         return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() || !ksTransmit.IsBlack() ||
-               fresnelBlend || !thinTransmit.IsBlack();
+               fresnelBlend || !thinTransmit.IsBlack() || HasLayered();
     }
     // Lobes that are sampled by light samples only (Lambertian, Oren–Nayar, diffuse
     // transmission, FresnelBlend's diffuse base) and lobes that glossy rays sample
     // (microfacet reflection and transmission, FresnelBlend's glossy coat).
-    bool HasDiffuse() const { return !kd.IsBlack() || !kdTransmit.IsBlack() || fresnelBlend; }
+    bool HasDiffuse() const {
+        return !kd.IsBlack() || !kdTransmit.IsBlack() || fresnelBlend || HasLayered();
+    }
     bool HasGlossy() const {
         return !ks.IsBlack() || !ksTransmit.IsBlack() || fresnelBlend || !thinTransmit.IsBlack();
     }
@@ -80,8 +90,11 @@ struct BxDFLobes {
     RGB fDiffuse(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
     RGB fGlossy(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
     // f for local directions; `reflect` says whether the geometric normal puts wo and wi on
-    // the same side (pbrt BSDF::f picks reflection or transmission lobes with it).
+    // the same side (pbrt BSDF::f picks reflection or transmission lobes with it). The layered
+    // lobe ignores it, as pbrt-v4 does (its two-sided coat decides by the shading frame).
     RGB f(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
+    // f without the layered lobe.
+    RGB fUnlayered(const Vec3f &wo, const Vec3f &wi, bool reflect) const;
 };
 
 // One direction sampled from a whole BSDF (BSDF::Sample_f: path and directlighting).

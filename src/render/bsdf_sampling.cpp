@@ -11,7 +11,7 @@ namespace prism {
 
 namespace {
 
-enum class Lobe { Diffuse, DiffuseTransmit, Glossy, SpecularReflect, SpecularTransmit };
+enum class Lobe { Diffuse, DiffuseTransmit, Glossy, SpecularReflect, SpecularTransmit, Layered };
 
 struct Choice {
     int part;
@@ -19,15 +19,17 @@ struct Choice {
     float weight;
 };
 
-// At most five lobes per part.
+// At most six lobes per part.
 struct Choices {
-    Choice c[BSDF::MaxParts * 5];
+    Choice c[BSDF::MaxParts * 6];
     int n = 0;
     float total = 0;
+    bool layered = false;  // a layered lobe is among them
     void Add(int part, Lobe lobe, float w) {
         if (!(w > 0)) return;
         c[n++] = {part, lobe, w};
         total += w;
+        layered = layered || lobe == Lobe::Layered;
     }
 };
 
@@ -37,6 +39,9 @@ void Collect(const BSDF &b, const Vec3f &wo, bool withSpecular, Choices *ch) {
         const RGB &w = b.Weight(i);
         if (w.IsBlack()) continue;
         const BxDFLobes &l = b.Part(i);
+        // The layered lobe samples its own delta reflection (rejected when !withSpecular).
+        if (l.layered.Active())
+            ch->Add(i, Lobe::Layered, w.Average() * l.layered.AlbedoEstimate(wo));
         if (l.fresnelBlend) {
             // pbrt-v3 FresnelBlend::Sample_f: half the samples diffuse, half glossy.
             const float a = std::max(w.Average(), 1e-4f);
@@ -117,20 +122,46 @@ float LobePdf(const BxDFLobes &l, Lobe lobe, const Vec3f &wo, const Vec3f &wi) {
             return wo.z * wi.z < 0 ? std::abs(wi.z) * float(InvPi) : 0.f;
         case Lobe::Glossy:
             return l.HasGlossy() ? GlossyPdf(l, wo, wi) : 0.f;
+        case Lobe::Layered:
+            return l.HasLayered() ? l.layered.Pdf(wo, wi) : 0.f;
         default:
             return 0;
     }
 }
 
-float MixturePdf(const BSDF &b, const Choices &ch, const Vec3f &wo, const Vec3f &wi) {
+// withLayered false: the density of the other non-delta lobes only (still relative to every
+// choice), which is what their samples are drawn from.
+float MixturePdf(const BSDF &b, const Choices &ch, const Vec3f &wo, const Vec3f &wi,
+                 bool withLayered = true) {
     float pdf = 0, total = 0;
     for (int k = 0; k < ch.n; ++k) {
         const Choice &c = ch.c[k];
         if (c.lobe == Lobe::SpecularReflect || c.lobe == Lobe::SpecularTransmit) continue;
+        if (!withLayered && c.lobe == Lobe::Layered) continue;
         total += c.weight;
         pdf += c.weight * LobePdf(b.Part(c.part), c.lobe, wo, wi);
     }
     return total > 0 ? pdf / ch.total : 0.f;
+}
+
+// Sample_f's choice of a layered lobe.
+bool SampleLayered(const BSDF &b, const Choices &ch, int part, const Vec3f &wo, Vec2f u, float uc,
+                   float pChoice, bool withSpecular, BSDFSample *s) {
+    LayeredLobe::Sample ls;
+    if (!b.Part(part).layered.SampleF(wo, std::min(uc, 0x1.fffffep-1f), u, TransportMode::Radiance,
+                                      &ls))
+        return false;
+    if (ls.specular && !withSpecular) return false;
+    s->wi = b.FromLocal(ls.wi);
+    s->specular = ls.specular;
+    s->transmission = ls.transmission;
+    // One lobe chosen with probability pChoice: its path's ratio over that probability. The
+    // density for MIS is the mixture's (a delta path: the probability of taking it).
+    s->weight = b.Weight(part) * ls.weight / pChoice;
+    s->pdf = ls.specular ? pChoice * ls.pdf : MixturePdf(b, ch, wo, ls.wi);
+    const float cosI = AbsDot(s->wi, b.ns);
+    s->f = cosI > 0 ? s->weight * (s->pdf / cosI) : RGB(0);
+    return s->pdf > 0 && std::isfinite(s->pdf) && !s->weight.IsBlack() && s->weight.IsFinite();
 }
 
 }  // namespace
@@ -172,6 +203,9 @@ bool BSDF::Sample_f(const Vec3f &woW, Vec2f u, float uc, bool withSpecular, BSDF
         if (s->transmission && l.eta != 1) s->eta = wo.z > 0 ? l.eta : 1 / l.eta;
         return !s->weight.IsBlack() && s->weight.IsFinite();
     }
+    if (c.lobe == Lobe::Layered)
+        return SampleLayered(*this, ch, c.part, wo, u, (target - sum) / c.weight, pChoice,
+                             withSpecular, s);
     Vec3f wi;
     if (c.lobe == Lobe::Glossy) {
         RGB unused;
@@ -190,7 +224,20 @@ bool BSDF::Sample_f(const Vec3f &woW, Vec2f u, float uc, bool withSpecular, BSDF
     if (!(s->pdf > 0) || !std::isfinite(s->pdf)) return false;
     s->f = f(woW, s->wi);
     s->transmission = wo.z * wi.z < 0;
-    s->weight = s->f * (AbsDot(s->wi, ns) / s->pdf);
+    if (!ch.layered) {
+        s->weight = s->f * (AbsDot(s->wi, ns) / s->pdf);
+    } else {
+        // The layered lobes' samples estimate their own share (SampleLayered), so these
+        // directions estimate the other lobes': their f over the density they are drawn from.
+        const float pdfOthers = MixturePdf(*this, ch, wo, wi, false);
+        if (!(pdfOthers > 0)) return false;
+        const bool reflect = Dot(s->wi, ng) * Dot(woW, ng) > 0;
+        RGB fOthers;
+        for (int i = 0; i < n_; ++i)
+            if (!weight_[i].IsBlack())
+                fOthers += weight_[i] * parts_[i].fUnlayered(wo, wi, reflect);
+        s->weight = fOthers * (AbsDot(s->wi, ns) / pdfOthers);
+    }
     return !s->weight.IsBlack() && s->weight.IsFinite();
 }
 

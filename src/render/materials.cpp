@@ -58,7 +58,7 @@ Fresnel Dielectric(float etaI, float etaT) {
 
 TexturePtr Constant(RGB v) { return std::make_shared<ConstantTexture>(v); }
 
-// pbrt-v3 "roughness" / "uroughness" / "vroughness" of uber (and coateddiffuse as uber).
+// pbrt-v3 "roughness" / "uroughness" / "vroughness" of uber.
 void ReadUberRoughness(const MaterialParams &p, float def, UberMaterial::Params *u) {
     u->roughness = p.FloatTex("roughness", def);
     u->uRoughness = p.Has("uroughness") ? p.FloatTex("uroughness", def) : nullptr;
@@ -284,8 +284,8 @@ std::shared_ptr<const MaterialModel> CreateMetalMaterial(const MaterialParams &p
                 2 * std::sqrt(r.b / (1 - r.b)));
     } else {
         // pbrt-v3's default is copper; these are its eta/k spectra reduced to RGB.
-        eta = p.Spectrum("eta", RGB(0.200438f, 0.924033f, 1.10221f));
-        k = p.Spectrum("k", RGB(3.91295f, 2.45285f, 2.14219f));
+        eta = p.Spectrum("eta", CopperEta);
+        k = p.Spectrum("k", CopperK);
     }
     // pbrt-v4's conductor defaults to a polished surface; v3's metal to roughness 0.01.
     const bool v4 = p.Type() == "conductor";
@@ -354,33 +354,6 @@ std::shared_ptr<const MaterialModel> CreateUberMaterial(const MaterialParams &p,
     ReadUberRoughness(p, 0.1f, &u);
     u.index = p.Has("eta") ? p.FloatTex("eta", 1.5f) : p.FloatTex("index", 1.5f);
     u.opacity = p.SpectrumTex("opacity", RGB(1));
-    return std::make_shared<UberMaterial>(std::move(u));
-}
-
-// Material "coateddiffuse" (pbrt-v4; material_list.inc): the layered coat approximated as
-// uber, the diffuse base plus the coat's dielectric reflection (a highlight when rough, a
-// Fresnel mirror when smooth). Parameters:
-//   reflectance                        spectrum texture  0.5   the diffuse base
-//   roughness                          float texture     0     the coat's
-//   uroughness, vroughness             float texture     0     override roughness
-//   eta                                float texture     1.5   the coat's index of refraction
-//   remaproughness                     bool              true
-//   thickness, albedo, g, maxdepth     (various)         —     read, no effect (the layer is
-//                                                              not simulated)
-//   nsamples, seed                     integer           —     read, no effect
-std::shared_ptr<const MaterialModel> CreateCoatedDiffuseMaterial(const MaterialParams &p,
-                                                                 const FileLoc &) {
-    UberMaterial::Params u;
-    u.Kd = p.SpectrumTex("reflectance", RGB(0.5f));
-    ReadUberRoughness(p, 0.f, &u);
-    const ConstantTexture *c = AsConstant(u.uRoughness ? u.uRoughness : u.roughness);
-    const bool smooth = c && c->Value().r == 0;
-    u.Ks = Constant(RGB(smooth ? 0.f : 1.f));
-    u.Kr = Constant(RGB(smooth ? 1.f : 0.f));
-    u.Kt = Constant(RGB(0));
-    u.index = p.FloatTex("eta", 1.5f);
-    for (const char *n : {"thickness", "albedo", "g", "maxdepth", "nsamples", "seed"})
-        p.MarkUsed(n);
     return std::make_shared<UberMaterial>(std::move(u));
 }
 

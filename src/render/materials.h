@@ -1,6 +1,6 @@
 // pbrt-v3's material models (materials/*.cpp), one class each, with the pbrt-v4 types that map
-// onto them: matte (diffuse), plastic, mirror, glass (dielectric), metal (conductor), uber
-// (and pbrt-v4's coateddiffuse as uber), substrate, translucent (diffusetransmission), mix and
+// onto them: matte (diffuse), plastic, mirror, glass (dielectric), metal (conductor), uber,
+// substrate, translucent (diffusetransmission), mix and
 // "" / none / interface (an invisible interface). Their Creates (materials.cpp, beside each
 // class) read pbrt's parameters; the constructors take the textures directly (tests).
 #pragma once
@@ -81,6 +81,10 @@ class GlassMaterial final : public MaterialModel {
     TexturePtr Kr_, Kt_, index_;
     Roughness r_;
 };
+
+// pbrt-v3's copper (its default metal, and pbrt-v4's "metal-Cu-eta"/"metal-Cu-k") in RGB.
+inline constexpr RGB CopperEta(0.200438f, 0.924033f, 1.10221f);
+inline constexpr RGB CopperK(3.91295f, 2.45285f, 2.14219f);
 
 class MetalMaterial final : public MaterialModel {
   public:

@@ -131,6 +131,22 @@ TEST(AovCli, ChannelNamesDepthAndPositionOfAPlane) {
     }
 }
 
+// A coateddiffuse's diffuse colour is its base's reflectance, under the coat.
+TEST(AovCli, AlbedoOfACoatedDiffuseIsItsBaseReflectance) {
+    fs::path dir = TempDir("coated");
+    std::string scene = kPlane;
+    scene.replace(scene.find("Shape \"disk\""), 0,
+                  "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.4 0.6]\n");
+    std::ofstream(dir / "plane.pbrt") << scene;
+    RunResult r = RunPrism("render plane.pbrt -o out.exr --aov albedo -q", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    Exr e = ReadExr(dir / "out.exr");
+    for (size_t i = 0; i < size_t(e.width) * size_t(e.height); ++i) {
+        ASSERT_NEAR(e.channels["albedo.R"][i], 0.2f, 1e-6);
+        ASSERT_NEAR(e.channels["albedo.B"][i], 0.6f, 1e-6);
+    }
+}
+
 TEST(AovCli, IdsAreIntegersAtEdgesAndTheBeautyIsUnchanged) {
     fs::path dir = TempDir("spheres");
     std::ofstream(dir / "s.pbrt") << kSpheres;
