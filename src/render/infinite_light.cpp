@@ -3,17 +3,31 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/equal_area.h"
 #include "image/image.h"
 
 namespace prism {
 
 InfiniteLight::InfiniteLight(const Transform &renderFromLight, const RGB &L,
-                             std::shared_ptr<const Image> map, int nSamples)
+                             std::shared_ptr<const Image> map, int nSamples, Projection projection)
     : renderFromLight_(renderFromLight),
       L_(L),
       map_(std::move(map)),
+      projection_(projection),
       nSamples_(std::max(1, nSamples)) {
-    if (map_) {
+    if (map_ && projection_ == Projection::EqualArea) {
+        // Every texel is the same solid angle: sample by luminance alone (negative texels,
+        // which emit nothing, never).
+        const int w = map_->width, h = map_->height;
+        std::vector<double> f(size_t(w) * size_t(h));
+        double sum = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                sum += f[size_t(y) * size_t(w) + size_t(x)] =
+                    double(map_->GetRGB(x, y).Clamped(0.f, INFINITY).Luminance());
+        distribution_ = Distribution2D(f, w, h);
+        averageLuminance_ = sum / (double(w) * h) * L_.Luminance();
+    } else if (map_) {
         // Sample texels in proportion to luminance times sin(theta) (the equirectangular
         // area distortion), as pbrt-v3's InfiniteAreaLight does.
         int w = map_->width, h = map_->height;
@@ -40,6 +54,13 @@ InfiniteLight::InfiniteLight(const Transform &renderFromLight, const RGB &L,
 RGB InfiniteLight::Lookup(const Vec3f &wRender) const {
     if (!map_) return L_;
     Vec3d wl = Normalize(renderFromLight_.Inverse().Vector(Vec3d(wRender)));
+    if (projection_ == Projection::EqualArea) {
+        // The texel the direction falls in, negatives clamped (pbrt-v4's ImageLe).
+        const Vec2d uv = EqualAreaSphereToSquare(wl);
+        const int x = Clamp(int(uv.x * map_->width), 0, map_->width - 1);
+        const int y = Clamp(int(uv.y * map_->height), 0, map_->height - 1);
+        return map_->GetRGB(x, y).Clamped(0.f, INFINITY) * L_;
+    }
     double theta = SafeACos(wl.z), phi = std::atan2(wl.y, wl.x);
     if (phi < 0) phi += 2 * Pi;
     // Row 0 of the map is the +z pole; bilinear lookup with wrapping in phi.
@@ -80,12 +101,17 @@ bool InfiniteLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample 
         double mapPdf;
         Vec2d uv = distribution_.SampleContinuous(Vec2d(u.x, u.y), &mapPdf);
         if (mapPdf == 0) return false;
-        double theta = uv.y * Pi, phi = uv.x * 2 * Pi;
-        double sinTheta = std::sin(theta);
-        if (sinTheta == 0) return false;
-        Vec3d wl(sinTheta * std::cos(phi), sinTheta * std::sin(phi), std::cos(theta));
-        wi = Vec3f(Normalize(renderFromLight_.Vector(wl)));
-        pdf = float(mapPdf / (2 * Pi * Pi * sinTheta));
+        if (projection_ == Projection::EqualArea) {
+            wi = Vec3f(Normalize(renderFromLight_.Vector(EqualAreaSquareToSphere(uv))));
+            pdf = float(mapPdf / (4 * Pi));
+        } else {
+            double theta = uv.y * Pi, phi = uv.x * 2 * Pi;
+            double sinTheta = std::sin(theta);
+            if (sinTheta == 0) return false;
+            Vec3d wl(sinTheta * std::cos(phi), sinTheta * std::sin(phi), std::cos(theta));
+            wi = Vec3f(Normalize(renderFromLight_.Vector(wl)));
+            pdf = float(mapPdf / (2 * Pi * Pi * sinTheta));
+        }
     }
     if (!(pdf > 0)) return false;
     ls->wi = wi;
@@ -109,6 +135,8 @@ float InfiniteLight::PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
 float InfiniteLight::DirectionPdf(const Vec3f &wi) const {
     if (!map_) return float(1 / (4 * Pi));
     Vec3d wl = Normalize(renderFromLight_.Inverse().Vector(Vec3d(wi)));
+    if (projection_ == Projection::EqualArea)
+        return float(distribution_.Pdf(EqualAreaSphereToSquare(wl)) / (4 * Pi));
     double theta = SafeACos(wl.z), phi = std::atan2(wl.y, wl.x);
     if (phi < 0) phi += 2 * Pi;
     double sinTheta = std::sin(theta);
@@ -154,6 +182,8 @@ inline constexpr int MaxInfiniteLightSamples = 4096;
 //   L                   spectrum  1   radiance (times the map's texels)
 //   scale               spectrum  1   multiplies L
 //   mapname             string    ""  an equirectangular image, z the pole (u = phi / 2 pi)
+//   filename            string    ""  pbrt-v4: a square equal-area image (core/equal_area.h),
+//                                     z at its centre; not with mapname
 //   nsamples (samples)  integer   1   light samples per shading point, 1 to 4096;
 //                                     --light-samples wins
 //   illuminance         float     (none)  pbrt-v4: the irradiance on an upward (+z in the
@@ -161,12 +191,39 @@ inline constexpr int MaxInfiniteLightSamples = 4096;
 //                                     scaled by it over the map's own (pi without a map)
 std::unique_ptr<Light> CreateInfiniteLight(const LightInputs &in) {
     const LightParams &p = in.params;
-    const std::shared_ptr<const Image> map = p.OptionalImage("mapname");
-    // The map's irradiance on an upward surface: each row's mean luminance times the integral
-    // of cos theta over its band of the upper hemisphere, 2 pi (sin^2 theta1 - sin^2 theta0)
-    // / 2 (rows from theta 0 at the +z pole: exact for texels constant over their band).
+    const bool equalArea = !p.String("filename", "").empty();
+    if (equalArea && !p.String("mapname", "").empty())
+        throw SceneError(p.Loc("filename"),
+                         "infinite light: give \"mapname\" (pbrt-v3, latitude-longitude) or "
+                         "\"filename\" (pbrt-v4, equal-area), not both");
+    const std::shared_ptr<const Image> map = p.OptionalImage(equalArea ? "filename" : "mapname");
+    if (equalArea && map->width != map->height)
+        throw SceneError(p.Loc("filename"),
+                         "infinite light \"filename\" is " + std::to_string(map->width) + "x" +
+                             std::to_string(map->height) +
+                             ": pbrt-v4's environment maps are square equal-area images (a "
+                             "latitude-longitude map goes in \"mapname\")");
+    // The map's irradiance on an upward surface. Equal-area, as pbrt-v4 computes it: each
+    // texel above the horizon weighted by cos theta at its centre, times 2 pi / (w h) — half a
+    // texel's solid angle, 4 pi / (w h), so pbrt-v4's map lights come out twice the
+    // illuminance asked for (measured: an 8x8 white map at "illuminance" 10 lights a white
+    // diffuse plane to radiance 6.795 in pbrt-v4, where 10 / pi would be 3.18). Prism renders
+    // what pbrt-v4 renders. Latitude-longitude (Prism's reading of "mapname" with it): each row's
+    // mean luminance times the integral of cos theta over its band of the upper hemisphere, 2 pi
+    // (sin^2 theta1 - sin^2 theta0) / 2 (rows from theta 0 at the +z pole: exact for texels
+    // constant over their band).
     double k_e = Pi;
-    if (map && p.Has("illuminance")) {
+    if (map && equalArea && p.Has("illuminance")) {
+        k_e = 0;
+        const int w = map->width, h = map->height;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const Vec3d d = EqualAreaSquareToSphere({(x + 0.5) / w, (y + 0.5) / h});
+                if (d.z > 0)
+                    k_e += double(map->GetRGB(x, y).Clamped(0.f, INFINITY).Luminance()) * d.z;
+            }
+        k_e *= 2 * Pi / (double(w) * h);
+    } else if (map && p.Has("illuminance")) {
         k_e = 0;
         const int w = map->width, h = map->height;
         for (int y = 0; y < h && 2 * y < h; ++y) {
@@ -185,7 +242,9 @@ std::unique_ptr<Light> CreateInfiniteLight(const LightInputs &in) {
     if (in.lightSamples > 0) n = in.lightSamples;
     if (n < 1 || n > MaxInfiniteLightSamples)
         throw SceneError(in.loc, "infinite light nsamples must be 1 to 4096");
-    return std::make_unique<InfiniteLight>(in.renderFromLight, L, map, n);
+    return std::make_unique<InfiniteLight>(
+        in.renderFromLight, L, map, n,
+        equalArea ? InfiniteLight::Projection::EqualArea : InfiniteLight::Projection::LatLong);
 }
 
 }  // namespace prism

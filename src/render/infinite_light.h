@@ -1,5 +1,7 @@
-// The environment light: pbrt-v3's "infinite" light with a constant radiance or an
-// equirectangular map, sampled with stratified shadow rays (by the map's luminance).
+// The environment light: pbrt's "infinite" light with a constant radiance or a map, either
+// pbrt-v3's equirectangular "mapname" (bilinear) or pbrt-v4's square equal-area "filename"
+// (core/equal_area.h; nearest texel, as pbrt-v4 looks it up), sampled with stratified shadow
+// rays by the map's luminance.
 #pragma once
 
 #include <memory>
@@ -14,9 +16,10 @@ struct Image;
 
 class InfiniteLight final : public Light {
   public:
-    // lightFromRender rotates render-space directions into the map's frame (z = pole).
+    enum class Projection { LatLong, EqualArea };
+    // renderFromLight rotates the map's frame (z = pole) into render space.
     InfiniteLight(const Transform &renderFromLight, const RGB &L, std::shared_ptr<const Image> map,
-                  int nSamples);
+                  int nSamples, Projection projection = Projection::LatLong);
     const char *Name() const override { return "infinite"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
     RGB Le(const Ray &ray) const override;
@@ -39,6 +42,7 @@ class InfiniteLight final : public Light {
     Transform renderFromLight_;
     RGB L_;
     std::shared_ptr<const Image> map_;
+    Projection projection_;
     Distribution2D distribution_;
     int nSamples_;
     double averageLuminance_ = 0;  // over the sphere of directions

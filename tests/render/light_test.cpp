@@ -226,6 +226,10 @@ RenderScene BuildLights(const std::string &name, const std::string &lights) {
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 16; ++x) white.SetRGB(x, y, RGB(1));
     WriteImage((dir / "white.exr").string(), white);
+    Image square(8, 8, 3);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) square.SetRGB(x, y, RGB(1));
+    WriteImage((dir / "square.exr").string(), square);
     Diagnostics diag(false);
     SceneDescription desc =
         LoadScene(test::WriteTestFile(dir / (name + ".pbrt"),
@@ -260,6 +264,10 @@ TEST(PhotometricLights, PowerAndIlluminanceScaleTheEmission) {
         {"LightSource \"infinite\" \"rgb L\" [2 1 0.5] \"float illuminance\" 10", 10 * y},
         // The map's upper hemisphere gives pi per unit of L, up to its 8 rows.
         {"LightSource \"infinite\" \"string mapname\" \"white.exr\" \"float illuminance\" 10", 10},
+        // pbrt-v4's equal-area map, normalised as pbrt-v4 does it (texel centres, half the
+        // solid angle): a white diffuse plane under it has radiance 6.795 in pbrt-v4.
+        {"LightSource \"infinite\" \"string filename\" \"square.exr\" \"float illuminance\" 10",
+         Pi * 6.795},
         {"AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 1 0.5] \"float power\" 100\n"
          "Shape \"disk\" \"float radius\" 0.5\nAttributeEnd",
          100 * y},
@@ -274,8 +282,9 @@ TEST(PhotometricLights, PowerAndIlluminanceScaleTheEmission) {
         const RenderScene scene = BuildLights("power" + std::to_string(i++), c.text);
         ASSERT_GE(scene.lights.size(), 1u);
         const double tolerance =
-            std::string(c.text).find("mapname") != std::string::npos
-                ? 1e-3 * c.power
+            std::string(c.text).find("map") != std::string::npos ||
+                    std::string(c.text).find("filename") != std::string::npos
+                ? 2e-3 * c.power
                 : (std::string(c.text).find("blackbody") != std::string::npos ? 1e-3 * c.power
                                                                               : 1e-4 * c.power);
         EXPECT_NEAR(scene.lights[0]->Power(1), c.power, tolerance);
@@ -302,6 +311,27 @@ TEST(PhotometricLights, ANegativePowerIsAnErrorAtTheParameter) {
             EXPECT_NE(what.find("negative.pbrt:"), std::string::npos) << what;
             EXPECT_NE(what.find(at), std::string::npos) << what;
             EXPECT_NE(what.find("must be finite and not negative"), std::string::npos) << what;
+        }
+    }
+}
+
+// pbrt-v4's "filename" is a square equal-area map: another shape, or "mapname" beside it, is
+// an error at the parameter.
+TEST(PhotometricLights, EqualAreaMapMustBeSquareAndAlone) {
+    const std::pair<const char *, const char *> cases[] = {
+        {"LightSource \"infinite\"\n  \"string filename\" \"white.exr\"", "is 16x8"},
+        {"LightSource \"infinite\" \"string mapname\" \"white.exr\"\n"
+         "  \"string filename\" \"square.exr\"",
+         "not both"}};
+    for (const auto &[text, what] : cases) {
+        SCOPED_TRACE(text);
+        try {
+            BuildLights("equalarea", text);
+            ADD_FAILURE() << "no error";
+        } catch (const SceneError &e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find("equalarea.pbrt:3:3:"), std::string::npos) << message;
+            EXPECT_NE(message.find(what), std::string::npos) << message;
         }
     }
 }

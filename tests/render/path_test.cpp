@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "assembly/build_scene.h"
+#include "core/equal_area.h"
 #include "geometry/sphere.h"
 #include "render/bsdf.h"
 #include "render/infinite_light.h"
@@ -247,6 +248,59 @@ TEST(PathIntegrator, InfiniteLightPdfMatchesItsSampling) {
         EXPECT_NEAR(light.PdfLi(si, ls.wi, nullptr), ls.pdf, 2e-3f * ls.pdf) << i;
     }
     EXPECT_GT(n, 200);
+}
+
+// pbrt-v4's equal-area maps (LightSource "infinite" "filename"): SampleLi's density is PdfLi's,
+// the directions land where the map is bright, the map is oriented as pbrt-v4's (+z at the
+// centre, -z at the corners, +x at the right edge's midpoint), and the irradiance on an
+// upward plane is the map's cosine-weighted integral.
+TEST(PathIntegrator, EqualAreaEnvironmentMapIsSampledAndLookedUpAsPbrtV4) {
+    const int n = 16;
+    auto map = std::make_shared<Image>(n, n);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) map->SetRGB(x, y, RGB(0.2f + 0.05f * float(x), 0.5f, 1));
+    map->SetRGB(n / 2, n / 2, RGB(100, 0, 0));  // the zenith
+    map->SetRGB(n - 1, n / 2, RGB(0, 100, 0));  // +x on the horizon
+    map->SetRGB(0, 0, RGB(0, 0, 100));          // the nadir
+    const InfiniteLight light(Transform(), RGB(1), map, 1, InfiniteLight::Projection::EqualArea);
+    auto le = [&](Vec3f d) { return light.Le(Ray{Vec3f(0, 0, 0), d}); };
+    EXPECT_EQ(le({0, 0, 1}), RGB(100, 0, 0));
+    EXPECT_EQ(le({1, 0, 0.001f}), RGB(0, 100, 0));
+    EXPECT_EQ(le(Normalize(Vec3f(-0.01f, -0.01f, -1))), RGB(0, 0, 100));
+
+    SurfaceInteraction si;
+    si.n = si.ns = Vec3f(0, 0, 1);
+    si.wo = Vec3f(0, 0, 1);
+    double irradiance = 0, red = 0;
+    const int samples = 20000;
+    for (int i = 0; i < samples; ++i) {
+        LightSample ls;
+        Vec2f u(HashFloat(uint32_t(i), 5), HashFloat(uint32_t(i), 6));
+        ASSERT_TRUE(light.SampleLi(si, u, &ls));
+        ASSERT_NEAR(light.PdfLi(si, ls.wi, nullptr), ls.pdf, 2e-3f * ls.pdf) << i;
+        // The density is the texel's luminance share over its 4π/n² of solid angle.
+        ASSERT_NEAR(ls.pdf, ls.Li.Luminance() / (light.Power(1) / Pi) / (4 * Pi), 1e-3 * ls.pdf);
+        if (ls.wi.z > 0) irradiance += ls.Li.g * ls.wi.z / ls.pdf;
+        if (ls.Li.r == 100) red += 1;
+    }
+    // The bright zenith texel: its luminance share of the map.
+    double lumSum = 0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) lumSum += map->GetRGB(x, y).Luminance();
+    EXPECT_NEAR(red / samples, RGB(100, 0, 0).Luminance() / lumSum, 0.01);
+    // The irradiance in green by quadrature over the square instead (4π per unit area; the
+    // +x texel straddles the horizon): the sampled estimate agrees.
+    const int q = 1024;
+    double quadrature = 0;
+    for (int j = 0; j < q; ++j)
+        for (int i = 0; i < q; ++i) {
+            const Vec2d p((i + 0.5) / q, (j + 0.5) / q);
+            const double z = EqualAreaSquareToSphere(p).z;
+            if (z > 0) quadrature += map->GetRGB(i * n / q, j * n / q).g * z;
+        }
+    quadrature *= 4 * Pi / (double(q) * q);
+    EXPECT_GT(quadrature, 0.5 * Pi * 1.05);
+    EXPECT_NEAR(irradiance / samples, quadrature, 0.02 * quadrature);
 }
 
 TEST(PathIntegrator, DiffuseSphereUnderUniformSky) {
