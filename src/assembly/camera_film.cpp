@@ -226,7 +226,11 @@ std::shared_ptr<const LensSystem> ReadLens(BuildContext &ctx, CameraParams *para
 
 }  // namespace
 
-// Camera "environment" (pbrt-v3's), and the parameters every camera reads. Parameters:
+// Camera "environment" (pbrt-v3's) and "spherical" (pbrt-v4's), and the parameters every
+// camera reads. Parameters:
+//   mapping                    string  equalarea  spherical: equalarea (a square film
+//                                                 through the equal-area map) or
+//                                                 equirectangular (pbrt-v3's "environment")
 //   shutteropen, shutterclose  float  0, 1   the interval the image integrates over (a reversed
 //                                            pair is swapped with a warning)
 //   frameaspectratio           float  —      the film's width over its height (default: the
@@ -246,6 +250,23 @@ void BuildCamera(BuildContext &ctx) {
         params.orthographic = true;
     } else if (type == "environment") {
         params.environment = true;
+    } else if (type == "spherical") {
+        params.environment = true;
+        const std::string mapping = cp.GetString("mapping", "equalarea");
+        const Param *m = cp.Find("mapping");
+        if (mapping == "equalarea") {
+            params.equalArea = true;
+            if (scene.resolution.x != scene.resolution.y)
+                diag.Warn(m ? m->loc : cd.loc,
+                          "the spherical camera's \"equalarea\" mapping fills a square film; "
+                          "this " +
+                              std::to_string(scene.resolution.x) + "x" +
+                              std::to_string(scene.resolution.y) + " one stretches it");
+        } else if (mapping != "equirectangular") {
+            throw SceneError(m ? m->loc : cd.loc,
+                             "spherical camera mapping " + Quote(mapping) +
+                                 " is not one of \"equalarea\", \"equirectangular\"");
+        }
     } else if (type == "realistic") {
         params.lens = ReadLens(ctx, &params);
     } else if (type != "perspective") {

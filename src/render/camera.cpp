@@ -1,7 +1,9 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "core/equal_area.h"
 #include "render/lens_system.h"
 
 namespace prism {
@@ -10,6 +12,7 @@ Camera::Camera(const CameraParams &p, const Transform &renderFromCamera, Vec2i r
     : lens_(p.environment ? nullptr : p.lens),
       ortho_(p.orthographic && !p.environment && !p.lens),
       env_(p.environment),
+      equalArea_(p.environment && p.equalArea),
       lensRadius_(p.lensRadius),
       focalDistance_(p.focalDistance),
       res_(res),
@@ -68,6 +71,21 @@ void Camera::SetMotion(const AnimatedTransform &renderFromCamera) {
 }
 
 Vec3d Camera::EnvironmentDirection(Vec2f pFilm) const {
+    if (equalArea_) {
+        // pbrt-v4 SphericalCamera: a film position beyond an edge (a wide filter's sample)
+        // continues across it as the octahedral map does, mirrored along that edge.
+        double u = double(pFilm.x) / res_.x, v = double(pFilm.y) / res_.y;
+        if (u < 0 || u > 1) {
+            u = u < 0 ? -u : 2 - u;
+            v = 1 - v;
+        }
+        if (v < 0 || v > 1) {
+            v = v < 0 ? -v : 2 - v;
+            u = 1 - u;
+        }
+        const Vec3d d = EqualAreaSquareToSphere({std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0)});
+        return {d.x, d.z, d.y};  // the map's pole (z) is camera up (y)
+    }
     // pbrt-v3 EnvironmentCamera: theta from camera +y down the rows, phi from +x toward +z
     // across the columns, over the full resolution (a crop window keeps its pixels' rays).
     const double theta = Pi * double(pFilm.y) / res_.y, phi = 2 * Pi * double(pFilm.x) / res_.x;

@@ -1,4 +1,5 @@
-// pbrt-v3 perspective, orthographic, environment and realistic cameras (left-handed camera
+// pbrt-v3 perspective, orthographic, environment and realistic cameras and pbrt-v4's spherical
+// one (left-handed camera
 // space, +z forward, raster y down). fov applies to the shorter image axis through the default
 // screen window; the environment camera sees the whole sphere of directions in
 // latitude-longitude; the realistic camera traces rays from its film through a lens system
@@ -22,6 +23,10 @@ struct CameraParams {
     // (sin t cos p, cos t, sin t sin p), t = pi y / H from +y, p = 2 pi x / W from +x toward
     // +z; fov, screen window and lens are not read.
     bool environment = false;
+    // pbrt-v4's "spherical" camera with its default "equalarea" mapping: raster (x, y) / (W, H)
+    // through core/equal_area.h's square-to-sphere map, its pole turned to camera +y (the
+    // "equirectangular" mapping is the environment camera above).
+    bool equalArea = false;
     double fovDeg = PbrtDefaultFovDeg;
     double screenWindow[4] = {0, 0, 0, 0};  // x0 x1 y0 y1; all zero → pbrt default
     double lensRadius = 0, focalDistance = 1e6;
@@ -71,7 +76,8 @@ class Camera {
         p.realistic = lens_ != nullptr;
         return p;
     }
-    // The lat-long camera's camera-space direction of raster position pFilm.
+    // The environment (lat-long) or equal-area camera's camera-space direction of raster
+    // position pFilm.
     Vec3d EnvironmentDirection(Vec2f pFilm) const;
     bool Moves() const { return motion_ != nullptr; }
 
@@ -83,7 +89,7 @@ class Camera {
     Ray ToRender(const Vec3d &o, const Vec3d &d, float time) const;
     std::shared_ptr<const LensSystem> lens_;
     double filmW_ = 0, filmH_ = 0;  // the film's physical size (realistic camera)
-    bool ortho_, env_;
+    bool ortho_, env_, equalArea_;
     double sx0_, sx1_, sy0_, sy1_, tanHalf_;
     double lensRadius_, focalDistance_;
     Vec2i res_;

@@ -58,10 +58,12 @@ TEST(EqualArea, EveryPatchOfTheSquareIsTheSameSolidAngle) {
         const Vec2d p(0.01 + 0.98 * rng.Uniform(), 0.01 + 0.98 * rng.Uniform());
         const double u = std::abs(2 * p.x - 1), v = std::abs(2 * p.y - 1);
         if (std::abs(u + v - 1) < 1e-3 || u < 1e-3 || v < 1e-3) continue;
-        const Vec3d dx = (EqualAreaSquareToSphere({p.x + h, p.y}) -
-                          EqualAreaSquareToSphere({p.x - h, p.y})) / (2 * h);
-        const Vec3d dy = (EqualAreaSquareToSphere({p.x, p.y + h}) -
-                          EqualAreaSquareToSphere({p.x, p.y - h})) / (2 * h);
+        const Vec3d dx =
+            (EqualAreaSquareToSphere({p.x + h, p.y}) - EqualAreaSquareToSphere({p.x - h, p.y})) /
+            (2 * h);
+        const Vec3d dy =
+            (EqualAreaSquareToSphere({p.x, p.y + h}) - EqualAreaSquareToSphere({p.x, p.y - h})) /
+            (2 * h);
         ASSERT_NEAR(Length(Cross(dx, dy)), 4 * Pi, 1e-4) << p.x << " " << p.y;
         ++checked;
     }

@@ -181,5 +181,66 @@ TEST(EnvironmentCamera, TheAssemblyBuildsItUnderTheCameraTransform) {
     EXPECT_TRUE(unused);
 }
 
+RenderScene BuildSpherical(const std::string &name, const std::string &camera, int w, int h,
+                           Diagnostics &diag) {
+    const fs::path dir = fs::path(::testing::TempDir()) / "spherical";
+    fs::create_directories(dir);
+    const std::string file = (dir / (name + ".pbrt")).string();
+    std::ofstream(file) << camera << "\nFilm \"rgb\" \"integer xresolution\" [ " << w
+                        << " ] \"integer yresolution\" [ " << h << " ]\n"
+                        << "WorldBegin\nLightSource \"point\"\nShape \"sphere\"\n";
+    SceneDescription desc = LoadScene(file, diag);
+    BuildSettings settings;
+    settings.cameraRelative = false;
+    return BuildRenderScene(desc, settings, diag);
+}
+
+// pbrt-v4's Camera "spherical": by default the equal-area map of a square film, its pole at
+// camera +y (the centre looks up, the corners down, the right edge's middle along +x, the
+// bottom edge's middle forward along +z); "equirectangular" is the environment camera.
+TEST(SphericalCamera, EqualAreaPixelsLookWherePbrtV4Looks) {
+    Diagnostics diag(false);
+    RenderScene scene = BuildSpherical("ea", "Camera \"spherical\"", 64, 64, diag);
+    EXPECT_EQ(diag.Warnings().size(), 0u);
+    const struct {
+        Vec2f pFilm;
+        Vec3f d;
+    } cases[] = {{{32, 32}, {0, 1, 0}},  {{0, 0}, {0, -1, 0}},
+                 {{64, 64}, {0, -1, 0}}, {{64, 32}, {1, 0, 0}},
+                 {{0, 32}, {-1, 0, 0}},  {{32, 64}, {0, 0, 1}},
+                 {{32, 0}, {0, 0, -1}},  {{48, 48}, Normalize(Vec3f(1, 0, 1))}};
+    for (const auto &c : cases) {
+        const Ray r = scene.camera->GenerateRay(c.pFilm, Vec2f(0.5f, 0.5f));
+        EXPECT_LT(Length(r.d - c.d), 1e-5f) << c.pFilm.x << " " << c.pFilm.y;
+    }
+    // Past an edge the map continues across it, mirrored: just right of the right edge is
+    // just below the horizon on the mirrored row.
+    const Ray in = scene.camera->GenerateRay(Vec2f(63.9f, 20), Vec2f(0.5f, 0.5f));
+    const Ray out = scene.camera->GenerateRay(Vec2f(64.1f, 44), Vec2f(0.5f, 0.5f));
+    EXPECT_LT(Length(in.d - out.d), 0.02f);
+    EXPECT_TRUE(scene.camera->GetProjection().environment);
+
+    Diagnostics d2(false);
+    RenderScene eq = BuildSpherical(
+        "eq", "Camera \"spherical\" \"string mapping\" \"equirectangular\"", 64, 32, d2);
+    EXPECT_EQ(d2.Warnings().size(), 0u);
+    EXPECT_LT(Length(eq.camera->GenerateRay(Vec2f(16, 16), Vec2f(0.5f, 0.5f)).d - Vec3f(0, 0, 1)),
+              1e-5f);
+}
+
+TEST(SphericalCamera, AnUnknownMappingIsAnErrorAndANonSquareFilmAWarning) {
+    Diagnostics diag(false);
+    try {
+        BuildSpherical("bad", "Camera \"spherical\"\n  \"string mapping\" \"cube\"", 8, 8, diag);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError &e) {
+        EXPECT_NE(std::string(e.what()).find("bad.pbrt:2:3:"), std::string::npos) << e.what();
+    }
+    Diagnostics d2(false);
+    BuildSpherical("wide", "Camera \"spherical\"", 16, 8, d2);
+    ASSERT_EQ(d2.Warnings().size(), 1u);
+    EXPECT_NE(d2.Warnings()[0].message.find("16x8"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace prism
