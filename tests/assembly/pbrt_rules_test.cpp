@@ -33,6 +33,32 @@ TEST(PbrtRules, APbrtV4FileWithoutIntegratorOrSamplerGetsPbrtV4sDefaults) {
     EXPECT_NE(v3.scene.sampler.pattern, SamplePattern::ZSobol);
 }
 
+// Without a PixelFilter line pbrt-v4 filters with its gaussian (radius 1.5, sigma 0.5) and
+// pbrt-v3 with the box (radius 0.5); pbrt-v4 names the radius "xradius" and the falloff
+// "sigma".
+TEST(PbrtRules, EachVersionHasItsDefaultPixelFilterAndParameterNames) {
+    const test::Built v4 = Build("f4", "Film \"rgb\"\nWorldBegin\nShape \"sphere\"\n");
+    EXPECT_EQ(v4.scene.filter.kind, Filter::Kind::Gaussian);
+    EXPECT_EQ(v4.scene.filter.radiusX, 1.5f);
+    EXPECT_EQ(v4.scene.filter.alpha, 2.f);
+    const test::Built v3 = Build("f3", "WorldBegin\nShape \"sphere\"\n");
+    EXPECT_EQ(v3.scene.filter.kind, Filter::Kind::Box);
+    EXPECT_EQ(v3.scene.filter.radiusX, 0.5f);
+    const test::Built named =
+        Build("fn",
+              "Film \"rgb\"\nPixelFilter \"gaussian\" \"float xradius\" 1 "
+              "\"float yradius\" 3 \"float sigma\" 0.25\nWorldBegin\nShape \"sphere\"\n");
+    EXPECT_EQ(named.scene.filter.radiusX, 1.f);
+    EXPECT_EQ(named.scene.filter.radiusY, 3.f);
+    EXPECT_EQ(named.scene.filter.alpha, 8.f);
+    for (const Warning &w : named.warnings)  // all three read: none reported unused
+        EXPECT_EQ(w.message.find("filter"), std::string::npos) << w.ToString();
+    // A named filter keeps pbrt-v3's radius in a pbrt-v3 file.
+    const test::Built mitchell =
+        Build("fm", "PixelFilter \"gaussian\"\nWorldBegin\nShape \"sphere\"\n");
+    EXPECT_EQ(mitchell.scene.filter.radiusX, 2.f);
+}
+
 // pbrt-v4 divides a light's spectrum by its luminance: a blackbody of any temperature emits
 // as much as white 1; pbrt-v3 keeps the peak-normalised blackbody.
 TEST(PbrtRules, APbrtV4BlackbodyLightHasLuminanceOne) {
