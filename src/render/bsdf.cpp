@@ -68,6 +68,10 @@ RGB Fresnel::Evaluate(float cosThetaI) const {
             return FrConductor(std::abs(cosThetaI), RGB(1), eta, k);
         case FresnelKind::Schlick:
             return FrSchlick(cosThetaI, f0, f90);
+        case FresnelKind::ThinDielectric: {
+            const float R = FrDielectric(std::abs(cosThetaI), etaI, etaT), T = 1 - R;
+            return RGB(R < 1 ? R + T * T * R / (1 - R * R) : 1.f);
+        }
     }
     return RGB(1);
 }
@@ -459,6 +463,9 @@ bool BSDF::SampleSpecularTransmission(int part, const Vec3f &woW, Vec3f *wiW, RG
         *weight = weight_[part] * l.kt;
         // glTF thin-walled transmission: what the specular layer and the coat let through.
         if (l.gltfDiffuse) *weight *= DielectricPass(l, wo.z) * CoatPass(l, wo.z);
+        // A thin dielectric slab: what its reflections leave.
+        if (l.specularFresnel.kind == FresnelKind::ThinDielectric)
+            *weight *= RGB(1) - l.specularFresnel.Evaluate(wo.z);
         *wiW = -woW;
         return !weight->IsBlack();
     }

@@ -18,7 +18,10 @@ RGB FrConductor(float cosThetaI, const RGB &etaI, const RGB &etaT, const RGB &k)
 float RoughnessToAlpha(float roughness);
 
 // Schlick: F = f0 + (f90 - f0)(1 - cos)^5 per channel (glTF's metallic-roughness model).
-enum class FresnelKind { None, Dielectric, Conductor, Schlick };
+// ThinDielectric: a slab of index etaT with parallel faces (pbrt-v4's thindielectric): the
+// reflectance R' = R + T² R / (1 - R²) of every bounce inside it (R the single face's Fresnel
+// term, T = 1 - R); it transmits 1 - R' straight through.
+enum class FresnelKind { None, Dielectric, Conductor, Schlick, ThinDielectric };
 
 // Schlick's approximation with a colour at normal incidence f0 and at grazing incidence f90.
 RGB FrSchlick(float cosTheta, const RGB &f0, const RGB &f90);

@@ -60,11 +60,12 @@ void Collect(const BSDF &b, const Vec3f &wo, bool withSpecular, Choices *ch) {
                             ? FrDielectric(wo.z, 1.f, l.eta)
                             : l.specularFresnel.Evaluate(wo.z).Average();
         if (!l.kr.IsBlack()) ch->Add(i, Lobe::SpecularReflect, (w * l.kr).Average() * F);
+        const bool fresnelTransmit =
+            (l.specularFresnel.kind == FresnelKind::Dielectric && l.eta != 1) ||
+            l.specularFresnel.kind == FresnelKind::ThinDielectric;
         if (!l.kt.IsBlack())
             ch->Add(i, Lobe::SpecularTransmit,
-                    (w * l.kt).Average() *
-                        (l.specularFresnel.kind == FresnelKind::Dielectric && l.eta != 1 ? 1 - F
-                                                                                         : 1.f));
+                    (w * l.kt).Average() * (fresnelTransmit ? 1 - F : 1.f));
     }
 }
 

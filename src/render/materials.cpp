@@ -225,6 +225,32 @@ std::shared_ptr<const MaterialModel> CreateGlassMaterial(const MaterialParams &p
                                            std::move(r));
 }
 
+// ---- thindielectric ----------------------------------------------------------------------
+
+void ThinDielectricMaterial::AddParts(BSDF &b, const TextureContext &, const RGB &weight) const {
+    BxDFLobes &l = b.AddPart(weight);
+    l.specularFresnel.kind = FresnelKind::ThinDielectric;
+    l.specularFresnel.etaT = eta_;
+    l.kr = eta_ != 1 ? RGB(1) : RGB(0);
+    l.kt = RGB(1);
+    l.eta = 1;  // straight through: the slab's two refractions cancel
+}
+
+// Material "thindielectric" (pbrt-v4; material_list.inc). Parameters:
+//   eta  float (spectrum)  1.5  the slab's index of refraction (a value: pbrt-v4 does not
+//                               texture it)
+std::shared_ptr<const MaterialModel> CreateThinDielectricMaterial(const MaterialParams &p,
+                                                                  const FileLoc &) {
+    const TexturePtr eta = p.FloatTex("eta", 1.5f);
+    const ConstantTexture *c = AsConstant(eta);
+    if (!c) throw SceneError(p.Loc("eta"), "thindielectric eta must be a value, not a texture");
+    float e = c->Value().r;
+    if (e == 0) e = 1;  // pbrt-v4: an index of 0 means none
+    if (!(e > 0) || !std::isfinite(e))
+        throw SceneError(p.Loc("eta"), "thindielectric eta must be positive");
+    return std::make_shared<ThinDielectricMaterial>(e);
+}
+
 // ---- metal -------------------------------------------------------------------------------
 
 void MetalMaterial::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const {

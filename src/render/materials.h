@@ -82,6 +82,19 @@ class GlassMaterial final : public MaterialModel {
     Roughness r_;
 };
 
+// pbrt-v4's "thindielectric": a thin slab of index eta, a delta reflection of the slab's
+// reflectance and a delta transmission straight through (no bending) of the rest.
+class ThinDielectricMaterial final : public MaterialModel {
+  public:
+    explicit ThinDielectricMaterial(float eta) : eta_(eta) {}
+    void AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const override;
+    bool MayReflectSpecularly() const override { return eta_ != 1; }
+    bool MayTransmit() const override { return true; }
+
+  private:
+    float eta_;
+};
+
 // pbrt-v3's copper (its default metal, and pbrt-v4's "metal-Cu-eta"/"metal-Cu-k") in RGB.
 inline constexpr RGB CopperEta(0.200438f, 0.924033f, 1.10221f);
 inline constexpr RGB CopperK(3.91295f, 2.45285f, 2.14219f);

@@ -191,6 +191,54 @@ const Material &ShapeMaterial(const RenderScene &s) {
     return s.materials[size_t(s.shapes[0].material)];
 }
 
+// pbrt-v4's thindielectric: a slab whose delta reflection is R' = R + T²R/(1 - R²) (2R/(1 + R)
+// at normal incidence, R = ((eta - 1)/(eta + 1))²) and whose transmission, 1 - R', goes
+// straight through; Sample_f chooses them in that proportion, so its weights average to 1.
+TEST(MaterialScene, ThinDielectricReflectsTheSlabAndTransmitsTheRestStraight) {
+    Diagnostics diag;
+    RenderScene s =
+        Build("Material \"thindielectric\" \"float eta\" 1.5\nShape \"sphere\"\n", diag);
+    EXPECT_EQ(diag.Count(), size_t(0));
+    const Material &m = ShapeMaterial(s);
+    EXPECT_TRUE(m.MayReflectSpecularly());
+    EXPECT_TRUE(m.MayTransmit());
+    const BSDF b = m.GetBSDF(FlatHit(), {});
+    const double R0 = 0.04, slab = 2 * R0 / (1 + R0);
+    for (float cosO : {1.f, 0.5f, 0.1f}) {
+        const Vec3f wo(std::sqrt(1 - cosO * cosO), 0, cosO);
+        Vec3f wr, wt;
+        RGB r, t;
+        ASSERT_TRUE(b.SampleSpecularReflection(0, wo, &wr, &r));
+        ASSERT_TRUE(b.SampleSpecularTransmission(0, wo, &wt, &t));
+        EXPECT_NEAR(r.g + t.g, 1, 1e-6) << cosO;  // nothing absorbed
+        EXPECT_EQ(wt, -wo);                       // not bent
+        EXPECT_NEAR(wr.z, cosO, 1e-6);
+        if (cosO == 1) EXPECT_NEAR(r.g, slab, 1e-6);
+        // More than a single face reflects: the second face's bounces add to it.
+        EXPECT_GT(r.g, FrDielectric(cosO, 1.f, 1.5f)) << cosO;
+        // From inside the slab's other side, the same.
+        Vec3f wr2;
+        RGB r2;
+        ASSERT_TRUE(b.SampleSpecularReflection(0, -wo, &wr2, &r2));
+        EXPECT_NEAR(r2.g, r.g, 1e-6);
+        double sum = 0, reflected = 0;
+        const int n = 4000;
+        for (int i = 0; i < n; ++i) {
+            BSDFSample bs;
+            ASSERT_TRUE(b.Sample_f(wo, {0.5f, 0.5f}, (i + 0.5f) / n, true, &bs));
+            ASSERT_TRUE(bs.specular);
+            sum += bs.weight.g;
+            if (!bs.transmission) reflected += 1;
+        }
+        EXPECT_NEAR(sum / n, 1, 1e-3) << cosO;
+        EXPECT_NEAR(reflected / n, r.g, 2e-3) << cosO;
+    }
+    // An index of 1 is no slab: all of it passes.
+    Diagnostics d2;
+    RenderScene none = Build("Material \"thindielectric\" \"float eta\" 1\nShape \"sphere\"\n", d2);
+    EXPECT_FALSE(ShapeMaterial(none).MayReflectSpecularly());
+}
+
 TEST(MaterialScene, NamedMixResolvesAndBlends) {
     Diagnostics diag;
     RenderScene s = Build(
