@@ -318,6 +318,15 @@ class Walk {
             RGB beta = wos.f * (std::abs(wos.wi.z) / wos.pdf);
             float z = thick;
             Vec3f w = wos.wi;
+            // Reflection at an interface back into the layer: the walk's new direction.
+            const auto reflect = [&](const Interface<Base> &at, Scatter *bs) {
+                const float u0 = r();
+                if (!at.Sample(-w, u0, r.Get2(), mode, Reflection, bs) || !bs->Carries())
+                    return false;
+                beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+                w = bs->wi;
+                return true;
+            };
             for (int depth = 0; depth < l_.maxDepth; ++depth) {
                 if (depth > 3 && beta.MaxComponent() < 0.25f) {
                     const float q = std::max(0.f, 1 - beta.MaxComponent());
@@ -357,14 +366,10 @@ class Walk {
                     }
                     z = std::clamp(zp, 0.f, thick);
                 }
+                Scatter bs;
                 if (z == exitZ) {
                     // Reflection back into the layer at the exit interface.
-                    Scatter bs;
-                    uc = r();
-                    if (!exit.Sample(-w, uc, r.Get2(), mode, Reflection, &bs) || !bs.Carries())
-                        break;
-                    beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
-                    w = bs.wi;
+                    if (!reflect(exit, &bs)) break;
                     continue;
                 }
                 // At the other interface: light from the virtual light, then a new direction.
@@ -375,12 +380,7 @@ class Walk {
                     sum += beta * nonExit.f(-w, -wis.wi, mode) * wis.f *
                            (std::abs(wis.wi.z) * wt * Tr(thick, wis.wi) / wis.pdf);
                 }
-                Scatter bs;
-                uc = r();
-                if (!nonExit.Sample(-w, uc, r.Get2(), mode, Reflection, &bs) || !bs.Carries())
-                    break;
-                beta *= bs.f * (std::abs(bs.wi.z) / bs.pdf);
-                w = bs.wi;
+                if (!reflect(nonExit, &bs)) break;
                 if (!exit.Specular()) {
                     const RGB fExit = exit.f(-w, wi, mode);
                     if (!fExit.IsBlack()) {
