@@ -30,7 +30,7 @@ ROW = re.compile(r'^\s*//   (\S.*?)\s{2,}(\S.*)$')
 CONT = re.compile(r'^\s*//\s{4,}(\S.*)$')
 # A parameter read in a Create: p.Float("name", ...), in.params.Int("name"), ps.GetString(...
 READ = re.compile(r'\.(?:Get)?(?:Float|Int|Bool|String|Spectrum|SpectrumTex|FloatTex|Tex|'
-                  r'Point|Point3|Vector|Normal|PositiveFloat|OptionalImage|Loc|Has)\(\s*"(\w+)"')
+                  r'Point|Point3|Vector|Normal|PositiveFloat|OptionalImage|Loc|Has)\(\s*"(\w[\w.]*)"')
 
 
 def names_of(cell):
@@ -39,7 +39,7 @@ def names_of(cell):
     for part in re.split(r',\s*', re.sub(r'\(([^)]*)\)', lambda m: ',' + m.group(1), cell)):
         part = part.strip()
         part = re.sub(r'^v\d:\s*', '', part)
-        if re.fullmatch(r'\w+', part):
+        if re.fullmatch(r'\w[\w.]*', part):  # pbrt-v4's names may be dotted: conductor.eta
             out.append(part)
     return out
 
@@ -115,10 +115,17 @@ def create_body(lines, start):
 TEXCOORD = re.compile(r'WithTexCoordParams\([^;]*?"(\w+)"\)')
 
 
+# ReadUVRoughness(p, def[, "PREFIX"]) (render/materials.h) reads "PREFIXroughness",
+# "PREFIXuroughness", "PREFIXvroughness" and "remaproughness".
+ROUGHNESS = re.compile(r'ReadUVRoughness\([^;"]*?(?:"([\w.]*)")?\)')
+
+
 def literals(text):
     """The quoted parameter names a source text can read: its literals and the names
-    WithTexCoordParams builds."""
+    WithTexCoordParams and ReadUVRoughness build."""
     built = ''.join(f'"{n}transform" "{n}texcoord"' for n in TEXCOORD.findall(text))
+    built += ''.join(f'"{n}roughness" "{n}uroughness" "{n}vroughness" "remaproughness"'
+                     for n in ROUGHNESS.findall(text))
     return text + built
 
 

@@ -42,10 +42,8 @@ void CoatedMaterial::AddParts(BSDF &b, const TextureContext &tc, const RGB &weig
         eta = p_.conductorEta->Evaluate(tc);
         k = p_.conductorK->Evaluate(tc);
     } else {
-        // pbrt-v4: eta 1 and the k that reflects r at normal incidence.
-        const RGB r = p_.reflectance->Evaluate(tc).Clamped(0.f, 0.9999f);
         eta = RGB(1);
-        for (int c = 0; c < 3; ++c) k[c] = 2 * std::sqrt(r[c]) / std::sqrt(1 - r[c]);
+        k = ConductorKFromReflectance(p_.reflectance->Evaluate(tc));
     }
     // The base sits under the coat: its index relative to the coat's.
     l.conductorEta = eta / p_.eta;
@@ -79,16 +77,6 @@ std::vector<const Texture *> CoatedMaterial::Textures() const {
 
 namespace {
 
-// "<prefix>roughness" (default 0) with "<prefix>uroughness"/"<prefix>vroughness" overriding it.
-void ReadRoughness(const MaterialParams &p, const std::string &prefix, TexturePtr *u,
-                   TexturePtr *v) {
-    const std::string r = prefix + "roughness", ur = prefix + "uroughness",
-                      vr = prefix + "vroughness";
-    TexturePtr rough = p.FloatTex(r.c_str(), 0.f);
-    *u = p.Has(ur.c_str()) ? p.FloatTex(ur.c_str(), 0.f) : rough;
-    *v = p.Has(vr.c_str()) ? p.FloatTex(vr.c_str(), 0.f) : rough;
-}
-
 // What both coated materials share: the layer, the walk, the remapping.
 CoatedMaterial::Params ReadLayer(const MaterialParams &p, const char *etaName) {
     CoatedMaterial::Params c;
@@ -104,14 +92,7 @@ CoatedMaterial::Params ReadLayer(const MaterialParams &p, const char *etaName) {
     if (c.nSamples < 1 || c.nSamples > 1000)
         throw SceneError(p.Loc("nsamples"),
                          "nsamples " + std::to_string(c.nSamples) + " out of range (1 to 1000)");
-    const TexturePtr eta = p.FloatTex(etaName, 1.5f);
-    const auto *ce = dynamic_cast<const ConstantTexture *>(eta.get());
-    if (!ce)
-        throw SceneError(p.Loc(etaName), std::string(etaName) + " must be a value, not a texture");
-    c.eta = ce->Value().r;
-    if (c.eta == 0) c.eta = 1;  // pbrt-v4: an index of 0 means none
-    if (!(c.eta > 0) || !std::isfinite(c.eta))
-        throw SceneError(p.Loc(etaName), std::string(etaName) + " must be positive");
+    c.eta = ReadConstantIndex(p, etaName);
     return c;
 }
 
@@ -133,18 +114,21 @@ std::shared_ptr<const MaterialModel> CreateCoatedDiffuseMaterial(const MaterialP
     CoatedMaterial::Params c = ReadLayer(p, "eta");
     c.base = LayeredLobe::Base::Diffuse;
     c.reflectance = p.SpectrumTex("reflectance", RGB(0.5f));
-    ReadRoughness(p, "", &c.coatU, &c.coatV);
+    const Roughness coat = ReadUVRoughness(p, 0.f);
+    c.coatU = coat.u;
+    c.coatV = coat.v;
     return std::make_shared<CoatedMaterial>(std::move(c));
 }
 
 // Material "coatedconductor" (pbrt-v4; material_list.inc). Parameters:
-//   interface.roughness     float texture     0       the coat's (uroughness/vroughness
-//                                                     override it)
+//   interface.roughness     float texture     0       the coat's
+//   interface.uroughness, interface.vroughness  float texture  —  override it
 //   interface.eta           float (spectrum)  1.5     the coat's index of refraction
-//   conductor.eta, .k       spectrum texture  copper  the base's complex index
+//   conductor.eta, conductor.k  spectrum texture  copper  the base's complex index
 //   reflectance             spectrum texture  —       (without conductor.eta) the base's
 //                                                     normal-incidence reflectance
-//   conductor.roughness     float texture     0       the base's (uroughness/vroughness too)
+//   conductor.roughness     float texture     0       the base's
+//   conductor.uroughness, conductor.vroughness  float texture  —  override it
 //   thickness, albedo, g, maxdepth, nsamples, remaproughness   as coateddiffuse
 std::shared_ptr<const MaterialModel> CreateCoatedConductorMaterial(const MaterialParams &p,
                                                                    const FileLoc &) {
@@ -156,8 +140,12 @@ std::shared_ptr<const MaterialModel> CreateCoatedConductorMaterial(const Materia
         c.conductorEta = p.SpectrumTex("conductor.eta", CopperEta);
         c.conductorK = p.SpectrumTex("conductor.k", CopperK);
     }
-    ReadRoughness(p, "interface.", &c.coatU, &c.coatV);
-    ReadRoughness(p, "conductor.", &c.baseU, &c.baseV);
+    const Roughness coat = ReadUVRoughness(p, 0.f, "interface."),
+                    base = ReadUVRoughness(p, 0.f, "conductor.");
+    c.coatU = coat.u;
+    c.coatV = coat.v;
+    c.baseU = base.u;
+    c.baseV = base.v;
     return std::make_shared<CoatedMaterial>(std::move(c));
 }
 

@@ -79,17 +79,33 @@ void RemapRoughnessAsV4(Roughness &r) {
     r.remap = false;
 }
 
-// "roughness" (default def), with "uroughness"/"vroughness" (default 0) overriding it.
-Roughness ReadUVRoughness(const MaterialParams &p, float def) {
-    TexturePtr rough = p.FloatTex("roughness", def);
+}  // namespace
+
+Roughness ReadUVRoughness(const MaterialParams &p, float def, const std::string &prefix) {
+    const std::string ur = prefix + "uroughness", vr = prefix + "vroughness";
+    TexturePtr rough = p.FloatTex((prefix + "roughness").c_str(), def);
     Roughness r;
-    r.u = p.Has("uroughness") ? p.FloatTex("uroughness", 0.f) : rough;
-    r.v = p.Has("vroughness") ? p.FloatTex("vroughness", 0.f) : rough;
+    r.u = p.Has(ur.c_str()) ? p.FloatTex(ur.c_str(), 0.f) : rough;
+    r.v = p.Has(vr.c_str()) ? p.FloatTex(vr.c_str(), 0.f) : rough;
     r.remap = p.Bool("remaproughness", true);
     return r;
 }
 
-}  // namespace
+RGB ConductorKFromReflectance(RGB r) {
+    r = r.Clamped(0.f, 0.9999f);
+    return RGB(2 * std::sqrt(r.r / (1 - r.r)), 2 * std::sqrt(r.g / (1 - r.g)),
+               2 * std::sqrt(r.b / (1 - r.b)));
+}
+
+float ReadConstantIndex(const MaterialParams &p, const char *name) {
+    const ConstantTexture *c = AsConstant(p.FloatTex(name, 1.5f));
+    if (!c)
+        throw SceneError(p.Loc(name), p.Type() + " " + name + " must be a value, not a texture");
+    const float eta = c->Value().r == 0 ? 1.f : c->Value().r;  // pbrt-v4: 0 means no interface
+    if (!(eta > 0) || !std::isfinite(eta))
+        throw SceneError(p.Loc(name), p.Type() + " " + name + " must be positive");
+    return eta;
+}
 
 // ---- matte -------------------------------------------------------------------------------
 
@@ -241,14 +257,7 @@ void ThinDielectricMaterial::AddParts(BSDF &b, const TextureContext &, const RGB
 //                               texture it)
 std::shared_ptr<const MaterialModel> CreateThinDielectricMaterial(const MaterialParams &p,
                                                                   const FileLoc &) {
-    const TexturePtr eta = p.FloatTex("eta", 1.5f);
-    const ConstantTexture *c = AsConstant(eta);
-    if (!c) throw SceneError(p.Loc("eta"), "thindielectric eta must be a value, not a texture");
-    float e = c->Value().r;
-    if (e == 0) e = 1;  // pbrt-v4: an index of 0 means none
-    if (!(e > 0) || !std::isfinite(e))
-        throw SceneError(p.Loc("eta"), "thindielectric eta must be positive");
-    return std::make_shared<ThinDielectricMaterial>(e);
+    return std::make_shared<ThinDielectricMaterial>(ReadConstantIndex(p, "eta"));
 }
 
 // ---- metal -------------------------------------------------------------------------------
@@ -302,12 +311,9 @@ unsigned MetalMaterial::LobeNeeds() const {
 std::shared_ptr<const MaterialModel> CreateMetalMaterial(const MaterialParams &p, const FileLoc &) {
     RGB eta, k;
     if (p.Has("reflectance") && !p.Has("eta") && !p.Has("k")) {
-        // pbrt-v4 conductor given its normal-incidence reflectance r: eta 1 and
-        // k = 2 sqrt(r) / sqrt(1 - r), which reproduces r at normal incidence.
-        RGB r = p.Spectrum("reflectance", RGB(0.9f)).Clamped(0.f, 0.9999f);
+        // pbrt-v4 conductor given its normal-incidence reflectance r.
         eta = RGB(1);
-        k = RGB(2 * std::sqrt(r.r / (1 - r.r)), 2 * std::sqrt(r.g / (1 - r.g)),
-                2 * std::sqrt(r.b / (1 - r.b)));
+        k = ConductorKFromReflectance(p.Spectrum("reflectance", RGB(0.9f)));
     } else {
         // pbrt-v3's default is copper; these are its eta/k spectra reduced to RGB.
         eta = p.Spectrum("eta", CopperEta);

@@ -18,6 +18,17 @@ struct Roughness {
     bool remap = true;
 };
 
+// Parameter readers the material Creates share (materials.cpp). "<prefix>roughness" (default
+// def), with "<prefix>uroughness"/"<prefix>vroughness" (default 0) overriding it, and
+// "remaproughness".
+Roughness ReadUVRoughness(const MaterialParams &p, float def, const std::string &prefix = "");
+// pbrt-v4's conductor given its normal-incidence reflectance r: eta 1 and this k,
+// 2 sqrt(r / (1 - r)) (r clamped below 1), reproduce r at normal incidence.
+RGB ConductorKFromReflectance(RGB r);
+// An index of refraction that must be a value (default 1.5; 0 means 1, no interface, as in
+// pbrt-v4): SceneError at the parameter for a texture or a non-positive value.
+float ReadConstantIndex(const MaterialParams &p, const char *name);
+
 class MatteMaterial final : public MaterialModel {
   public:
     // sigma: Oren–Nayar's standard deviation in degrees (null or 0: Lambertian).
