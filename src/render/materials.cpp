@@ -98,7 +98,8 @@ RGB ConductorKFromReflectance(RGB r) {
 }
 
 float ReadConstantIndex(const MaterialParams &p, const char *name) {
-    const ConstantTexture *c = AsConstant(p.FloatTex(name, 1.5f));
+    const TexturePtr t = p.FloatTex(name, 1.5f);  // keeps the texture alive while c is read
+    const ConstantTexture *c = AsConstant(t);
     if (!c)
         throw SceneError(p.Loc(name), p.Type() + " " + name + " must be a value, not a texture");
     const float eta = c->Value().r == 0 ? 1.f : c->Value().r;  // pbrt-v4: 0 means no interface
