@@ -358,6 +358,7 @@ void SceneBuilder::Material(const std::string &type, ParsedParameterVector param
     CheckWorld("Material", loc);
     MaterialDesc m;
     static_cast<SceneEntity &>(m) = Entity("Material", type, std::move(params), loc);
+    AddAttributes(m.params, AttributeTarget::Material);
     gs_.material = int(scene_.materials.size());
     scene_.materials.push_back(std::move(m));
 }
@@ -369,6 +370,7 @@ void SceneBuilder::MakeNamedMaterial(const std::string &name, ParsedParameterVec
     m.name = name;
     Observe("MakeNamedMaterial", "", params, loc);
     m.params = Params(std::move(params));
+    AddAttributes(m.params, AttributeTarget::Material);
     m.loc = loc;
     const Param *type = m.params.Find("type");
     if (!type || type->type != ParamType::String || type->strings.size() != 1)
@@ -402,6 +404,7 @@ void SceneBuilder::Texture(const std::string &name, const std::string &kind,
     t.type = type;
     Observe("Texture", type, params, loc);
     t.params = Params(std::move(params));
+    AddAttributes(t.params, AttributeTarget::Texture);
     t.loc = loc;
     t.worldFromTexture = ctm_;
     // The textures it refers to are defined already (by name, in either namespace: the
@@ -440,6 +443,7 @@ void SceneBuilder::LightSource(const std::string &type, ParsedParameterVector pa
     CheckWorld("LightSource", loc);
     LightDesc l;
     static_cast<SceneEntity &>(l) = Entity("LightSource", type, std::move(params), loc);
+    AddAttributes(l.params, AttributeTarget::Light);
     l.worldFromLight = ctm_;
     scene_.lights.push_back(std::move(l));
 }
@@ -449,6 +453,7 @@ void SceneBuilder::AreaLightSource(const std::string &type, ParsedParameterVecto
     CheckWorld("AreaLightSource", loc);
     AreaLightDesc a;
     static_cast<SceneEntity &>(a) = Entity("AreaLightSource", type, std::move(params), loc);
+    AddAttributes(a.params, AttributeTarget::Light);
     gs_.areaLight = int(scene_.areaLights.size());
     scene_.areaLights.push_back(std::move(a));
 }
@@ -458,6 +463,7 @@ void SceneBuilder::Shape(const std::string &type, ParsedParameterVector params,
     CheckWorld("Shape", loc);
     ShapeDesc s;
     static_cast<SceneEntity &>(s) = Entity("Shape", type, std::move(params), loc);
+    AddAttributes(s.params, AttributeTarget::Shape);
     // The shape's description (its transforms, names and locations, about 600 bytes) and its
     // parameters (meshes given inline as "trianglemesh" arrays) live until the render: an
     // Include fan-out of parameterless shapes is refused at the shape that does not fit.
@@ -555,13 +561,6 @@ void SceneBuilder::CSGEnd(const FileLoc &loc) {
         parent.operands.push_back({false, int(parent.children.size())});
         parent.children.push_back(std::move(node));
     }
-}
-
-void SceneBuilder::Attribute(const std::string &, ParsedParameterVector params,
-                             const FileLoc &loc) {
-    version_.Note(4, "Attribute", loc);
-    Params(std::move(params));
-    diag_.Warn(loc, "Attribute is not supported; ignored");
 }
 
 void SceneBuilder::EndOfFiles() {

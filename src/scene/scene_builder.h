@@ -5,7 +5,9 @@
 // ObjectBegin/End definitions; typed parameters are converted by MakeParamSet (paramset.h).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -102,7 +104,12 @@ class SceneBuilder final : public PbrtTarget {
         // MediumInterface: the media's names ("" none) and the directive.
         std::string mediumInside, mediumOutside;
         FileLoc mediumLoc;
+        // pbrt-v4's Attribute defaults per target (AttributeTarget), shared until changed:
+        // an AttributeBegin copies pointers, not parameters.
+        std::array<std::shared_ptr<const std::vector<Param>>, 5> attributes;
     };
+    // Attribute "shape" | "light" | "material" | "medium" | "texture".
+    enum class AttributeTarget { Shape, Light, Material, Medium, Texture };
     enum class FrameKind { Attribute, Transform, Object };
     struct Frame {
         FrameKind kind;
@@ -129,6 +136,9 @@ class SceneBuilder final : public PbrtTarget {
     // `directive` names the directive for the version detector (pbrt_version.h).
     SceneEntity Entity(const char *directive, const std::string &type, ParsedParameterVector params,
                        const FileLoc &loc);
+    // Adds the Attribute defaults of `target` that `ps` does not set itself, as pbrt-v4 looks
+    // an entity's parameters up before its attributes (scene_builder_attributes.cpp).
+    void AddAttributes(ParamSet &ps, AttributeTarget target) const;
     // Shows a directive to the version detector; an empty `type` is read from the directive's
     // "string type" parameter (MakeNamedMaterial, MakeNamedMedium).
     void Observe(const char *directive, const std::string &type,

@@ -12,6 +12,7 @@ void SceneBuilder::MakeNamedMedium(const std::string &name, ParsedParameterVecto
     m.name = name;
     Observe("MakeNamedMedium", "", params, loc);
     m.params = Params(std::move(params));
+    AddAttributes(m.params, AttributeTarget::Medium);
     m.loc = loc;
     m.worldFromMedium = ctm_;
     const Param *type = m.params.Find("type");

@@ -1,0 +1,60 @@
+// pbrt-v4's Attribute directive: default parameters for the shapes, lights (LightSource and
+// AreaLightSource), materials, media or textures that follow in the same attribute scope.
+// An entity's own parameter of the same name wins, and a later Attribute of the same name
+// replaces an earlier one (pbrt-v4 looks an entity's parameters up before its attributes, the
+// last one written first). Attributes are converted where they are written, so their
+// locations are the Attribute line's, and they are never reported unused (a "float radius"
+// default is no fault of a triangle mesh).
+#include "scene/scene_builder.h"
+
+#include "core/memory.h"
+
+namespace prism {
+
+namespace {
+
+struct TargetName {
+    const char *name;
+    int target;
+};
+constexpr TargetName kTargets[] = {{"shape", 0}, {"light", 1}, {"material", 2},
+                                   {"medium", 3}, {"texture", 4}};
+
+}  // namespace
+
+void SceneBuilder::Attribute(const std::string &target, ParsedParameterVector params,
+                             const FileLoc &loc) {
+    version_.Note(4, "Attribute", loc);
+    int index = -1;
+    for (const TargetName &t : kTargets)
+        if (target == t.name) index = t.target;
+    if (index < 0)
+        throw SceneError(loc, "unknown Attribute target " + Quote(target) +
+                                  " (expected \"shape\", \"light\", \"material\", \"medium\" or "
+                                  "\"texture\")");
+    static_assert(int(AttributeTarget::Texture) == 4);
+    Observe("Attribute", "", params, loc);
+    const ParamSet added = Params(std::move(params));
+    std::shared_ptr<const std::vector<Param>> &slot = gs_.attributes[size_t(index)];
+    ParamSet merged;
+    if (slot)
+        for (const Param &p : *slot) merged.Add(p);
+    for (const Param &p : added.Params()) {
+        merged.Add(p);
+        if (opts_.budget)
+            opts_.budget->Charge(sizeof(Param) + p.numbers.size() * 8 + p.name.size(),
+                                 "Attribute " + Quote(target), p.loc);
+    }
+    auto list = std::make_shared<std::vector<Param>>(merged.Params());
+    for (const Param &p : *list) p.lookedUp = true;
+    slot = std::move(list);
+}
+
+void SceneBuilder::AddAttributes(ParamSet &ps, AttributeTarget target) const {
+    const std::shared_ptr<const std::vector<Param>> &list = gs_.attributes[size_t(target)];
+    if (!list) return;
+    for (const Param &p : *list)
+        if (!ps.Has(p.name)) ps.Add(p);
+}
+
+}  // namespace prism

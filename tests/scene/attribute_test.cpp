@@ -1,0 +1,103 @@
+// pbrt-v4's Attribute directive (scene/scene_builder_attributes.cpp).
+#include <gtest/gtest.h>
+
+#include "scene/pbrt_parser.h"
+#include "support/errors.h"
+
+namespace prism {
+namespace {
+
+using namespace test;
+
+SceneDescription Parse(const std::string &text) {
+    Diagnostics diag;
+    return ParsePbrtString(text, "s.pbrt", diag);
+}
+
+TEST(PbrtAttribute, ShapeDefaultsAreScopedAndLoseToTheShapesOwn) {
+    SceneDescription s = Parse(R"(WorldBegin
+        AttributeBegin
+          Attribute "shape" "float radius" 2 "float zmax" 0.5
+          Shape "sphere"
+          Shape "sphere" "float radius" 3
+          Attribute "shape" "float radius" 4
+          Shape "sphere"
+        AttributeEnd
+        Shape "sphere")");
+    ASSERT_EQ(s.shapes.size(), 4u);
+    EXPECT_FLOAT_EQ(s.shapes[0].params.GetFloat("radius", 1), 2.f);
+    EXPECT_FLOAT_EQ(s.shapes[0].params.GetFloat("zmax", 1), 0.5f);
+    EXPECT_FLOAT_EQ(s.shapes[1].params.GetFloat("radius", 1), 3.f);
+    // A later Attribute replaces the earlier one's parameter of the same name, keeps the rest.
+    EXPECT_FLOAT_EQ(s.shapes[2].params.GetFloat("radius", 1), 4.f);
+    EXPECT_FLOAT_EQ(s.shapes[2].params.GetFloat("zmax", 1), 0.5f);
+    // AttributeEnd restores the defaults of before.
+    EXPECT_FALSE(s.shapes[3].params.Has("radius"));
+    // The attribute's location is the Attribute line's.
+    EXPECT_EQ(s.shapes[0].params.Find("radius")->loc.ToString(), "s.pbrt:3:29");
+    EXPECT_EQ(s.pbrtVersion.version, 4);
+}
+
+TEST(PbrtAttribute, EachTargetReachesItsOwnDirectives) {
+    SceneDescription s = Parse(R"(WorldBegin
+        Attribute "light" "float scale" 5
+        Attribute "material" "rgb reflectance" [0.1 0.2 0.3]
+        Attribute "medium" "rgb sigma_a" [1 2 3]
+        Attribute "texture" "float scale" 7
+        Attribute "shape" "float radius" 9
+        LightSource "point"
+        AreaLightSource "diffuse"
+        Material "diffuse"
+        MakeNamedMaterial "m" "string type" "conductor"
+        MakeNamedMedium "fog" "string type" "homogeneous"
+        Texture "t" "float" "checkerboard"
+        Shape "sphere")");
+    EXPECT_FLOAT_EQ(s.lights.at(0).params.GetFloat("scale", 1), 5.f);
+    EXPECT_FLOAT_EQ(s.areaLights.at(0).params.GetFloat("scale", 1), 5.f);
+    for (const MaterialDesc &m : s.materials) {
+        EXPECT_FLOAT_EQ(m.params.GetRGB("reflectance", RGB(0)).g, 0.2f);
+        EXPECT_FALSE(m.params.Has("scale"));
+        EXPECT_FALSE(m.params.Has("radius"));
+    }
+    EXPECT_FLOAT_EQ(s.media.at(0).params.GetRGB("sigma_a", RGB(0)).b, 3.f);
+    EXPECT_FLOAT_EQ(s.textures.at(0).params.GetFloat("scale", 1), 7.f);
+    EXPECT_FALSE(s.textures.at(0).params.Has("reflectance"));
+    EXPECT_FLOAT_EQ(s.shapes.at(0).params.GetFloat("radius", 1), 9.f);
+    EXPECT_FALSE(s.shapes.at(0).params.Has("scale"));
+}
+
+TEST(PbrtAttribute, DefaultsAreNeverReportedUnused) {
+    SceneDescription s = Parse(R"(WorldBegin
+        Attribute "shape" "float radius" 2
+        Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
+                             "float bogus" 1)");
+    Diagnostics diag;
+    s.shapes.at(0).params.GetPoint3s("P");
+    s.shapes.at(0).params.GetInts("indices");
+    s.shapes.at(0).params.ReportUnused(diag, "shape");
+    ASSERT_EQ(diag.Count(), 1u);  // "bogus" only
+    EXPECT_NE(diag.Warnings()[0].message.find("bogus"), std::string::npos);
+}
+
+TEST(PbrtAttribute, InstancesAndNamedMediumTypesUseThem) {
+    SceneDescription s = Parse(R"(WorldBegin
+        Attribute "medium" "string type" "homogeneous"
+        MakeNamedMedium "fog"
+        ObjectBegin "o"
+          Attribute "shape" "float radius" 0.25
+          Shape "sphere"
+        ObjectEnd
+        Shape "sphere")");
+    EXPECT_EQ(s.media.at(0).type, "homogeneous");
+    EXPECT_FLOAT_EQ(s.objects.at(0).shapes.at(0).params.GetFloat("radius", 1), 0.25f);
+    EXPECT_FALSE(s.shapes.at(0).params.Has("radius"));  // ObjectEnd closed the scope
+}
+
+TEST(PbrtAttribute, UnknownTargetIsAnErrorAtTheDirective) {
+    EXPECT_EQ(PbrtErrorOf("WorldBegin\n  Attribute \"camera\" \"float fov\" 30"),
+              "s.pbrt:2:3: error: unknown Attribute target \"camera\" (expected \"shape\", "
+              "\"light\", \"material\", \"medium\" or \"texture\")");
+}
+
+}  // namespace
+}  // namespace prism
