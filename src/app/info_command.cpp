@@ -186,9 +186,14 @@ int RunInfo(const InfoArgs &a) {
         cam.params.Has("fov")
             ? (", fov " + std::to_string(cam.params.GetFloat("fov", PbrtDefaultFovDeg))).c_str()
             : "");
-    std::printf("film:       %dx%d\n",
+    std::printf("film:       %dx%d%s\n",
                 desc.film.params.GetInt("xresolution", PbrtDefaultXResolution),
-                desc.film.params.GetInt("yresolution", PbrtDefaultYResolution));
+                desc.film.params.GetInt("yresolution", PbrtDefaultYResolution),
+                desc.film.colorSpace == ColorSpaceId::SRGB
+                    ? ""
+                    : (std::string(", linear ") + ColorSpaceName(desc.film.colorSpace) +
+                       " (the ColorSpace at its Film directive)")
+                          .c_str());
     std::printf("integrator: %s (%s)\n", built.IntegratorName(),
                 EscapeControlChars(built.integratorWhy).c_str());
     PrintEffects(built);

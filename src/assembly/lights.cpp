@@ -15,12 +15,17 @@ namespace {
 // A light's emission spectrum `name` ("I", "L"). pbrt-v4 divides a light's spectrum by its
 // photometric value: an RGB one (written "rgb" or "color", or absent: the default white) is
 // measured by the colour space's white and keeps its magnitude; any other (a blackbody, a named
-// illuminant, samples) comes out at luminance 1. pbrt-v3 uses the spectrum as it is.
-RGB EmissionSpectrum(const BuildContext &ctx, const ParamSet &ps, const char *name, RGB def) {
+// illuminant, samples) comes out at luminance 1. pbrt-v3 uses the spectrum as it is. An RGB
+// value is an emission of the colour space it was written in (core/color_space.h), and the
+// default white is the white of the light's own (`cs`).
+RGB EmissionSpectrum(const BuildContext &ctx, const ParamSet &ps, ColorSpaceId cs, const char *name,
+                     RGB def) {
     const RGB value = ps.GetRGB(name, def);
     const Param *q = ps.Find(name);
-    const bool rgb = !q || q->spelledType == "rgb" || q->spelledType == "color";
-    if (rgb || ctx.desc.pbrtVersion.version != 4) return value;
+    if (!q) return MapClipped(SRGBFromIlluminant(cs), value);
+    const bool rgb = q->spelledType == "rgb" || q->spelledType == "color";
+    if (rgb) return EmissionRGB(*q);
+    if (ctx.desc.pbrtVersion.version != 4) return value;
     const double y = value.Luminance();
     return y > 0 ? value * float(1 / y) : RGB(0);
 }
@@ -34,7 +39,7 @@ class SceneLightParams : public DirectiveParamsOf<LightParams> {
           light_(l) {}
     // Every spectrum a light reads through this is its emission ("I", "L"); "scale" is Scale().
     RGB Spectrum(const char *name, RGB def) const override {
-        return EmissionSpectrum(ctx_, ps_, name, def);
+        return EmissionSpectrum(ctx_, ps_, light_.colorSpace, name, def);
     }
     Vec3f Point3(const char *name, Vec3f def) const override { return ps_.GetPoint3(name, def); }
     RGB Scale() const override { return ScaleParam(ps_); }
@@ -96,7 +101,7 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
             "area light " + Quote(a.type) + " is not supported; shapes using it do not emit");
         return nullptr;
     }
-    RGB L = EmissionSpectrum(ctx, ps, "L", RGB(1)) * ScaleParam(ps);
+    RGB L = EmissionSpectrum(ctx, ps, a.colorSpace, "L", RGB(1)) * ScaleParam(ps);
     bool twoSided = ps.GetBool("twosided", false);
     int n = ps.GetInt("nsamples", ps.GetInt("samples", 1));
     if (ctx.settings.lightSamples > 0) n = ctx.settings.lightSamples;

@@ -229,14 +229,23 @@ void WarnIgnoredRest(const ParamSet &ps, Diagnostics &diag, std::string_view con
 uint64_t ParamStorageBytes(const ParamSet &ps) {
     uint64_t bytes = 0;
     for (const Param &p : ps.Params()) {
-        bytes += sizeof(Param) + p.name.size() + p.numbers.size() * sizeof(double) +
-                 (p.bools.size() + 7) / 8;
+        bytes += sizeof(Param) + p.name.size() +
+                 (p.numbers.size() + p.written.size()) * sizeof(double) + (p.bools.size() + 7) / 8;
         for (const std::string &s : p.strings) bytes += sizeof(std::string) + s.size();
     }
     return bytes;
 }
 
-static Param ConvertParameter(ParsedParameter &in, const SpectrumFileReader &spectrumFile) {
+RGB EmissionRGB(const Param &p, size_t i) {
+    if (p.colorSpace == ColorSpaceId::SRGB || p.written.size() < 3 * i + 3)
+        return RGB(float(p.numbers.at(3 * i)), float(p.numbers.at(3 * i + 1)),
+                   float(p.numbers.at(3 * i + 2)));
+    const RGB w(float(p.written[3 * i]), float(p.written[3 * i + 1]), float(p.written[3 * i + 2]));
+    return MapClipped(SRGBFromIlluminant(p.colorSpace), w);
+}
+
+static Param ConvertParameter(ParsedParameter &in, const SpectrumFileReader &spectrumFile,
+                              ColorSpaceId cs) {
     Param p;
     p.name = std::move(in.name);
     p.loc = std::move(in.loc);
@@ -289,6 +298,16 @@ static Param ConvertParameter(ParsedParameter &in, const SpectrumFileReader &spe
         numeric(ParamType::Normal, 3);
     } else if (type == "rgb" || type == "color") {
         numeric(ParamType::RGB, 3);
+        if (cs != ColorSpaceId::SRGB) {
+            p.colorSpace = cs;
+            p.written = p.numbers;
+            const ColorMatrix m = SRGBFromReflectance(cs);
+            for (size_t i = 0; i < p.numbers.size(); i += 3) {
+                const RGB c = MapClipped(
+                    m, RGB(float(p.numbers[i]), float(p.numbers[i + 1]), float(p.numbers[i + 2])));
+                for (int k = 0; k < 3; ++k) p.numbers[i + size_t(k)] = c[k];
+            }
+        }
     } else if (type == "xyz") {
         numeric(ParamType::RGB, 3);
         for (size_t i = 0; i < p.numbers.size(); i += 3) {
@@ -354,9 +373,10 @@ static Param ConvertParameter(ParsedParameter &in, const SpectrumFileReader &spe
     return p;
 }
 
-ParamSet MakeParamSet(ParsedParameterVector params, const SpectrumFileReader &spectrumFile) {
+ParamSet MakeParamSet(ParsedParameterVector params, const SpectrumFileReader &spectrumFile,
+                      ColorSpaceId cs) {
     ParamSet ps;
-    for (ParsedParameter &pp : params) ps.Add(ConvertParameter(pp, spectrumFile));
+    for (ParsedParameter &pp : params) ps.Add(ConvertParameter(pp, spectrumFile, cs));
     return ps;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/color.h"
+#include "core/color_space.h"
 #include "core/error.h"
 #include "core/vecmath.h"
 
@@ -41,7 +42,16 @@ struct Param {
     mutable bool lookedUp = false;
     // Spelling as written in the file ("color", "point", "blackbody", ...), for messages.
     std::string spelledType;
+    // An "rgb"/"color" parameter written under a ColorSpace other than sRGB: `numbers` hold
+    // its values mapped to sRGB as a reflectance (SRGBFromReflectance, clipped at 0) and
+    // `written` the values as written, for a light to map as an emission (EmissionRGB).
+    ColorSpaceId colorSpace = ColorSpaceId::SRGB;
+    std::vector<double> written;
 };
+
+// The sRGB emission of RGB parameter `p`'s value `i` (SRGBFromIlluminant of its colour
+// space, clipped at 0); its plain value when written in sRGB or not as RGB.
+RGB EmissionRGB(const Param &p, size_t i = 0);
 
 class ParamSet {
   public:
@@ -118,6 +128,8 @@ using SpectrumFileReader = std::function<RGB(const std::string &name, const File
 // "spectrum", "bool", "string", "texture"). Throws SceneError at the parameter for an unknown
 // type, values of the wrong kind or count, non-integral integers, ... A later parameter of the
 // same name replaces an earlier one, as in pbrt.
-ParamSet MakeParamSet(ParsedParameterVector params, const SpectrumFileReader &spectrumFile);
+// "rgb"/"color" values are read in colour space `cs` (pbrt-v4's ColorSpace; Param::colorSpace).
+ParamSet MakeParamSet(ParsedParameterVector params, const SpectrumFileReader &spectrumFile,
+                      ColorSpaceId cs = ColorSpaceId::SRGB);
 
 }  // namespace prism

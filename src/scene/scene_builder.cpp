@@ -49,15 +49,16 @@ SceneBuilder::SceneBuilder(const std::string &filename, Diagnostics &diag,
 // Parameters and entities.
 
 ParamSet SceneBuilder::Params(ParsedParameterVector params) {
-    return MakeParamSet(std::move(params), [this](const std::string &name, const FileLoc &loc) {
-        return SpectrumFile(name, loc);
-    });
+    return MakeParamSet(
+        std::move(params),
+        [this](const std::string &name, const FileLoc &loc) { return SpectrumFile(name, loc); },
+        gs_.colorSpace);
 }
 
 SceneEntity SceneBuilder::Entity(const char *directive, const std::string &type,
                                  ParsedParameterVector params, const FileLoc &loc) {
     Observe(directive, type, params, loc);
-    return SceneEntity{type, Params(std::move(params)), loc};
+    return SceneEntity{type, Params(std::move(params)), loc, gs_.colorSpace};
 }
 
 void SceneBuilder::Observe(const char *directive, const std::string &type,
@@ -331,11 +332,6 @@ void SceneBuilder::Option(ParsedParameterVector params, const FileLoc &loc) {
 
 void SceneBuilder::Import(const std::string &, const FileLoc &loc) {
     version_.Note(4, "Import", loc);
-}
-
-void SceneBuilder::ColorSpace(const std::string &, const FileLoc &loc) {
-    version_.Note(4, "ColorSpace", loc);
-    diag_.Warn(loc, "ColorSpace is not supported; using sRGB");
 }
 
 // World block.

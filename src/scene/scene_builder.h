@@ -107,6 +107,7 @@ class SceneBuilder final : public PbrtTarget {
         // pbrt-v4's Attribute defaults per target (AttributeTarget), shared until changed:
         // an AttributeBegin copies pointers, not parameters.
         std::array<std::shared_ptr<const std::vector<Param>>, 5> attributes;
+        ColorSpaceId colorSpace = ColorSpaceId::SRGB;  // pbrt-v4's ColorSpace
     };
     // Attribute "shape" | "light" | "material" | "medium" | "texture".
     enum class AttributeTarget { Shape, Light, Material, Medium, Texture };

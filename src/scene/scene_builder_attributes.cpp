@@ -1,13 +1,19 @@
-// pbrt-v4's Attribute directive: default parameters for the shapes, lights (LightSource and
+// pbrt-v4's graphics-state directives beyond pbrt-v3's: ColorSpace and Attribute.
+//
+// ColorSpace "srgb" | "rec2020" | "dci-p3" | "aces2065-1" sets the space the RGB parameters
+// that follow are written in (core/color_space.h: mapped to sRGB where they are read), scoped
+// by AttributeBegin/End as pbrt-v4's graphics state is; the Film takes the one in effect at
+// its directive as its output space.
+//
+// Attribute: default parameters for the shapes, lights (LightSource and
 // AreaLightSource), materials, media or textures that follow in the same attribute scope.
 // An entity's own parameter of the same name wins, and a later Attribute of the same name
 // replaces an earlier one (pbrt-v4 looks an entity's parameters up before its attributes, the
 // last one written first). Attributes are converted where they are written, so their
 // locations are the Attribute line's, and they are never reported unused (a "float radius"
 // default is no fault of a triangle mesh).
-#include "scene/scene_builder.h"
-
 #include "core/memory.h"
+#include "scene/scene_builder.h"
 
 namespace prism {
 
@@ -17,10 +23,20 @@ struct TargetName {
     const char *name;
     int target;
 };
-constexpr TargetName kTargets[] = {{"shape", 0}, {"light", 1}, {"material", 2},
-                                   {"medium", 3}, {"texture", 4}};
+constexpr TargetName kTargets[] = {
+    {"shape", 0}, {"light", 1}, {"material", 2}, {"medium", 3}, {"texture", 4}};
 
 }  // namespace
+
+void SceneBuilder::ColorSpace(const std::string &name, const FileLoc &loc) {
+    version_.Note(4, "ColorSpace", loc);
+    const std::optional<ColorSpaceId> cs = ColorSpaceByName(name);
+    if (!cs)
+        throw SceneError(loc, "unknown color space " + Quote(name) +
+                                  " (expected \"srgb\", \"rec2020\", \"dci-p3\" or "
+                                  "\"aces2065-1\")");
+    gs_.colorSpace = *cs;
+}
 
 void SceneBuilder::Attribute(const std::string &target, ParsedParameterVector params,
                              const FileLoc &loc) {

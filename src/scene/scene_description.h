@@ -20,6 +20,9 @@ struct SceneEntity {
     std::string type;
     ParamSet params;
     FileLoc loc;
+    // pbrt-v4's ColorSpace in effect at the directive: its RGB parameters were written in it
+    // (MakeParamSet has mapped them to sRGB), and a light's default white is its white.
+    ColorSpaceId colorSpace = ColorSpaceId::SRGB;
 };
 
 // pbrt-v3 ActiveTransform/TransformTimes: a directive's CTM at the end time, when it differs

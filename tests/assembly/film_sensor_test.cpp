@@ -92,6 +92,54 @@ TEST(FilmSensor, WhiteBalanceMatchesPbrtV4) {
     }
 }
 
+// pbrt-v4's ColorSpace: RGB values written in a space (before the Film: the film's too) on the
+// grey-plane scene, against pbrt-v4's own images (8x8, 64 spp, /tmp files of the same text).
+TEST(FilmSensor, ColorSpacesMatchPbrtV4) {
+    struct Case {
+        const char *name, *beforeFilm, *inWorld, *light, *reflectance;
+        RGB pbrt4;
+    };
+    const Case cases[] = {
+        // An ACES film under the default light (ACES's white): grey.
+        {"aces", "ColorSpace \"aces2065-1\"", "", "", "[0.5 0.5 0.5]",
+         RGB(0.158873f, 0.158995f, 0.156782f)},
+        // A Rec. 2020 reflectance on a Rec. 2020 film.
+        {"rec", "ColorSpace \"rec2020\"", "", "", "[0.6 0.3 0.2]",
+         RGB(0.191898f, 0.095342f, 0.062600f)},
+        // An ACES light (D60, warm) on an sRGB film.
+        {"acelight", "", "ColorSpace \"aces2065-1\"", "\"rgb L\" [1 1 1]", "[0.5 0.5 0.5]",
+         RGB(0.167009f, 0.158388f, 0.143182f)},
+        // An ACES reflectance under the default light (ACES's white) on an sRGB film.
+        {"acesrefl", "", "ColorSpace \"aces2065-1\"", "", "[0.3 0.2 0.1]",
+         RGB(0.161308f, 0.057221f, 0.022799f)},
+        // An sRGB reflectance on a DCI-P3 film.
+        {"p3", "ColorSpace \"dci-p3\"", "ColorSpace \"srgb\"", "", "[0.8 0.2 0.2]",
+         RGB(0.222206f, 0.069789f, 0.065676f)},
+    };
+    for (const Case &c : cases) {
+        SCOPED_TRACE(c.name);
+        std::string text = std::string(c.beforeFilm) + "\n" +
+                           "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"orthographic\" "
+                           "\"float screenwindow\" [-0.1 0.1 -0.1 0.1]\n"
+                           "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\n"
+                           "Sampler \"independent\" \"integer pixelsamples\" 64\n"
+                           "Integrator \"path\" \"integer maxdepth\" 1\nWorldBegin\n";
+        text += std::string(c.inWorld) +
+                "\nLightSource \"distant\" \"point3 from\" [0 0 1] \"point3 to\" [0 0 0] " +
+                c.light + "\n";
+        text += "Material \"diffuse\" \"rgb reflectance\" " + std::string(c.reflectance) +
+                "\nShape \"trianglemesh\" \"point3 P\" [-10 -10 0 10 -10 0 10 10 0 -10 10 0] "
+                "\"integer indices\" [0 1 2 0 2 3]\n";
+        const Built b =
+            BuildSceneFile(WriteSceneText("film_sensor", c.name, text), SizedSettings(8, 8, 64));
+        for (const Warning &w : b.warnings) ADD_FAILURE() << w.ToString();
+        const RGB m = MeanRGB(RenderOnThreads(b.scene, 1));
+        EXPECT_NEAR(m.r / c.pbrt4.r, 1, 0.02);
+        EXPECT_NEAR(m.g / c.pbrt4.g, 1, 0.02);
+        EXPECT_NEAR(m.b / c.pbrt4.b, 1, 0.05);
+    }
+}
+
 // pbrt-v4's Film "maxcomponentvalue" scales a sample down to it by its largest component,
 // after the film's scale (the plane's pixels are 0.159 each, 0.637 at ISO 400).
 TEST(FilmSensor, MaxComponentValueClampsSamplesAfterTheScale) {

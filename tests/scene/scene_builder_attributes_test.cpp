@@ -1,5 +1,7 @@
-// pbrt-v4's Attribute directive (scene/scene_builder_attributes.cpp).
+// pbrt-v4's ColorSpace and Attribute directives (scene/scene_builder_attributes.cpp).
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "scene/pbrt_parser.h"
 #include "support/errors.h"
@@ -97,6 +99,43 @@ TEST(PbrtAttribute, UnknownTargetIsAnErrorAtTheDirective) {
     EXPECT_EQ(PbrtErrorOf("WorldBegin\n  Attribute \"camera\" \"float fov\" 30"),
               "s.pbrt:2:3: error: unknown Attribute target \"camera\" (expected \"shape\", "
               "\"light\", \"material\", \"medium\" or \"texture\")");
+}
+
+TEST(PbrtColorSpace, IsScopedAndTagsWhatIsWrittenInIt) {
+    SceneDescription s = Parse(R"(ColorSpace "rec2020"
+        Film "rgb"
+        WorldBegin
+        AttributeBegin
+          ColorSpace "aces2065-1"
+          LightSource "point" "rgb I" [1 1 1]
+          Attribute "material" "rgb reflectance" [0.5 0.5 0.5]
+          ColorSpace "srgb"
+          Material "diffuse"
+          Material "diffuse" "rgb reflectance" [0.2 0.4 0.6]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [0.2 0.4 0.6])");
+    EXPECT_EQ(s.film.colorSpace, ColorSpaceId::Rec2020);
+    const LightDesc &l = s.lights.at(0);
+    EXPECT_EQ(l.colorSpace, ColorSpaceId::ACES2065_1);
+    const Param *I = l.params.Find("I");
+    EXPECT_EQ(I->colorSpace, ColorSpaceId::ACES2065_1);
+    EXPECT_EQ(I->written, (std::vector<double>{1, 1, 1}));
+    // As a reflectance a grey stays grey; as an emission ACES's white is warm in sRGB.
+    EXPECT_NEAR(l.params.GetRGB("I", RGB(0)).r, 1, 1e-4);
+    EXPECT_GT(EmissionRGB(*I).r, 1.02f);
+    // An attribute keeps the space it was written in.
+    EXPECT_EQ(s.materials.at(0).params.Find("reflectance")->colorSpace, ColorSpaceId::ACES2065_1);
+    EXPECT_EQ(s.materials.at(1).params.Find("reflectance")->colorSpace, ColorSpaceId::SRGB);
+    // Rec. 2020 again after AttributeEnd: (0.2, 0.4, 0.6) is another colour in sRGB.
+    const Param *r = s.materials.at(2).params.Find("reflectance");
+    EXPECT_EQ(r->colorSpace, ColorSpaceId::Rec2020);
+    EXPECT_GT(std::abs(r->numbers[0] - 0.2), 0.02);
+}
+
+TEST(PbrtColorSpace, UnknownNameIsAnErrorAtTheDirective) {
+    EXPECT_EQ(PbrtErrorOf("Film \"rgb\"\nColorSpace \"adobergb\""),
+              "s.pbrt:2:1: error: unknown color space \"adobergb\" (expected \"srgb\", "
+              "\"rec2020\", \"dci-p3\" or \"aces2065-1\")");
 }
 
 }  // namespace
