@@ -10,13 +10,8 @@ namespace {
 
 using namespace test;
 
-SceneDescription Parse(const std::string &text) {
-    Diagnostics diag;
-    return ParsePbrtString(text, "s.pbrt", diag);
-}
-
 TEST(CsgParse, NestedNodesKeepOperandsInOrder) {
-    SceneDescription d = Parse(R"(WorldBegin
+    SceneDescription d = ParsePbrtText(R"(WorldBegin
 Shape "sphere"
 AttributeBegin
   Translate 1 0 0

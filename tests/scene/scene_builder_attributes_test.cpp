@@ -11,13 +11,8 @@ namespace {
 
 using namespace test;
 
-SceneDescription Parse(const std::string &text) {
-    Diagnostics diag;
-    return ParsePbrtString(text, "s.pbrt", diag);
-}
-
 TEST(PbrtAttribute, ShapeDefaultsAreScopedAndLoseToTheShapesOwn) {
-    SceneDescription s = Parse(R"(WorldBegin
+    SceneDescription s = ParsePbrtText(R"(WorldBegin
         AttributeBegin
           Attribute "shape" "float radius" 2 "float zmax" 0.5
           Shape "sphere"
@@ -41,7 +36,7 @@ TEST(PbrtAttribute, ShapeDefaultsAreScopedAndLoseToTheShapesOwn) {
 }
 
 TEST(PbrtAttribute, EachTargetReachesItsOwnDirectives) {
-    SceneDescription s = Parse(R"(WorldBegin
+    SceneDescription s = ParsePbrtText(R"(WorldBegin
         Attribute "light" "float scale" 5
         Attribute "material" "rgb reflectance" [0.1 0.2 0.3]
         Attribute "medium" "rgb sigma_a" [1 2 3]
@@ -69,7 +64,7 @@ TEST(PbrtAttribute, EachTargetReachesItsOwnDirectives) {
 }
 
 TEST(PbrtAttribute, DefaultsAreNeverReportedUnused) {
-    SceneDescription s = Parse(R"(WorldBegin
+    SceneDescription s = ParsePbrtText(R"(WorldBegin
         Attribute "shape" "float radius" 2
         Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
                              "float bogus" 1)");
@@ -82,7 +77,7 @@ TEST(PbrtAttribute, DefaultsAreNeverReportedUnused) {
 }
 
 TEST(PbrtAttribute, InstancesAndNamedMediumTypesUseThem) {
-    SceneDescription s = Parse(R"(WorldBegin
+    SceneDescription s = ParsePbrtText(R"(WorldBegin
         Attribute "medium" "string type" "homogeneous"
         MakeNamedMedium "fog"
         ObjectBegin "o"
@@ -102,7 +97,7 @@ TEST(PbrtAttribute, UnknownTargetIsAnErrorAtTheDirective) {
 }
 
 TEST(PbrtColorSpace, IsScopedAndTagsWhatIsWrittenInIt) {
-    SceneDescription s = Parse(R"(ColorSpace "rec2020"
+    SceneDescription s = ParsePbrtText(R"(ColorSpace "rec2020"
         Film "rgb"
         WorldBegin
         AttributeBegin

@@ -10,4 +10,9 @@ std::string PbrtErrorOf(const std::string &text, const PbrtParseOptions &opts,
     return ErrorOf<SceneError>([&] { ParsePbrtString(text, filename, diag, opts); });
 }
 
+SceneDescription ParsePbrtText(const std::string &text) {
+    Diagnostics diag;
+    return ParsePbrtString(text, "s.pbrt", diag);
+}
+
 }  // namespace prism::test

@@ -26,4 +26,7 @@ std::string ErrorOf(F &&f) {
 std::string PbrtErrorOf(const std::string &text, const PbrtParseOptions &opts = {},
                         const std::string &filename = "s.pbrt");
 
+// The scene of pbrt text `text` as the file "s.pbrt", its warnings dropped.
+SceneDescription ParsePbrtText(const std::string &text);
+
 }  // namespace prism::test
