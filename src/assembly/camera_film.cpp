@@ -530,6 +530,27 @@ void BuildIntegratorSettings(BuildContext &ctx) {
         scene.integratorWhy =
             std::string(v4 ? "pbrt-v4" : "pbrt-v3") + "'s default: the scene names no Integrator";
     int maxDepth = ip.GetInt("maxdepth", 5);
+    // pbrt-v4's teaching integrators converge to the image of the one that stands in for them.
+    struct StandIn {
+        const char *name, *with, *why;
+    };
+    static constexpr StandIn kStandIns[] = {
+        {"simplepath", "path", "the same image, as pbrt-v4's simplepath is path without MIS"},
+        {"randomwalk", "path",
+         "the same image but for perfect mirrors and glass, which "
+         "pbrt-v4's random walk cannot follow and renders black"},
+        {"lightpath", "path",
+         "the same image but for what is seen in perfect mirrors and glass, "
+         "which pbrt-v4's light tracing cannot reach and renders black"},
+    };
+    for (const StandIn &si : kStandIns) {
+        if (name != si.name || !settings.integrator.empty()) continue;
+        diag.Warn(desc.integrator.loc, "integrator " + Quote(type) + " is rendered with " +
+                                           Quote(si.with) + ": " + si.why);
+        ip.MarkUsed("samplelights");
+        ip.MarkUsed("samplebsdf");
+        name = si.with;
+    }
     const bool known = std::find(IntegratorNames().begin(), IntegratorNames().end(), name) !=
                        IntegratorNames().end();
     if (!known) {

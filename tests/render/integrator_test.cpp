@@ -45,6 +45,25 @@ TEST(Integrator, AnUnknownIntegratorRendersWithWhittedAndSaysWhere) {
     EXPECT_TRUE(warned);
 }
 
+// pbrt-v4's teaching integrators render with the one whose image they converge to, with their
+// own parameters read (no "unused parameter" warning) and a warning that says what differs.
+TEST(Integrator, PbrtV4TeachingIntegratorsRenderWithPath) {
+    for (const char *type : {"simplepath", "randomwalk", "lightpath"}) {
+        SCOPED_TRACE(type);
+        Built b = BuildText(std::string(type) + ".pbrt",
+                            "Integrator \"" + std::string(type) +
+                                "\" \"integer maxdepth\" 3 \"bool samplelights\" false\n"
+                                "WorldBegin\nLightSource \"point\"\nShape \"sphere\"\n",
+                            4, 1);
+        EXPECT_STREQ(b.scene.IntegratorName(), "path");
+        EXPECT_EQ(b.scene.trace.maxDepth, 3);
+        ASSERT_EQ(b.warnings.size(), 1u) << b.warnings[0].ToString();
+        EXPECT_NE(b.warnings[0].message.find("is rendered with \"path\": the same image"),
+                  std::string::npos)
+            << b.warnings[0].ToString();
+    }
+}
+
 // A camera between a floor and a disk of radius 1 at height 1 above the point it sees: the disk
 // hides the cone of half-angle 45 degrees about the normal, so ambient occlusion (the integral
 // of visibility times cos over the hemisphere, pbrt-v3's convention) is pi cos^2(45) = pi / 2.
