@@ -87,8 +87,12 @@ void BuildLights(BuildContext &ctx) {
 //   nsamples (samples)  integer   1       light samples per shading point, 1 to 4096;
 //                                         --light-samples wins
 //   power               float     (none)  pbrt-v4: the radiant power; L is scaled by it over
-//                                         pi x area (x 2 two-sided)
+//                                         pi x area (x 2 two-sided); on a mesh, each
+//                                         triangle's own (each emits it, as in pbrt-v4)
 //   emissionmap         texture   (none)  Prism: L x the texture (triangle meshes)
+//   filename            string    (none)  pbrt-v4: an image of the radiance over the
+//                                         shape's (u, v) (triangle meshes), times scale;
+//                                         not with L or emissionmap
 const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int shape) {
     const SceneDescription &desc = ctx.desc;
     RenderScene &scene = ctx.scene;
@@ -101,7 +105,16 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
             "area light " + Quote(a.type) + " is not supported; shapes using it do not emit");
         return nullptr;
     }
-    RGB L = EmissionSpectrum(ctx, ps, a.colorSpace, "L", RGB(1)) * ScaleParam(ps);
+    // pbrt-v4's "filename": the image is the radiance (in sRGB, whatever the ColorSpace).
+    const std::string image = ps.GetString("filename", "");
+    if (!image.empty())
+        for (const char *other : {"L", "emissionmap"})
+            if (ps.Has(other))
+                throw SceneError(ps.Find("filename")->loc,
+                                 "area light: \"filename\" and \"" + std::string(other) +
+                                     "\" both give its radiance; give one");
+    RGB L = (image.empty() ? EmissionSpectrum(ctx, ps, a.colorSpace, "L", RGB(1)) : RGB(1)) *
+            ScaleParam(ps);
     bool twoSided = ps.GetBool("twosided", false);
     int n = ps.GetInt("nsamples", ps.GetInt("samples", 1));
     if (ctx.settings.lightSamples > 0) n = ctx.settings.lightSamples;
@@ -116,13 +129,16 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
     // WithTexCoordParams), a textured radiance L × emissionmap(uv) on triangle meshes. The
     // glTF reader writes it for emissive textures.
     TexturePtr radiance;
-    if (ps.Has("emissionmap")) {
-        radiance = WithTexCoordParams(TextureParam(ctx, ps, "emissionmap", false, RGB(1)), nullptr,
-                                      ps, "emissionmap");
+    const char *mapParam = !image.empty() ? "filename" : ps.Has("emissionmap") ? "emissionmap" : "";
+    if (*mapParam) {
+        radiance = !image.empty()
+                       ? ImageOnSurface(ctx, a, image, "filename")
+                       : WithTexCoordParams(TextureParam(ctx, ps, "emissionmap", false, RGB(1)),
+                                            nullptr, ps, "emissionmap");
         if (analytic) {
-            diag.Warn(ps.Find("emissionmap")->loc,
-                      "\"emissionmap\" is read on triangle meshes only; \"" + s.type +
-                          "\" emits its constant \"L\"");
+            diag.Warn(ps.Find(mapParam)->loc, "\"" + std::string(mapParam) +
+                                                  "\" is read on triangle meshes only; \"" +
+                                                  s.type + "\" emits a constant \"L\"");
             radiance = nullptr;
         } else if (radiance->IsConstant()) {
             L = L * static_cast<const ConstantTexture &>(*radiance).Value();
@@ -133,12 +149,20 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
                                                     n, radiance);
     // pbrt-v4's "power": L scaled so the light emits it (render/light.h PhotometricScale:
     // an RGB L keeps its magnitude). Power() is pi x area (x2 two-sided) x L's luminance, or
-    // for a textured light the sum over its triangles of area x mean radiance.
+    // for a textured light the sum over its triangles of area x mean radiance. pbrt-v4 makes
+    // each triangle of a mesh a light of its own, each emitting the power (a quad of two
+    // triangles emits twice it): so does Prism, to render pbrt-v4's image.
     if (ps.Has("power")) {
         const Param *pp = ps.Find("power");
         const float power = ps.GetFloat("power", 0);
         if (!(power >= 0) || !std::isfinite(power))
             throw SceneError(pp->loc, "area light: \"power\" must be finite and not negative");
+        if (!analytic)
+            light = std::make_unique<DiffuseAreaLight>(nullptr, scene.accel->Mesh(shape), L,
+                                                       twoSided, n, radiance, power);
+    }
+    if (ps.Has("power") && analytic) {
+        const float power = ps.GetFloat("power", 0);
         const double P = light->Power(0), y = L.Luminance();
         const double f = P > 0 && y > 0 ? double(power) / P * y : 0;
         light = std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L * float(f),

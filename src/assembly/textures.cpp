@@ -204,6 +204,35 @@ struct TextureBuilder : BuildStep {
 
 void BuildTextures(BuildContext &ctx) { TextureBuilder(ctx).Build(); }
 
+TexturePtr ImageOnSurface(BuildContext &ctx, const SceneEntity &entity, const std::string &file,
+                          const char *param) {
+    // An imagemap texture of its own, located at the parameter, through the one Create.
+    const Param *p = entity.params.Find(param);
+    const FileLoc loc = p ? p->loc : entity.loc;
+    TextureDesc t;
+    t.name = "image " + Quote(file);
+    t.type = "imagemap";
+    t.loc = loc;
+    auto add = [&](const char *name, const std::string &value) {
+        Param q;
+        q.type = ParamType::String;
+        q.name = name;
+        q.strings = {value};
+        q.loc = loc;
+        t.params.Add(std::move(q));
+    };
+    add("filename", file);
+    add("filter", "bilinear");
+    add("wrap", "clamp");
+    TextureBuilder b(ctx);
+    const TextureBuilder::SceneTextureParams params(b, t);
+    bool known = false;
+    TexturePtr tex = CreateTexture(t.type, params, t.loc, &known);
+    if (!tex) throw SceneError(loc, "image " + Quote(file) + " cannot be used as a texture");
+    if (!tex->IsConstant()) ctx.scene.features.textures = true;
+    return tex;
+}
+
 TexturePtr TextureParam(BuildContext &ctx, const ParamSet &ps, const std::string &name,
                         bool isFloat, RGB def) {
     return TextureBuilder(ctx).TexParam(ps, name, isFloat, def);

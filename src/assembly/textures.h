@@ -28,6 +28,13 @@ TexturePtr TextureParam(BuildContext &ctx, const ParamSet &ps, const std::string
 TexturePtr WithTexCoordParams(TexturePtr t, const ParamSet *primary, const ParamSet &fallback,
                               const std::string &name);
 
+// The image file `file` (named by parameter `param` of `entity`) as a texture of the (u, v) of
+// the surface it lies on, looked up as pbrt-v4 looks up an area light's image: bilinear,
+// clamped at the edges, v = 0 on the image's bottom row (as an imagemap texture's), 8-bit
+// files decoded from sRGB. Errors point at `param`.
+TexturePtr ImageOnSurface(BuildContext &ctx, const SceneEntity &entity, const std::string &file,
+                          const char *param);
+
 // Reads (once per path and encoding) the image an entity's parameter `param` names, within the
 // memory budget; errors point at that parameter.
 std::shared_ptr<const Image> LoadSceneImage(BuildContext &ctx, const SceneEntity &entity,

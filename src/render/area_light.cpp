@@ -44,7 +44,8 @@ RGB TriangleMean(const Texture &t, const TriangleMesh &mesh, size_t tri, int max
 }  // namespace
 
 DiffuseAreaLight::DiffuseAreaLight(const AnalyticShape *analytic, const TriangleMesh *mesh,
-                                   const RGB &L, bool twoSided, int nSamples, TexturePtr radiance)
+                                   const RGB &L, bool twoSided, int nSamples, TexturePtr radiance,
+                                   double powerPerTriangle)
     : analytic_(analytic),
       mesh_(mesh),
       Lemit_(L),
@@ -54,6 +55,8 @@ DiffuseAreaLight::DiffuseAreaLight(const AnalyticShape *analytic, const Triangle
     if (mesh_) {
         triangleAreas_.resize(mesh_->NumTriangles());
         std::vector<double> weights(triangleAreas_.size());
+        // The texture's mean luminance per triangle (1 untextured), for powerPerTriangle.
+        std::vector<double> meanLuminance(weights.size(), 1.0);
         // At most about MaxTextureMeanLookups texture lookups for the whole mesh.
         const int maxSide = std::clamp(int(std::sqrt(double(MaxTextureMeanLookups) /
                                                      double(std::max<size_t>(1, weights.size())))),
@@ -64,9 +67,31 @@ DiffuseAreaLight::DiffuseAreaLight(const AnalyticShape *analytic, const Triangle
             triangleAreas_[i] = 0.5 * Length(Cross(p1 - p0, p2 - p0));
             weights[i] = triangleAreas_[i];
             if (radiance_ && weights[i] > 0) {
-                const RGB mean = TriangleMean(*radiance_, *mesh_, i, maxSide) * Lemit_;
+                const RGB texMean = TriangleMean(*radiance_, *mesh_, i, maxSide);
+                const RGB mean = texMean * Lemit_;
                 weights[i] *= (double(mean.r) + mean.g + mean.b) / 3;
+                meanLuminance[i] = texMean.Luminance();
             }
+        }
+        if (powerPerTriangle > 0) {
+            // k: the luminance each triangle's power is measured by (pbrt-v4's k_e: its
+            // image's mean, or 1, as an RGB L keeps its magnitude and any other spectrum has
+            // luminance 1 already; L, with "scale", multiplies the result).
+            double areaSum = 0, lumSum = 0;
+            for (size_t i = 0; i < weights.size(); ++i) {
+                areaSum += triangleAreas_[i];
+                lumSum += triangleAreas_[i] * meanLuminance[i];
+            }
+            const double k = areaSum > 0 ? lumSum / areaSum : 0;
+            triangleScale_.resize(weights.size());
+            for (size_t i = 0; i < weights.size(); ++i) {
+                const double e = (twoSided_ ? 2 : 1) * Pi * triangleAreas_[i] * k;
+                triangleScale_[i] = e > 0 ? float(powerPerTriangle / e) : 0.f;
+                // Textured: sampled by power. Constant: by area, the radiance scaled on return.
+                if (radiance_) weights[i] *= triangleScale_[i];
+            }
+        }
+        for (size_t i = 0; i < weights.size(); ++i) {
             if (weights[i] > 0) {
                 meshArea_ += triangleAreas_[i];
                 sampledTriangles_++;
@@ -104,6 +129,7 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
         int tri = triangleWeights_.SampleDiscrete(u.x, &prob);
         if (!(prob > 0)) return false;
         ls->prim = tri;
+        Le = Emitted(tri);
         // Remap u.x within the chosen triangle's CDF interval to keep stratification.
         double uxr = Clamp((u.x - triangleWeights_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1);
         double su0 = std::sqrt(uxr);
@@ -129,7 +155,7 @@ bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSamp
             TextureContext tc{mesh_->UVAt(size_t(tri), eu, ev, 0), p,
                               mesh_->UVAt(size_t(tri), eu, ev, 1)};
             tc.n = n;
-            Le = Lemit_ * radiance_->Evaluate(tc).Clamped(0.f);
+            Le = Le * radiance_->Evaluate(tc).Clamped(0.f);
         }
     }
     Vec3f w = p - si.p;
@@ -163,6 +189,7 @@ bool DiffuseAreaLight::SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &,
         double prob;
         const int tri = triangleWeights_.SampleDiscrete(uPos.x, &prob);
         if (!(prob > 0)) return false;
+        Le = Emitted(tri);
         const double ux =
             Clamp((uPos.x - triangleWeights_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1);
         const double su0 = std::sqrt(ux), b0 = 1 - su0, b1 = uPos.y * su0;
@@ -177,7 +204,7 @@ bool DiffuseAreaLight::SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &,
             TextureContext tc{mesh_->UVAt(size_t(tri), eu, ev, 0), p,
                               mesh_->UVAt(size_t(tri), eu, ev, 1)};
             tc.n = n;
-            Le = Lemit_ * radiance_->Evaluate(tc).Clamped(0.f);
+            Le = Le * radiance_->Evaluate(tc).Clamped(0.f);
         }
     }
     // A cosine-weighted direction about n (about -n for the back of a two-sided light).
@@ -221,6 +248,12 @@ double DiffuseAreaLight::Power(double) const {
         double sum = 0;
         for (int i = 0; i < triangleWeights_.Count(); ++i) sum += triangleWeights_.Func(i);
         return (twoSided_ ? 2 : 1) * Pi * sum;
+    }
+    if (!triangleScale_.empty()) {
+        double sum = 0;  // the triangles' area x scale
+        for (size_t i = 0; i < triangleScale_.size(); ++i)
+            sum += triangleAreas_[i] * triangleScale_[i];
+        return (twoSided_ ? 2 : 1) * Pi * sum * Lemit_.Luminance();
     }
     double area = meshArea_;
     if (analytic_) {

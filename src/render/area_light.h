@@ -23,8 +23,13 @@ class DiffuseAreaLight final : public Light {
     // the triangle, finer for larger uv footprints: TextureMeanSamples); triangles whose mean
     // is black are never sampled (their light is then seen only by rays that hit them).
     // The means take at most about MaxTextureMeanLookups texture lookups per light.
+    // `powerPerTriangle` (meshes; 0: none) is pbrt-v4's "power" as pbrt-v4 gives it to a
+    // mesh, which makes each triangle a light of its own: each triangle's radiance is L times
+    // the power over pi x its area (x2 two-sided) x the area-weighted mean luminance of the
+    // texture over the mesh (1 untextured), as pbrt-v4 measures by its image's mean.
     DiffuseAreaLight(const AnalyticShape *analytic, const TriangleMesh *mesh, const RGB &L,
-                     bool twoSided, int nSamples, TexturePtr radiance = nullptr);
+                     bool twoSided, int nSamples, TexturePtr radiance = nullptr,
+                     double powerPerTriangle = 0);
     const char *Name() const override { return "area"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
     int NumSamples() const override { return nSamples_; }
@@ -39,8 +44,8 @@ class DiffuseAreaLight final : public Light {
     // AreaLight::L(intr, w)): L × the texture at the hit's uv (the hit needs NeedUV).
     RGB L(const SurfaceInteraction &si, const Vec3f &w) const {
         if (!(twoSided_ || Dot(si.n, w) > 0)) return RGB(0);
-        return radiance_ ? Lemit_ * radiance_->Evaluate(SurfaceTextureContext(si)).Clamped(0.f)
-                         : Lemit_;
+        const RGB Le = Emitted(si.prim);
+        return radiance_ ? Le * radiance_->Evaluate(SurfaceTextureContext(si)).Clamped(0.f) : Le;
     }
     bool IsArea() const override { return true; }
     // Emission: a point by SampleLi's distribution over the surface (per unit area), a
@@ -71,6 +76,13 @@ class DiffuseAreaLight final : public Light {
     double Power(double) const override;
 
   private:
+    // L, times triangle `prim`'s scale when "power" gave each triangle one.
+    RGB Emitted(int prim) const {
+        return triangleScale_.empty() || prim < 0 || size_t(prim) >= triangleScale_.size()
+                   ? Lemit_
+                   : Lemit_ * triangleScale_[size_t(prim)];
+    }
+
     const AnalyticShape *analytic_;
     const TriangleMesh *mesh_;
     RGB Lemit_;
@@ -79,6 +91,7 @@ class DiffuseAreaLight final : public Light {
     TexturePtr radiance_;
     Distribution1D triangleWeights_;  // area (× mean radiance when textured)
     std::vector<double> triangleAreas_;
+    std::vector<float> triangleScale_;  // per triangle (powerPerTriangle), or empty
     double meshArea_ = 0;
     int sampledTriangles_ = 0;
 };

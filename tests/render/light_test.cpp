@@ -230,6 +230,10 @@ RenderScene BuildLights(const std::string &name, const std::string &lights) {
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) square.SetRGB(x, y, RGB(1));
     WriteImage((dir / "square.exr").string(), square);
+    Image half(16, 8, 3);  // 2 on its left half, 0 on its right: mean 1
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x) half.SetRGB(x, y, RGB(x < 8 ? 2.f : 0.f));
+    WriteImage((dir / "half.exr").string(), half);
     Diagnostics diag(false);
     SceneDescription desc =
         LoadScene(test::WriteTestFile(dir / (name + ".pbrt"),
@@ -275,6 +279,22 @@ TEST(PhotometricLights, PowerAndIlluminanceScaleTheEmission) {
          "\"bool twosided\" true\nShape \"trianglemesh\" \"point3 P\" [0 0 0 2 0 0 2 2 0] "
          "\"integer indices\" [0 1 2]\nAttributeEnd",
          100 * y},
+        // pbrt-v4 makes each triangle of a mesh its own light, each emitting the power: a quad
+        // of two unequal triangles emits twice it.
+        {"AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 1 0.5] \"float power\" 100\n"
+         "Shape \"trianglemesh\" \"point3 P\" [0 0 0 3 0 0 3 2 0 0 2 0] "
+         "\"integer indices\" [0 1 2 0 2 3]\nAttributeEnd",
+         200 * y},
+        // pbrt-v4's image area light ("filename"): "power" measured by the image's mean.
+        {"AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"half.exr\" "
+         "\"float power\" 100\nShape \"trianglemesh\" \"point3 P\" [0 0 0 3 0 0 3 2 0 0 2 0] "
+         "\"point2 uv\" [0 0 1 0 1 1 0 1] \"integer indices\" [0 1 2 0 2 3]\nAttributeEnd",
+         200},
+        // Without "power" the image is the radiance: a mean of 1 over 6 square units, x "scale".
+        {"AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"half.exr\" "
+         "\"float scale\" 2\nShape \"trianglemesh\" \"point3 P\" [0 0 0 3 0 0 3 2 0 0 2 0] "
+         "\"point2 uv\" [0 0 1 0 1 1 0 1] \"integer indices\" [0 1 2 0 2 3]\nAttributeEnd",
+         2 * Pi * 6},
     };
     int i = 0;
     for (const Case &c : cases) {
@@ -317,6 +337,20 @@ TEST(PhotometricLights, ANegativePowerIsAnErrorAtTheParameter) {
         const std::string what = BuildError("negative", text);
         EXPECT_NE(what.find(std::string("negative.pbrt") + at), std::string::npos) << what;
         EXPECT_NE(what.find("must be finite and not negative"), std::string::npos) << what;
+    }
+}
+
+// An area light's image and its "L" (or "emissionmap") both give its radiance: an error at
+// "filename".
+TEST(PhotometricLights, AreaLightImageAndLAreAnError) {
+    for (const char *other : {"\"rgb L\" [1 1 1]", "\"rgb emissionmap\" [1 1 1]"}) {
+        const std::string message = BuildError(
+            "imageandl", std::string("AttributeBegin\nAreaLightSource \"diffuse\" ") + other +
+                             "\n  \"string filename\" \"half.exr\"\nShape \"trianglemesh\" "
+                             "\"point3 P\" [0 0 0 1 0 0 1 1 0] \"integer indices\" [0 1 2]\n"
+                             "AttributeEnd");
+        EXPECT_NE(message.find("imageandl.pbrt:4:3:"), std::string::npos) << message;
+        EXPECT_NE(message.find("both give its radiance"), std::string::npos) << message;
     }
 }
 
