@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/equal_area.h"
 #include "image/image.h"
 
 namespace prism {
@@ -22,12 +23,27 @@ RGB ImageBilerp(const Image &image, double s, double t, bool wrapS) {
 }
 
 GoniometricLight::GoniometricLight(const Transform &renderFromLight, const RGB &I,
-                                   std::shared_ptr<const Image> map)
+                                   std::shared_ptr<const Image> map, bool equalArea)
     : pos_(Vec3f(renderFromLight.Point(Vec3d(0, 0, 0)))),
       lightFromRender_(renderFromLight.Inverse()),
       I_(I),
-      map_(std::move(map)) {
+      map_(std::move(map)),
+      equalArea_(equalArea) {
     if (!map_) return;
+    if (equalArea_) {
+        // pbrt-v4 keeps the mean of each texel's R, G and B; texels are equal solid angles.
+        auto grey = std::make_shared<Image>(map_->width, map_->height, 1);
+        double sum = 0;
+        for (int y = 0; y < map_->height; ++y)
+            for (int x = 0; x < map_->width; ++x) {
+                const float g = map_->GetRGB(x, y).Average();
+                grey->At(x, y, 0) = g;
+                sum += g;
+            }
+        mapAverage_ = sum / (double(map_->width) * map_->height);
+        map_ = std::move(grey);
+        return;
+    }
     // The average over the sphere: row y spans theta in [y, y + 1] pi / h, whose share of the
     // sphere's solid angle is (cos theta0 - cos theta1) / 2.
     const int w = map_->width, h = map_->height;
@@ -42,6 +58,14 @@ GoniometricLight::GoniometricLight(const Transform &renderFromLight, const RGB &
 
 RGB GoniometricLight::Scale(const Vec3f &w) const {
     if (!map_) return RGB(1);
+    if (equalArea_) {
+        // Light space with y and z swapped, as pbrt-v4 does, then the nearest texel.
+        const Vec3d wl = Normalize(lightFromRender_.Vector(Vec3d(w)));
+        const Vec2d uv = EqualAreaSphereToSquare(Vec3d(wl.x, wl.z, wl.y));
+        const int x = Clamp(int(uv.x * map_->width), 0, map_->width - 1);
+        const int y = Clamp(int(uv.y * map_->height), 0, map_->height - 1);
+        return RGB(map_->At(x, y, 0));
+    }
     // Light space with y and z swapped: theta from +y, phi from +x toward +z (pbrt-v3).
     const Vec3d wl = Normalize(lightFromRender_.Vector(Vec3d(w)));
     const double theta = SafeACos(wl.y);
@@ -74,17 +98,37 @@ void GoniometricLight::PdfLe(const Vec3f &, const Vec3f &, const Vec3f &, const 
 }
 
 // LightSource "goniometric" (light_list.inc). Parameters:
-//   I        spectrum  1   radiant intensity (times the map)
-//   scale    spectrum  1   multiplies I
-//   mapname  string    ""  an image over the sphere of directions: column u = phi / 2 pi
-//                          (phi from the light's +x toward +z), row v = theta / pi (theta
-//                          from the light's +y, row 0 at the top); none: a point light
+//   I         spectrum  1       radiant intensity (times the map)
+//   scale     spectrum  1       multiplies I
+//   mapname   string    ""      an image over the sphere of directions: column u = phi / 2 pi
+//                               (phi from the light's +x toward +z), row v = theta / pi
+//                               (theta from the light's +y, row 0 at the top); none: a point
+//                               light
+//   filename  string    ""      pbrt-v4: a square equal-area image (core/equal_area.h) of
+//                               the light's directions with y and z swapped (+y at its
+//                               centre), looked up at the nearest texel, R, G and B
+//                               averaged; not with mapname
+//   power     float     (none)  pbrt-v4: the radiant power; I is scaled by it over 4 pi x the
+//                               map's mean
 // The light sits at the origin of its coordinate system (pbrt-v3 reads no "from").
 std::unique_ptr<Light> CreateGoniometricLight(const LightInputs &in) {
     const LightParams &p = in.params;
+    const bool equalArea = !p.String("filename", "").empty();
+    if (equalArea && !p.String("mapname", "").empty())
+        throw SceneError(p.Loc("filename"),
+                         "goniometric light: give \"mapname\" (pbrt-v3, latitude-longitude) or "
+                         "\"filename\" (pbrt-v4, equal-area), not both");
+    const std::shared_ptr<const Image> map = p.OptionalImage(equalArea ? "filename" : "mapname");
+    if (equalArea && map->width != map->height)
+        throw SceneError(p.Loc("filename"),
+                         "goniometric light \"filename\" is " + std::to_string(map->width) + "x" +
+                             std::to_string(map->height) +
+                             ": pbrt-v4's goniometric maps are square equal-area images (a "
+                             "latitude-longitude map goes in \"mapname\")");
     const RGB I = p.Spectrum("I", RGB(1)) * p.Scale();
-    const std::shared_ptr<const Image> map = p.OptionalImage("mapname");
-    return std::make_unique<GoniometricLight>(in.renderFromLight, I, map);
+    const GoniometricLight unscaled(in.renderFromLight, RGB(1), map, equalArea);
+    const RGB scaled = PhotometricScale(p, I, "power", 4 * Pi * unscaled.MapAverage(), in.loc);
+    return std::make_unique<GoniometricLight>(in.renderFromLight, scaled, map, equalArea);
 }
 
 }  // namespace prism

@@ -1,5 +1,7 @@
-// pbrt-v3's "goniometric" light: a point light whose intensity in each direction is scaled by
-// an image over the sphere of directions in latitude-longitude, the light's +y the pole.
+// pbrt's "goniometric" light: a point light whose intensity in each direction is scaled by an
+// image over the sphere of directions: pbrt-v3's "mapname" in latitude-longitude (the light's
+// +y the pole, bilinear, RGB), or pbrt-v4's "filename" in the equal-area square (the light's +y
+// at its centre, the nearest texel, the mean of its R, G and B).
 #pragma once
 
 #include <memory>
@@ -19,14 +21,17 @@ RGB ImageBilerp(const Image &image, double s, double t, bool wrapS);
 class GoniometricLight final : public Light {
   public:
     // renderFromLight: the CTM at the LightSource (the light sits at its origin). map may be
-    // null (a point light).
+    // null (a point light); `equalArea`: a square pbrt-v4 map (see above).
     GoniometricLight(const Transform &renderFromLight, const RGB &I,
-                     std::shared_ptr<const Image> map);
+                     std::shared_ptr<const Image> map, bool equalArea = false);
     const char *Name() const override { return "goniometric"; }
     bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
-    // 4 pi I times the map's average over the sphere (rows weighted by their solid angle).
+    // 4 pi I times the map's average over the sphere (latitude-longitude rows weighted by
+    // their solid angle; equal-area texels are equal).
     double Power(double) const override { return 4 * Pi * I_.Luminance() * mapAverage_; }
+    // The map's average over the sphere (1 without one): "power" is measured by it.
+    double MapAverage() const { return mapAverage_; }
     // Emission: uniform over the sphere, the radiance the map gives each direction.
     bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
                   LightLeSample *ls) const override;
@@ -40,6 +45,7 @@ class GoniometricLight final : public Light {
     Transform lightFromRender_;
     RGB I_;
     std::shared_ptr<const Image> map_;
+    bool equalArea_ = false;
     double mapAverage_ = 1;
 };
 

@@ -124,6 +124,30 @@ TEST(GoniometricLight, TheTopLeftQuadrantLightsUpAndTowardPlusZ) {
     EXPECT_NEAR(PowerFromEmission(l), Pi, 2e-3 * Pi);
 }
 
+// pbrt-v4's equal-area goniometric map ("filename"): the light's +y at the map's centre (its y
+// and z swapped, as pbrt-v4 does), -y at its corners, +x at the middle of the right edge and
+// +z at the middle of the bottom edge (rows from the top, core/equal_area.h); the nearest
+// texel, its R, G and B averaged; power over the plain mean of the texels.
+TEST(GoniometricLight, PbrtV4EqualAreaMapsPutPlusYAtTheirCentre) {
+    auto map = std::make_shared<Image>(8, 8, 3);
+    map->SetRGB(3, 3, RGB(3, 0, 0));    // next to the centre: averages to 1
+    map->SetRGB(7, 3, RGB(0, 6, 0));    // right edge, just above its middle: +x
+    map->SetRGB(3, 7, RGB(0, 0, 9));    // bottom edge, just left of its middle: +z
+    map->SetRGB(0, 0, RGB(12, 0, 0));   // a corner: -y
+    const Transform rot = RotateY(90);  // light +z to render +x
+    const GoniometricLight l(rot, RGB(1), map, true);
+    auto scale = [&](Vec3d wLight) { return l.Scale(Vec3f(rot.Vector(Normalize(wLight)))).r; };
+    EXPECT_FLOAT_EQ(scale(Vec3d(-0.01, 1, -0.01)), 1);
+    EXPECT_FLOAT_EQ(scale(Vec3d(1, 0.01, -0.01)), 2);
+    EXPECT_FLOAT_EQ(scale(Vec3d(-0.01, 0.01, 1)), 3);
+    EXPECT_FLOAT_EQ(scale(Vec3d(-0.3, -1, -0.3)), 4);
+    EXPECT_EQ(scale(Vec3d(0.3, 1, 0.3)), 0);
+    EXPECT_EQ(scale(Vec3d(-1, 0.01, -0.01)), 0);
+    EXPECT_NEAR(l.MapAverage(), 10.0 / 64, 1e-9);
+    EXPECT_NEAR(l.Power(1), 4 * Pi * 10.0 / 64, 1e-9);
+    EXPECT_NEAR(PowerFromEmission(l), l.Power(1), 5e-3 * l.Power(1));
+}
+
 // A projection light with a constant map is the point light of I times the map's value inside
 // its frustum (fov across the image's shorter side, aspect the image's) and dark outside; its
 // power is I c times the frustum's solid angle, 4 asin(sin a sin b) for half angles a, b.
@@ -262,6 +286,8 @@ TEST(PhotometricLights, PowerAndIlluminanceScaleTheEmission) {
         {"LightSource \"point\" \"rgb I\" [2 1 0.5] \"float power\" 100 \"float scale\" 3",
          300 * y},
         {"LightSource \"point\" \"blackbody I\" 3000 \"float power\" 100", 100},
+        {"LightSource \"goniometric\" \"string filename\" \"square.exr\" \"float power\" 100", 100},
+        {"LightSource \"goniometric\" \"rgb I\" [2 1 0.5] \"float power\" 100", 100 * y},
         {"LightSource \"spot\" \"rgb I\" [2 1 0.5] \"float power\" 50 \"float coneangle\" 40",
          50 * y},
         {"LightSource \"distant\" \"rgb L\" [2 1 0.5] \"float illuminance\" 10", Pi * 10 * y},
@@ -359,6 +385,10 @@ TEST(PhotometricLights, AreaLightImageAndLAreAnError) {
 TEST(PhotometricLights, EqualAreaMapMustBeSquareAndAlone) {
     const std::pair<const char *, const char *> cases[] = {
         {"LightSource \"infinite\"\n  \"string filename\" \"white.exr\"", "is 16x8"},
+        {"LightSource \"goniometric\"\n  \"string filename\" \"white.exr\"", "is 16x8"},
+        {"LightSource \"goniometric\" \"string mapname\" \"white.exr\"\n"
+         "  \"string filename\" \"square.exr\"",
+         "not both"},
         {"LightSource \"infinite\" \"string mapname\" \"white.exr\"\n"
          "  \"string filename\" \"square.exr\"",
          "not both"}};
