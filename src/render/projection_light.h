@@ -1,6 +1,7 @@
-// pbrt-v3's "projection" light: a point light that throws an image through a perspective
-// frustum along its +z, like a slide projector (the intensity of each direction is the texel
-// it passes through; none outside the frustum).
+// pbrt's "projection" light: a point light that throws an image through a perspective frustum
+// along its +z, like a slide projector (the intensity of each direction is the texel it passes
+// through; none outside the frustum). pbrt-v3's "mapname" lands upside down (row 0 along -y,
+// bilinear); pbrt-v4's "filename" upright (row 0 along +y, the nearest texel).
 #pragma once
 
 #include <memory>
@@ -17,8 +18,9 @@ class ProjectionLight final : public Light {
     // renderFromLight: the CTM at the LightSource (the light sits at its origin, looking along
     // +z); fovDeg: the frustum's angle across the image's shorter side; map may be null (a
     // square frustum of constant intensity).
+    // `upright`: pbrt-v4's reading of the map (above).
     ProjectionLight(const Transform &renderFromLight, const RGB &I,
-                    std::shared_ptr<const Image> map, double fovDeg);
+                    std::shared_ptr<const Image> map, double fovDeg, bool upright = false);
     const char *Name() const override { return "projection"; }
     bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
@@ -32,12 +34,15 @@ class ProjectionLight final : public Light {
     // The map's scale of the intensity toward render-space direction w (from the light).
     RGB Projection(const Vec3f &w) const;
     double CosTotalWidth() const { return cosTotalWidth_; }
+    // The map's luminance integrated over the frustum's solid angle: "power" is measured by it.
+    double MapIntegral() const { return mapIntegral_; }
 
   private:
     Vec3f pos_, axis_;
     Transform renderFromLight_, lightFromRender_;
     RGB I_;
     std::shared_ptr<const Image> map_;
+    bool upright_ = false;
     // The image on the plane z = 1: [-sx, sx] x [-sy, sy] (sx, sy: tan of the half angles).
     double sx_, sy_;
     double cosTotalWidth_;

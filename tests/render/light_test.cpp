@@ -193,6 +193,24 @@ TEST(ProjectionLight, TheTopLeftQuadrantLandsAtMinusXMinusY) {
     EXPECT_NEAR(l.Power(1), full.Power(1) / 4, 1e-9);
 }
 
+// pbrt-v4 throws "filename" upright: the top-left quadrant to the frustum's -x, +y corner, at
+// the nearest texel (pbrt-v4's render of scenes/pbrt4-reference/projection-upright.pbrt).
+TEST(ProjectionLight, PbrtV4ThrowsTheTopLeftQuadrantToMinusXPlusY) {
+    auto map = std::make_shared<Image>(4, 2, 3);
+    map->SetRGB(0, 0, RGB(1));
+    map->SetRGB(1, 0, RGB(3));
+    const ProjectionLight l(Transform(), RGB(1), map, 45, true);
+    auto proj = [&](double x, double y) {
+        return l.Projection(Vec3f(Normalize(Vec3d(x, y, 1)))).r;
+    };
+    EXPECT_EQ(proj(-0.6, 0.1), 1);
+    EXPECT_EQ(proj(-0.1, 0.1), 3);  // nearest: no blend across the texel's edge at x = -0.41
+    EXPECT_EQ(proj(-0.3, -0.1), 0);
+    EXPECT_EQ(proj(0.3, 0.1), 0);
+    const ProjectionLight v3(Transform(), RGB(1), map, 45);
+    EXPECT_NEAR(l.Power(1), v3.Power(1), 1e-9);  // the mirror image: the same power
+}
+
 // Both lights read their image through the assembly (relative to the scene file), and a bad
 // fov is an error at its location.
 TEST(ImageLights, TheSceneAssemblyReadsTheirMapsBesideTheScene) {
@@ -288,6 +306,10 @@ TEST(PhotometricLights, PowerAndIlluminanceScaleTheEmission) {
         {"LightSource \"point\" \"blackbody I\" 3000 \"float power\" 100", 100},
         {"LightSource \"goniometric\" \"string filename\" \"square.exr\" \"float power\" 100", 100},
         {"LightSource \"goniometric\" \"rgb I\" [2 1 0.5] \"float power\" 100", 100 * y},
+        {"LightSource \"projection\" \"string filename\" \"white.exr\" \"float power\" 100", 100},
+        {"LightSource \"projection\" \"string mapname\" \"white.exr\" \"float power\" 100 "
+         "\"float scale\" 2",
+         200},
         {"LightSource \"spot\" \"rgb I\" [2 1 0.5] \"float power\" 50 \"float coneangle\" 40",
          50 * y},
         {"LightSource \"distant\" \"rgb L\" [2 1 0.5] \"float illuminance\" 10", Pi * 10 * y},
