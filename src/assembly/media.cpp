@@ -14,8 +14,7 @@ namespace {
 // pbrt-v3's GetMediumScatteringProperties table (core/medium.cpp): σ's (reduced scattering,
 // used as σs) and σa in mm^-1, from Jensen et al. 2001, "A Practical Model for Subsurface Light
 // Transport", and Narasimhan et al. 2006, "Acquiring Scattering Properties of Participating
-// Media by Dilution". Prism includes the measured solids and the milks, coffees and juices
-// most used in scenes (not every entry of pbrt's table: docs/INTEGRATORS.md lists them).
+// Media by Dilution" (every entry of pbrt-v4's table; pbrt-v3's is a subset).
 struct MediumPreset {
     const char *name;
     RGB sigmaPrimeS, sigmaA;
@@ -45,10 +44,32 @@ const MediumPreset Presets[] = {
     {"Coke", {8.9053e-05f, 8.372e-05f, 0.f}, {0.10014f, 0.16503f, 0.2468f}},
     {"Pepsi", {6.1697e-05f, 4.2564e-05f, 0.f}, {0.091641f, 0.14158f, 0.20729f}},
     {"Sprite", {6.0306e-06f, 6.4139e-06f, 6.5504e-06f}, {0.001886f, 0.0018308f, 0.0020025f}},
+    {"Gatorade", {0.0024574f, 0.003007f, 0.0037325f}, {0.024794f, 0.019289f, 0.008878f}},
+    {"Chardonnay", {1.7982e-05f, 1.3758e-05f, 1.2023e-05f}, {0.010782f, 0.011855f, 0.023997f}},
+    {"White Zinfandel", {1.7501e-05f, 1.9069e-05f, 1.288e-05f}, {0.012072f, 0.016184f, 0.019843f}},
     {"Merlot", {2.1129e-05f, 0.f, 0.f}, {0.11632f, 0.25191f, 0.29434f}},
+    {"Budweiser Beer", {2.4356e-05f, 2.4079e-05f, 1.0564e-05f}, {0.011492f, 0.024911f, 0.057786f}},
+    {"Coors Light Beer", {5.0922e-05f, 4.301e-05f, 0.f}, {0.006164f, 0.013984f, 0.034983f}},
+    {"Clorox", {0.0024035f, 0.0031373f, 0.003991f}, {0.0033542f, 0.014892f, 0.026297f}},
     {"Apple Juice", {0.00013612f, 0.00015836f, 0.000227f}, {0.012957f, 0.023741f, 0.052184f}},
+    {"Cranberry Juice", {0.00010402f, 0.00011646f, 7.8139e-05f}, {0.039437f, 0.094223f, 0.12426f}},
     {"Grape Juice", {5.382e-05f, 0.f, 0.f}, {0.10404f, 0.23958f, 0.29325f}},
+    {"Ruby Grapefruit Juice", {0.011002f, 0.010927f, 0.011036f}, {0.085867f, 0.18314f, 0.25262f}},
+    {"White Grapefruit Juice", {0.22826f, 0.23998f, 0.32748f}, {0.0138f, 0.018831f, 0.056781f}},
     {"Shampoo", {0.0007176f, 0.0008303f, 0.0009016f}, {0.014107f, 0.045693f, 0.061717f}},
+    {"Strawberry Shampoo", {0.00015671f, 0.00015947f, 1.518e-05f}, {0.01449f, 0.05796f, 0.075823f}},
+    {"Head & Shoulders Shampoo",
+     {0.023805f, 0.028804f, 0.034306f},
+     {0.084621f, 0.15688f, 0.20365f}},
+    {"Lemon Tea Powder", {0.040224f, 0.045264f, 0.051081f}, {2.4288f, 4.5757f, 7.2127f}},
+    {"Orange Powder", {0.00015617f, 0.00017482f, 0.0001762f}, {0.001449f, 0.003441f, 0.007863f}},
+    {"Pink Lemonade Powder",
+     {0.00012103f, 0.00013073f, 0.00012528f},
+     {0.001165f, 0.002366f, 0.003195f}},
+    {"Cappuccino Powder", {1.8436f, 2.5851f, 2.1662f}, {35.844f, 49.547f, 61.084f}},
+    {"Salt Powder", {0.027333f, 0.032451f, 0.031979f}, {0.28415f, 0.3257f, 0.34148f}},
+    {"Sugar Powder", {0.00022272f, 0.00025513f, 0.000271f}, {0.012638f, 0.031051f, 0.050124f}},
+    {"Suisse Mocha Powder", {2.7979f, 3.5452f, 4.3365f}, {17.502f, 27.004f, 35.433f}},
     {"Pacific Ocean Surface Water",
      {0.0001764f, 0.00032095f, 0.00019617f},
      {0.031845f, 0.031324f, 0.030147f}},
@@ -68,22 +89,35 @@ void CheckNonNegative(const MediumDesc &m, const char *name, const RGB &v) {
                                                 "\" must be finite and not negative");
 }
 
-// MakeNamedMedium "homogeneous", "heterogeneous" (pbrt-v3's). Parameters:
-//   preset            string    ""     a measured medium of pbrt's table (its sigma_a and
-//                                      sigma_s; unknown: whole milk, with a warning)
-//   sigma_a, sigma_s  spectrum  .0011 .0024 .014, 2.55 3.21 3.77  absorption and scattering,
-//                                      per unit length (pbrt-v3's whole milk)
-//   scale             float     1      multiplies both, >= 0
-//   g                 float     0      Henyey-Greenstein asymmetry, in (-1, 1)
-//   stepsize          float     0      the single-scattering ray march's step (a Prism
-//                                      extension; 0: an eighth of the mean free path)
-//   nx, ny, nz        integer   1      heterogeneous: the density grid's size, 1 to 4096
-//   density           float[]   —      heterogeneous: nx ny nz values, x fastest; required
-//   p0, p1            point     0 0 0, 1 1 1  heterogeneous: the grid's box
+// MakeNamedMedium "homogeneous", "heterogeneous", "uniformgrid" (pbrt-v3's two, and pbrt-v4's
+// density grid read as "heterogeneous"). Parameters:
+//   preset             string    ""     a measured medium of pbrt's table (its sigma_a and
+//                                       sigma_s; unknown: the defaults, with a warning)
+//   sigma_a, sigma_s   spectrum  .0011 .0024 .014, 2.55 3.21 3.77  absorption and
+//                                       scattering, per unit length (pbrt-v3's whole milk;
+//                                       1 1 1 each for "uniformgrid" and for a file read by
+//                                       pbrt-v4's rules, as pbrt-v4)
+//   scale              float     1      multiplies both, >= 0
+//   g                  float     0      Henyey-Greenstein asymmetry, in (-1, 1)
+//   stepsize           float     0      the single-scattering ray march's step (a Prism
+//                                       extension; 0: an eighth of the mean free path)
+//   nx, ny, nz         integer   1      grids: the density grid's size, 1 to 4096
+//   density            float[]   —      grids: nx ny nz values, x fastest; required
+//   p0, p1             point     0 0 0, 1 1 1  grids: the grid's box
+//   Le                 spectrum  0      pbrt-v4's emission: read, not simulated (a warning
+//                                       when it would emit)
+//   Lescale            float     1      pbrt-v4's: read, not simulated
+//   temperature        float[]   —      pbrt-v4's: read, not simulated (a warning)
+//   temperaturescale   float     1      pbrt-v4's: read, not simulated
+//   temperatureoffset  float     0      pbrt-v4's: read, not simulated
+//   temperaturecutoff  float     0      pbrt-v4's: read, not simulated
 std::unique_ptr<Medium> MakeMedium(BuildContext &ctx, const MediumDesc &m) {
     const ParamSet &ps = m.params;
     const std::string context = "medium " + Quote(m.name);
-    RGB sigmaA = DefaultSigmaA, sigmaS = DefaultSigmaS;
+    const bool grid = m.type == "heterogeneous" || m.type == "uniformgrid";
+    const bool v4Defaults =
+        m.type == "uniformgrid" || (m.type == "homogeneous" && ctx.desc.pbrtVersion.version == 4);
+    RGB sigmaA = v4Defaults ? RGB(1) : DefaultSigmaA, sigmaS = v4Defaults ? RGB(1) : DefaultSigmaS;
     const std::string preset = ps.GetString("preset", "");
     if (!preset.empty()) {
         const MediumPreset *found = nullptr;
@@ -93,8 +127,9 @@ std::unique_ptr<Medium> MakeMedium(BuildContext &ctx, const MediumDesc &m) {
             sigmaA = found->sigmaA;
             sigmaS = found->sigmaPrimeS;
         } else {
-            ctx.diag.Warn(ParamLoc(m, "preset"), context + ": unknown preset " + Quote(preset) +
-                                                     "; using the default (whole milk)");
+            ctx.diag.Warn(ParamLoc(m, "preset"),
+                          context + ": unknown preset " + Quote(preset) + "; using the default (" +
+                              (v4Defaults ? "pbrt-v4's, 1 1 1" : "pbrt-v3's, whole milk") + ")");
         }
     }
     const float scale = ps.GetFloat("scale", 1.f);
@@ -115,17 +150,25 @@ std::unique_ptr<Medium> MakeMedium(BuildContext &ctx, const MediumDesc &m) {
     const float step = ps.GetFloat("stepsize", 0.f);
     if (!(step >= 0) || !std::isfinite(step))
         throw SceneError(ParamLoc(m, "stepsize"), context + ": \"stepsize\" must be positive");
+    // pbrt-v4's emissive media: read, not simulated.
+    const bool emits = (ps.Has("Le") && !ps.GetRGB("Le", RGB(0)).IsBlack()) ||
+                       !ps.GetFloats("temperature").empty();
+    WarnIgnored(ps,
+                {"Le", "Lescale", "temperature", "temperaturescale", "temperatureoffset",
+                 "temperaturecutoff"},
+                ctx.diag, context,
+                emits ? "Prism's media do not emit; the medium absorbs and scatters only" : "");
     std::unique_ptr<Medium> medium;
     if (m.type == "homogeneous") {
         medium = std::make_unique<HomogeneousMedium>(sigmaA, sigmaS, g, step);
-    } else if (m.type == "heterogeneous") {
+    } else if (grid) {
         const int nx = ps.GetInt("nx", 1), ny = ps.GetInt("ny", 1), nz = ps.GetInt("nz", 1);
         for (const char *n : {"nx", "ny", "nz"})
             if (ps.GetInt(n, 1) < 1 || ps.GetInt(n, 1) > 4096)
                 throw SceneError(ParamLoc(m, n),
                                  context + ": \"" + n + "\" must be 1 to 4096 grid samples");
         if (!ps.Has("density"))
-            throw SceneError(m.loc, context + ": a heterogeneous medium needs \"density\" values");
+            throw SceneError(m.loc, context + ": a grid medium needs \"density\" values");
         std::vector<float> density = ps.GetFloats("density");
         const uint64_t want = uint64_t(nx) * uint64_t(ny) * uint64_t(nz);
         if (density.size() != want)
@@ -144,15 +187,17 @@ std::unique_ptr<Medium> MakeMedium(BuildContext &ctx, const MediumDesc &m) {
         const RGB sigmaT = sigmaA + sigmaS;
         if (sigmaT.r != sigmaT.g || sigmaT.r != sigmaT.b)
             ctx.diag.Warn(m.loc, context +
-                                     ": a heterogeneous medium's extinction sigma_a + "
-                                     "sigma_s is grey; its first (red) channel is used, "
-                                     "as in pbrt-v3");
+                                     ": a grid medium's extinction sigma_a + sigma_s "
+                                     "is grey; its first (red) channel is used, as in "
+                                     "pbrt-v3");
         medium = std::make_unique<GridDensityMedium>(sigmaA, sigmaS, g, step, nx, ny, nz,
                                                      std::move(density), p0, p1,
                                                      ctx.scene.renderFromWorld * m.worldFromMedium);
     } else {
         throw SceneError(m.loc, "unknown medium type " + Quote(m.type) +
-                                    " (expected \"homogeneous\" or \"heterogeneous\")");
+                                    " (expected \"homogeneous\", \"heterogeneous\" or "
+                                    "\"uniformgrid\"; pbrt-v4's \"rgbgrid\", \"cloud\" and "
+                                    "\"nanovdb\" are not supported yet)");
     }
     ps.ReportUnused(ctx.diag, context);
     return medium;

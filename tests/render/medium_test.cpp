@@ -207,6 +207,53 @@ TEST(Medium, HeterogeneousGridPlacedByTheCtm) {
     EXPECT_NEAR(Pixel(r.image).r, std::exp(-0.8 * 0.875), 0.01);
 }
 
+// pbrt-v4's "uniformgrid" is the density grid of pbrt-v3's "heterogeneous", and a file read by
+// pbrt-v4's rules takes pbrt-v4's default coefficients (sigma_a = sigma_s = 1) where pbrt-v3
+// takes whole milk; pbrt-v4's presets are there; its emission is read and warned about.
+TEST(Medium, PbrtV4UniformGridAndDefaults) {
+    const std::string grid =
+        "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\" \"float fov\" [ 1 ]\n"
+        "WorldBegin\nAttributeBegin\nTranslate 0 0 3\n"
+        "MakeNamedMedium \"smoke\" \"string type\" \"uniformgrid\" \"rgb sigma_a\" [ 0.8 "
+        "0.8 0.8 ] \"rgb sigma_s\" [ 0 0 0 ] \"integer nx\" 2 \"integer ny\" 2 \"integer nz\" 2 "
+        "\"float density\" [ 1 1 1 1 1 1 1 1 ] \"point3 p0\" [ -5 -5 0 ] \"point3 p1\" [ 5 5 1 ]\n"
+        "AttributeEnd\nLightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nMaterial \"none\"\n"
+        "MediumInterface \"smoke\" \"\"\n" +
+        Box(-10, -10, 2, 10, 10, 5);
+    Rendered r = RenderText("uniformgrid.pbrt", grid, 1, 1, 1024);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings[0].ToString();
+    EXPECT_NEAR(Pixel(r.image).r, std::exp(-0.8 * 0.875), 0.01);
+
+    const std::string media =
+        "MakeNamedMedium \"h\" \"string type\" \"homogeneous\"\n"
+        "MakeNamedMedium \"g\" \"string type\" \"uniformgrid\" \"float density\" [ 2 ]\n"
+        "MakeNamedMedium \"p\" \"string type\" \"homogeneous\" \"string preset\" "
+        "\"Cappuccino Powder\"\n"
+        "MakeNamedMedium \"e\" \"string type\" \"homogeneous\" \"rgb Le\" [ 1 1 1 ]\n";
+    for (int version : {3, 4}) {
+        SCOPED_TRACE(version);
+        Diagnostics diag(false);
+        PbrtParseOptions opts;
+        opts.pbrtVersion = version;
+        const SceneDescription d = ParsePbrtString(media + "WorldBegin\n", "v.pbrt", diag, opts);
+        BuildSettings s = SizedSettings(1, 1, 1);
+        const RenderScene scene = BuildRenderScene(d, s, diag);
+        ASSERT_EQ(scene.media.size(), 4u);
+        const RGB h = scene.media[0]->SigmaA();
+        if (version == 4)
+            EXPECT_EQ(h, RGB(1));
+        else
+            EXPECT_NEAR(h.b, 0.014f, 1e-6);
+        EXPECT_EQ(scene.media[1]->SigmaA(), RGB(1));  // a pbrt-v4 type: pbrt-v4's defaults
+        EXPECT_NEAR(scene.media[2]->SigmaA().r, 35.844f, 1e-3);
+        bool warned = false;
+        for (const Warning &w : diag.Warnings())
+            warned |= w.message.find("\"Le\"") != std::string::npos &&
+                      w.message.find("do not emit") != std::string::npos;
+        EXPECT_TRUE(warned);
+    }
+}
+
 // The graphics state: media are named globally, MediumInterface is scoped by AttributeBegin,
 // one name is both media, and the camera takes the outside medium current at Camera.
 TEST(Medium, GraphicsState) {
