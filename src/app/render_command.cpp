@@ -278,7 +278,14 @@ ProgressFn RenderJob::Progress() {
     return [s, tty](double f) { PrintProgress(f, s->start, tty, &s->lastQuarter); };
 }
 
-void RenderJob::Write(const Image &img) {
+void RenderJob::Write(const Image &rendered) {
+    // A film in another colour space than sRGB says so in an EXR's header.
+    std::optional<Image> tagged;
+    if (s_->scene->filmChromaticities && !rendered.chromaticities) {
+        tagged = rendered;
+        tagged->chromaticities = s_->scene->filmChromaticities;
+    }
+    const Image &img = tagged ? *tagged : rendered;
     const std::string &out = s_->out;
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
     const OutputTransform outTransform = ChooseOutputTransform(s_->a, *s_->scene, linearOut, img);

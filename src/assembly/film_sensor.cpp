@@ -42,6 +42,11 @@ void BuildFilmSensor(BuildContext &ctx) {
     const std::string &type = desc.film.type;
     // The film's colour space: the ColorSpace in effect at its Film directive (pbrt-v4's).
     const ColorSpaceId cs = desc.film.colorSpace;
+    if (cs != ColorSpaceId::SRGB) {
+        const ColorSpaceChromaticities c = Chromaticities(cs);
+        ctx.scene.filmChromaticities = {float(c.r[0]), float(c.r[1]), float(c.g[0]), float(c.g[1]),
+                                        float(c.b[0]), float(c.b[1]), float(c.w[0]), float(c.w[1])};
+    }
     if (type != "rgb" && type != "gbuffer" && type != "spectral") {
         if (cs != ColorSpaceId::SRGB) ctx.scene.filmColor = ToFloat(OutputFromSRGB(cs, {}));
         return;

@@ -2,8 +2,10 @@
 // Pixel values are linear; encoding to and from files lives in image_io.h.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -40,6 +42,9 @@ struct Image {
     int width = 0, height = 0, channels = 3;
     // resize(n) leaves new values uninitialized (NoInitAllocator); assign(n, v) fills.
     PixelVector pixels;
+    // The CIE xy chromaticities of its RGB primaries and white (red x y, green, blue, white),
+    // when they are not sRGB's: an EXR output records them in its header.
+    std::optional<std::array<float, 8>> chromaticities;
 
     Image() = default;
     // Zero-filled image; channels is 1, 3 or 4 (gray, RGB, RGBA) by convention.

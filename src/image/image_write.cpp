@@ -141,7 +141,8 @@ void WriteImage(const std::string &path, const Image &img) {
         } else if (ext == ".png") {
             WritePng(out, img.width, img.height, nOut, alpha, static_cast<const uint8_t *>(data));
         } else if (ext == ".exr") {
-            WriteExr(out, img.width, img.height, nOut, alpha, static_cast<const float *>(data));
+            WriteExr(out, img.width, img.height, nOut, alpha, static_cast<const float *>(data),
+                     img.chromaticities ? &*img.chromaticities : nullptr);
         } else {
             const PrismOiioModule &module = OiioModule();
             bool isFloat = format.kind == OutKind::Float;
@@ -185,7 +186,8 @@ void WriteMultiChannelExr(const std::string &path, const Image &img,
                             img.pixels.data() + c, size_t(img.channels)});
     for (const NamedChannel &n : extra) channels.push_back({n.name, n.data, n.xStride});
     WriteImageAtomically(path, [&](AtomicOutputFile &out) {
-        WriteExrChannels(out, img.width, img.height, channels, attributes);
+        WriteExrChannels(out, img.width, img.height, channels, attributes,
+                         img.chromaticities ? &*img.chromaticities : nullptr);
     });
 }
 

@@ -7,6 +7,7 @@
 #include <ImfHeader.h>
 #include <ImfIO.h>
 #include <ImfOutputFile.h>
+#include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <png.h>
 
@@ -88,8 +89,20 @@ void WritePng(AtomicOutputFile &out, int width, int height, int channels, bool a
     out.Write(buffer.get(), size);
 }
 
+namespace {
+
+void SetChromaticities(Imf::Header &header, const std::array<float, 8> *c) {
+    if (!c) return;
+    const std::array<float, 8> &v = *c;
+    Imf::addChromaticities(header,
+                           Imf::Chromaticities(Imath::V2f(v[0], v[1]), Imath::V2f(v[2], v[3]),
+                                               Imath::V2f(v[4], v[5]), Imath::V2f(v[6], v[7])));
+}
+
+}  // namespace
+
 void WriteExr(AtomicOutputFile &out, int width, int height, int channels, bool alpha,
-              const float *data) {
+              const float *data, const std::array<float, 8> *chromaticities) {
     static const char *const kGray[] = {"Y", "A"};
     static const char *const kColor[] = {"R", "G", "B", "A"};
     bool gray = channels - (alpha ? 1 : 0) == 1;
@@ -103,6 +116,7 @@ void WriteExr(AtomicOutputFile &out, int width, int height, int channels, bool a
         // the file is the same ZIP EXR for every reader. (PIZ: 0.70 s, 9.7 MB; ZIPS: 0.36-0.40 s,
         // 6.5 MB; none: 0.05 s, 22 MB.)
         header.zipCompressionLevel() = 1;
+        SetChromaticities(header, chromaticities);
         Imf::FrameBuffer fb;
         size_t xStride = sizeof(float) * size_t(channels);
         for (int c = 0; c < channels; ++c) {
@@ -123,12 +137,14 @@ void WriteExr(AtomicOutputFile &out, int width, int height, int channels, bool a
 
 void WriteExrChannels(AtomicOutputFile &out, int width, int height,
                       const std::vector<ExrChannel> &channels,
-                      const std::vector<std::pair<std::string, std::string>> &attributes) {
+                      const std::vector<std::pair<std::string, std::string>> &attributes,
+                      const std::array<float, 8> *chromaticities) {
     ExrStream stream(out, out.TemporaryPath());
     try {
         Imf::Header header(width, height);
         header.compression() = Imf::ZIP_COMPRESSION;
         header.zipCompressionLevel() = 1;  // as in WriteExr
+        SetChromaticities(header, chromaticities);
         for (const auto &[name, value] : attributes)
             header.insert(name, Imf::StringAttribute(value));
         Imf::FrameBuffer fb;

@@ -4,6 +4,7 @@
 // AtomicOutputFile's "write error: REASON").
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -20,8 +21,9 @@ void WritePng(AtomicOutputFile &out, int width, int height, int channels, bool a
 
 // OpenEXR through the OpenEXR library: 32-bit float channels Y, YA, RGB or RGBA, ZIP
 // compression, scanlines, increasing y.
+// `chromaticities` (Image::chromaticities) go into the header when given.
 void WriteExr(AtomicOutputFile &out, int width, int height, int channels, bool alpha,
-              const float *data);
+              const float *data, const std::array<float, 8> *chromaticities = nullptr);
 
 // One float channel of a multi-channel EXR: `name` ("R", "P.X", "Z", ...), its first value and
 // the distance between a pixel's values and the next pixel's, in floats.
@@ -33,7 +35,8 @@ struct ExrChannel {
 // OpenEXR with any named float channels (ZIP, scanlines) and string attributes in the header.
 void WriteExrChannels(AtomicOutputFile &out, int width, int height,
                       const std::vector<ExrChannel> &channels,
-                      const std::vector<std::pair<std::string, std::string>> &attributes);
+                      const std::vector<std::pair<std::string, std::string>> &attributes,
+                      const std::array<float, 8> *chromaticities = nullptr);
 
 // PFM: "PF" (RGB) or "Pf" (gray), size, scale (negative = little-endian), then float rows from
 // the bottom of the image to the top.

@@ -80,6 +80,9 @@ struct RenderScene {
     // A linear map of each sample's sRGB after filmScale (row-major; pbrt-v4's white balance:
     // assembly/film_sensor.h), or none.
     std::optional<std::array<float, 9>> filmColor;
+    // The xy chromaticities (red, green, blue, white) of the film's RGB when its colour space
+    // is not sRGB (pbrt-v4's ColorSpace): written into EXR outputs.
+    std::optional<std::array<float, 8>> filmChromaticities;
     float maxSampleLuminance = Infinity;
     float maxComponentValue = Infinity;  // pbrt-v4's Film "maxcomponentvalue"
     // The sampler: spp, the pattern of the path integrators' dimensions and the seed (0: a

@@ -133,6 +133,10 @@ TEST(FilmSensor, ColorSpacesMatchPbrtV4) {
         const Built b =
             BuildSceneFile(WriteSceneText("film_sensor", c.name, text), SizedSettings(8, 8, 64));
         for (const Warning &w : b.warnings) ADD_FAILURE() << w.ToString();
+        // A film in another space than sRGB names it in its EXR header.
+        const bool srgbFilm = *c.beforeFilm == 0;
+        ASSERT_EQ(b.scene.filmChromaticities.has_value(), !srgbFilm);
+        if (std::string(c.name) == "rec") EXPECT_FLOAT_EQ((*b.scene.filmChromaticities)[0], 0.708f);
         const RGB m = MeanRGB(RenderOnThreads(b.scene, 1));
         EXPECT_NEAR(m.r / c.pbrt4.r, 1, 0.02);
         EXPECT_NEAR(m.g / c.pbrt4.g, 1, 0.02);

@@ -1,6 +1,8 @@
 // Tests for image reading/writing, sRGB curves and atomic writes.
 #include "image/image_io.h"
 
+#include <ImfInputFile.h>
+#include <ImfStandardAttributes.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -94,6 +96,31 @@ TEST_F(ImageIOTest, ExrPreservesFloatsExactly) {
         ASSERT_EQ(back.channels, c);
         EXPECT_EQ(back.pixels, img.pixels) << "channels " << c;
     }
+}
+
+// An image in another RGB space than sRGB (a pbrt-v4 ColorSpace film) names its primaries and
+// white in the EXR header, with or without named channels; an sRGB one writes none.
+TEST_F(ImageIOTest, ExrRecordsChromaticities) {
+    Image img = RandomImage(4, 3, 3, 0.f, 1.f, 7);
+    const std::string plain = Path("plain.exr");
+    WriteImage(plain, img);
+    EXPECT_FALSE(Imf::hasChromaticities(Imf::InputFile(plain.c_str()).header()));
+    img.chromaticities = {0.708f, 0.292f, 0.170f, 0.797f, 0.131f, 0.046f, 0.3127f, 0.3290f};
+    const std::string tagged = Path("rec2020.exr"), channels = Path("aov.exr");
+    WriteImage(tagged, img);
+    const std::vector<float> extra(12, 0.5f);
+    WriteMultiChannelExr(channels, img, {{"Z", extra.data(), 1}}, {});
+    for (const std::string &path : {tagged, channels}) {
+        SCOPED_TRACE(path);
+        const Imf::InputFile in(path.c_str());
+        ASSERT_TRUE(Imf::hasChromaticities(in.header()));
+        const Imf::Chromaticities c = Imf::chromaticities(in.header());
+        EXPECT_FLOAT_EQ(c.red.x, 0.708f);
+        EXPECT_FLOAT_EQ(c.green.y, 0.797f);
+        EXPECT_FLOAT_EQ(c.blue.y, 0.046f);
+        EXPECT_FLOAT_EQ(c.white.x, 0.3127f);
+    }
+    EXPECT_EQ(ReadImage(tagged).pixels, img.pixels);
 }
 
 TEST_F(ImageIOTest, PfmAndHdrRoundTrip) {
