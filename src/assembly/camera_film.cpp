@@ -570,6 +570,7 @@ void BuildIntegratorSettings(BuildContext &ctx) {
                         scene.features.effects,
                         {},
                         {}};
+    in.pbrtVersion = desc.pbrtVersion.version;
     if (!settings.integrator.empty()) {
         in.why = "--integrator " + type;
     } else {

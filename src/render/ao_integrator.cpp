@@ -12,8 +12,10 @@ namespace prism {
 inline constexpr int MaxAOSamples = 1 << 16;
 
 // Integrator "ambientocclusion", or "ao" (integrator_list.inc). Parameters:
-//   cossample  bool     true  cosine-weighted directions (else uniform over the hemisphere)
-//   nsamples   integer  64    occlusion rays per camera sample, 1 to 65536
+//   cossample    bool     true      cosine-weighted directions (else uniform over the
+//                                   hemisphere)
+//   nsamples     integer  64        occlusion rays per camera sample, 1 to 65536
+//   maxdistance  float    infinite  pbrt-v4: occluders farther away do not count
 std::unique_ptr<Integrator> CreateAOIntegrator(const IntegratorInputs &in) {
     const Params &p = in.params;
     const bool cosSample = p.Bool("cossample", true);
@@ -22,8 +24,12 @@ std::unique_ptr<Integrator> CreateAOIntegrator(const IntegratorInputs &in) {
         throw SceneError(p.Loc("nsamples"), "nsamples " + std::to_string(n) +
                                                 " out of range (1 to " +
                                                 std::to_string(MaxAOSamples) + ")");
-    p.WarnUnread("Prism's ao integrator reads cossample and nsamples");
-    return std::make_unique<AOIntegrator>(cosSample, n);
+    const float maxDistance = p.Float("maxdistance", Infinity);
+    if (!(maxDistance > 0)) throw SceneError(p.Loc("maxdistance"), "maxdistance must be positive");
+    p.WarnUnread("Prism's ao integrator reads cossample, nsamples and maxdistance");
+    // pbrt-v4 divides by pi, so that a point nothing occludes is 1.
+    const float scale = in.pbrtVersion == 4 ? float(InvPi) : 1.f;
+    return std::make_unique<AOIntegrator>(cosSample, n, maxDistance, scale);
 }
 
 IntegratorTraits AOIntegrator::Traits() const {
@@ -72,8 +78,11 @@ RGB AOIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const Pixel
         if (!(pdf > 0)) continue;
         const Vec3f wi = s * x + t * y + n * z;
         counters.shadow++;
-        if (!scene.accel->Occluded(si.SpawnRay(wi, scene.offset))) L += z / (pdf * float(count));
+        Ray occlusion = si.SpawnRay(wi, scene.offset);
+        occlusion.tMax = std::min(occlusion.tMax, maxDistance_);
+        if (!scene.accel->Occluded(occlusion)) L += z / (pdf * float(count));
     }
+    L *= scale_;
     if (direct) *direct = RGB(L);
     return RGB(L);
 }

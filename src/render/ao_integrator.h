@@ -2,8 +2,9 @@
 // surface a camera ray shades (through "none" materials) it casts nsamples rays over the
 // hemisphere of the geometric normal turned toward the viewer, cosine-weighted or uniform, and
 // returns the estimate of the integral of visibility times cos(theta) over that hemisphere, as
-// pbrt-v3 does: pi where nothing occludes, 0 for a ray that misses. Materials and lights play
-// no part.
+// pbrt-v3 does: pi where nothing occludes, 0 for a ray that misses; in a file read by pbrt-v4's
+// rules that over pi (1 where nothing occludes), as pbrt-v4 does. Occluders farther than
+// maxDistance do not count (pbrt-v4's "maxdistance"). Materials and lights play no part.
 #pragma once
 
 #include "render/integrator.h"
@@ -12,7 +13,8 @@ namespace prism {
 
 class AOIntegrator : public Integrator {
   public:
-    AOIntegrator(bool cosSample, int nSamples) : cosSample_(cosSample), nSamples_(nSamples) {}
+    AOIntegrator(bool cosSample, int nSamples, float maxDistance = Infinity, float scale = 1)
+        : cosSample_(cosSample), nSamples_(nSamples), maxDistance_(maxDistance), scale_(scale) {}
     const char *Name() const override { return "ambientocclusion"; }
     IntegratorTraits Traits() const override;
     RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, RayCounters &rc,
@@ -21,6 +23,7 @@ class AOIntegrator : public Integrator {
   private:
     bool cosSample_;
     int nSamples_;
+    float maxDistance_, scale_;
 };
 
 }  // namespace prism

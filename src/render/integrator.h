@@ -238,6 +238,7 @@ struct IntegratorInputs {
     EffectSet &effects;
     std::string why;
     FileLoc whyLoc;
+    int pbrtVersion = 3;  // the pbrt rules the file is read by (scene/pbrt_version.h)
 };
 
 // The integrator registered as `name` (integrator_list.inc), or null when none is.
