@@ -120,10 +120,15 @@ TEXCOORD = re.compile(r'WithTexCoordParams\([^;]*?"(\w+)"\)')
 ROUGHNESS = re.compile(r'ReadUVRoughness\([^;"]*?(?:"([\w.]*)")?\)')
 
 
+# ReadSphereMap(p, light) (render/light.h) reads "mapname" and "filename".
+SPHERE_MAP = re.compile(r'ReadSphereMap\(')
+
+
 def literals(text):
     """The quoted parameter names a source text can read: its literals and the names
-    WithTexCoordParams and ReadUVRoughness build."""
+    WithTexCoordParams, ReadUVRoughness and ReadSphereMap build."""
     built = ''.join(f'"{n}transform" "{n}texcoord"' for n in TEXCOORD.findall(text))
+    built += '"mapname" "filename"' * len(SPHERE_MAP.findall(text))
     built += ''.join(f'"{n}roughness" "{n}uroughness" "{n}vroughness" "remaproughness"'
                      for n in ROUGHNESS.findall(text))
     return text + built

@@ -113,18 +113,7 @@ void GoniometricLight::PdfLe(const Vec3f &, const Vec3f &, const Vec3f &, const 
 // The light sits at the origin of its coordinate system (pbrt-v3 reads no "from").
 std::unique_ptr<Light> CreateGoniometricLight(const LightInputs &in) {
     const LightParams &p = in.params;
-    const bool equalArea = !p.String("filename", "").empty();
-    if (equalArea && !p.String("mapname", "").empty())
-        throw SceneError(p.Loc("filename"),
-                         "goniometric light: give \"mapname\" (pbrt-v3, latitude-longitude) or "
-                         "\"filename\" (pbrt-v4, equal-area), not both");
-    const std::shared_ptr<const Image> map = p.OptionalImage(equalArea ? "filename" : "mapname");
-    if (equalArea && map->width != map->height)
-        throw SceneError(p.Loc("filename"),
-                         "goniometric light \"filename\" is " + std::to_string(map->width) + "x" +
-                             std::to_string(map->height) +
-                             ": pbrt-v4's goniometric maps are square equal-area images (a "
-                             "latitude-longitude map goes in \"mapname\")");
+    const auto [map, equalArea] = ReadSphereMap(p, "goniometric light");
     const RGB I = p.Spectrum("I", RGB(1)) * p.Scale();
     const GoniometricLight unscaled(in.renderFromLight, RGB(1), map, equalArea);
     const RGB scaled = PhotometricScale(p, I, "power", 4 * Pi * unscaled.MapAverage(), in.loc);

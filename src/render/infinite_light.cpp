@@ -191,18 +191,9 @@ inline constexpr int MaxInfiniteLightSamples = 4096;
 //                                     scaled by it over the map's own (pi without a map)
 std::unique_ptr<Light> CreateInfiniteLight(const LightInputs &in) {
     const LightParams &p = in.params;
-    const bool equalArea = !p.String("filename", "").empty();
-    if (equalArea && !p.String("mapname", "").empty())
-        throw SceneError(p.Loc("filename"),
-                         "infinite light: give \"mapname\" (pbrt-v3, latitude-longitude) or "
-                         "\"filename\" (pbrt-v4, equal-area), not both");
-    const std::shared_ptr<const Image> map = p.OptionalImage(equalArea ? "filename" : "mapname");
-    if (equalArea && map->width != map->height)
-        throw SceneError(p.Loc("filename"),
-                         "infinite light \"filename\" is " + std::to_string(map->width) + "x" +
-                             std::to_string(map->height) +
-                             ": pbrt-v4's environment maps are square equal-area images (a "
-                             "latitude-longitude map goes in \"mapname\")");
+    const SphereMap sphereMap = ReadSphereMap(p, "infinite light");
+    const bool equalArea = sphereMap.equalArea;
+    const std::shared_ptr<const Image> &map = sphereMap.image;
     // The map's irradiance on an upward surface. Equal-area, as pbrt-v4 computes it: each
     // texel above the horizon weighted by cos theta at its centre, times 2 pi / (w h) — half a
     // texel's solid angle, 4 pi / (w h), so pbrt-v4's map lights come out twice the

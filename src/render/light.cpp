@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "image/image.h"
+
 namespace prism {
 
 Vec3f UniformSphereDirection(Vec2f u) {
@@ -252,6 +254,24 @@ const std::vector<std::string> &LightNames() {
         return v;
     }();
     return names;
+}
+
+SphereMap ReadSphereMap(const LightParams &p, const char *light) {
+    SphereMap m;
+    m.equalArea = !p.String("filename", "").empty();
+    if (m.equalArea && !p.String("mapname", "").empty())
+        throw SceneError(p.Loc("filename"),
+                         std::string(light) +
+                             ": give \"mapname\" (pbrt-v3, latitude-longitude) or \"filename\" "
+                             "(pbrt-v4, equal-area), not both");
+    m.image = p.OptionalImage(m.equalArea ? "filename" : "mapname");
+    if (m.equalArea && m.image->width != m.image->height)
+        throw SceneError(p.Loc("filename"),
+                         std::string(light) + " \"filename\" is " + std::to_string(m.image->width) +
+                             "x" + std::to_string(m.image->height) +
+                             ": pbrt-v4's maps of directions are square equal-area images (a "
+                             "latitude-longitude map goes in \"mapname\")");
+    return m;
 }
 
 }  // namespace prism

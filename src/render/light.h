@@ -188,6 +188,16 @@ class LightParams : public Params {
 RGB PhotometricScale(const LightParams &p, const RGB &value, const char *param, double k_e,
                      const FileLoc &loc);
 
+// A light's map over the sphere of directions: pbrt-v3's "mapname" (latitude-longitude) or
+// pbrt-v4's "filename" (a square equal-area image, core/equal_area.h): the image (null
+// without either) and which it is. SceneError at "filename" when both are given or its image
+// is not square; `light` names the light in messages ("infinite light").
+struct SphereMap {
+    std::shared_ptr<const Image> image;
+    bool equalArea = false;
+};
+SphereMap ReadSphereMap(const LightParams &p, const char *light);
+
 // What a light's Create reads.
 struct LightInputs {
     const LightParams &params;

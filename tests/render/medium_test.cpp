@@ -189,20 +189,27 @@ TEST(Medium, ConstantDensityGridMatchesHomogeneous) {
     EXPECT_NEAR(t1, 4.f, 1e-5);
 }
 
+// A grid medium of type `type`, density 1 over [-5, 5]^2 x [0, 1] of its space (absorbing
+// 0.8 per unit), placed at z = 3 by the CTM, inside an invisible box the camera looks through
+// along +z at a white sky.
+std::string AbsorbingGridScene(const std::string &type) {
+    return "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\" \"float fov\" [ 1 ]\n"
+           "WorldBegin\nAttributeBegin\nTranslate 0 0 3\n"
+           "MakeNamedMedium \"smoke\" \"string type\" \"" +
+           type +
+           "\" \"rgb sigma_a\" [ 0.8 0.8 0.8 ] \"rgb sigma_s\" [ 0 0 0 ] \"integer nx\" 2 "
+           "\"integer ny\" 2 \"integer nz\" 2 \"float density\" [ 1 1 1 1 1 1 1 1 ] "
+           "\"point3 p0\" [ -5 -5 0 ] \"point3 p1\" [ 5 5 1 ]\n"
+           "AttributeEnd\nLightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nMaterial \"none\"\n"
+           "MediumInterface \"smoke\" \"\"\n" +
+           Box(-10, -10, 2, 10, 10, 5);
+}
+
 // A heterogeneous medium placed by the CTM at MakeNamedMedium, inside an invisible box: camera
 // rays through it by ratio tracking average to the grid's transmittance (density 1 with
 // pbrt-v3's half-voxel falloff at the faces along z: 1 - 1/8 of the unit depth).
 TEST(Medium, HeterogeneousGridPlacedByTheCtm) {
-    const std::string scene =
-        "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\" \"float fov\" [ 1 ]\n"
-        "WorldBegin\nAttributeBegin\nTranslate 0 0 3\n"
-        "MakeNamedMedium \"smoke\" \"string type\" \"heterogeneous\" \"rgb sigma_a\" [ 0.8 "
-        "0.8 0.8 ] \"rgb sigma_s\" [ 0 0 0 ] \"integer nx\" 2 \"integer ny\" 2 \"integer nz\" 2 "
-        "\"float density\" [ 1 1 1 1 1 1 1 1 ] \"point3 p0\" [ -5 -5 0 ] \"point3 p1\" [ 5 5 1 ]\n"
-        "AttributeEnd\nLightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nMaterial \"none\"\n"
-        "MediumInterface \"smoke\" \"\"\n" +
-        Box(-10, -10, 2, 10, 10, 5);
-    Rendered r = RenderText("grid.pbrt", scene, 1, 1, 1024);
+    Rendered r = RenderText("grid.pbrt", AbsorbingGridScene("heterogeneous"), 1, 1, 1024);
     EXPECT_TRUE(r.warnings.empty()) << r.warnings[0].ToString();
     EXPECT_NEAR(Pixel(r.image).r, std::exp(-0.8 * 0.875), 0.01);
 }
@@ -211,16 +218,7 @@ TEST(Medium, HeterogeneousGridPlacedByTheCtm) {
 // pbrt-v4's rules takes pbrt-v4's default coefficients (sigma_a = sigma_s = 1) where pbrt-v3
 // takes whole milk; pbrt-v4's presets are there; its emission is read and warned about.
 TEST(Medium, PbrtV4UniformGridAndDefaults) {
-    const std::string grid =
-        "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\" \"float fov\" [ 1 ]\n"
-        "WorldBegin\nAttributeBegin\nTranslate 0 0 3\n"
-        "MakeNamedMedium \"smoke\" \"string type\" \"uniformgrid\" \"rgb sigma_a\" [ 0.8 "
-        "0.8 0.8 ] \"rgb sigma_s\" [ 0 0 0 ] \"integer nx\" 2 \"integer ny\" 2 \"integer nz\" 2 "
-        "\"float density\" [ 1 1 1 1 1 1 1 1 ] \"point3 p0\" [ -5 -5 0 ] \"point3 p1\" [ 5 5 1 ]\n"
-        "AttributeEnd\nLightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nMaterial \"none\"\n"
-        "MediumInterface \"smoke\" \"\"\n" +
-        Box(-10, -10, 2, 10, 10, 5);
-    Rendered r = RenderText("uniformgrid.pbrt", grid, 1, 1, 1024);
+    Rendered r = RenderText("uniformgrid.pbrt", AbsorbingGridScene("uniformgrid"), 1, 1, 1024);
     EXPECT_TRUE(r.warnings.empty()) << r.warnings[0].ToString();
     EXPECT_NEAR(Pixel(r.image).r, std::exp(-0.8 * 0.875), 0.01);
 
