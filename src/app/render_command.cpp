@@ -278,26 +278,30 @@ ProgressFn RenderJob::Progress() {
     return [s, tty](double f) { PrintProgress(f, s->start, tty, &s->lastQuarter); };
 }
 
-void RenderJob::Write(const Image &rendered) {
-    // A film in another colour space than sRGB says so in an EXR's header.
-    std::optional<Image> tagged;
-    if (s_->scene->filmChromaticities && !rendered.chromaticities) {
-        tagged = rendered;
-        tagged->chromaticities = s_->scene->filmChromaticities;
-    }
-    const Image &img = tagged ? *tagged : rendered;
+void RenderJob::Write(const Image &img) {
     const std::string &out = s_->out;
     const bool linearOut = IsLinearImageExtension(LowerExtension(out));
     const OutputTransform outTransform = ChooseOutputTransform(s_->a, *s_->scene, linearOut, img);
+    // A film in another colour space than sRGB says so in an EXR's header: the image written
+    // carries its chromaticities (a copy only where none is made anyway).
+    const std::optional<std::array<float, 8>> &chroma = s_->scene->filmChromaticities;
     if (s_->aovOutput) {
         // The AOVs the render computed from its own tiles.
         Image toWrite = img;
+        if (chroma && !toWrite.chromaticities) toWrite.chromaticities = chroma;
         ApplyOutputTransform(toWrite, outTransform, true);
         s_->aovOutput->Write(out, toWrite, std::exp2(outTransform.exposure));
     } else if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
-        WriteImage(out, img);
+        if (chroma && !img.chromaticities) {
+            Image tagged = img;
+            tagged.chromaticities = chroma;
+            WriteImage(out, tagged);
+        } else {
+            WriteImage(out, img);
+        }
     } else {
         Image toWrite = img;  // --verify compares the linear render
+        if (chroma && !toWrite.chromaticities) toWrite.chromaticities = chroma;
         ApplyOutputTransform(toWrite, outTransform, linearOut);
         WriteImage(out, toWrite);
     }

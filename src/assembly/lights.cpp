@@ -145,24 +145,20 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
             radiance = nullptr;
         }
     }
-    auto light = std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L, twoSided,
-                                                    n, radiance);
     // pbrt-v4's "power": L scaled so the light emits it (render/light.h PhotometricScale:
-    // an RGB L keeps its magnitude). Power() is pi x area (x2 two-sided) x L's luminance, or
-    // for a textured light the sum over its triangles of area x mean radiance. pbrt-v4 makes
-    // each triangle of a mesh a light of its own, each emitting the power (a quad of two
-    // triangles emits twice it): so does Prism, to render pbrt-v4's image.
-    if (ps.Has("power")) {
-        const Param *pp = ps.Find("power");
-        const float power = ps.GetFloat("power", 0);
-        if (!(power >= 0) || !std::isfinite(power))
-            throw SceneError(pp->loc, "area light: \"power\" must be finite and not negative");
-        if (!analytic)
-            light = std::make_unique<DiffuseAreaLight>(nullptr, scene.accel->Mesh(shape), L,
-                                                       twoSided, n, radiance, power);
-    }
-    if (ps.Has("power") && analytic) {
-        const float power = ps.GetFloat("power", 0);
+    // an RGB L keeps its magnitude). pbrt-v4 makes each triangle of a mesh a light of its own,
+    // each emitting the power (a quad of two triangles emits twice it): so does Prism, to
+    // render pbrt-v4's image, by giving the mesh's light the power per triangle.
+    const bool hasPower = ps.Has("power");
+    const float power = ps.GetFloat("power", 0);
+    if (hasPower && (!(power >= 0) || !std::isfinite(power)))
+        throw SceneError(ps.Find("power")->loc,
+                         "area light: \"power\" must be finite and not negative");
+    auto light = std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L, twoSided,
+                                                    n, radiance, analytic ? 0.0 : double(power));
+    // An analytic shape's L is scaled by the power over Power(): pi x area (x2 two-sided) x L's
+    // luminance.
+    if (hasPower && analytic) {
         const double P = light->Power(0), y = L.Luminance();
         const double f = P > 0 && y > 0 ? double(power) / P * y : 0;
         light = std::make_unique<DiffuseAreaLight>(analytic, scene.accel->Mesh(shape), L * float(f),

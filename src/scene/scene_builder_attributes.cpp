@@ -12,21 +12,14 @@
 // last one written first). Attributes are converted where they are written, so their
 // locations are the Attribute line's, and they are never reported unused (a "float radius"
 // default is no fault of a triangle mesh).
+#include <algorithm>
+#include <iterator>
+#include <utility>
+
 #include "core/memory.h"
 #include "scene/scene_builder.h"
 
 namespace prism {
-
-namespace {
-
-struct TargetName {
-    const char *name;
-    int target;
-};
-constexpr TargetName kTargets[] = {
-    {"shape", 0}, {"light", 1}, {"material", 2}, {"medium", 3}, {"texture", 4}};
-
-}  // namespace
 
 void SceneBuilder::ColorSpace(const std::string &name, const FileLoc &loc) {
     version_.Note(4, "ColorSpace", loc);
@@ -41,17 +34,21 @@ void SceneBuilder::ColorSpace(const std::string &name, const FileLoc &loc) {
 void SceneBuilder::Attribute(const std::string &target, ParsedParameterVector params,
                              const FileLoc &loc) {
     version_.Note(4, "Attribute", loc);
-    int index = -1;
-    for (const TargetName &t : kTargets)
-        if (target == t.name) index = t.target;
-    if (index < 0)
+    static constexpr std::pair<const char *, AttributeTarget> kTargets[] = {
+        {"shape", AttributeTarget::Shape},
+        {"light", AttributeTarget::Light},
+        {"material", AttributeTarget::Material},
+        {"medium", AttributeTarget::Medium},
+        {"texture", AttributeTarget::Texture}};
+    const auto *found = std::find_if(std::begin(kTargets), std::end(kTargets),
+                                     [&](const auto &t) { return target == t.first; });
+    if (found == std::end(kTargets))
         throw SceneError(loc, "unknown Attribute target " + Quote(target) +
                                   " (expected \"shape\", \"light\", \"material\", \"medium\" or "
                                   "\"texture\")");
-    static_assert(int(AttributeTarget::Texture) == 4);
     Observe("Attribute", "", params, loc);
     const ParamSet added = Params(std::move(params));
-    std::shared_ptr<const std::vector<Param>> &slot = gs_.attributes[size_t(index)];
+    std::shared_ptr<const std::vector<Param>> &slot = gs_.attributes[size_t(found->second)];
     ParamSet merged;
     if (slot)
         for (const Param &p : *slot) merged.Add(p);
