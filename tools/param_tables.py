@@ -137,7 +137,7 @@ def literals(text):
 # Parameters every directive of a kind shares are read once, by the scene assembly: a table's
 # name may be read there instead of in its own file.
 SHARED = {
-    "Integrator": ["src/assembly/camera_film.cpp",      # maxdepth
+    "Integrator": ["src/assembly/sampler_integrator.cpp",  # maxdepth
                    "src/render/path_integrator.cpp"],   # path's reader, volpath's too
     "LightSource": ["src/assembly/build_context.h"],    # scale (LightParams::Scale)
     "AreaLightSource": ["src/assembly/build_context.h"],  # scale (ScaleParam)

@@ -64,6 +64,20 @@ TEST(Integrator, PbrtV4TeachingIntegratorsRenderWithPath) {
     }
 }
 
+// pbrt-v4's simplevolpath (delta tracking without light sampling) converges to volpath's image
+// wherever pbrt-v4 renders one.
+TEST(Integrator, PbrtV4SimpleVolPathRendersWithVolpath) {
+    Built b = BuildText("simplevolpath.pbrt",
+                        "Integrator \"simplevolpath\" \"integer maxdepth\" 7\n"
+                        "WorldBegin\nLightSource \"infinite\"\nShape \"sphere\"\n",
+                        4, 1);
+    EXPECT_STREQ(b.scene.IntegratorName(), "volpath");
+    EXPECT_EQ(b.scene.trace.maxDepth, 7);
+    ASSERT_EQ(b.warnings.size(), 1u);
+    EXPECT_NE(b.warnings[0].message.find("is rendered with \"volpath\""), std::string::npos)
+        << b.warnings[0].ToString();
+}
+
 // A camera between a floor and a disk of radius 1 at height 1 above the point it sees: the disk
 // hides the cone of half-angle 45 degrees about the normal, so ambient occlusion (the integral
 // of visibility times cos over the hemisphere, pbrt-v3's convention) is pi cos^2(45) = pi / 2.
