@@ -1,6 +1,7 @@
 #include "assembly/textures.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <stdexcept>
 
@@ -62,10 +63,13 @@ struct TextureBuilder : BuildStep {
     }
 
     std::shared_ptr<const Image> LoadImage(const SceneEntity &t, const std::string &file,
-                                           ReadImageOptions::Encoding enc, const char *param) {
+                                           ReadImageOptions::Encoding enc, const char *param,
+                                           float gamma = 1) {
         int embedded = EmbeddedImageIndex(file);
         std::string path = embedded >= 0 ? file : ResolveScenePath(desc, file);
         std::string key = path + "#" + std::to_string(int(enc));
+        if (enc == ReadImageOptions::Encoding::Gamma)
+            key += "^" + std::to_string(std::bit_cast<uint32_t>(gamma));
         auto it = ctx.imageCache.find(key);
         if (it != ctx.imageCache.end()) return it->second;
         const Param *p = t.params.Find(param);
@@ -73,6 +77,7 @@ struct TextureBuilder : BuildStep {
         const std::string what = "texture " + Quote(file);
         ReadImageOptions ro;
         ro.encoding = enc;
+        ro.gamma = gamma;
         // The decoder refuses images larger than what remains of the budget before allocating.
         ro.maxPixels = int64_t(std::min<uint64_t>(budget.Remaining() / sizeof(float), INT64_MAX));
         // Refused under --confine with the name as the scene wrote it.
@@ -145,11 +150,12 @@ struct TextureBuilder : BuildStep {
             return TextureMapping3D{(b_.scene.renderFromWorld * t_.worldFromTexture).Inverse()};
         }
         std::shared_ptr<const Image> LoadImage(const char *param, const std::string &file,
-                                               Encoding enc) const override {
+                                               Encoding enc, float gamma) const override {
             const auto e = enc == Encoding::SRGB     ? ReadImageOptions::Encoding::SRGB
                            : enc == Encoding::Linear ? ReadImageOptions::Encoding::Linear
+                           : enc == Encoding::Gamma  ? ReadImageOptions::Encoding::Gamma
                                                      : ReadImageOptions::Encoding::Auto;
-            return b_.LoadImage(t_, file, e, param);
+            return b_.LoadImage(t_, file, e, param, gamma);
         }
         void Charge(size_t bytes, const std::string &what, const char *param) const override {
             b_.budget.Charge(bytes, what, Loc(param));

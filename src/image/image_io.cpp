@@ -205,6 +205,17 @@ Image DecodeOpened(ImageDecoder &in, const ReadImageOptions &opts,
                              : SrgbToLinear(v);
             }
         }
+    } else if (opts.encoding == ReadImageOptions::Encoding::Gamma && integer) {
+        std::array<float, 256> table;
+        for (size_t k = 0; k < 256; ++k)
+            table[k] = float(std::pow(double(k) / 255.0, double(opts.gamma)));
+        for (size_t i = 0; i < buf.size(); i += size_t(nRead)) {
+            for (int c = 0; c < nColor; ++c) {
+                float &v = buf[i + size_t(c)];
+                v = eightBit ? table[size_t(std::clamp(std::lround(v * 255.f), 0L, 255L))]
+                             : std::pow(std::max(v, 0.f), opts.gamma);
+            }
+        }
     }
 
     Image img;

@@ -17,9 +17,11 @@ namespace prism {
 struct ReadImageOptions {
     // Auto: 8/16-bit integer files (PNG, JPEG, TGA, ...) are sRGB-encoded, float files (EXR,
     // HDR, PFM) are linear. Linear/SRGB force the interpretation of integer files; float files
-    // are always linear unless SRGB is forced.
-    enum class Encoding { Auto, Linear, SRGB };
+    // are always linear unless SRGB is forced. Gamma: integer files' values v in [0, 1] are
+    // v^gamma (pbrt-v4's "gamma G" encoding), float files linear.
+    enum class Encoding { Auto, Linear, SRGB, Gamma };
     Encoding encoding = Encoding::Auto;
+    float gamma = 1;
     // Upper bound on width * height * channels, checked before any pixel memory is allocated;
     // more is a MemoryBudgetError (core/memory.h) "image is too large: ...".
     int64_t maxPixels = int64_t(1) << 28;

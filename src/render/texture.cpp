@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "geometry/interaction.h"
 #include "image/image.h"
@@ -385,7 +386,7 @@ TexturePtr CreateCheckerboardTexture(const TextureParams &p, const FileLoc &loc)
 //   invert                  bool           false    1 - the texel
 //   gamma                   bool           —        true: sRGB, false: linear (default: sRGB for
 //                                                   8-bit files)
-//   encoding                string         —        (v4) "sRGB" or "linear"
+//   encoding                string         —        (v4) "sRGB", "linear" or "gamma G" (v^G)
 //   filter                  string         "ewa"    ewa | trilinear | bilinear | point
 //   trilinear               bool           false    (v3) trilinear instead of EWA
 //   maxanisotropy           float          8        EWA's longest ellipse axis over its shortest
@@ -411,12 +412,23 @@ TexturePtr CreateImageTexture(const TextureParams &p, const FileLoc &loc) {
     Enc enc = Enc::Auto;
     if (p.Has("gamma")) enc = p.Bool("gamma", false) ? Enc::SRGB : Enc::Linear;
     const std::string encoding = p.String("encoding", "");
-    if (encoding == "sRGB")
+    float gamma = 1;
+    if (encoding == "sRGB") {
         enc = Enc::SRGB;
-    else if (encoding == "linear")
+    } else if (encoding == "linear") {
         enc = Enc::Linear;
-    else if (!encoding.empty())
-        p.WarnIgnored("encoding", "only \"sRGB\" and \"linear\" are read");
+    } else if (encoding == "gamma" || encoding.rfind("gamma ", 0) == 0) {
+        // pbrt-v4's "gamma G": an 8- or 16-bit value v in [0, 1] means v^G.
+        const std::string g = encoding.size() > 6 ? encoding.substr(6) : "";
+        char *end = nullptr;
+        gamma = std::strtof(g.c_str(), &end);
+        if (g.empty() || *end != '\0' || !(gamma > 0) || !std::isfinite(gamma))
+            throw SceneError(p.Loc("encoding"), "imagemap \"encoding\" " + Quote(encoding) +
+                                                    ": the gamma must be a positive number");
+        enc = Enc::Gamma;
+    } else if (!encoding.empty()) {
+        p.WarnIgnored("encoding", "only \"sRGB\", \"linear\" and \"gamma G\" are read");
+    }
     const TextureFilter filter = p.Filter();
     float maxAniso = p.Float("maxanisotropy", 8.f);
     if (!(maxAniso >= 1)) {
@@ -431,7 +443,7 @@ TexturePtr CreateImageTexture(const TextureParams &p, const FileLoc &loc) {
                                            std::to_string(int(kMaxAnisotropy)));
         maxAniso = kMaxAnisotropy;
     }
-    std::shared_ptr<const Image> img = p.LoadImage("filename", file, enc);
+    std::shared_ptr<const Image> img = p.LoadImage("filename", file, enc, gamma);
     // Prism extension for cut-outs (glTF baseColor alpha, OBJ map_d): a float texture of the
     // image's "alpha" channel (1 without one), or "alphaorluminance".
     const bool f = p.IsFloat();

@@ -262,7 +262,8 @@ class MarbleTexture final : public Texture {
 // texture-valued parameters, spectra, the mappings, and image loading for image maps.
 class TextureParams : public Params {
   public:
-    enum class Encoding { Auto, SRGB, Linear };   // of 8-bit images (Auto: by the file type)
+    // Of 8- and 16-bit images: Auto by the file type, Gamma v^gamma (LoadImage's gamma).
+    enum class Encoding { Auto, SRGB, Linear, Gamma };
     virtual bool IsFloat() const = 0;             // a "float" (not "spectrum") texture
     virtual const std::string &Name() const = 0;  // the texture's name, for messages
     // A texture-valued parameter ("tex1", "amount"): a named texture of that kind, or a value,
@@ -278,7 +279,7 @@ class TextureParams : public Params {
     // budget), a charge to the budget for a copy of it, its MIP pyramid (cached), and the
     // lookup filter the command line and the texture ask for.
     virtual std::shared_ptr<const Image> LoadImage(const char *param, const std::string &file,
-                                                   Encoding enc) const = 0;
+                                                   Encoding enc, float gamma) const = 0;
     virtual void Charge(size_t bytes, const std::string &what, const char *param) const = 0;
     virtual std::shared_ptr<const MIPMap> Mip(const std::shared_ptr<const Image> &image,
                                               WrapMode wrap, const std::string &file,

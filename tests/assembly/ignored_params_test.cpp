@@ -9,6 +9,7 @@
 #include "assembly/build_scene.h"
 #include "image/image_io.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
 #include "support/shared.h"
 
 namespace fs = std::filesystem;
@@ -190,24 +191,26 @@ TEST(IgnoredParams, CheckerboardClosedForm) {
 }
 
 // The imagemap's "filter", "trilinear" and "maxanisotropy" are honoured (docs/MATERIALS.md);
-// an unknown filter warns, and so does an encoding other than sRGB or linear.
+// an unknown filter warns, and so does an encoding other than sRGB, linear or "gamma G".
 TEST(IgnoredParams, ImageMapFilteringAndEncoding) {
     Image img(2, 2, 3);
     WriteImage((ScratchDir() / "tex.png").string(), img);
     const std::string tex =
         "Texture \"t%\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\"\n"
         "    \"string filter\" \"ewa\" \"bool trilinear\" \"true\" \"float maxanisotropy\" 16\n"
-        "    \"string encoding\" \"gamma 2.2\"\n";
+        "    \"string encoding\" \"log\"\n";
     std::string text = World;
     for (char c : {'1', '2'}) {
         std::string t = tex;
         t[t.find('%')] = c;
         text += t;
     }
-    // Honoured: pbrt-v4's bilinear filter and sRGB/linear encodings.
+    // Honoured: pbrt-v4's bilinear filter and sRGB, linear and gamma encodings.
     text +=
         "Texture \"b\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\" "
         "\"string filter\" \"bilinear\" \"string encoding\" \"linear\"\n"
+        "Texture \"g\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\" "
+        "\"string encoding\" \"gamma 2.2\"\n"
         "Texture \"u\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\" "
         "\"string filter\" \"mitchell\"\n"
         "Material \"matte\" \"texture Kd\" \"t1\"\nShape \"sphere\"\n";
@@ -216,6 +219,26 @@ TEST(IgnoredParams, ImageMapFilteringAndEncoding) {
     ExpectOneWarning(w, file, text, "\"mitchell\"", "\"string filter\" \"mitchell\"");
     ExpectOneWarning(w, file, text, "\"encoding\"", "\"string encoding\"");
     EXPECT_EQ(w.size(), 2u);
+}
+
+// A "gamma G" encoding whose G is not a positive number is an error at the parameter.
+TEST(IgnoredParams, ImageMapBadGammaIsAnError) {
+    Image img(2, 2, 3);
+    WriteImage((ScratchDir() / "tex.png").string(), img);
+    for (const char *g : {"gamma", "gamma x", "gamma -1", "gamma 2.2x", "gamma inf"}) {
+        SCOPED_TRACE(g);
+        const std::string text =
+            std::string(World) +
+            "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\"\n"
+            "    \"string encoding\" \"" +
+            g +
+            "\"\n"
+            "Material \"matte\" \"texture Kd\" \"t\"\nShape \"sphere\"\n";
+        fs::path file;
+        const std::string what = ErrorOf<SceneError>([&] { BuildWarnings("gamma", text, &file); });
+        EXPECT_NE(what.find(LocOf(file, text, "\"string encoding\"")), std::string::npos) << what;
+        EXPECT_NE(what.find("the gamma must be a positive number"), std::string::npos) << what;
+    }
 }
 
 TEST(IgnoredParams, WhittedSceneWarnsAboutNothing) {

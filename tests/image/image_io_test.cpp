@@ -207,10 +207,16 @@ TEST_F(ImageIOTest, EncodingOverride) {
     ReadImageOptions linear;
     linear.encoding = ReadImageOptions::Encoding::Linear;
     EXPECT_NEAR(ReadImage(Path("g.png"), linear).At(0, 0, 0), 128 / 255.f, 1e-6f);
-    // Float files are linear under Auto.
+    // pbrt-v4's "gamma G": the code's value to the power G.
+    ReadImageOptions gamma;
+    gamma.encoding = ReadImageOptions::Encoding::Gamma;
+    gamma.gamma = 2.2f;
+    EXPECT_NEAR(ReadImage(Path("g.png"), gamma).At(0, 0, 0), std::pow(128 / 255.f, 2.2f), 1e-6f);
+    // Float files are linear under Auto, and under Gamma.
     img.At(0, 0, 0) = 0.5f;
     WriteImage(Path("g.exr"), img);
     EXPECT_EQ(ReadImage(Path("g.exr")).At(0, 0, 0), 0.5f);
+    EXPECT_EQ(ReadImage(Path("g.exr"), gamma).At(0, 0, 0), 0.5f);
 }
 
 TEST_F(ImageIOTest, RowOrderIsPreserved) {
