@@ -6,6 +6,7 @@
 
 #include "core/file_io.h"
 #include "core/memory.h"
+#include "geometry/bilinear_patch.h"
 #include "geometry/heightfield.h"
 #include "geometry/loop_subdiv.h"
 #include "geometry/nurbs_patch.h"
@@ -112,6 +113,11 @@ ShapeGeometry TriangleMeshShape(const ShapeDesc &s, const Transform &renderFromO
     return g;
 }
 
+// Whether the shape is an area light whose brightness is pbrt-v4's "power".
+bool EmitsByPower(const ShapeFactoryContext &ctx, const ShapeDesc &s) {
+    return s.areaLight >= 0 && ctx.desc.areaLights[size_t(s.areaLight)].params.Has("power");
+}
+
 // Shape "plymesh" (pbrt-v3's). Parameters:
 //   filename  string  ""  the PLY file (ASCII or binary, with normals and uv when it has
 //                         them), relative to the scene; required
@@ -132,6 +138,21 @@ ShapeGeometry PlyMeshShape(const ShapeDesc &s, const Transform &renderFromObject
     ShapeGeometry g;
     g.mesh = MakeMesh(s, renderFromObject, ply.P, ply.indices, ply.N, ply.uv, budget, 0);
     budget.Release(plyBytes);
+    // pbrt-v4 reads a quad as one bilinear patch: an emitter's "power" is per quad.
+    if (EmitsByPower(ctx, s) && !ply.quadFirst.empty()) {
+        std::vector<uint32_t> first;
+        first.reserve(g.mesh->NumTriangles() - ply.quadFirst.size());
+        size_t q = 0;
+        for (uint32_t t = 0; t < g.mesh->NumTriangles(); ++t) {
+            first.push_back(t);
+            if (q < ply.quadFirst.size() && ply.quadFirst[q] == t) {
+                ++q;
+                ++t;  // the quad's second triangle
+            }
+        }
+        budget.Charge(first.size() * sizeof(uint32_t), "shape \"plymesh\"", s.loc);
+        g.mesh->SetPatches(std::move(first));
+    }
     return g;
 }
 
@@ -328,6 +349,60 @@ ShapeGeometry HeightfieldShape(const ShapeDesc &s, const Transform &renderFromOb
     return g;
 }
 
+// Shape "bilinearmesh" (pbrt-v4's): bilinear patches tessellated into triangles within 2e-4
+// of each patch's size (geometry/bilinear_patch.h). Parameters:
+//   P                 point3[]   —   the vertices; required
+//   indices           integer[]  —   four per patch (p00, p10, p01, p11); required unless P
+//                                    has exactly 4 points
+//   N                 normal[]   —   shading normals, one per vertex
+//   uv                point2[]   —   texture coordinates, one per vertex (default: each
+//                                    patch's (u, v))
+//   faceIndices       integer[]  —   ptex face indices: not used (no ptex)
+//   emissionfilename  string     ""  pbrt-v4 samples an emitting patch by this image: a choice
+//                                    of sampling density only, so the image is the same;
+//                                    Prism samples by area
+ShapeGeometry BilinearMeshShape(const ShapeDesc &s, const Transform &renderFromObject,
+                                Diagnostics &diag, MemoryBudget &budget) {
+    const ParamSet &ps = s.params;
+    BilinearMesh m;
+    m.P = ps.GetPoint3s("P");
+    m.indices = ps.GetInts("indices");
+    if (m.indices.empty() && m.P.size() == 4) m.indices = {0, 1, 2, 3};
+    m.N = ps.GetNormals("N");
+    m.uv = ps.GetPoint2s("uv");
+    WarnIgnored(ps, {"faceIndices"}, diag, "bilinearmesh", "face indices are not used (no ptex)");
+    ps.MarkUsed("emissionfilename");
+    std::vector<int> segments;
+    try {
+        ValidateBilinearMesh(m);
+        segments = BilinearSegments(m);
+    } catch (const PatchParamError &e) {
+        throw SceneError(ParamLoc(s, e.param), e.what());
+    }
+    // The tessellation's arrays, checked against the budget before they are made.
+    const uint64_t triangles = BilinearTriangles(segments);
+    uint64_t vertices = 0;
+    for (int n : segments) vertices += uint64_t(n + 1) * uint64_t(n + 1);
+    const uint64_t arrays =
+        vertices * (2 * sizeof(Vec3f) + sizeof(Vec2f)) + 3 * triangles * sizeof(int);
+    budget.Check(arrays + TriangleMesh::Bytes(vertices, 3 * triangles, true, true),
+                 "shape \"bilinearmesh\"", s.loc);
+    const PatchMesh t = TessellateBilinearMesh(m, segments);
+    ShapeGeometry g;
+    g.mesh = MakeMesh(s, renderFromObject, t.P, t.indices, t.N, t.uv, budget,
+                      ArrayBytes(t.P, t.indices, t.N, t.uv));
+    // Each patch is one pbrt-v4 shape (an emitter's "power" is per patch).
+    std::vector<uint32_t> first(segments.size());
+    uint32_t next = 0;
+    for (size_t k = 0; k < segments.size(); ++k) {
+        first[k] = next;
+        next += uint32_t(2 * segments[k] * segments[k]);
+    }
+    budget.Charge(first.size() * sizeof(uint32_t), "shape \"bilinearmesh\"", s.loc);
+    g.mesh->SetPatches(std::move(first));
+    return g;
+}
+
 // Shape "curve" (pbrt-v3's; docs/FORMAT.md "Curves"), as Embree's native Bézier curves.
 // Parameters:
 //   P               point[]   —         control points: degree n + 1 for bezier, n + degree
@@ -446,6 +521,7 @@ ShapeGeometry CreateShapeGeometry(const ShapeDesc &s, const Transform &renderFro
     if (s.type == "nurbs") return NurbsShape(s, renderFromObject, ctx, budget);
     if (s.type == "heightfield") return HeightfieldShape(s, renderFromObject, budget);
     if (s.type == "curve") return CurveShape(s, renderFromObject, ctx, budget);
+    if (s.type == "bilinearmesh") return BilinearMeshShape(s, renderFromObject, ctx.diag, budget);
     ctx.diag.WarnOnce("shape:" + s.type, s.loc,
                       "shape \"" + s.type + "\" is not supported; every such shape is skipped");
     s.params.MarkAllUsed();

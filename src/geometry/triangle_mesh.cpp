@@ -51,6 +51,17 @@ TriangleMesh::TriangleMesh(const Transform &renderFromObject, bool reverseOrient
     }
 }
 
+void TriangleMesh::SetPatches(std::vector<uint32_t> first) {
+    for (size_t k = 0; k < first.size(); ++k) {
+        const bool ok = k == 0 ? first[0] == 0 : first[k] > first[k - 1];
+        if (!ok || first[k] >= NumTriangles())
+            throw std::invalid_argument("patch " + std::to_string(k) +
+                                        " does not start after the one before it within the " +
+                                        std::to_string(NumTriangles()) + " triangles");
+    }
+    patchFirst_ = std::move(first);
+}
+
 void TriangleMesh::SetMotionSteps(const std::vector<Transform> &stepFromStart) {
     stepPositions_.clear();
     stepNormals_.clear();

@@ -32,7 +32,7 @@ class TriangleMesh {
     }
     uint64_t MemoryBytes() const {
         return Bytes(NumVertices(), indices_.size(), HasNormals(), HasUV()) +
-               uv1_.size() * sizeof(Vec2f);
+               uv1_.size() * sizeof(Vec2f) + patchFirst_.size() * sizeof(uint32_t);
     }
 
     size_t NumTriangles() const { return indices_.size() / 3; }
@@ -79,6 +79,13 @@ class TriangleMesh {
     void SetUV1(std::vector<Vec2f> uv1);
     bool HasUV1() const { return !uv1_.empty(); }
     bool FlipNormals() const { return flipNormals_; }
+    // pbrt-v4's shapes that Prism made into several triangles (a bilinear patch, a PLY quad):
+    // patch k is triangles [first[k], first[k + 1]) (the last to the end); an emitter's
+    // "power" is given to each patch, as pbrt-v4 gives it to each of its shapes. Empty: each
+    // triangle is its own. Throws std::invalid_argument unless first[0] == 0 and the firsts
+    // increase strictly below NumTriangles().
+    void SetPatches(std::vector<uint32_t> first);
+    const std::vector<uint32_t> &PatchFirstTriangles() const { return patchFirst_; }
     Bounds3f RenderBounds() const;
 
     // The uv at Embree barycentrics (u, v) of triangle `prim` (pbrt's (0,0), (1,0), (1,1)
@@ -118,8 +125,9 @@ class TriangleMesh {
     std::vector<uint32_t> indices_;
     std::vector<Vec3f> normals_;
     std::vector<Vec2f> uv_;
-    std::vector<Vec2f> uv1_;       // second texture coordinate set (may be empty)
-    std::vector<Vec3f> tangents_;  // render space, unit (or zero)
+    std::vector<Vec2f> uv1_;            // second texture coordinate set (may be empty)
+    std::vector<uint32_t> patchFirst_;  // SetPatches (may be empty)
+    std::vector<Vec3f> tangents_;       // render space, unit (or zero)
     std::vector<Vec3f> bitangents_;
     // Bitangents from tangents_, the vertex normals (or the angle-weighted face normals) and
     // each vertex's sign.

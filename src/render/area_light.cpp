@@ -83,9 +83,19 @@ DiffuseAreaLight::DiffuseAreaLight(const AnalyticShape *analytic, const Triangle
                 lumSum += triangleAreas_[i] * meanLuminance[i];
             }
             const double k = areaSum > 0 ? lumSum / areaSum : 0;
+            // Each pbrt-v4 shape emits the power: a triangle, or a patch of several
+            // (TriangleMesh::SetPatches), whose triangles share its area.
+            std::vector<double> shapeArea(triangleAreas_);
+            const std::vector<uint32_t> &first = mesh_->PatchFirstTriangles();
+            for (size_t p = 0; p < first.size(); ++p) {
+                const size_t end = p + 1 < first.size() ? first[p + 1] : weights.size();
+                double a = 0;
+                for (size_t i = first[p]; i < end; ++i) a += triangleAreas_[i];
+                for (size_t i = first[p]; i < end; ++i) shapeArea[i] = a;
+            }
             triangleScale_.resize(weights.size());
             for (size_t i = 0; i < weights.size(); ++i) {
-                const double e = (twoSided_ ? 2 : 1) * Pi * triangleAreas_[i] * k;
+                const double e = (twoSided_ ? 2 : 1) * Pi * shapeArea[i] * k;
                 triangleScale_[i] = e > 0 ? float(powerPerTriangle / e) : 0.f;
                 // Textured: sampled by power. Constant: by area, the radiance scaled on return.
                 if (radiance_) weights[i] *= triangleScale_[i];

@@ -26,7 +26,9 @@ class DiffuseAreaLight final : public Light {
     // `powerPerTriangle` (meshes; 0: none) is pbrt-v4's "power" as pbrt-v4 gives it to a
     // mesh, which makes each triangle a light of its own: each triangle's radiance is L times
     // the power over pi x its area (x2 two-sided) x the area-weighted mean luminance of the
-    // texture over the mesh (1 untextured), as pbrt-v4 measures by its image's mean.
+    // texture over the mesh (1 untextured), as pbrt-v4 measures by its image's mean. A patch of
+    // triangles (TriangleMesh::SetPatches: a bilinear patch, a PLY quad) is one light: its
+    // area is the patch's.
     DiffuseAreaLight(const AnalyticShape *analytic, const TriangleMesh *mesh, const RGB &L,
                      bool twoSided, int nSamples, TexturePtr radiance = nullptr,
                      double powerPerTriangle = 0);

@@ -419,6 +419,7 @@ void ReadFaces(const PlyElement &e, DataReader &r, uint64_t nVertices, PlyMesh &
             continue;
         }
         if (face.size() > 4) ++stats.fanned;
+        if (face.size() == 4) mesh.quadFirst.push_back(uint32_t(mesh.indices.size() / 3));
         for (size_t j = 1; j + 1 < face.size(); ++j) {
             mesh.indices.push_back(face[0]);
             mesh.indices.push_back(face[j]);

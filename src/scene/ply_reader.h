@@ -13,9 +13,10 @@
 namespace prism {
 
 struct PlyMesh {
-    std::vector<Vec3f> P, N;   // N is empty unless every vertex has nx ny nz
-    std::vector<Vec2f> uv;     // empty unless every vertex has u v (or s t, texture_u ...)
-    std::vector<int> indices;  // triangles; quads are split, larger polygons fanned
+    std::vector<Vec3f> P, N;          // N is empty unless every vertex has nx ny nz
+    std::vector<Vec2f> uv;            // empty unless every vertex has u v (or s t, texture_u ...)
+    std::vector<int> indices;         // triangles; quads are split, larger polygons fanned
+    std::vector<uint32_t> quadFirst;  // the first of the two triangles of each quad, ascending
 };
 
 class MemoryBudget;

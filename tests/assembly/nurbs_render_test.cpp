@@ -2,7 +2,9 @@
 // image) renders lit; its uv is the parametric (u, v) (a checkerboard over a patch whose u runs
 // to 2 repeats twice as often); a rational quarter cylinder's silhouette is the circle's; a
 // nurbs area light emits; instances of a patch appear; a moving patch blurs where the static
-// one does not; a heightfield's triangles are split and shaded as pbrt-v3 shades them.
+// one does not; a heightfield's triangles are split and shaded as pbrt-v3 shades them; a
+// pbrt-v4 bilinearmesh renders lit, emits from the side pbrt-v4's orientation rule gives, and
+// a bad one is an error at its parameter.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +13,7 @@
 #include "assembly/build_scene.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "support/errors.h"
 #include "support/image_stats.h"
 #include "support/shared.h"
 #include "support/temp_dir.h"
@@ -207,6 +210,40 @@ TEST_F(NurbsRender, HeightfieldSplitAndFlatShading) {
     EXPECT_NEAR(r.image.At(30, 5, 0), 0.0, 1e-4);   // world (0.24, 0.86): z = x side
     EXPECT_NEAR(r.image.At(5, 30, 0), lit, 1e-3);   // world (0.86, 0.24): z = y side
     EXPECT_NEAR(r.image.At(12, 28, 0), lit, 1e-3);  // flat: the same value all over
+}
+
+TEST_F(NurbsRender, BilinearMeshRendersAndEmitsFromItsFront) {
+    // The unit square as one patch: dp/du = +x, dp/dv = +y, so it faces +z, the light and the
+    // camera.
+    const std::string patch = "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n";
+    Result r = RenderText("blp", TopView("Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\n" + patch));
+    for (const Warning &w : r.warnings) ADD_FAILURE() << w.ToString();
+    EXPECT_NEAR(MeanChannel(r.image, 0), 0.5, 0.01);
+    // A one-sided emitter (black, so the distant light adds nothing): L toward the camera;
+    // reversed, it faces away and the camera sees nothing.
+    const std::string light =
+        "Material \"matte\" \"rgb Kd\" [0 0 0]\n"
+        "AreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n";
+    Result front = RenderText("blp_front", TopView(light + patch));
+    EXPECT_NEAR(MeanChannel(front.image, 0), 2.0, 0.01);
+    Result back = RenderText("blp_back", TopView("ReverseOrientation\n" + light + patch));
+    EXPECT_NEAR(MeanChannel(back.image, 0), 0.0, 1e-6);
+    // A saddle is tessellated finely and shaded smoothly: no two neighbouring pixels of its
+    // centre row differ by a facet's step.
+    Result saddle = RenderText(
+        "saddle", TopView("Material \"matte\" \"rgb Kd\" [1 1 1]\nShape \"bilinearmesh\" "
+                          "\"point3 P\" [0 0 -0.3  1 0 0.3  0 1 0.3  1 1 -0.3]\n"));
+    for (int x = 1; x < 40; ++x)
+        EXPECT_LT(std::abs(saddle.image.At(x, 20, 0) - saddle.image.At(x - 1, 20, 0)), 0.03f) << x;
+}
+
+TEST_F(NurbsRender, BadBilinearMeshIsAnErrorAtItsParameter) {
+    const std::string text = TopView(
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n"
+        "  \"integer indices\" [0 1 2 4]\n");
+    const std::string what = test::ErrorOf<SceneError>([&] { RenderText("blp_bad", text); });
+    EXPECT_NE(what.find("blp_bad.pbrt:9:3: "), std::string::npos) << what;
+    EXPECT_NE(what.find("vertex index 4 out of range"), std::string::npos) << what;
 }
 
 }  // namespace

@@ -276,6 +276,12 @@ RenderScene BuildLights(const std::string &name, const std::string &lights) {
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 16; ++x) half.SetRGB(x, y, RGB(x < 8 ? 2.f : 0.f));
     WriteImage((dir / "half.exr").string(), half);
+    // A quad (one pbrt-v4 bilinear patch) and a triangle.
+    test::WriteTestFile(dir / "quadtri.ply",
+                        "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\n"
+                        "property float y\nproperty float z\nelement face 2\n"
+                        "property list uchar int vertex_indices\nend_header\n"
+                        "0 0 0\n3 0 0\n3 2 0\n0 2 0\n5 0 0\n4 0 1 2 3\n3 1 4 2\n");
     Diagnostics diag(false);
     SceneDescription desc =
         LoadScene(test::WriteTestFile(dir / (name + ".pbrt"),
@@ -332,6 +338,17 @@ TEST(PhotometricLights, PowerAndIlluminanceScaleTheEmission) {
         {"AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 1 0.5] \"float power\" 100\n"
          "Shape \"trianglemesh\" \"point3 P\" [0 0 0 3 0 0 3 2 0 0 2 0] "
          "\"integer indices\" [0 1 2 0 2 3]\nAttributeEnd",
+         200 * y},
+        // pbrt-v4's bilinear patches are a light each, however finely Prism tessellates them:
+        // a flat patch and a saddle (hundreds of triangles) emit twice the power.
+        {"AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 1 0.5] \"float power\" 100\n"
+         "Shape \"bilinearmesh\" \"point3 P\" [0 0 0 3 0 0 0 2 0 3 2 0  5 0 0 7 0 1 5 2 1 7 2 0] "
+         "\"integer indices\" [0 1 2 3 4 5 6 7]\nAttributeEnd",
+         200 * y},
+        // So is each quad of a PLY file (pbrt-v4 reads it as a bilinear patch), beside a
+        // triangle.
+        {"AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 1 0.5] \"float power\" 100\n"
+         "Shape \"plymesh\" \"string filename\" \"quadtri.ply\"\nAttributeEnd",
          200 * y},
         // pbrt-v4's image area light ("filename"): "power" measured by the image's mean.
         {"AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"half.exr\" "
