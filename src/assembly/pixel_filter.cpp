@@ -7,14 +7,17 @@
 
 namespace prism {
 
-// PixelFilter "box", "gaussian", "triangle", "mitchell" (pbrt-v3's and pbrt-v4's; without a
+// PixelFilter "box", "gaussian", "triangle", "mitchell", "sinc" (pbrt-v3's and pbrt-v4's; without a
 // PixelFilter line pbrt-v3 filters with the box, pbrt-v4 with the gaussian). Parameters:
-//   xwidth, ywidth    float  0.5 (box), 2  pbrt-v3: the filter's radius, in (0, 16] pixels
-//   xradius, yradius  float  0.5 (box), 1.5 (gaussian), 2  pbrt-v4's name for the radius
+//   xwidth, ywidth    float  0.5 (box), 2, 4 (sinc)  pbrt-v3: the filter's radius, in (0, 16]
+//                                          pixels
+//   xradius, yradius  float  0.5 (box), 1.5 (gaussian), 2, 4 (sinc)  pbrt-v4's name for the
+//                                          radius
 //   alpha             float  2             gaussian: its falloff exp(-alpha x²) (pbrt-v3)
 //   sigma             float  0.5           gaussian: its standard deviation (pbrt-v4; alpha
 //                                          is 1 / (2 sigma²))
 //   B, C              float  1/3, 1/3      mitchell: its two parameters
+//   tau               float  3             sinc: sinc(x) sinc(x / tau), a Lanczos window
 void BuildPixelFilter(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     RenderScene &scene = ctx.scene;
@@ -24,10 +27,15 @@ void BuildPixelFilter(BuildContext &ctx) {
     Filter f;
     // pbrt-v4's default filter is its gaussian (radius 1.5, sigma 0.5), pbrt-v3's the box.
     std::string ft = v4 && !desc.filter.loc.Valid() ? "gaussian" : desc.filter.type;
-    bool known = ft == "box" || ft == "gaussian" || ft == "triangle" || ft == "mitchell";
+    bool known =
+        ft == "box" || ft == "gaussian" || ft == "triangle" || ft == "mitchell" || ft == "sinc";
     if (known) {
-        // Radii: 0.5 for the box, 2 for the others, but 1.5 for pbrt-v4's gaussian.
-        const float defaultRadius = ft == "box" ? 0.5f : (v4 && ft == "gaussian" ? 1.5f : 2.f);
+        // Radii: 0.5 for the box, 4 for the sinc, 2 for the others, but 1.5 for pbrt-v4's
+        // gaussian.
+        const float defaultRadius = ft == "box"              ? 0.5f
+                                    : ft == "sinc"           ? 4.f
+                                    : v4 && ft == "gaussian" ? 1.5f
+                                                             : 2.f;
         f.radiusX = fp.GetFloat("xradius", fp.GetFloat("xwidth", defaultRadius));
         f.radiusY = fp.GetFloat("yradius", fp.GetFloat("ywidth", defaultRadius));
     }
@@ -51,6 +59,11 @@ void BuildPixelFilter(BuildContext &ctx) {
         f.kind = Filter::Kind::Mitchell;
         f.B = fp.GetFloat("B", 1.f / 3);
         f.C = fp.GetFloat("C", 1.f / 3);
+    } else if (ft == "sinc") {
+        f.kind = Filter::Kind::LanczosSinc;
+        f.tau = fp.GetFloat("tau", 3.f);
+        if (!(f.tau > 0 && std::isfinite(f.tau)))
+            throw SceneError(fp.Find("tau")->loc, "pixel filter tau must be positive");
     } else {
         diag.Warn(desc.filter.loc,
                   "pixel filter " + Quote(ft) + " is not supported; using gaussian");

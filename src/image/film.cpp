@@ -22,6 +22,13 @@ float Mitchell1D(float x, float B, float C) {
     return ((12 - 9 * B - 6 * C) * x3 + (-18 + 12 * B + 6 * C) * x2 + (6 - 2 * B)) * (1.f / 6.f);
 }
 
+// sin(pi x) / (pi x), 1 at 0.
+float Sinc(float x) {
+    if (std::abs(x) < 1e-5f) return 1.f;  // 1 - (pi x)^2 / 6 is 1 in float there
+    const float px = float(M_PI) * x;
+    return std::sin(px) / px;
+}
+
 // Largest number of pixels one sample can reach along an axis: radius <= MaxFilterRadius.
 constexpr int MaxSpan = 2 * int(Film::MaxFilterRadius) + 2;
 
@@ -33,7 +40,7 @@ double ClampCoord(float v) { return std::clamp(double(v), -1e9, 1e9); }
 }  // namespace
 
 FilterKernel::FilterKernel(const Filter &f)
-    : kind(f.kind), radius{f.radiusX, f.radiusY}, alpha(f.alpha), B(f.B), C(f.C) {
+    : kind(f.kind), radius{f.radiusX, f.radiusY}, alpha(f.alpha), B(f.B), C(f.C), tau(f.tau) {
     for (int a = 0; a < 2; ++a) {
         invRadius[a] = 1.f / radius[a];
         expRadius[a] = std::exp(-alpha * radius[a] * radius[a]);
@@ -52,6 +59,8 @@ float FilterKernel::Evaluate1D(int axis, float d) const {
             return std::max(0.f, r - std::abs(d));
         case Filter::Kind::Mitchell:
             return Mitchell1D(2.f * d * invRadius[axis], B, C);
+        case Filter::Kind::LanczosSinc:
+            return Sinc(d) * Sinc(d / tau);
     }
     return 0.f;
 }
@@ -90,6 +99,14 @@ Filter MakeMitchellFilter(float radius, float B, float C) {
     f.radiusX = f.radiusY = radius;
     f.B = B;
     f.C = C;
+    return f;
+}
+
+Filter MakeLanczosSincFilter(float radius, float tau) {
+    Filter f;
+    f.kind = Filter::Kind::LanczosSinc;
+    f.radiusX = f.radiusY = radius;
+    f.tau = tau;
     return f;
 }
 

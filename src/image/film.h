@@ -16,14 +16,15 @@
 
 namespace prism {
 
-// pbrt-v3 pixel filters. All are separable: Evaluate(dx, dy) = f(dx) * f(dy), where dx, dy are
+// pbrt's pixel filters. All are separable: Evaluate(dx, dy) = f(dx) * f(dy), where dx, dy are
 // offsets from the pixel centre. Radii must be in (0, Film::MaxFilterRadius].
 struct Filter {
-    enum class Kind { Box, Gaussian, Triangle, Mitchell };
+    enum class Kind { Box, Gaussian, Triangle, Mitchell, LanczosSinc };
     Kind kind = Kind::Box;
     float radiusX = 0.5f, radiusY = 0.5f;
     float alpha = 2.f;               // gaussian falloff
     float B = 1.f / 3, C = 1.f / 3;  // mitchell-netravali parameters
+    float tau = 3.f;                 // lanczos sinc: the window's period, in sinc's lobes
 
     // Zero outside the radius (the box is 1 on the closed [-r, r]^2).
     float Evaluate(float dx, float dy) const;
@@ -33,6 +34,8 @@ Filter MakeBoxFilter(float radius = 0.5f);
 Filter MakeGaussianFilter(float radius = 2.f, float alpha = 2.f);
 Filter MakeTriangleFilter(float radius = 2.f);
 Filter MakeMitchellFilter(float radius = 2.f, float B = 1.f / 3, float C = 1.f / 3);
+// pbrt's "sinc": sinc(d) sinc(d / tau) within the radius (a Lanczos window).
+Filter MakeLanczosSincFilter(float radius = 4.f, float tau = 3.f);
 
 // A Filter with its per-axis constants precomputed, evaluated one axis at a time.
 struct FilterKernel {
@@ -40,7 +43,7 @@ struct FilterKernel {
     float radius[2] = {0.5f, 0.5f};
     float invRadius[2] = {2.f, 2.f};
     float expRadius[2] = {0, 0};  // gaussian: exp(-alpha r^2)
-    float alpha = 2.f, B = 1.f / 3, C = 1.f / 3;
+    float alpha = 2.f, B = 1.f / 3, C = 1.f / 3, tau = 3.f;
 
     FilterKernel() = default;
     explicit FilterKernel(const Filter &f);

@@ -57,6 +57,16 @@ TEST(PbrtRules, EachVersionHasItsDefaultPixelFilterAndParameterNames) {
     const test::Built mitchell =
         Build("fm", "PixelFilter \"gaussian\"\nWorldBegin\nShape \"sphere\"\n");
     EXPECT_EQ(mitchell.scene.filter.radiusX, 2.f);
+    // pbrt's sinc: radius 4 and tau 3 by default, both read.
+    const test::Built sinc =
+        Build("fs",
+              "Film \"rgb\"\nPixelFilter \"sinc\" \"float tau\" 2\nWorldBegin\n"
+              "Shape \"sphere\"\n");
+    EXPECT_EQ(sinc.scene.filter.kind, Filter::Kind::LanczosSinc);
+    EXPECT_EQ(sinc.scene.filter.radiusX, 4.f);
+    EXPECT_EQ(sinc.scene.filter.tau, 2.f);
+    for (const Warning &w : sinc.warnings)  // radius and tau read: none reported unused
+        EXPECT_EQ(w.message.find("filter"), std::string::npos) << w.ToString();
 }
 
 // pbrt-v4 divides a light's spectrum by its luminance: a blackbody of any temperature emits

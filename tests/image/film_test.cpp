@@ -226,6 +226,20 @@ TEST(Filter, Values) {
     EXPECT_NEAR(m.Evaluate(1.f, 0) / m0, b / 6, 1e-6f);
     // Negative lobe between x = 1 and 2.
     EXPECT_LT(m.Evaluate(1.5f, 0), 0.f);
+
+    // pbrt's "sinc": sin(pi d)/(pi d) sin(pi d/tau)/(pi d/tau) within the radius.
+    Filter s = MakeLanczosSincFilter(4.f, 3.f);
+    EXPECT_FLOAT_EQ(s.Evaluate(0, 0), 1.f);
+    const double pi = 3.14159265358979323846;
+    auto ref = [&](double d) {
+        return std::sin(pi * d) / (pi * d) * std::sin(pi * d / 3) / (pi * d / 3);
+    };
+    for (float d : {0.25f, 0.5f, 1.5f, 2.5f, 3.9f})
+        EXPECT_NEAR(s.Evaluate(d, 0), ref(d), 1e-6) << d;
+    EXPECT_NEAR(s.Evaluate(1.f, 0), 0.f, 1e-6f);  // sinc's first zero
+    EXPECT_LT(s.Evaluate(1.5f, 0), 0.f);          // its negative lobe
+    EXPECT_NEAR(s.Evaluate(0.5f, 0.5f), ref(0.5) * ref(0.5), 1e-6);
+    EXPECT_EQ(s.Evaluate(4.5f, 0), 0.f);
 }
 
 TEST(Film, BoxFilterReproducesValuesExactly) {
