@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Error against samples per pixel of Prism's path integrator on the shared Cornell box
 # (../shared/pbrt3-reference/cornell-path.pbrt) for each sampler Prism draws (`--sampler`:
-# stratified, pbrt-v3's 02sequence, pbrt-v4's paddedsobol and zsobol, random). Prism renders at
+# stratified, pbrt-v3's 02sequence, pbrt-v4's paddedsobol and zsobol, halton, random). Prism renders at
 # 64x64 (its box filter averages each pixel's area); the reference is pbrt-v3's own 1024-spp
 # 256x256 render box-filtered down by 4 (16384 samples per 64x64 pixel), so its own noise is
 # well below the errors measured. Prints a Markdown table of the relative L1 error
@@ -14,7 +14,7 @@ PRISM="${PRISM:-$PWD/build/prism}"
 REF="${SHARED:-$PWD/../shared}/pbrt3-reference"
 SPPS="${*:-4 16 64 256 1024}"
 SCENE="${SCENE:-cornell-path}"
-SAMPLERS="${SAMPLERS:-stratified 02sequence paddedsobol zsobol random}"
+SAMPLERS="${SAMPLERS:-stratified 02sequence paddedsobol zsobol halton random}"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 oiiotool "$REF/$SCENE.exr" --resize:filter=box 64x64 -d float -o "$WORK/ref.exr"

@@ -28,7 +28,7 @@ constexpr SamplerRule SamplerRules[] = {
     {"zsobol", SamplePattern::ZSobol, nullptr, nullptr},
     {"sobol", SamplePattern::Stratified, "stratified",
      "Prism has no global Sobol sequence (one dimension per sample dimension)"},
-    {"halton", SamplePattern::Stratified, "stratified", "Prism has no Halton sequence"},
+    {"halton", SamplePattern::Halton, nullptr, nullptr},
     {"pmj02bn", SamplePattern::PaddedSobol, "paddedsobol",
      "pmj02bn's points are per-pixel (0,2)-sequences like paddedsobol's, without the "
      "blue-noise selection"},
@@ -78,8 +78,9 @@ SamplePattern PatternOfSampler(const std::string &name) {
 //   pixelsamples        integer  16    the others (random: 4); --spp wins
 //   randomization       string   "fastowen"  zsobol, paddedsobol: "fastowen" and
 //                                "owen" (a nested uniform scramble), "permutedigits" (XOR),
-//                                "none"
-//   seed                integer  0     zsobol, paddedsobol: another scramble
+//                                "none"; halton: "permutedigits" (its default: random digit
+//                                permutations), "owen", "none"
+//   seed                integer  0     zsobol, paddedsobol, halton: another randomisation
 int SceneSamplesPerPixel(const SceneDescription &desc) {
     const ParamSet &sp = desc.sampler.params;
     if (desc.sampler.type == "stratified") {
@@ -143,8 +144,26 @@ void BuildSampler(BuildContext &ctx) {
         const int res = std::max(scene.resolution.x, scene.resolution.y);
         ss.log2Res = uint8_t(CeilLog2(uint64_t(std::max(res, 1))));
     }
+    if (ss.pattern == SamplePattern::Halton) {
+        // pbrt-v4's halton: random digit permutations by default; pbrt-v4 refuses fastowen.
+        const std::string r =
+            replaced ? "permutedigits" : sp.GetString("randomization", "permutedigits");
+        HaltonScramble hs = HaltonScramble::PermuteDigits;
+        if (r == "owen")
+            hs = HaltonScramble::Owen;
+        else if (r == "none")
+            hs = HaltonScramble::None;
+        else if (r != "permutedigits")
+            throw SceneError(
+                sp.Find("randomization") ? sp.Find("randomization")->loc : desc.sampler.loc,
+                context + ": randomization " + Quote(r) +
+                    " is not one of permutedigits, owen, none (pbrt-v4's halton has no "
+                    "fastowen)");
+        if (!replaced && sp.Find("seed")) ss.seed = uint32_t(sp.GetInt("seed", 0));
+        ss.halton = HaltonFrame::ForResolution(scene.resolution.x, scene.resolution.y, hs, ss.seed);
+    }
     WarnIgnoredRest(sp, diag, context,
-                    IsSobolPattern(ss.pattern)
+                    DrawsCameraDims(ss.pattern)
                         ? "Prism reads its sample count, randomization and seed"
                         : "Prism reads only its sample count");
     if (settings.spp > 0) spp = settings.spp;

@@ -18,7 +18,8 @@ CameraSampler::CameraSampler(const RenderScene &scene, const SamplerSettings &sa
       pattern_(sampler.pattern),
       log2Res_(sampler.log2Res),
       scramble_(sampler.scramble),
-      sobol_(IsSobolPattern(pattern_)),
+      halton_(sampler.halton),
+      sobol_(DrawsCameraDims(pattern_)),
       jitter_(sampler.JitterFilm()),
       lens_(scene.features.lens),
       motion_(scene.features.effects.Has(Effect::MotionBlur)),
@@ -29,6 +30,7 @@ CameraSample CameraSampler::SobolSample(int x, int y, uint32_t s) const {
     PixelSamples ps{x, y, s, spp_, pattern_, seed_, {}};
     ps.log2Res = log2Res_;
     ps.scramble = scramble_;
+    ps.halton = &halton_;
     CameraSample cs;
     cs.pFilm = FilmPosition(x, y, jitter_ ? ps.Get2D(0) : Vec2f(0.5f, 0.5f));
     if (motion_) cs.time = ps.Get1D(1);
@@ -62,6 +64,7 @@ void Integrator::RenderTile(const TileContext &ctx, TileSamples &out, RayCounter
                 PixelSamples ps{x, y, s, spp, ctx.sampler.pattern, ctx.sampler.seed, ctx.trace};
                 ps.log2Res = ctx.sampler.log2Res;
                 ps.scramble = ctx.sampler.scramble;
+                ps.halton = &ctx.sampler.halton;
                 RayDifferential rd;
                 if (camera.Differentials()) {
                     rd = camera.GenerateDifferential(ray, cs);

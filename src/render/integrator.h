@@ -18,6 +18,7 @@
 #include "geometry/ray.h"
 #include "image/bounds2.h"
 #include "render/camera.h"
+#include "render/halton.h"
 #include "render/ray_counters.h"
 #include "render/sampler.h"
 
@@ -46,6 +47,8 @@ struct SamplerSettings {
     // rounded up to a power of two), and how their points are randomised.
     uint8_t log2Res = 0;
     SobolScramble scramble = SobolScramble::Owen;
+    // The Halton pattern's film tiling and randomisation.
+    HaltonFrame halton;
     // One sample per pixel sits at the pixel centre, except in the later passes of a
     // progressive render, whose pattern seeds differ.
     bool JitterFilm() const { return !centres && (spp > 1 || seed != 0); }
@@ -118,6 +121,7 @@ class CameraSampler {
     SamplePattern pattern_;
     uint8_t log2Res_;
     SobolScramble scramble_;
+    HaltonFrame halton_;
     bool sobol_, jitter_, lens_, motion_, differentials_;
     float diffScale_;
 };

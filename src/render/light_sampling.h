@@ -10,6 +10,7 @@
 
 #include "core/color.h"
 #include "geometry/interaction.h"
+#include "render/halton.h"
 #include "render/sampler.h"
 
 namespace prism {
@@ -46,6 +47,11 @@ struct PixelSamples {
     // (SamplerSettings).
     uint8_t log2Res = 0;
     SobolScramble scramble = SobolScramble::Owen;
+    // The Halton pattern's film tiling and randomisation (SamplerSettings::halton).
+    const HaltonFrame *halton = nullptr;
+    // The pixel's first Halton point, computed at the first draw (a pure function of x, y and
+    // the frame, which a PixelSamples does not change; not to be set).
+    mutable uint64_t haltonPixel_ = ~uint64_t(0);
 
     Vec2f Get2D(uint32_t dim) const { return Get2D(dim, 0, 1); }
     // Sample k of n of this camera sample (strategy "all": n light samples stratified over
@@ -54,7 +60,9 @@ struct PixelSamples {
         const uint32_t i = sample * n + k;
         if (pattern == SamplePattern::ZSobol)
             return ZSobolSample2D(x, y, i, spp * n, log2Res, dim, passSeed, scramble);
-        const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim, passSeed);
+        if (pattern == SamplePattern::Halton && HaltonDim(dim, true) != NoHaltonDim)
+            return HaltonGet2D(dim, i, n);
+        const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim, PatternPassSeed());
         switch (pattern) {
             case SamplePattern::Independent:
                 return {HashFloat(i, seed), HashFloat(i, seed ^ 0x9e3779b9u)};
@@ -70,7 +78,12 @@ struct PixelSamples {
     float Get1D(uint32_t dim) const {
         if (pattern == SamplePattern::ZSobol)
             return ZSobolSample1D(x, y, sample, spp, log2Res, dim, passSeed, scramble);
-        const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim, passSeed);
+        if (pattern == SamplePattern::Halton) {
+            const uint32_t h = HaltonDim(dim, false);
+            if (h != NoHaltonDim)
+                return HaltonSample(*Halton(), HaltonIndex(sample, 1), h, passSeed);
+        }
+        const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim, PatternPassSeed());
         if (pattern == SamplePattern::Independent) return HashFloat(sample, seed);
         if (pattern == SamplePattern::PaddedSobol)
             return PaddedSobolSample1D(sample, spp, seed, scramble);
@@ -78,6 +91,43 @@ struct PixelSamples {
         if (pattern == SamplePattern::ZeroTwo) return Sample02(stratum, seed * 0x68bc21ebu, 0).x;
         const float u = (float(stratum) + HashFloat(sample, seed * 0x68bc21ebu)) / float(spp);
         return std::min(u, 0x1.fffffep-1f);
+    }
+
+    // The camera sample's number in the whole render: a progressive render's Halton passes
+    // continue the earlier passes' samples (their seed stays), so the random streams drawn
+    // beside the patterns (volpath's medium sampling) are keyed by it, not by `sample`.
+    uint64_t SampleNumber() const {
+        return pattern == SamplePattern::Halton ? Halton()->firstSample + sample : sample;
+    }
+
+  private:
+    // The per-dimension patterns' seed: the pass's, and under Halton (whose passes keep the
+    // seed and continue the sequence) the pass's first sample too, so the dimensions Halton
+    // leaves to them are drawn anew in every pass.
+    uint32_t PatternPassSeed() const {
+        if (pattern != SamplePattern::Halton || !halton || halton->firstSample == 0)
+            return passSeed;
+        return passSeed ^ uint32_t(MixBits64(halton->firstSample));
+    }
+    // Halton: the film's point i of this pixel, and its dimensions h and h + 1 (the position
+    // in the pixel for h = 0, moved by the pass's seed in later passes of a progressive render).
+    // (Without a frame, as for a 1 x 1 film.)
+    const HaltonFrame *Halton() const {
+        static const HaltonFrame single;
+        return halton ? halton : &single;
+    }
+    // Point i of n per camera sample (Get2D's k of n).
+    uint64_t HaltonIndex(uint32_t i, uint32_t n) const {
+        const HaltonFrame &h = *Halton();
+        if (haltonPixel_ == ~uint64_t(0)) haltonPixel_ = h.PixelIndex(x, y);
+        return haltonPixel_ + (h.firstSample * n + i) * h.stride;
+    }
+    Vec2f HaltonGet2D(uint32_t dim, uint32_t i, uint32_t n) const {
+        const uint64_t index = HaltonIndex(i, n);
+        const uint32_t h = HaltonDim(dim, true);
+        if (h == 0) return Halton()->PixelOffset(index, passSeed);
+        return {HaltonSample(*Halton(), index, h, passSeed),
+                HaltonSample(*Halton(), index, h + 1, passSeed)};
     }
 };
 

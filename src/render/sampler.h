@@ -177,10 +177,24 @@ class CMJPattern {
 // pixel); Independent, pbrt's RandomSampler; PaddedSobol, pbrt-v4's "paddedsobol" (an
 // Owen-scrambled (0,2)-sequence per dimension, shuffled like ZeroTwo); ZSobol, pbrt-v4's
 // "zsobol" (one Owen-scrambled Sobol sequence over the film, its pixels in permuted Morton
-// order: render/sobol.h ZSobolIndex).
-enum class SamplePattern : uint8_t { Stratified, ZeroTwo, Independent, PaddedSobol, ZSobol };
+// order: render/sobol.h ZSobolIndex); Halton, pbrt's "halton" (one randomised Halton sequence
+// over the film: render/halton.h).
+enum class SamplePattern : uint8_t {
+    Stratified,
+    ZeroTwo,
+    Independent,
+    PaddedSobol,
+    ZSobol,
+    Halton
+};
 inline bool IsSobolPattern(SamplePattern p) {
     return p == SamplePattern::PaddedSobol || p == SamplePattern::ZSobol;
+}
+// The patterns that draw the camera's film, time and lens samples as dimensions 0 to 2 of
+// PixelSamples (pbrt-v4 draws them from its sampler first), not from the camera's own
+// correlated multi-jittered patterns.
+inline bool DrawsCameraDims(SamplePattern p) {
+    return IsSobolPattern(p) || p == SamplePattern::Halton;
 }
 
 // pbrt-v3's scrambled (0,2)-sequence point n: van der Corput in x, Sobol's second dimension in

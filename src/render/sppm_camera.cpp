@@ -73,6 +73,7 @@ void SppmIntegrator::CameraPass(const FrameContext &frame, int iter, SppmPass &p
                                 ss.pattern, ss.seed, frame.trace};
                 ps.log2Res = ss.log2Res;
                 ps.scramble = ss.scramble;
+                ps.halton = &ss.halton;
                 RayDifferential rd;
                 if (camera.Differentials()) rd = camera.GenerateDifferential(ray, cs);
                 const Vec3f cameraOrigin = ray.o;

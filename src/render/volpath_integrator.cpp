@@ -39,8 +39,8 @@ RGB VolPathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const 
     bool directDone = false;
     // Medium sampling draws as many numbers as delta and ratio tracking need: one stream per
     // camera sample, a pure function of the pixel and sample.
-    MediumSampler sampler((uint64_t(PatternSeed(ps.x, ps.y, VolPathPurpose, ps.passSeed)) << 32) |
-                          ps.sample);
+    MediumSampler sampler((uint64_t(PatternSeed(ps.x, ps.y, VolPathPurpose, ps.passSeed)) << 32) ^
+                          ps.SampleNumber());
     for (int bounces = 0;; ++bounces) {
         // Intersect, then sample the medium up to the hit.
         SurfaceInteraction si;

@@ -49,13 +49,12 @@ TEST(Sampler, EachNameDrawsItsPattern) {
         {"Sampler \"stratified\"", SamplePattern::Stratified, ""},
         {"Sampler \"pmj02bn\"", SamplePattern::PaddedSobol,
          "sampler \"pmj02bn\" is drawn as \"paddedsobol\""},
-        {"Sampler \"halton\"", SamplePattern::Stratified,
-         "sampler \"halton\" is replaced by Prism's stratified sampler: Prism has no Halton"},
+        {"Sampler \"halton\"", SamplePattern::Halton, ""},
         {"Sampler \"sobol\"", SamplePattern::Stratified,
          "sampler \"sobol\" is replaced by Prism's stratified sampler: Prism has no global"},
         {"Sampler \"nosuch\"", SamplePattern::Stratified,
          "sampler \"nosuch\" is replaced by Prism's stratified sampler: Prism does not know"},
-        {"", SamplePattern::Stratified, ""},  // no Sampler: pbrt-v3's "halton", not warned
+        {"", SamplePattern::Halton, ""},  // no Sampler: pbrt-v3's "halton"
     };
     for (const Case &c : cases) {
         SCOPED_TRACE(c.line);
@@ -92,6 +91,29 @@ TEST(Sampler, SobolParameters) {
     EXPECT_NE(err.find("randomization \"bogus\" is not one of"), std::string::npos) << err;
 }
 
+// pbrt-v4's halton: random digit permutations by default, "owen" and "none"; pbrt-v4 has no
+// fastowen for it; the film's tiling is the resolution's (2^3 >= 8 columns, 3^2 >= 8 rows).
+TEST(Sampler, HaltonParameters) {
+    Built b = BuildSampler("Sampler \"halton\" \"integer pixelsamples\" 8");
+    EXPECT_EQ(b.scene.sampler.halton.scramble, HaltonScramble::PermuteDigits);
+    EXPECT_EQ(b.scene.sampler.halton.scaleX, 8u);
+    EXPECT_EQ(b.scene.sampler.halton.scaleY, 9u);
+    EXPECT_EQ(CountWarnings(b, "sampler"), 0);
+    b = BuildSampler("Sampler \"halton\" \"string randomization\" \"owen\" \"integer seed\" 4");
+    EXPECT_EQ(b.scene.sampler.halton.scramble, HaltonScramble::Owen);
+    EXPECT_EQ(b.scene.sampler.seed, 4u);
+    b = BuildSampler("Sampler \"halton\" \"string randomization\" \"none\"");
+    EXPECT_EQ(b.scene.sampler.halton.scramble, HaltonScramble::None);
+    const std::string text =
+        SamplerScene("Sampler \"halton\"\n   \"string randomization\" \"fastowen\"");
+    const std::string err = ErrorOf<SceneError>([&] {
+        BuildSceneFile(WriteSceneText("camera_film", "halton_fastowen", text),
+                       SizedSettings(8, 8, 0, "path"));
+    });
+    EXPECT_NE(err.find("halton_fastowen.pbrt:4:4:"), std::string::npos) << err;
+    EXPECT_NE(err.find("has no fastowen"), std::string::npos) << err;
+}
+
 // Integrators that draw their own samples keep the stratified pattern and say so.
 TEST(Sampler, IntegratorsWithTheirOwnSamples) {
     const Built b = BuildSampler("Sampler \"zsobol\"", "whitted");
@@ -115,7 +137,7 @@ TEST(Sampler, OverrideKeepsTheCount) {
 // The Sobol patterns render the same image on any thread count, and camera samples come
 // from the pattern (a different image from the stratified one's).
 TEST(Sampler, SobolImagesAreDeterministic) {
-    for (const char *name : {"zsobol", "paddedsobol"}) {
+    for (const char *name : {"zsobol", "paddedsobol", "halton"}) {
         SCOPED_TRACE(name);
         const std::string path = WriteSceneText(
             "camera_film", name,

@@ -75,12 +75,12 @@ LightSource "point" "point3 from" [0 5 0]
 
 TEST(IgnoredParams, SamplerTypeAndParameters) {
     std::string text = std::string(
-                           "Sampler \"halton\" \"integer pixelsamples\" 4\n"
+                           "Sampler \"sobol\" \"integer pixelsamples\" 4\n"
                            "    \"integer dimensions\" 7 \"bool samplepixelcenter\" \"true\"\n") +
                        World + "Shape \"sphere\"\n";
     fs::path file;
     auto w = BuildWarnings("sampler", text, &file);
-    ExpectOneWarning(w, file, text, "sampler \"halton\" is replaced by Prism's stratified sampler",
+    ExpectOneWarning(w, file, text, "sampler \"sobol\" is replaced by Prism's stratified sampler",
                      "Sampler");
     ExpectOneWarning(w, file, text, "\"dimensions\"", "\"integer dimensions\"");
     ExpectOneWarning(w, file, text, "\"samplepixelcenter\"", "\"bool samplepixelcenter\"");

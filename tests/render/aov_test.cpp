@@ -76,6 +76,7 @@ TEST(Aov, VarianceIsThatOfTheBeautysOwnSamples) {
                     const CameraSample cs = camera.Sample(x, y, s, seeds);
                     const Ray ray = camera.GenerateRay(cs);
                     PixelSamples ps{x, y, s, uint32_t(spp), scene.sampler.pattern, 0, scene.trace};
+                    ps.halton = &scene.sampler.halton;
                     RayCounters rc;
                     const RGB L = scene.integrator->Li(scene, ray, ps, rc, nullptr);
                     const double v[3] = {L.r, L.g, L.b};
