@@ -127,8 +127,19 @@ void BuildSampler(BuildContext &ctx) {
                            " is replaced by Prism's stratified sampler: "
                            "the integrator " +
                            Quote(scene.integrator->Name()) + " draws its own");
+    // The Sobol and Halton samplers' "randomization" (def under --sampler) and "seed".
+    auto randomization = [&](const char *def) {
+        return replaced ? std::string(def) : sp.GetString("randomization", def);
+    };
+    auto badRandomization = [&](const std::string &r, const std::string &expected) {
+        const Param *p = sp.Find("randomization");
+        return SceneError(p ? p->loc : desc.sampler.loc,
+                          context + ": randomization " + Quote(r) + " is not one of " + expected);
+    };
+    if (DrawsCameraDims(ss.pattern) && !replaced && sp.Find("seed"))
+        ss.seed = uint32_t(sp.GetInt("seed", 0));
     if (IsSobolPattern(ss.pattern)) {
-        const std::string r = replaced ? "fastowen" : sp.GetString("randomization", "fastowen");
+        const std::string r = randomization("fastowen");
         if (r == "fastowen" || r == "owen")
             ss.scramble = SobolScramble::Owen;
         else if (r == "permutedigits")
@@ -136,30 +147,21 @@ void BuildSampler(BuildContext &ctx) {
         else if (r == "none")
             ss.scramble = SobolScramble::None;
         else
-            throw SceneError(
-                sp.Find("randomization") ? sp.Find("randomization")->loc : desc.sampler.loc,
-                context + ": randomization " + Quote(r) +
-                    " is not one of fastowen, owen, permutedigits, none");
-        if (!replaced && sp.Find("seed")) ss.seed = uint32_t(sp.GetInt("seed", 0));
+            throw badRandomization(r, "fastowen, owen, permutedigits, none");
         const int res = std::max(scene.resolution.x, scene.resolution.y);
         ss.log2Res = uint8_t(CeilLog2(uint64_t(std::max(res, 1))));
     }
     if (ss.pattern == SamplePattern::Halton) {
         // pbrt-v4's halton: random digit permutations by default; pbrt-v4 refuses fastowen.
-        const std::string r =
-            replaced ? "permutedigits" : sp.GetString("randomization", "permutedigits");
+        const std::string r = randomization("permutedigits");
         HaltonScramble hs = HaltonScramble::PermuteDigits;
         if (r == "owen")
             hs = HaltonScramble::Owen;
         else if (r == "none")
             hs = HaltonScramble::None;
         else if (r != "permutedigits")
-            throw SceneError(
-                sp.Find("randomization") ? sp.Find("randomization")->loc : desc.sampler.loc,
-                context + ": randomization " + Quote(r) +
-                    " is not one of permutedigits, owen, none (pbrt-v4's halton has no "
-                    "fastowen)");
-        if (!replaced && sp.Find("seed")) ss.seed = uint32_t(sp.GetInt("seed", 0));
+            throw badRandomization(r,
+                                   "permutedigits, owen, none (pbrt-v4's halton has no fastowen)");
         ss.halton = HaltonFrame::ForResolution(scene.resolution.x, scene.resolution.y, hs, ss.seed);
     }
     WarnIgnoredRest(sp, diag, context,
