@@ -37,6 +37,8 @@ std::array<float, 9> WhiteBalanceMatrix(std::array<double, 2> from) {
 //   sensor        string  "cie1931"  the CIE observer; a camera's named sensor is not
 //                                    simulated (a warning: cie1931 is used)
 //   savefp16      bool    true       read, no effect: Prism's EXR pixels are 32-bit float
+//   coordinatesystem  string  "camera"  gbuffer: the space of P and N; Prism's AOVs are in
+//                                    world space (a warning for "camera")
 void BuildFilmSensor(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     const std::string &type = desc.film.type;
@@ -88,10 +90,28 @@ void BuildFilmSensor(BuildContext &ctx) {
         scene.filmColor = ToFloat(OutputFromSRGB(cs, balance));
     }
     WarnIgnored(film, {"savefp16"}, diag, "film", "Prism writes 32-bit float EXR pixels");
-    if (type != "rgb")
+    if (type == "gbuffer") {
+        // pbrt-v4's geometric channels as Prism's AOVs (render/aov.h), unless the Film names
+        // its own (BuildFilm read them): Albedo, P, dzdx/dzdy (depth), N (geometric), Ns
+        // (shading), u/v, Variance.
+        const bool own = !scene.filmAovs.empty();
+        if (!own) scene.filmAovs = "albedo,P,depth,Ng,N,uv,variance";
+        const std::string space = film.GetString("coordinatesystem", "camera");
+        if (space != "camera" && space != "world")
+            throw SceneError(
+                locOf("coordinatesystem"),
+                "film \"coordinatesystem\" must be \"camera\" or \"world\", not " + Quote(space));
+        diag.Warn(
+            desc.film.loc,
+            "film \"gbuffer\" writes its channels as Prism's AOVs (" +
+                (own ? scene.filmAovs : std::string("albedo, P, depth, Ng, N, uv, variance")) +
+                ": Prism's channel names, P and N in world space" +
+                (space == "camera" ? ", not pbrt-v4's default camera space" : "") + ")");
+    } else if (type != "rgb") {
         diag.Warn(desc.film.loc,
                   "film " + Quote(type) +
                       " is rendered as \"rgb\" (its image, without its own channels)");
+    }
 }
 
 }  // namespace prism

@@ -188,7 +188,26 @@ TEST(FilmSensor, BadAndUnsimulatedValues) {
     for (const Warning &w : named.warnings) all += w.message + "\n";
     EXPECT_NE(all.find("sensor \"canon_eos_100d\" is not simulated"), std::string::npos) << all;
     EXPECT_NE(all.find("\"savefp16\""), std::string::npos) << all;
-    EXPECT_NE(all.find("film \"gbuffer\" is rendered as \"rgb\""), std::string::npos) << all;
+    EXPECT_NE(all.find("film \"gbuffer\" writes its channels as Prism's AOVs"), std::string::npos)
+        << all;
+    EXPECT_NE(all.find("not pbrt-v4's default camera space"), std::string::npos) << all;
+    EXPECT_EQ(named.scene.filmAovs, "albedo,P,depth,Ng,N,uv,variance");
+    // The film's own "aovs" win; "world" is what Prism writes; another space is an error.
+    const Built own = BuildFilm("own",
+                                "\"gbuffer\" \"string aovs\" \"N,depth\" "
+                                "\"string coordinatesystem\" \"world\"");
+    EXPECT_EQ(own.scene.filmAovs, "N,depth");
+    all.clear();
+    for (const Warning &w : own.warnings) all += w.message + "\n";
+    EXPECT_NE(all.find("as Prism's AOVs (N,depth"), std::string::npos) << all;
+    EXPECT_EQ(all.find("camera space"), std::string::npos) << all;
+    EXPECT_EQ(all.find("unused"), std::string::npos) << all;
+    const std::string csErr = ErrorOf<SceneError>(
+        [&] { BuildFilm("badcs", "\"gbuffer\" \"string coordinatesystem\" \"screen\""); });
+    EXPECT_NE(csErr.find("\"coordinatesystem\" must be \"camera\" or \"world\""), std::string::npos)
+        << csErr;
+    // "rgb" writes no AOVs of its own.
+    EXPECT_EQ(BuildFilm("rgbfilm", "\"rgb\"").scene.filmAovs, "");
 }
 
 }  // namespace
