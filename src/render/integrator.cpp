@@ -12,25 +12,27 @@ namespace prism {
 
 CameraSampler::CameraSampler(const RenderScene &scene, const SamplerSettings &sampler)
     : camera_(*scene.camera),
+      sampler_(sampler),
       spp_(uint32_t(sampler.spp)),
-      seed_(sampler.seed),
       cmj_(uint32_t(sampler.spp)),
-      pattern_(sampler.pattern),
-      log2Res_(sampler.log2Res),
-      scramble_(sampler.scramble),
-      halton_(sampler.halton),
-      sobol_(DrawsCameraDims(pattern_)),
+      fromPattern_(DrawsCameraDims(sampler.pattern)),
       jitter_(sampler.JitterFilm()),
       lens_(scene.features.lens),
       motion_(scene.features.effects.Has(Effect::MotionBlur)),
       differentials_(scene.differentials),
       diffScale_(std::max(.125f, 1 / std::sqrt(float(sampler.spp)))) {}
 
-CameraSample CameraSampler::SobolSample(int x, int y, uint32_t s) const {
-    PixelSamples ps{x, y, s, spp_, pattern_, seed_, {}};
-    ps.log2Res = log2Res_;
-    ps.scramble = scramble_;
-    ps.halton = &halton_;
+PixelSamples PixelSamplesOf(const SamplerSettings &sampler, int x, int y, uint32_t sample,
+                            uint32_t spp, const TraceSettings &trace) {
+    PixelSamples ps{x, y, sample, spp, sampler.pattern, sampler.seed, trace};
+    ps.log2Res = sampler.log2Res;
+    ps.scramble = sampler.scramble;
+    ps.halton = &sampler.halton;
+    return ps;
+}
+
+CameraSample CameraSampler::PatternSample(int x, int y, uint32_t s) const {
+    const PixelSamples ps = PixelSamplesOf(sampler_, x, y, s, spp_);
     CameraSample cs;
     cs.pFilm = FilmPosition(x, y, jitter_ ? ps.Get2D(0) : Vec2f(0.5f, 0.5f));
     if (motion_) cs.time = ps.Get1D(1);
@@ -61,10 +63,7 @@ void Integrator::RenderTile(const TileContext &ctx, TileSamples &out, RayCounter
                 if (camera.Lens()) rc.lensSamples++;
                 const Ray ray = camera.GenerateRay(cs);
                 rc.camera++;
-                PixelSamples ps{x, y, s, spp, ctx.sampler.pattern, ctx.sampler.seed, ctx.trace};
-                ps.log2Res = ctx.sampler.log2Res;
-                ps.scramble = ctx.sampler.scramble;
-                ps.halton = &ctx.sampler.halton;
+                PixelSamples ps = PixelSamplesOf(ctx.sampler, x, y, s, spp, ctx.trace);
                 RayDifferential rd;
                 if (camera.Differentials()) {
                     rd = camera.GenerateDifferential(ray, cs);

@@ -63,6 +63,11 @@ struct CameraSample {
     float time = 0;
 };
 
+// The samples of camera sample `sample` of `spp` of pixel (x, y) as `sampler` draws them: its
+// pattern, seed, Sobol and Halton settings (render/light_sampling.h).
+PixelSamples PixelSamplesOf(const SamplerSettings &sampler, int x, int y, uint32_t sample,
+                            uint32_t spp, const TraceSettings &trace = {});
+
 // The camera samples of a render. Every pass that traces camera rays (the integrators' tiles,
 // the AOVs, bench's ceiling) draws them here, so they trace the same rays by construction.
 // Film, lens and time are stratified over the pixel's samples (correlated multi-jittered).
@@ -78,14 +83,14 @@ class CameraSampler {
     bool Seeded() const { return jitter_ || lens_ || motion_; }
     Seeds PixelSeeds(int x, int y) const {
         Seeds s;
-        if (jitter_) s.film = PatternSeed(x, y, FilmPurpose, seed_);
-        if (lens_) s.lens = PatternSeed(x, y, LensPurpose, seed_);
-        if (motion_) s.time = PatternSeed(x, y, TimePurpose, seed_);
+        if (jitter_) s.film = PatternSeed(x, y, FilmPurpose, sampler_.seed);
+        if (lens_) s.lens = PatternSeed(x, y, LensPurpose, sampler_.seed);
+        if (motion_) s.time = PatternSeed(x, y, TimePurpose, sampler_.seed);
         return s;
     }
     // Sample s of pixel (x, y).
     CameraSample Sample(int x, int y, uint32_t s, const Seeds &seeds) const {
-        if (sobol_) return SobolSample(x, y, s);
+        if (fromPattern_) return PatternSample(x, y, s);
         CameraSample cs;
         cs.pFilm = FilmPosition(x, y, jitter_ ? cmj_.Sample(s, seeds.film) : Vec2f(0.5f, 0.5f));
         if (lens_) cs.uLens = cmj_.Sample(s, seeds.lens);
@@ -110,19 +115,16 @@ class CameraSampler {
     bool Differentials() const { return differentials_; }
 
   private:
-    // The camera dimensions of the Sobol patterns (pbrt-v4 draws the film position, time and
-    // lens sample from its sampler first): PixelSamples dimensions 0 to 2, which no vertex
-    // uses (render/light_sampling.h PathDimBase).
-    CameraSample SobolSample(int x, int y, uint32_t s) const;
+    // The camera dimensions of the Sobol and Halton patterns (pbrt-v4 draws the film position,
+    // time and lens sample from its sampler first): PixelSamples dimensions 0 to 2, which no
+    // vertex uses (render/light_sampling.h PathDimBase).
+    CameraSample PatternSample(int x, int y, uint32_t s) const;
 
     const Camera &camera_;
-    uint32_t spp_, seed_;
+    SamplerSettings sampler_;
+    uint32_t spp_;
     CMJPattern cmj_;
-    SamplePattern pattern_;
-    uint8_t log2Res_;
-    SobolScramble scramble_;
-    HaltonFrame halton_;
-    bool sobol_, jitter_, lens_, motion_, differentials_;
+    bool fromPattern_, jitter_, lens_, motion_, differentials_;
     float diffScale_;
 };
 

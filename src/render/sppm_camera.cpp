@@ -69,11 +69,8 @@ void SppmIntegrator::CameraPass(const FrameContext &frame, int iter, SppmPass &p
                 if (camera.Lens()) rc.lensSamples++;
                 Ray ray = camera.GenerateRay(cs);
                 rc.camera++;
-                PixelSamples ps{x,          y,       uint32_t(iter), uint32_t(params_.iterations),
-                                ss.pattern, ss.seed, frame.trace};
-                ps.log2Res = ss.log2Res;
-                ps.scramble = ss.scramble;
-                ps.halton = &ss.halton;
+                PixelSamples ps = PixelSamplesOf(ss, x, y, uint32_t(iter),
+                                                 uint32_t(params_.iterations), frame.trace);
                 RayDifferential rd;
                 if (camera.Differentials()) rd = camera.GenerateDifferential(ray, cs);
                 const Vec3f cameraOrigin = ray.o;

@@ -75,8 +75,9 @@ TEST(Aov, VarianceIsThatOfTheBeautysOwnSamples) {
                 for (uint32_t s = 0; s < uint32_t(spp); ++s) {
                     const CameraSample cs = camera.Sample(x, y, s, seeds);
                     const Ray ray = camera.GenerateRay(cs);
-                    PixelSamples ps{x, y, s, uint32_t(spp), scene.sampler.pattern, 0, scene.trace};
-                    ps.halton = &scene.sampler.halton;
+                    ASSERT_EQ(scene.sampler.seed, 0u);
+                    const PixelSamples ps =
+                        PixelSamplesOf(scene.sampler, x, y, s, uint32_t(spp), scene.trace);
                     RayCounters rc;
                     const RGB L = scene.integrator->Li(scene, ray, ps, rc, nullptr);
                     const double v[3] = {L.r, L.g, L.b};
