@@ -381,8 +381,7 @@ ShapeGeometry BilinearMeshShape(const ShapeDesc &s, const Transform &renderFromO
     }
     // The tessellation's arrays, checked against the budget before they are made.
     const uint64_t triangles = BilinearTriangles(segments);
-    uint64_t vertices = 0;
-    for (int n : segments) vertices += uint64_t(n + 1) * uint64_t(n + 1);
+    const uint64_t vertices = BilinearVertices(segments);
     const uint64_t arrays =
         vertices * (2 * sizeof(Vec3f) + sizeof(Vec2f)) + 3 * triangles * sizeof(int);
     budget.Check(arrays + TriangleMesh::Bytes(vertices, 3 * triangles, true, true),
@@ -392,12 +391,7 @@ ShapeGeometry BilinearMeshShape(const ShapeDesc &s, const Transform &renderFromO
     g.mesh = MakeMesh(s, renderFromObject, t.P, t.indices, t.N, t.uv, budget,
                       ArrayBytes(t.P, t.indices, t.N, t.uv));
     // Each patch is one pbrt-v4 shape (an emitter's "power" is per patch).
-    std::vector<uint32_t> first(segments.size());
-    uint32_t next = 0;
-    for (size_t k = 0; k < segments.size(); ++k) {
-        first[k] = next;
-        next += uint32_t(2 * segments[k] * segments[k]);
-    }
+    std::vector<uint32_t> first = BilinearPatchFirstTriangles(segments);
     budget.Charge(first.size() * sizeof(uint32_t), "shape \"bilinearmesh\"", s.loc);
     g.mesh->SetPatches(std::move(first));
     return g;

@@ -80,13 +80,28 @@ uint64_t BilinearTriangles(const std::vector<int> &segments) {
     return t;
 }
 
+uint64_t BilinearVertices(const std::vector<int> &segments) {
+    uint64_t v = 0;
+    for (int s : segments) v += uint64_t(s + 1) * uint64_t(s + 1);
+    return v;
+}
+
+std::vector<uint32_t> BilinearPatchFirstTriangles(const std::vector<int> &segments) {
+    std::vector<uint32_t> first(segments.size());
+    uint32_t next = 0;
+    for (size_t k = 0; k < segments.size(); ++k) {
+        first[k] = next;
+        next += uint32_t(2 * segments[k] * segments[k]);
+    }
+    return first;
+}
+
 PatchMesh TessellateBilinearMesh(const BilinearMesh &m, const std::vector<int> &segments) {
     PatchMesh out;
     const size_t patches = m.indices.size() / 4;
     const bool curved = std::any_of(segments.begin(), segments.end(), [](int s) { return s > 1; });
     const bool normals = !m.N.empty() || curved;
-    uint64_t vertices = 0;
-    for (int s : segments) vertices += uint64_t(s + 1) * uint64_t(s + 1);
+    const uint64_t vertices = BilinearVertices(segments);
     out.P.reserve(vertices);
     out.uv.reserve(vertices);
     if (normals) out.N.reserve(vertices);

@@ -36,8 +36,11 @@ void ValidateBilinearMesh(const BilinearMesh &mesh);
 std::vector<int> BilinearSegments(const BilinearMesh &mesh, double relativeTolerance = 2e-4,
                                   uint64_t maxTriangles = MaxBilinearTriangles);
 
-// The triangles of the segments BilinearSegments returns.
+// The triangles and vertices of the tessellation of the segments BilinearSegments returns,
+// and each patch's first triangle (TriangleMesh::SetPatches).
 uint64_t BilinearTriangles(const std::vector<int> &segments);
+uint64_t BilinearVertices(const std::vector<int> &segments);
+std::vector<uint32_t> BilinearPatchFirstTriangles(const std::vector<int> &segments);
 
 // Each patch as an n x n grid of its own vertices (u along i, v along j), two triangles per
 // cell wound so (p1 - p0) x (p2 - p0) faces dp/du x dp/dv. uv: the patch's (u, v), or its
