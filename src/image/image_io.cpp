@@ -195,27 +195,24 @@ Image DecodeOpened(ImageDecoder &in, const ReadImageOptions &opts,
                 (opts.encoding == ReadImageOptions::Encoding::Auto && integer);
     bool eightBit = spec.isUint8 != 0;
     int nColor = nRead == 2 || nRead == 4 ? nRead - 1 : nRead;
-    if (srgb) {
-        const std::array<float, 256> &table = Srgb8Table();
+    // The colour channels (not alpha) through a transfer curve; 8-bit values arrive as k/255,
+    // and the curve's table at k gives the same result faster.
+    auto decode = [&](const std::array<float, 256> &table, auto curve) {
         for (size_t i = 0; i < buf.size(); i += size_t(nRead)) {
             for (int c = 0; c < nColor; ++c) {
                 float &v = buf[i + size_t(c)];
-                // 8-bit values arrive as k/255; the table gives the same result faster.
                 v = eightBit ? table[size_t(std::clamp(std::lround(v * 255.f), 0L, 255L))]
-                             : SrgbToLinear(v);
+                             : curve(v);
             }
         }
+    };
+    if (srgb) {
+        decode(Srgb8Table(), [](float v) { return SrgbToLinear(v); });
     } else if (opts.encoding == ReadImageOptions::Encoding::Gamma && integer) {
         std::array<float, 256> table;
         for (size_t k = 0; k < 256; ++k)
             table[k] = float(std::pow(double(k) / 255.0, double(opts.gamma)));
-        for (size_t i = 0; i < buf.size(); i += size_t(nRead)) {
-            for (int c = 0; c < nColor; ++c) {
-                float &v = buf[i + size_t(c)];
-                v = eightBit ? table[size_t(std::clamp(std::lround(v * 255.f), 0L, 255L))]
-                             : std::pow(std::max(v, 0.f), opts.gamma);
-            }
-        }
+        decode(table, [g = opts.gamma](float v) { return std::pow(std::max(v, 0.f), g); });
     }
 
     Image img;
