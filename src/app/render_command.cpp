@@ -285,24 +285,21 @@ void RenderJob::Write(const Image &img) {
     // A film in another colour space than sRGB says so in an EXR's header: the image written
     // carries its chromaticities (a copy only where none is made anyway).
     const std::optional<std::array<float, 8>> &chroma = s_->scene->filmChromaticities;
+    const bool tag = chroma && !img.chromaticities;
+    const bool plain =
+        outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None);
+    if (plain && !s_->aovOutput && !tag) {
+        WriteImage(out, img);
+        return;
+    }
+    Image toWrite = img;  // --verify compares the linear render
+    if (tag) toWrite.chromaticities = chroma;
     if (s_->aovOutput) {
         // The AOVs the render computed from its own tiles.
-        Image toWrite = img;
-        if (chroma && !toWrite.chromaticities) toWrite.chromaticities = chroma;
         ApplyOutputTransform(toWrite, outTransform, true);
         s_->aovOutput->Write(out, toWrite, std::exp2(outTransform.exposure));
-    } else if (outTransform.exposure == 0 && (linearOut || outTransform.toneMap == ToneMap::None)) {
-        if (chroma && !img.chromaticities) {
-            Image tagged = img;
-            tagged.chromaticities = chroma;
-            WriteImage(out, tagged);
-        } else {
-            WriteImage(out, img);
-        }
     } else {
-        Image toWrite = img;  // --verify compares the linear render
-        if (chroma && !toWrite.chromaticities) toWrite.chromaticities = chroma;
-        ApplyOutputTransform(toWrite, outTransform, linearOut);
+        if (!plain) ApplyOutputTransform(toWrite, outTransform, linearOut);
         WriteImage(out, toWrite);
     }
 }
