@@ -26,7 +26,8 @@ const std::vector<uint32_t> &Primes() {
     return primes;
 }
 
-// The digits of a below 2^expX (base 2) reversed: i with RadicalInverse2(i) scaled = a.
+// The nDigits lowest base-`base` digits of `inverse` reversed: the i whose radical inverse,
+// times base^nDigits, has integer part `inverse`.
 uint64_t InverseRadicalInverse(uint64_t inverse, uint32_t base, int nDigits) {
     uint64_t index = 0;
     for (int i = 0; i < nDigits; ++i) {
@@ -59,10 +60,6 @@ double RadicalInverse(uint32_t base, uint64_t a) {
     }
     return v;
 }
-
-}  // namespace
-
-namespace {
 
 // The key of dimension `dim`'s digit permutations under `seed`, and that of its digit j.
 uint64_t DimKey(uint32_t dim, uint32_t seed) {
