@@ -176,6 +176,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     opts.lightSamples = a.lightSamples;
     opts.integrator = a.integrator;
     opts.sampler = a.sampler;
+    opts.lightSampler = a.lightSampler;
     opts.glossySamples = a.glossySamples;
     opts.textureFilter = a.textureFilter;
     opts.rayCutoff = a.cutoff;
@@ -458,6 +459,11 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
                     "zsobol, paddedsobol, 02sequence, stratified, independent, ... "
                     "(docs/USAGE.md \"Samplers\"); default: the scene's Sampler")
         ->check(CLI::IsMember(SamplerNames()));
+    cmd->add_option("--light-sampler", args->lightSampler,
+                    "How the path integrators choose the light of each shadow ray: bvh (by "
+                    "importance at the point, the default), power or uniform; default: the "
+                    "Integrator's \"lightsampler\"/\"lightsamplestrategy\"")
+        ->check(CLI::IsMember({"bvh", "power", "uniform"}));
     cmd->add_option("--glossy-samples", args->glossySamples,
                     "Glossy rays per glossy lobe at the first glossy bounce, 1 deeper down "
                     "(distribution integrator; overrides \"glossysamples\", default 8)")

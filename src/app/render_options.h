@@ -21,6 +21,7 @@ struct RenderArgs {
     int spp = 0, threads = 0, maxDepth = -1, lightSamples = 0, glossySamples = 0;
     std::string integrator;     // empty: the scene's
     std::string sampler;        // --sampler; empty: the scene's
+    std::string lightSampler;   // --light-sampler; empty: the integrator's
     std::string pbrtVersion;    // --pbrt-version; empty: detected
     std::string textureFilter;  // --texture-filter; empty: each texture's own
     int tessellate = 0;         // [validate hook]

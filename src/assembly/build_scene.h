@@ -49,6 +49,9 @@ struct BuildSettings {
     std::string integrator;  // a name of render/integrator_list.inc; "": the scene's
     // A sampler type whose samples replace the Sampler's (its count stays): "": the scene's.
     std::string sampler;
+    // How the path integrators choose lights ("bvh", "power", "uniform"; --light-sampler):
+    // "": the Integrator's "lightsampler" / "lightsamplestrategy".
+    std::string lightSampler;
     // The integrator of a pbrt scene without an Integrator directive ("": pbrt-v3's default,
     // "path"); tests written for Whitted set "whitted".
     std::string defaultIntegrator;

@@ -251,6 +251,7 @@ void BuildIntegratorSettings(BuildContext &ctx) {
                         {},
                         {}};
     in.pbrtVersion = desc.pbrtVersion.version;
+    in.lightSampler = settings.lightSampler;
     if (!settings.integrator.empty()) {
         in.why = "--integrator " + type;
     } else {
@@ -258,6 +259,9 @@ void BuildIntegratorSettings(BuildContext &ctx) {
         in.whyLoc = desc.integrator.loc;
     }
     scene.integrator = CreateIntegrator(name, in);
+    if (!settings.lightSampler.empty() && name != "path" && name != "volpath")
+        diag.Warn("--light-sampler has no effect on the " + name +
+                  " integrator (path and volpath read it)");
     if (settings.maxDepth >= 0) maxDepth = settings.maxDepth;
     if (maxDepth < 0 || maxDepth > MaxTraceDepth)
         throw SceneError(desc.integrator.loc, "maxdepth " + std::to_string(maxDepth) +

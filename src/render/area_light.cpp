@@ -121,55 +121,64 @@ double DiffuseAreaLight::PdfArea(int prim) const {
 }
 
 bool DiffuseAreaLight::SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const {
-    Vec3f p, n;
-    float pdf;
-    RGB Le = Lemit_;
-    ls->prim = 0;
     if (analytic_) {
         ShapeSample ss;
         if (!analytic_->Sample(si.p, u, &ss)) return false;
-        p = ss.p;
-        n = ss.n;
-        pdf = ss.pdf;
-    } else {
-        if (!(meshArea_ > 0)) return false;
-        // Choose a triangle by weight (area, × mean radiance when textured), reusing u.x, then
-        // a uniform point on it.
-        double prob;
-        int tri = triangleWeights_.SampleDiscrete(u.x, &prob);
-        if (!(prob > 0)) return false;
-        ls->prim = tri;
-        Le = Emitted(tri);
-        // Remap u.x within the chosen triangle's CDF interval to keep stratification.
-        double uxr = Clamp((u.x - triangleWeights_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1);
-        double su0 = std::sqrt(uxr);
-        double b0 = 1 - su0, b1 = u.y * su0;
-        const uint32_t *v = mesh_->Triangle(size_t(tri));
-        Vec3d p0(mesh_->Position(v[0])), p1(mesh_->Position(v[1])), p2(mesh_->Position(v[2]));
-        Vec3d pw = p0 * b0 + p1 * b1 + p2 * (1 - b0 - b1);
-        n = mesh_->GeometricNormal(size_t(tri));
-        if (n == Vec3f(0, 0, 0)) return false;
-        p = Vec3f(pw);
-        Vec3f w = p - si.p;
-        float dist2 = LengthSquared(w);
-        float cosLight = AbsDot(n, w) / std::sqrt(dist2);
-        if (!(dist2 > 0) || cosLight == 0) return false;
-        // Density per unit area: prob / area of the triangle (1 / area of the mesh when the
-        // triangles are chosen by area).
-        const double pdfArea = radiance_ ? prob / triangleAreas_[size_t(tri)] : 1 / meshArea_;
-        pdf = float(pdfArea * dist2 / cosLight);
-        // The texture only where the point emits toward si (else Li is 0 below anyway).
-        if (radiance_ && (twoSided_ || Dot(n, -w) > 0)) {
-            // Embree's barycentrics of the point: u for vertex 1, v for vertex 2.
-            const float eu = float(b1), ev = float(1 - b0 - b1);
-            TextureContext tc{mesh_->UVAt(size_t(tri), eu, ev, 0), p,
-                              mesh_->UVAt(size_t(tri), eu, ev, 1)};
-            tc.n = n;
-            Le = Le * radiance_->Evaluate(tc).Clamped(0.f);
-        }
+        return Finish(si, ss.p, ss.n, ss.pdf, Lemit_, ls);
     }
-    Vec3f w = p - si.p;
-    float dist = Length(w);
+    if (!(meshArea_ > 0)) return false;
+    // Choose a triangle by weight (area, × mean radiance when textured), reusing u.x, then a
+    // uniform point on it.
+    double prob;
+    const int tri = triangleWeights_.SampleDiscrete(u.x, &prob);
+    if (!(prob > 0)) return false;
+    // Remap u.x within the chosen triangle's CDF interval to keep stratification.
+    const double uxr = Clamp((u.x - triangleWeights_.Cdf(tri)) / prob, 0.0, 0x1.fffffffffffffp-1);
+    // Density per unit area: prob / area of the triangle (1 / area of the mesh when the
+    // triangles are chosen by area).
+    const double pdfArea = radiance_ ? prob / triangleAreas_[size_t(tri)] : 1 / meshArea_;
+    return SampleTriangle(si, tri, uxr, u.y, pdfArea, ls);
+}
+
+bool DiffuseAreaLight::SampleLiTriangle(const SurfaceInteraction &si, int tri, Vec2f u,
+                                        LightSample *ls) const {
+    if (!mesh_ || tri < 0 || size_t(tri) >= triangleAreas_.size() ||
+        !(triangleAreas_[size_t(tri)] > 0))
+        return false;
+    return SampleTriangle(si, tri, u.x, u.y, 1 / triangleAreas_[size_t(tri)], ls);
+}
+
+bool DiffuseAreaLight::SampleTriangle(const SurfaceInteraction &si, int tri, double ux, float uy,
+                                      double pdfArea, LightSample *ls) const {
+    ls->prim = tri;
+    const double su0 = std::sqrt(ux);
+    const double b0 = 1 - su0, b1 = uy * su0;
+    const uint32_t *v = mesh_->Triangle(size_t(tri));
+    Vec3d p0(mesh_->Position(v[0])), p1(mesh_->Position(v[1])), p2(mesh_->Position(v[2]));
+    const Vec3f p = Vec3f(p0 * b0 + p1 * b1 + p2 * (1 - b0 - b1));
+    const Vec3f n = mesh_->GeometricNormal(size_t(tri));
+    if (n == Vec3f(0, 0, 0)) return false;
+    const Vec3f w = p - si.p;
+    const float dist2 = LengthSquared(w);
+    const float cosLight = AbsDot(n, w) / std::sqrt(dist2);
+    if (!(dist2 > 0) || cosLight == 0) return false;
+    RGB Le = Emitted(tri);
+    // The texture only where the point emits toward si (else Li is 0 anyway).
+    if (radiance_ && (twoSided_ || Dot(n, -w) > 0)) {
+        // Embree's barycentrics of the point: u for vertex 1, v for vertex 2.
+        const float eu = float(b1), ev = float(1 - b0 - b1);
+        TextureContext tc{mesh_->UVAt(size_t(tri), eu, ev, 0), p,
+                          mesh_->UVAt(size_t(tri), eu, ev, 1)};
+        tc.n = n;
+        Le = Le * radiance_->Evaluate(tc).Clamped(0.f);
+    }
+    return Finish(si, p, n, float(pdfArea * dist2 / cosLight), Le, ls);
+}
+
+bool DiffuseAreaLight::Finish(const SurfaceInteraction &si, const Vec3f &p, const Vec3f &n,
+                              float pdf, const RGB &Le, LightSample *ls) const {
+    const Vec3f w = p - si.p;
+    const float dist = Length(w);
     if (!(dist > 0) || !(pdf > 0) || !std::isfinite(pdf)) return false;
     ls->wi = w / dist;
     ls->Li = (twoSided_ || Dot(n, -ls->wi) > 0) ? Le : RGB(0);
@@ -265,20 +274,75 @@ double DiffuseAreaLight::Power(double) const {
             sum += triangleAreas_[i] * triangleScale_[i];
         return (twoSided_ ? 2 : 1) * Pi * sum * Lemit_.Luminance();
     }
-    double area = meshArea_;
-    if (analytic_) {
-        // Uniform area sampling's object-space density, through the area Jacobian at one point
-        // (exact for similarity transforms, an estimate otherwise: it only weighs the choice).
-        Vec3d p, n;
-        double pdf;
-        if (!analytic_->SampleObjectArea(Vec2f(0.5f, 0.5f), &p, &n, &pdf) || !(pdf > 0)) return 0;
-        const Transform &m = analytic_->RenderFromObject();
-        double len = Length(n);
-        double jac =
-            len > 0 ? std::abs(m.Matrix().Determinant3x3()) * Length(m.Normal(n / len)) : 1.0;
-        area = jac / pdf;
-    }
+    const double area = analytic_ ? AnalyticArea() : meshArea_;
     return (twoSided_ ? 2 : 1) * Pi * area * Lemit_.Luminance();
+}
+
+double DiffuseAreaLight::AnalyticArea() const {
+    // Uniform area sampling's object-space density, through the area Jacobian at one point
+    // (exact for similarity transforms, an estimate otherwise: it only weighs choices).
+    Vec3d p, n;
+    double pdf;
+    if (!analytic_->SampleObjectArea(Vec2f(0.5f, 0.5f), &p, &n, &pdf) || !(pdf > 0)) return 0;
+    const Transform &m = analytic_->RenderFromObject();
+    const double len = Length(n);
+    const double jac =
+        len > 0 ? std::abs(m.Matrix().Determinant3x3()) * Length(m.Normal(n / len)) : 1.0;
+    return jac / pdf;
+}
+
+void DiffuseAreaLight::Bounds(std::vector<LightPartBounds> *parts) const {
+    const float sides = twoSided_ ? 2.f : 1.f;
+    if (analytic_) {
+        // The shape's box, emitting in every direction (its normals span the sphere).
+        LightPartBounds b;
+        b.lb.bounds = analytic_->RenderBounds();
+        b.lb.phi = float(Pi * AnalyticArea()) * sides * Lemit_.MaxComponent();
+        b.lb.cosTheta_o = -1;
+        b.lb.twoSided = twoSided_;
+        parts->push_back(b);
+        return;
+    }
+    if (!(meshArea_ > 0)) return;
+    // Each triangle SampleLi can choose: its box, its normal, its power (area x radiance; a
+    // textured triangle's sampling weight, area x mean radiance). A mesh of a few triangles
+    // (a quad, a small lamp) is one part, the union of its triangles': choosing among them by
+    // importance would cost the BVH's steps on every shadow ray for little gain; so is a
+    // moving mesh.
+    const size_t first = parts->size();
+    for (int i = 0; i < triangleWeights_.Count(); ++i) {
+        if (!(triangleWeights_.Func(i) > 0)) continue;
+        const Vec3f n = mesh_->GeometricNormal(size_t(i));
+        if (n == Vec3f(0, 0, 0)) continue;
+        LightPartBounds b;
+        b.prim = i;
+        const uint32_t *v = mesh_->Triangle(size_t(i));
+        b.lb.bounds = Bounds3f(mesh_->Position(v[0]), mesh_->Position(v[1]));
+        b.lb.bounds.Expand(mesh_->Position(v[2]));
+        b.lb.w = n;
+        b.lb.cosTheta_o = 1;
+        b.lb.twoSided = twoSided_;
+        const double power = radiance_ ? triangleWeights_.Func(i)
+                                       : triangleAreas_[size_t(i)] * Emitted(i).MaxComponent();
+        b.lb.phi = float(Pi * power) * sides;
+        parts->push_back(b);
+    }
+    const bool moving = mesh_->NumTimeSteps() > 1;
+    if (!moving && parts->size() - first > size_t(MaxTrianglesChosenWhole)) return;
+    LightPartBounds whole;
+    for (size_t k = first; k < parts->size(); ++k) whole.lb = Union(whole.lb, (*parts)[k].lb);
+    parts->resize(first);
+    if (moving) {
+        // A moving mesh (whose samples SampleLi takes where it starts, and rays meet anywhere
+        // on its way): one part over every time step's vertices, emitting every way.
+        for (int step = 1; step < mesh_->NumTimeSteps(); ++step) {
+            const float *pos = mesh_->PositionData(step);
+            for (size_t i = 0; i < mesh_->NumVertices(); ++i)
+                whole.lb.bounds.Expand(Vec3f(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+        }
+        whole.lb.cosTheta_o = -1;
+    }
+    if (whole.lb.phi > 0) parts->push_back(whole);
 }
 
 float DiffuseAreaLight::PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
@@ -292,6 +356,17 @@ float DiffuseAreaLight::PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
     float cosLight = AbsDot(hit->n, wi);
     if (!(dist2 > 0) || cosLight == 0) return 0;
     return float(PdfArea(hit->prim) * dist2 / cosLight);
+}
+
+float DiffuseAreaLight::PdfLiTriangle(const SurfaceInteraction &ref, const Vec3f &wi,
+                                      const SurfaceInteraction &hit) const {
+    if (!mesh_ || hit.prim < 0 || size_t(hit.prim) >= triangleAreas_.size() ||
+        !(triangleAreas_[size_t(hit.prim)] > 0))
+        return 0;
+    const float dist2 = LengthSquared(hit.p - ref.p);
+    const float cosLight = AbsDot(hit.n, wi);
+    if (!(dist2 > 0) || cosLight == 0) return 0;
+    return float(dist2 / (cosLight * triangleAreas_[size_t(hit.prim)]));
 }
 
 }  // namespace prism

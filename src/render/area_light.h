@@ -34,6 +34,16 @@ class DiffuseAreaLight final : public Light {
                      double powerPerTriangle = 0);
     const char *Name() const override { return "area"; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f u, LightSample *ls) const override;
+    // Meshes, for a triangle the light BVH chose: SampleLi over triangle `tri` alone (a
+    // uniform point on it), and the solid-angle density with which it gives the direction wi
+    // that met the mesh at hit (on that triangle).
+    bool SampleLiTriangle(const SurfaceInteraction &si, int tri, Vec2f u, LightSample *ls) const;
+    float PdfLiTriangle(const SurfaceInteraction &ref, const Vec3f &wi,
+                        const SurfaceInteraction &hit) const;
+    // An analytic shape whole; a mesh's triangles one by one (those SampleLi can choose), or
+    // the mesh whole when they are at most MaxTrianglesChosenWhole or the mesh moves.
+    void Bounds(std::vector<LightPartBounds> *parts) const override;
+    static constexpr int MaxTrianglesChosenWhole = 8;
     int NumSamples() const override { return nSamples_; }
     float PdfLi(const SurfaceInteraction &ref, const Vec3f &wi,
                 const SurfaceInteraction *hit) const override;
@@ -78,6 +88,13 @@ class DiffuseAreaLight final : public Light {
     double Power(double) const override;
 
   private:
+    // SampleLi at the point of triangle tri for (ux, uy) (uniform over it), whose density per
+    // unit area is pdfArea; and its last step, for a point p with normal n and density pdf.
+    bool SampleTriangle(const SurfaceInteraction &si, int tri, double ux, float uy, double pdfArea,
+                        LightSample *ls) const;
+    bool Finish(const SurfaceInteraction &si, const Vec3f &p, const Vec3f &n, float pdf,
+                const RGB &Le, LightSample *ls) const;
+    double AnalyticArea() const;  // render-space area of the analytic shape
     // L, times triangle `prim`'s scale when "power" gave each triangle one.
     RGB Emitted(int prim) const {
         return triangleScale_.empty() || prim < 0 || size_t(prim) >= triangleScale_.size()

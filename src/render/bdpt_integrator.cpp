@@ -13,9 +13,8 @@ namespace prism {
 
 // Integrator "bdpt" (integrator_list.inc). Parameters:
 //   maxdepth             integer  5        the longest path, in bounces (--maxdepth wins)
-//   lightsamplestrategy  string   "power"  uniform | power | spatial (half by power, half
-//                                          uniform): the light of each light subpath and
-//                                          light sample
+//   lightsamplestrategy  string   "power"  uniform | power | spatial (as power, a warning):
+//                                          the light of each light subpath and light sample
 //   visualizestrategies  bool     false    pbrt-v3's per-strategy images: ignored (a warning)
 //   visualizeweights     bool     false    the same, weighted: ignored (a warning)
 std::unique_ptr<Integrator> CreateBdptIntegrator(const IntegratorInputs &in) {
@@ -25,10 +24,10 @@ std::unique_ptr<Integrator> CreateBdptIntegrator(const IntegratorInputs &in) {
     if (lss == "uniform") {
         choice = LightChoice::Uniform;
     } else if (lss == "spatial") {
-        choice = LightChoice::Spatial;
+        // A light subpath starts without a shading point to weigh the lights for.
         p.Warn(p.Loc("lightsamplestrategy"),
-               "lightsamplestrategy \"spatial\" is rendered with one light distribution for the "
-               "whole scene (half by power, half uniform)");
+               "lightsamplestrategy \"spatial\" is rendered as \"power\" by bdpt (its light "
+               "subpaths start without a point to weigh the lights for)");
     } else if (lss != "power") {
         p.Warn(p.Loc("lightsamplestrategy"),
                "lightsamplestrategy " + Quote(lss) + " is unknown; using \"power\"");

@@ -64,16 +64,22 @@ struct MediaVisibility {
     }
 };
 
+// prim >= 0: the light is an emissive mesh of which triangle prim alone is estimated (the light
+// BVH chose it: render/light_bvh.h).
 template <class Scatter, class Visibility>
 RGB EstimateDirectWith(const RenderScene &scene, const SurfaceInteraction &si,
                        const Scatter &scatter, int lightIndex, Vec2f uLight, Vec2f uScatter,
-                       float uLobe, RayCounters &counters, const Visibility &vis) {
+                       float uLobe, RayCounters &counters, const Visibility &vis, int prim = -1) {
     const Light &light = *scene.lights[size_t(lightIndex)];
+    const DiffuseAreaLight *triangleOf =
+        prim >= 0 && light.IsArea() ? static_cast<const DiffuseAreaLight *>(&light) : nullptr;
     const Vec3f &wo = si.wo;
     RGB Ld;
     // The light sample, weighted against the scattering density.
     LightSample ls;
-    if (light.SampleLi(si, uLight, &ls) && ls.pdf > 0 && !ls.Li.IsBlack()) {
+    const bool sampled = triangleOf ? triangleOf->SampleLiTriangle(si, prim, uLight, &ls)
+                                    : light.SampleLi(si, uLight, &ls);
+    if (sampled && ls.pdf > 0 && !ls.Li.IsBlack()) {
         const RGB f = scatter.F(wo, ls.wi);
         if (!f.IsBlack()) {
             Ray shadow = ls.infinite ? si.SpawnRay(ls.wi, scene.offset)
@@ -133,9 +139,11 @@ RGB EstimateDirectWith(const RenderScene &scene, const SurfaceInteraction &si,
         return Ld + weight * Le * PowerHeuristic(1, bs.pdf, 1, lightPdf);
     }
     if (scene.Info(hit).areaLight != lightIndex) return Ld;
+    if (triangleOf && hit.prim != prim) return Ld;
     const RGB Le = static_cast<const DiffuseAreaLight &>(light).L(hit, -bs.wi);
     if (Le.IsBlack()) return Ld;
-    const float lightPdf = light.PdfLi(si, bs.wi, &hit);
+    const float lightPdf =
+        triangleOf ? triangleOf->PdfLiTriangle(si, bs.wi, hit) : light.PdfLi(si, bs.wi, &hit);
     if (!(lightPdf > 0)) return Ld;
     return Ld + weight * Le * PowerHeuristic(1, bs.pdf, 1, lightPdf);
 }
@@ -146,13 +154,14 @@ template <class Scatter, class Visibility>
 RGB SampleOneLightWith(const RenderScene &scene, const LightChooser &chooser,
                        const SurfaceInteraction &si, const Scatter &scatter, const PixelSamples &ps,
                        int bounce, RayCounters &counters, const Visibility &vis) {
-    float prob = 0;
-    const int j = chooser.Choose(ps.Get1D(VertexDim(bounce, DimLightChoice)), &prob);
-    if (j < 0 || !(prob > 0)) return RGB(0);
-    return EstimateDirectWith(scene, si, scatter, j, ps.Get2D(VertexDim(bounce, DimLight)),
+    // The shading normal at a surface (zero at a medium vertex).
+    const LightPick pick = chooser.Pick(ps.Get1D(VertexDim(bounce, DimLightChoice)), si.p, si.ns);
+    if (pick.light < 0 || !(pick.prob > 0)) return RGB(0);
+    return EstimateDirectWith(scene, si, scatter, pick.light, ps.Get2D(VertexDim(bounce, DimLight)),
                               ps.Get2D(VertexDim(bounce, DimScatter)),
-                              ps.Get1D(VertexDim(bounce, DimScatterLobe)), counters, vis) /
-           prob;
+                              ps.Get1D(VertexDim(bounce, DimScatterLobe)), counters, vis,
+                              pick.prim) /
+           pick.prob;
 }
 
 }  // namespace prism

@@ -30,6 +30,10 @@ class GoniometricLight final : public Light {
     // 4 pi I times the map's average over the sphere (latitude-longitude rows weighted by
     // their solid angle; equal-area texels are equal).
     double Power(double) const override { return 4 * Pi * I_.Luminance() * mapAverage_; }
+    void Bounds(std::vector<LightPartBounds> *parts) const override {
+        parts->push_back(
+            PointBounds(pos_, float(4 * Pi * mapAverage_) * I_.MaxComponent(), {0, 0, 1}, -1, 0));
+    }
     // The map's average over the sphere (1 without one): "power" is measured by it.
     double MapAverage() const { return mapAverage_; }
     // Emission: uniform over the sphere, the radiance the map gives each direction.

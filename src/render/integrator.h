@@ -245,6 +245,9 @@ struct IntegratorInputs {
     std::string why;
     FileLoc whyLoc;
     int pbrtVersion = 3;  // the pbrt rules the file is read by (scene/pbrt_version.h)
+    // --light-sampler ("bvh", "power", "uniform"; "": the parameters'), for the integrators
+    // that choose one light per shadow ray.
+    std::string lightSampler;
 };
 
 // The integrator registered as `name` (integrator_list.inc), or null when none is.

@@ -121,6 +121,26 @@ bool PointLight::SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) 
     return true;
 }
 
+LightPartBounds PointBounds(const Vec3f &pos, float phi, const Vec3f &w, float cosTheta_o,
+                            float cosTheta_e) {
+    LightPartBounds b;
+    b.lb.bounds = Bounds3f(pos, pos);
+    b.lb.phi = phi;
+    b.lb.w = w;
+    b.lb.cosTheta_o = cosTheta_o;
+    b.lb.cosTheta_e = cosTheta_e;
+    return b;
+}
+
+void PointLight::Bounds(std::vector<LightPartBounds> *parts) const {
+    parts->push_back(PointBounds(pos_, float(4 * Pi) * I_.MaxComponent(), {0, 0, 1}, -1, 0));
+}
+
+void SpotLight::Bounds(std::vector<LightPartBounds> *parts) const {
+    // All of its light within the cone's total width, along the cone's directions only.
+    parts->push_back(PointBounds(pos_, float(4 * Pi) * I_.MaxComponent(), dir_, cosTotalWidth_, 1));
+}
+
 SpotLight::SpotLight(const Vec3f &pos, const Vec3f &dir, const RGB &I, float coneAngle,
                      float coneDelta, FalloffCurve curve)
     : pos_(pos),

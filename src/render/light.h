@@ -10,6 +10,7 @@
 #include "core/params.h"
 #include "core/transform.h"
 #include "geometry/interaction.h"
+#include "render/light_bounds.h"
 
 namespace prism {
 
@@ -84,6 +85,10 @@ class Light {
                        float *pdfPos, float *pdfDir) const = 0;
     // Distant and infinite lights: light arriving from infinitely far along a direction.
     virtual bool IsInfinite() const { return false; }
+    // What the light emits where, for the light BVH (render/light_bvh.h): one entry per part
+    // the BVH may choose alone (an emissive mesh: each triangle it samples; the others: the
+    // light whole, prim -1). None for lights from infinitely far, which the BVH chooses apart.
+    virtual void Bounds(std::vector<LightPartBounds> *) const {}
 };
 
 class PointLight final : public Light {
@@ -93,6 +98,7 @@ class PointLight final : public Light {
     bool UsesSample() const override { return false; }
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
     double Power(double) const override { return 4 * Pi * I_.Luminance(); }
+    void Bounds(std::vector<LightPartBounds> *parts) const override;
     bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
                   LightLeSample *ls) const override;
     void PdfLe(const Vec3f &p, const Vec3f &n, const Vec3f &w, const SceneSphere &sphere,
@@ -117,6 +123,7 @@ class SpotLight final : public Light {
     double Power(double) const override {
         return 2 * Pi * I_.Luminance() * (1 - 0.5 * (cosFalloffStart_ + cosTotalWidth_));
     }
+    void Bounds(std::vector<LightPartBounds> *parts) const override;
     bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
                   LightLeSample *ls) const override;
     void PdfLe(const Vec3f &p, const Vec3f &n, const Vec3f &w, const SceneSphere &sphere,
@@ -147,6 +154,11 @@ class DistantLight final : public Light {
     Vec3f w_;
     RGB L_;
 };
+
+// The bounds of a light at the point pos emitting phi within the cone (w, theta_o), along the
+// cone's directions (cosTheta_e 1) or from any direction (0) of it.
+LightPartBounds PointBounds(const Vec3f &pos, float phi, const Vec3f &w, float cosTheta_o,
+                            float cosTheta_e);
 
 // Light tracing's shared steps: a uniform direction on the unit sphere and in a cone about z
 // (cosMax: the cone's half angle), a concentric point on the unit disk, and the origin of a ray

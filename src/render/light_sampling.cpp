@@ -54,6 +54,18 @@ void ComputeLightPower(RenderScene &scene) {
 
 LightChooser::LightChooser(const RenderScene &scene, LightChoice choice)
     : n_(int(scene.lights.size())) {
+    if (choice == LightChoice::BVH && n_ > 0) {
+        std::vector<const Light *> lights;
+        for (const auto &light : scene.lights) lights.push_back(light.get());
+        // Lights from infinitely far: their power over the scene sphere's squared radius (pi
+        // times the irradiance they give), against the parts' importance.
+        std::vector<double> infinite;
+        if (scene.lightPower.size() == size_t(n_) && scene.accel) {
+            const double r = SceneRadius(scene);
+            for (double power : scene.lightPower) infinite.push_back(power / (r * r));
+        }
+        bvh_ = std::make_shared<const LightBVH>(lights, infinite);
+    }
     if (choice == LightChoice::Uniform || scene.lightPower.size() != size_t(n_)) return;
     auto power = [&](int i) {
         double p = scene.lightPower[size_t(i)];
@@ -62,12 +74,10 @@ LightChooser::LightChooser(const RenderScene &scene, LightChoice choice)
     double sum = 0;
     for (int i = 0; i < n_; ++i) sum += power(i);
     if (!(sum > 0)) return;
-    // Spatial's stand-in: half the choices by power, half uniform (defensive sampling).
-    const double uniformShare = choice == LightChoice::Spatial ? 0.5 : 0.0;
     cdf_.resize(size_t(n_));
     double run = 0;
     for (int i = 0; i < n_; ++i) {
-        run += (1 - uniformShare) * power(i) / sum + uniformShare / n_;
+        run += power(i) / sum;
         cdf_[size_t(i)] = run;
     }
     cdf_.back() = 1;

@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/color.h"
 #include "geometry/interaction.h"
 #include "render/halton.h"
+#include "render/light_bvh.h"
 #include "render/sampler.h"
 
 namespace prism {
@@ -177,26 +179,35 @@ void ComputeLightPower(RenderScene &scene);
 struct SceneSphere;
 SceneSphere BoundingSphere(const RenderScene &scene);
 
-// Chooses a light for a one-light direct-lighting sample (uniformly, or by power).
-// How the path and directlighting integrators choose the light of a one-light direct-lighting
-// sample: uniformly, in proportion to the lights' power, or (the stand-in for pbrt-v3's
-// "spatial", the path default, which weighs lights by their contribution per region of the
-// scene) half by power and half uniformly, so a dim light that lights what the camera sees is
-// never starved.
-enum class LightChoice { Uniform, Power, Spatial };
+// How the integrators choose the light of a one-light direct-lighting sample: uniformly, in
+// proportion to the lights' power, or from the light BVH (render/light_bvh.h: by each light's
+// and each emissive triangle's importance at the shading point; pbrt-v4's "bvh", the path
+// integrators' default, and what pbrt-v3's "spatial" is rendered with).
+enum class LightChoice { Uniform, Power, BVH };
 
 class LightChooser {
   public:
     LightChooser() = default;  // no lights
     LightChooser(const RenderScene &scene, LightChoice choice);
-    // The light index for u in [0,1) and its probability; -1 when there are no lights.
+    // A light for the point p with unit normal n (zero in a medium), by u in [0,1): under BVH
+    // maybe one triangle of an emissive mesh; otherwise Choose's light whole.
+    LightPick Pick(float u, const Vec3f &p, const Vec3f &n) const {
+        if (bvh_) return bvh_->Sample(u, p, n);
+        LightPick pick;
+        pick.light = Choose(u, &pick.prob);
+        return pick;
+    }
+    // A light without a shading point (light tracing: by power under BVH), and its
+    // probability; -1 when there are no lights.
     int Choose(float u, float *prob) const;
     // The probability with which Choose picks light i.
     float Prob(int i) const;
+    const LightBVH *Bvh() const { return bvh_.get(); }
 
   private:
     std::vector<double> cdf_;  // empty: uniform
     int n_ = 0;
+    std::shared_ptr<const LightBVH> bvh_;
 };
 
 // pbrt-v3 EstimateDirect: one light sample (weighted against the BSDF's density by the power

@@ -12,27 +12,36 @@ PathParams ReadPathParams(const IntegratorInputs &in) {
     PathParams pp;
     pp.rrThreshold = p.Float("rrthreshold", 1.f);
     if (!(pp.rrThreshold >= 0)) throw SceneError(in.loc, "rrthreshold must be a number >= 0");
-    const std::string lss = p.String("lightsamplestrategy", "spatial");
+    // pbrt-v3's "lightsamplestrategy" (uniform | power | spatial) and pbrt-v4's "lightsampler"
+    // (uniform | power | bvh | exhaustive): pbrt-v3's default "spatial" (a distribution per
+    // voxel from the lights' contributions there) and pbrt-v4's "bvh" are both the light BVH,
+    // which weighs each light and emissive triangle by its importance at the shading point.
+    const char *name = p.Has("lightsampler") ? "lightsampler" : "lightsamplestrategy";
+    std::string lss = p.String(name, "bvh");
     if (lss == "uniform") {
         pp.lightChoice = LightChoice::Uniform;
     } else if (lss == "power") {
         pp.lightChoice = LightChoice::Power;
     } else {
-        // pbrt-v3's default "spatial" (a distribution per voxel from the lights' contributions
-        // there) stands in as one scene-wide mixture, half by power and half uniform
-        // (docs/INTEGRATORS.md); an unknown name is "spatial", as in pbrt-v3.
-        pp.lightChoice = LightChoice::Spatial;
-        if (p.Has("lightsamplestrategy") && lss == "spatial")
-            p.Warn(p.Loc("lightsamplestrategy"),
-                   "lightsamplestrategy \"spatial\" is rendered with one light distribution for "
-                   "the whole scene (half by power, half uniform)");
-        else if (p.Has("lightsamplestrategy"))
-            p.Warn(p.Loc("lightsamplestrategy"),
-                   "lightsamplestrategy " + Quote(lss) + " is unknown; using \"spatial\"");
+        pp.lightChoice = LightChoice::BVH;
+        if (lss == "exhaustive")
+            p.Warn(p.Loc(name),
+                   "lightsampler \"exhaustive\" is rendered with the light BVH "
+                   "(\"bvh\"), which chooses by the same importance");
+        else if (lss != "spatial" && lss != "bvh")
+            p.Warn(p.Loc(name), std::string(name) + " " + Quote(lss) +
+                                    " is unknown; using the "
+                                    "light BVH (\"bvh\")");
     }
+    // --light-sampler wins over the file.
+    if (in.lightSampler == "uniform") pp.lightChoice = LightChoice::Uniform;
+    if (in.lightSampler == "power") pp.lightChoice = LightChoice::Power;
+    if (in.lightSampler == "bvh") pp.lightChoice = LightChoice::BVH;
     // The one effect of the path integrators that no material or light turns on.
     in.effects.Enable(Effect::IndirectIllumination, in.why, in.whyLoc);
-    p.WarnUnread("Prism's path integrators read maxdepth, rrthreshold and lightsamplestrategy");
+    p.WarnUnread(
+        "Prism's path integrators read maxdepth, rrthreshold, lightsamplestrategy and "
+        "lightsampler");
     return pp;
 }
 
@@ -40,8 +49,9 @@ PathParams ReadPathParams(const IntegratorInputs &in) {
 //   maxdepth             integer  5          the longest path (--maxdepth wins)
 //   rrthreshold          float    1          Russian roulette below this throughput, after the
 //                                            third bounce
-//   lightsamplestrategy  string   "spatial"  uniform | power | spatial (half by power, half
-//                                            uniform)
+//   lightsamplestrategy  string   "spatial"  uniform | power | spatial (the light BVH)
+//   lightsampler         string   "bvh"      pbrt-v4's: uniform | power | bvh | exhaustive (as
+//                                            bvh, a warning); wins over lightsamplestrategy
 std::unique_ptr<Integrator> CreatePathIntegrator(const IntegratorInputs &in) {
     return std::make_unique<PathIntegrator>(ReadPathParams(in));
 }

@@ -14,7 +14,7 @@ namespace prism {
 
 struct PathParams {
     float rrThreshold = 1;  // "rrthreshold": Russian roulette below this throughput
-    LightChoice lightChoice = LightChoice::Spatial;  // "lightsamplestrategy"
+    LightChoice lightChoice = LightChoice::BVH;  // "lightsamplestrategy", "lightsampler"
 };
 // Reads path's and volpath's shared parameters (context: the integrator's name, for messages).
 PathParams ReadPathParams(const IntegratorInputs &in);

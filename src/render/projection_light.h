@@ -26,6 +26,11 @@ class ProjectionLight final : public Light {
     bool SampleLi(const SurfaceInteraction &si, Vec2f, LightSample *ls) const override;
     // I times the integral of the map over the frustum's solid angle (exact per texel).
     double Power(double) const override { return I_.Luminance() * mapIntegral_; }
+    // A point emitting within the cone through the image's corners.
+    void Bounds(std::vector<LightPartBounds> *parts) const override {
+        parts->push_back(PointBounds(pos_, float(mapIntegral_) * I_.MaxComponent(), axis_,
+                                     float(cosTotalWidth_), 1));
+    }
     // Emission: uniform in the cone about +z that bounds the frustum.
     bool SampleLe(Vec2f uPos, Vec2f uDir, const SceneSphere &sphere,
                   LightLeSample *ls) const override;

@@ -16,8 +16,9 @@ constexpr uint32_t VolPathPurpose = 0x766f6c70;
 //   maxdepth             integer  5          the longest path (--maxdepth wins)
 //   rrthreshold          float    1          Russian roulette below this throughput, after the
 //                                            third bounce
-//   lightsamplestrategy  string   "spatial"  uniform | power | spatial (half by power, half
-//                                            uniform)
+//   lightsamplestrategy  string   "spatial"  uniform | power | spatial (the light BVH)
+//   lightsampler         string   "bvh"      pbrt-v4's: uniform | power | bvh | exhaustive (as
+//                                            bvh, a warning); wins over lightsamplestrategy
 std::unique_ptr<Integrator> CreateVolPathIntegrator(const IntegratorInputs &in) {
     return std::make_unique<VolPathIntegrator>(ReadPathParams(in));
 }

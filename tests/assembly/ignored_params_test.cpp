@@ -142,18 +142,25 @@ TEST(IgnoredParams, IntegratorParametersOtherThanMaxdepth) {
     ExpectOneWarning(w, file, text, "\"lightsamplestrategy\"", "\"string lightsamplestrategy\"");
     EXPECT_EQ(w.size(), 3u);
 
-    // The path integrator reads rrthreshold and lightsamplestrategy; "spatial" is named for
-    // its stand-in, pixelbounds as ignored.
+    // The path integrator reads rrthreshold and lightsamplestrategy ("spatial": the light
+    // BVH, silently), pixelbounds is named as ignored.
     text =
         std::string(
             "Integrator \"path\" \"integer maxdepth\" 3 \"float rrthreshold\" 0.5\n"
             "    \"string lightsamplestrategy\" \"spatial\" \"integer pixelbounds\" [0 4 0 4]\n") +
         World + "Shape \"sphere\"\n";
     w = BuildWarnings("integrator_path", text, &file);
-    ExpectOneWarning(w, file, text, "one light distribution for the whole scene",
-                     "\"string lightsamplestrategy\"");
     ExpectOneWarning(w, file, text, "\"pixelbounds\"", "\"integer pixelbounds\"");
-    EXPECT_EQ(w.size(), 2u);
+    EXPECT_EQ(w.size(), 1u);
+
+    // pbrt-v4's lightsampler: "exhaustive" is named for its stand-in, an unknown one too.
+    for (const char *sampler : {"exhaustive", "nosuchsampler"}) {
+        text = std::string("Integrator \"volpath\" \"string lightsampler\" \"") + sampler + "\"\n" +
+               World + "Shape \"sphere\"\n";
+        w = BuildWarnings(std::string("integrator_lightsampler_") + sampler, text, &file);
+        ExpectOneWarning(w, file, text, "light BVH", "\"string lightsampler\"");
+        EXPECT_EQ(w.size(), 1u) << sampler;
+    }
 }
 
 TEST(IgnoredParams, TriangleMeshTangentsAndFaceIndices) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -144,10 +145,12 @@ TEST(Bdpt, AgreesWithPathUnderTheSkyAndTheSun) {
     };
     RenderScene bdpt = BuildText("sky_bdpt", with("Integrator \"bdpt\""));
     RenderScene path = BuildText("sky_path", with("Integrator \"path\""));
-    const Image b = RenderWithSeed(bdpt, 0), p1 = RenderWithSeed(path, 0),
-                p2 = RenderWithSeed(path, 1);
+    const Image b = RenderWithSeed(bdpt, 0), b2 = RenderWithSeed(bdpt, 1),
+                p1 = RenderWithSeed(path, 0), p2 = RenderWithSeed(path, 1);
     EXPECT_NEAR(MeanValue(b), MeanValue(p1), 0.015 * MeanValue(p1));
-    EXPECT_LT(RelL1(b, p1), 1.2 * RelL1(p2, p1));
+    // Apart by no more than the noisier of the two is from itself (here bdpt: the path
+    // tracer's light choice splits the samples evenly between the sky and the sun).
+    EXPECT_LT(RelL1(b, p1), 1.2 * std::max(RelL1(p2, p1), RelL1(b2, b)));
 }
 
 TEST(Bdpt, BeatsPathThroughASmallOpening) {
