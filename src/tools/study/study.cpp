@@ -27,6 +27,7 @@ constexpr KnobEntry Knobs[] = {
     {StudyKnob::Robust, "robust"},
     {StudyKnob::BvhQuality, "bvh-quality"},
     {StudyKnob::LightSamples, "light-samples"},
+    {StudyKnob::LightSampler, "light-sampler"},
 };
 
 // The reference's trace depth (the "depth 16"; the scene's own when it is deeper).
@@ -73,8 +74,8 @@ Run RenderOnce(const RenderScene &scene) {
     return r;
 }
 
-// Whether the setting leaves the base settings as they are (light samples are per light and the
-// BVH quality's base is Auto, so none of theirs is).
+// Whether the setting leaves the base settings as they are (light samples are per light, the
+// light sampler's base is the file's and the BVH quality's is Auto, so none of theirs is).
 bool IsBaseSetting(const StudySetting &s, int baseSpp, int baseMaxDepth) {
     switch (s.knob) {
         case StudyKnob::Spp:
@@ -199,6 +200,11 @@ std::vector<StudySetting> KnobSettings(StudyKnob knob, const StudyOptions &optio
                 v.push_back(Setting(knob, std::to_string(n),
                                     [n](BuildSettings &s) { s.lightSamples = n; }));
             break;
+        case StudyKnob::LightSampler:
+            for (const char *name : {"uniform", "power", "bvh"})
+                v.push_back(
+                    Setting(knob, name, [name](BuildSettings &s) { s.lightSampler = name; }));
+            break;
     }
     return v;
 }
@@ -228,6 +234,15 @@ std::optional<std::string> KnobSkipReason(StudyKnob knob, const SceneFeatures &f
         default:
             break;
     }
+    return std::nullopt;
+}
+
+std::optional<std::string> LightSamplerSkipReason(const RenderScene &scene) {
+    const std::string name = scene.integrator ? scene.integrator->Name() : "";
+    if (name != "path" && name != "volpath")
+        return "the " + name + " integrator does not choose one light per shadow ray";
+    if (scene.lights.size() < 2 && (scene.lights.empty() || !scene.lights[0]->IsArea()))
+        return std::string("the scene has one light, which every choice takes");
     return std::nullopt;
 }
 
@@ -301,7 +316,9 @@ StudyResult RunStudy(const SceneDescription &desc, const std::string &sceneName,
     std::vector<StudySetting> settings;
     bool anyReused = false;
     for (StudyKnob k : unique) {
-        if (std::optional<std::string> why = KnobSkipReason(k, scene.features)) {
+        std::optional<std::string> why = KnobSkipReason(k, scene.features);
+        if (k == StudyKnob::LightSampler) why = LightSamplerSkipReason(scene);
+        if (why) {
             result.skipped.push_back({k, *why});
             continue;
         }

@@ -30,11 +30,12 @@ enum class StudyKnob {
     Tessellate,
     Robust,
     BvhQuality,
-    LightSamples
+    LightSamples,
+    LightSampler
 };
 
 // The name `--knob` takes ("spp", "maxdepth", "cutoff", "precision", "offset", "tessellate",
-// "robust", "bvh-quality", "light-samples") and its inverse.
+// "robust", "bvh-quality", "light-samples", "light-sampler") and its inverse.
 const char *KnobName(StudyKnob knob);
 std::optional<StudyKnob> ParseKnobName(std::string_view name);
 std::vector<StudyKnob> AllStudyKnobs();
@@ -69,6 +70,9 @@ bool KnobReusesScene(StudyKnob knob);
 
 // Why the knob does not apply to the scene (nothing to study), or nullopt when it does.
 std::optional<std::string> KnobSkipReason(StudyKnob knob, const SceneFeatures &features);
+// The light-sampler knob's: an integrator that does not choose one light per shadow ray (all
+// but path and volpath), or a scene of one light that is not an emissive shape.
+std::optional<std::string> LightSamplerSkipReason(const RenderScene &scene);
 
 // Error of an image against the reference, over every pixel's RGB components (docs/USAGE.md
 // "Accuracy study"):

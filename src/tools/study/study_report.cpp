@@ -34,6 +34,8 @@ std::string SettingInWords(const StudyRow &r) {
     if (k == "robust") return "Embree's ROBUST flag " + v;
     if (k == "bvh-quality") return "BVH quality " + v;
     if (k == "light-samples") return v + (v == "1" ? " light sample" : " light samples");
+    if (k == "light-sampler")
+        return "lights chosen " + std::string(v == "bvh" ? "by the light BVH" : "by " + v);
     return k + " " + v;
 }
 

@@ -38,10 +38,11 @@ const StudyRow &Row(const std::vector<StudyRow> &rows, const std::string &knob,
 
 TEST(StudyKnobs, NamesRoundTrip) {
     std::vector<StudyKnob> all = AllStudyKnobs();
-    ASSERT_EQ(all.size(), 9u);
+    ASSERT_EQ(all.size(), 10u);
     for (StudyKnob k : all) EXPECT_EQ(ParseKnobName(KnobName(k)), k) << KnobName(k);
     EXPECT_EQ(ParseKnobName("bvh-quality"), StudyKnob::BvhQuality);
     EXPECT_EQ(ParseKnobName("light-samples"), StudyKnob::LightSamples);
+    EXPECT_EQ(ParseKnobName("light-sampler"), StudyKnob::LightSampler);
     EXPECT_FALSE(ParseKnobName("all"));
     EXPECT_FALSE(ParseKnobName("SPP"));
 }
@@ -66,6 +67,7 @@ TEST(StudyKnobs, SettingsOfEachKnob) {
     EXPECT_EQ(values(StudyKnob::Robust), (V{"off", "on"}));
     EXPECT_EQ(values(StudyKnob::BvhQuality), (V{"low", "medium", "high"}));
     EXPECT_EQ(values(StudyKnob::LightSamples), (V{"1", "2", "4", "8", "16"}));
+    EXPECT_EQ(values(StudyKnob::LightSampler), (V{"uniform", "power", "bvh"}));
 
     // Each setting changes what it names in the build settings.
     BuildSettings s;
@@ -86,6 +88,8 @@ TEST(StudyKnobs, SettingsOfEachKnob) {
     EXPECT_TRUE(bool(s.replaceAnalyticShape));
     KnobSettings(StudyKnob::LightSamples, o)[3].apply(s);
     EXPECT_EQ(s.lightSamples, 8);
+    KnobSettings(StudyKnob::LightSampler, o)[1].apply(s);
+    EXPECT_EQ(s.lightSampler, "power");
 }
 
 TEST(StudyError, Measures) {
@@ -131,11 +135,14 @@ TEST(Study, TinySceneAllKnobs) {
         count = n;
     });
     // spp 1..8, maxdepth 1..16, cutoff 4, precision 2, offset 4, tessellate 5, robust 2, bvh 3,
-    // light-samples 5 (the sky is an infinite light).
+    // light-samples 5 (the sky is an infinite light); light-sampler skipped (Whitted samples
+    // every light).
     EXPECT_EQ(r.rows.size(), 4u + 16 + 4 + 2 + 4 + 5 + 2 + 3 + 5);
     EXPECT_EQ(count, int(r.rows.size()));
     EXPECT_EQ(calls, count);
-    EXPECT_TRUE(r.skipped.empty());
+    ASSERT_EQ(r.skipped.size(), 1u);
+    EXPECT_EQ(r.skipped[0].knob, StudyKnob::LightSampler);
+    EXPECT_NE(r.skipped[0].reason.find("whitted integrator"), std::string::npos);
     EXPECT_EQ(r.resolution, Vec2i(32, 24));
     EXPECT_EQ(r.baseSpp, 4);
     EXPECT_EQ(r.baseMaxDepth, 6);
@@ -234,11 +241,12 @@ WorldEnd
     StudyResult r = RunStudy(desc, "flat", o, diag);
     std::map<std::string, std::string> skipped;
     for (const SkippedKnob &s : r.skipped) skipped[KnobName(s.knob)] = s.reason;
-    EXPECT_EQ(skipped.size(), 4u);
+    EXPECT_EQ(skipped.size(), 5u);
     EXPECT_NE(skipped["maxdepth"].find("specular"), std::string::npos);
     EXPECT_NE(skipped["precision"].find("analytic"), std::string::npos);
     EXPECT_NE(skipped["tessellate"].find("analytic"), std::string::npos);
     EXPECT_NE(skipped["light-samples"].find("area or infinite"), std::string::npos);
+    EXPECT_NE(skipped["light-sampler"].find("one light"), std::string::npos);
     for (const StudyRow &row : r.rows) EXPECT_EQ(skipped.count(row.knob), 0u) << row.knob;
     // spp 1, 2 (below the reference's 4), cutoff 4, offset 4, robust 2, bvh-quality 3.
     EXPECT_EQ(r.rows.size(), 2u + 4 + 4 + 2 + 3);
