@@ -28,6 +28,21 @@ struct LightBounds {
     double Importance(const Vec3f &p, const Vec3f &n) const;
 };
 
+// LightBounds as Importance reads them, with what it needs precomputed (the light BVH's nodes).
+struct CompactLightBounds {
+    CompactLightBounds() = default;
+    explicit CompactLightBounds(const LightBounds &lb);
+    double Importance(const Vec3f &p, const Vec3f &n) const;
+
+    Vec3d centre;   // of the box
+    double r2 = 0;  // the squared radius of the box's bounding sphere
+    float r = 0;    // its radius
+    Vec3f w{0, 0, 1};
+    float phi = 0;
+    float cosTheta_o = 1, sinTheta_o = 0, cosTheta_e = 0;
+    bool twoSided = false;
+};
+
 // The bounds of two parts together: the boxes' union, the smallest cone holding both cones
 // (all directions when none smaller does), the powers' sum.
 LightBounds Union(const LightBounds &a, const LightBounds &b);

@@ -14,17 +14,6 @@ constexpr float kPi = 3.14159265358979f;
 
 float SafeSqrt(float x) { return std::sqrt(std::max(0.f, x)); }
 
-// cos(max(0, a - b)) and its sine, from the cosines and sines of a and b (a, b in [0, pi]).
-void CosMinusClamped(float cosA, float sinA, float cosB, float sinB, float *c, float *s) {
-    if (cosA >= cosB) {  // a <= b
-        *c = 1;
-        *s = 0;
-        return;
-    }
-    *c = cosA * cosB + sinA * sinB;
-    *s = sinA * cosB - cosA * sinB;
-}
-
 // v rotated by angle theta about the unit axis k perpendicular to it.
 Vec3f RotatePerpendicular(const Vec3f &v, const Vec3f &k, float theta) {
     return v * std::cos(theta) + Cross(k, v) * std::sin(theta);
@@ -51,43 +40,62 @@ float OrientationMeasure(float cosTheta_o, float cosTheta_e) {
 }  // namespace
 
 double LightBounds::Importance(const Vec3f &p, const Vec3f &n) const {
+    return CompactLightBounds(*this).Importance(p, n);
+}
+
+CompactLightBounds::CompactLightBounds(const LightBounds &lb)
+    : centre(Vec3d(lb.bounds.pMin) * 0.5 + Vec3d(lb.bounds.pMax) * 0.5),
+      r2(LengthSquared(Vec3d(lb.bounds.pMax) - Vec3d(lb.bounds.pMin)) * 0.25),
+      r(float(std::sqrt(r2))),
+      w(lb.w),
+      phi(lb.phi),
+      cosTheta_o(std::clamp(lb.cosTheta_o, -1.f, 1.f)),
+      sinTheta_o(SafeSqrt(1 - cosTheta_o * cosTheta_o)),
+      cosTheta_e(lb.cosTheta_e),
+      twoSided(lb.twoSided) {}
+
+double CompactLightBounds::Importance(const Vec3f &p, const Vec3f &n) const {
     if (!(phi > 0)) return 0;
     // Distances in double: a scene's far and huge lights neither overflow nor vanish.
-    const Vec3d pc = Vec3d(bounds.Center());
-    const Vec3d half = Vec3d(bounds.Diagonal()) * 0.5;
-    const Vec3d toP = Vec3d(p) - pc;
-    const double r2 = LengthSquared(half);
+    const Vec3d toP = Vec3d(p) - centre;
     const double dist2 = LengthSquared(toP);
     // Inside the bounding sphere the distance is the sphere's radius (no 1/d^2 blow-up).
     const double d2 = std::max(dist2, r2);
     const bool inside = !(dist2 > r2);
-    // The angle the box's bounding sphere subtends from p: pi inside it.
-    float cosB = -1, sinB = 0;
-    if (!inside) {
-        const double sin2 = r2 / dist2;
-        cosB = float(std::sqrt(std::max(0.0, 1 - sin2)));
-        sinB = float(std::sqrt(sin2));
-    }
+    const double invDist = dist2 > 0 ? 1 / std::sqrt(dist2) : 0;
     // The direction from the box toward p, against the cone's axis.
-    const Vec3f wi = dist2 > 0 ? Vec3f(toP / std::sqrt(dist2)) : w;
+    const Vec3f wi = dist2 > 0 ? Vec3f(toP * invDist) : w;
     float cosW = Dot(w, wi);
     if (twoSided) cosW = std::abs(cosW);
     cosW = std::clamp(cosW, -1.f, 1.f);
-    const float sinW = SafeSqrt(1 - cosW * cosW);
-    // The smallest angle between p's direction and a normal of the cone, less the box's angle.
-    const float sinO = SafeSqrt(1 - cosTheta_o * cosTheta_o);
-    float cosX, sinX, cosP, sinP;
-    CosMinusClamped(cosW, sinW, cosTheta_o, sinO, &cosX, &sinX);
-    CosMinusClamped(cosX, sinX, cosB, sinB, &cosP, &sinP);
+    // The smallest angle between p's direction and a normal of the cone (x), less the angle
+    // the box's bounding sphere subtends from p (b: pi inside it), each taken only if needed.
+    float cosX = 1, sinX = 0;
+    if (cosW < cosTheta_o) {
+        const float sinW = SafeSqrt(1 - cosW * cosW);
+        cosX = cosW * cosTheta_o + sinW * sinTheta_o;
+        sinX = sinW * cosTheta_o - cosW * sinTheta_o;
+    }
+    float cosB = -1, sinB = 0;
+    bool haveB = false;
+    auto boxAngle = [&] {
+        haveB = true;
+        if (inside) return;
+        sinB = std::min(float(double(r) * invDist), 1.f);
+        cosB = SafeSqrt(1 - sinB * sinB);
+    };
+    float cosP = 1;
+    if (cosX < 1) {
+        boxAngle();
+        if (cosX < cosB) cosP = cosX * cosB + sinX * sinB;
+    }
     if (cosP < cosTheta_e) return 0;
     double importance = double(phi) * double(cosP) / (d2 > 0 ? d2 : 1e-300);
     if (n != Vec3f(0, 0, 0)) {
         // The incident cosine at p, the box's angle allowing (either side: transmission).
         const float cosI = std::min(AbsDot(wi, n), 1.f);
-        const float sinI = SafeSqrt(1 - cosI * cosI);
-        float cosIp, sinIp;
-        CosMinusClamped(cosI, sinI, cosB, sinB, &cosIp, &sinIp);
-        importance *= double(cosIp);
+        if (!haveB) boxAngle();
+        if (cosI < cosB) importance *= double(cosI * cosB + SafeSqrt(1 - cosI * cosI) * sinB);
     }
     return std::max(importance, 0.0);
 }
@@ -184,7 +192,7 @@ int LightBVH::Build(std::vector<Part> &parts, size_t begin, size_t end, int dept
     const int index = int(nodes_.size());
     nodes_.emplace_back();
     if (end - begin == 1) {
-        nodes_[size_t(index)].lb = parts[begin].lb;
+        nodes_[size_t(index)].lb = CompactLightBounds(parts[begin].lb);
         nodes_[size_t(index)].part = int32_t(begin);
         return index;
     }
@@ -253,7 +261,7 @@ int LightBVH::Build(std::vector<Part> &parts, size_t begin, size_t end, int dept
     Build(parts, begin, mid, depth + 1);
     const int second = Build(parts, mid, end, depth + 1);
     nodes_[size_t(index)].second = second;
-    nodes_[size_t(index)].lb = all;
+    nodes_[size_t(index)].lb = CompactLightBounds(all);
     return index;
 }
 

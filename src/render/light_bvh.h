@@ -53,7 +53,7 @@ class LightBVH {
     };
     // Node i's first child is node i + 1, its second node `second`; a leaf holds part `part`.
     struct Node {
-        LightBounds lb;
+        CompactLightBounds lb;
         int32_t second = -1;
         int32_t part = -1;
         bool IsLeaf() const { return part >= 0; }
