@@ -372,6 +372,8 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                 : std::string("none (") + scene.IntegratorName() + " integrator)";
         std::fprintf(stderr, "effects: %s; kernel: %s\n", on.empty() ? "none" : on.c_str(),
                      kernelName.c_str());
+        if (const std::string s = scene.integrator->Summary(); !s.empty())
+            std::fprintf(stderr, "%s\n", s.c_str());
         if (!stats.passSpp.empty()) {
             std::string passes;
             for (int n : stats.passSpp) passes += (passes.empty() ? "" : "+") + std::to_string(n);

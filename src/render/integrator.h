@@ -199,6 +199,9 @@ class Integrator {
     // Called once the scene is built (the lights exist): per-scene state such as the light
     // choice. The integrator is immutable during a render.
     virtual void Prepare(const RenderScene &scene) {}
+    // What Prepare chose for the scene that the render summary should say ("lights: ..."),
+    // or empty.
+    virtual std::string Summary() const { return {}; }
     // The effect kernel a render of `scene` runs (render/kernel.h), chosen once per render; 0
     // for integrators without one.
     virtual uint32_t KernelMask(const RenderScene &scene, const TraceSettings &trace) const {

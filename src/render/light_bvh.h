@@ -45,6 +45,7 @@ class LightBVH {
     size_t NumParts() const { return parts_.size(); }
     size_t NumNodes() const { return nodes_.size(); }
     int Depth() const { return depth_; }
+    size_t NumInfinite() const { return infinite_.size(); }  // lights chosen apart
 
   private:
     struct Part {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "render/area_light.h"
 #include "render/bsdf.h"
@@ -81,6 +82,19 @@ LightChooser::LightChooser(const RenderScene &scene, LightChoice choice)
         cdf_[size_t(i)] = run;
     }
     cdf_.back() = 1;
+}
+
+std::string LightChooser::Summary() const {
+    if (n_ == 0) return {};
+    if (bvh_) {
+        std::string s = "lights: chosen by the light BVH (" + std::to_string(bvh_->NumParts()) +
+                        (bvh_->NumParts() == 1 ? " part" : " parts") + ", depth " +
+                        std::to_string(bvh_->Depth());
+        if (bvh_->NumInfinite() > 0)
+            s += "; " + std::to_string(bvh_->NumInfinite()) + " from infinitely far";
+        return s + ")";
+    }
+    return cdf_.empty() ? "lights: chosen uniformly" : "lights: chosen by power";
 }
 
 int LightChooser::Choose(float u, float *prob) const {

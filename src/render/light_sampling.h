@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/color.h"
@@ -203,6 +204,9 @@ class LightChooser {
     // The probability with which Choose picks light i.
     float Prob(int i) const;
     const LightBVH *Bvh() const { return bvh_.get(); }
+    // "lights: chosen by the light BVH (N parts, depth D; K from infinitely far)", "... by
+    // power", "... uniformly"; empty without lights.
+    std::string Summary() const;
 
   private:
     std::vector<double> cdf_;  // empty: uniform

@@ -25,6 +25,8 @@ class PathIntegrator : public Integrator {
     const char *Name() const override { return "path"; }
     IntegratorTraits Traits() const override;
     void Prepare(const RenderScene &scene) override;
+    // How the shadow rays' lights are chosen (LightChooser::Summary).
+    std::string Summary() const override { return chooser_.Summary(); }
     RGB Li(const RenderScene &scene, const Ray &ray, const PixelSamples &ps, RayCounters &rc,
            RGB *direct) const override;
 

@@ -30,8 +30,8 @@ TEST(PbrtUpgrade, AnUpgradedSceneRendersTheSameImage) {
         const std::string name = e.path().filename().string();
         if (e.path().extension() != ".pbrt" || name.find(".v4.") != std::string::npos) continue;
         const std::string v3 = e.path().string();
-        const std::string v4 = (e.path().parent_path() / (e.path().stem().string() + ".v4.pbrt"))
-                                   .string();
+        const std::string v4 =
+            (e.path().parent_path() / (e.path().stem().string() + ".v4.pbrt")).string();
         ASSERT_TRUE(fs::exists(v4)) << v4;
         EXPECT_EQ(RulesOf(v3), 3) << name;
         EXPECT_EQ(RulesOf(v4), 4) << name;
