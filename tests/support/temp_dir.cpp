@@ -32,7 +32,18 @@ fs::path TempDir(const std::string &name) {
 
 std::string WriteTestFile(const fs::path &path, const std::string &contents) {
     if (path.has_parent_path()) fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary) << contents;
+    fs::path tmp = path;
+    tmp += ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << contents;
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {  // e.g. path is a directory: write in place, as before
+        fs::remove(tmp, ec);
+        std::ofstream(path, std::ios::binary) << contents;
+    }
     return path.string();
 }
 

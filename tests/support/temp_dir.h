@@ -21,7 +21,9 @@ std::filesystem::path ScratchDir(const std::string &name);
 std::filesystem::path TempDir(const std::string &name);
 
 // Writes `contents` (bytes as given) to `path`, creating its parent folders, and returns the
-// path as a string.
+// path as a string. The file appears whole: it is written beside `path` under a name of this
+// process and renamed over it, so another test process reading a shared scratch file (ctest
+// runs the tests of one file in parallel, each rewriting it) never sees it cut short.
 std::string WriteTestFile(const std::filesystem::path &path, const std::string &contents);
 
 // WriteTestFile of `name` directly in the scratch directory (a name unique to the test file).
