@@ -10,9 +10,7 @@ namespace prism {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-
-float SafeSqrt(float x) { return std::sqrt(std::max(0.f, x)); }
+constexpr float kPi = float(Pi);
 
 // v rotated by angle theta about the unit axis k perpendicular to it.
 Vec3f RotatePerpendicular(const Vec3f &v, const Vec3f &k, float theta) {
@@ -28,8 +26,8 @@ float SurfaceArea(const Bounds3f &b) {
 // normal reaches, each weighted by the cosine to the nearest normal (the orientation term of
 // Conty Estevez and Kulla's surface area orientation heuristic).
 float OrientationMeasure(float cosTheta_o, float cosTheta_e) {
-    const float thetaO = std::acos(std::clamp(cosTheta_o, -1.f, 1.f));
-    const float thetaE = std::acos(std::clamp(cosTheta_e, -1.f, 1.f));
+    const float thetaO = SafeACos(cosTheta_o);
+    const float thetaE = SafeACos(cosTheta_e);
     const float thetaW = std::min(thetaO + thetaE, kPi);
     const float sinO = SafeSqrt(1 - cosTheta_o * cosTheta_o);
     return 2 * kPi * (1 - cosTheta_o) +
@@ -111,9 +109,9 @@ LightBounds Union(const LightBounds &a, const LightBounds &b) {
     u.twoSided = a.twoSided || b.twoSided;
     // The smallest cone holding both: one of them if it holds the other, else the cone whose
     // edge touches both far edges.
-    const float thetaA = std::acos(std::clamp(a.cosTheta_o, -1.f, 1.f));
-    const float thetaB = std::acos(std::clamp(b.cosTheta_o, -1.f, 1.f));
-    const float thetaD = std::acos(std::clamp(Dot(a.w, b.w), -1.f, 1.f));
+    const float thetaA = SafeACos(a.cosTheta_o);
+    const float thetaB = SafeACos(b.cosTheta_o);
+    const float thetaD = SafeACos(Dot(a.w, b.w));
     if (std::min(thetaD + thetaB, kPi) <= thetaA) {
         u.w = a.w;
         u.cosTheta_o = a.cosTheta_o;

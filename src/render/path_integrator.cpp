@@ -1,11 +1,27 @@
 #include "render/path_integrator.h"
 
+#include <optional>
+#include <string>
+
 #include "core/params.h"
 #include "render/effects.h"
 #include "render/path_vertex.h"
 #include "render/render_scene.h"
 
 namespace prism {
+
+namespace {
+
+// The light choice a name gives (a --light-sampler value, or a lightsampler or
+// lightsamplestrategy parameter's), if it names one.
+std::optional<LightChoice> LightChoiceNamed(const std::string &s) {
+    if (s == "uniform") return LightChoice::Uniform;
+    if (s == "power") return LightChoice::Power;
+    if (s == "bvh" || s == "spatial") return LightChoice::BVH;
+    return std::nullopt;
+}
+
+}  // namespace
 
 PathParams ReadPathParams(const IntegratorInputs &in) {
     const Params &p = in.params;
@@ -17,26 +33,19 @@ PathParams ReadPathParams(const IntegratorInputs &in) {
     // voxel from the lights' contributions there) and pbrt-v4's "bvh" are both the light BVH,
     // which weighs each light and emissive triangle by its importance at the shading point.
     const char *name = p.Has("lightsampler") ? "lightsampler" : "lightsamplestrategy";
-    std::string lss = p.String(name, "bvh");
-    if (lss == "uniform") {
-        pp.lightChoice = LightChoice::Uniform;
-    } else if (lss == "power") {
-        pp.lightChoice = LightChoice::Power;
-    } else {
-        pp.lightChoice = LightChoice::BVH;
-        if (lss == "exhaustive")
-            p.Warn(p.Loc(name),
-                   "lightsampler \"exhaustive\" is rendered with the light BVH "
-                   "(\"bvh\"), which chooses by the same importance");
-        else if (lss != "spatial" && lss != "bvh")
-            p.Warn(p.Loc(name), std::string(name) + " " + Quote(lss) +
-                                    " is unknown; using the "
-                                    "light BVH (\"bvh\")");
-    }
+    const std::string lss = p.String(name, "bvh");
+    const std::optional<LightChoice> named = LightChoiceNamed(lss);
+    pp.lightChoice = named.value_or(LightChoice::BVH);
+    if (lss == "exhaustive")
+        p.Warn(p.Loc(name),
+               "lightsampler \"exhaustive\" is rendered with the light BVH "
+               "(\"bvh\"), which chooses by the same importance");
+    else if (!named)
+        p.Warn(p.Loc(name),
+               std::string(name) + " " + Quote(lss) + " is unknown; using the light BVH (\"bvh\")");
     // --light-sampler wins over the file.
-    if (in.lightSampler == "uniform") pp.lightChoice = LightChoice::Uniform;
-    if (in.lightSampler == "power") pp.lightChoice = LightChoice::Power;
-    if (in.lightSampler == "bvh") pp.lightChoice = LightChoice::BVH;
+    if (!in.lightSampler.empty())
+        pp.lightChoice = LightChoiceNamed(in.lightSampler).value_or(pp.lightChoice);
     // The one effect of the path integrators that no material or light turns on.
     in.effects.Enable(Effect::IndirectIllumination, in.why, in.whyLoc);
     p.WarnUnread(
