@@ -44,6 +44,25 @@ float HenyeyGreenstein::Sample_p(const Vec3f &wo, Vec3f *wi, Vec2f u) const {
     return PhaseHG(-cosTheta, g_);
 }
 
+bool ClipToBox(const Ray &r, const Vec3f &lo, const Vec3f &hi, float *t0, float *t1) {
+    float a = 0, b = r.tMax;
+    for (int i = 0; i < 3; ++i) {
+        const float inv = 1 / r.d[i];
+        float tn = (lo[i] - r.o[i]) * inv, tf = (hi[i] - r.o[i]) * inv;
+        if (tn > tf) std::swap(tn, tf);
+        if (std::isnan(tn) || std::isnan(tf)) {  // parallel to the slab, on its plane
+            if (r.o[i] < lo[i] || r.o[i] > hi[i]) return false;
+            continue;
+        }
+        a = std::max(a, tn);
+        b = std::min(b, tf);
+        if (a > b) return false;
+    }
+    *t0 = a;
+    *t1 = b;
+    return b > a;
+}
+
 // Homogeneous.
 
 RGB HomogeneousMedium::Tr(const Ray &ray, MediumSampler &) const {
@@ -106,22 +125,11 @@ GridDensityMedium::GridDensityMedium(const RGB &sigmaA, const RGB &sigmaS, float
     invMaxDensity_ = maxDensity > 0 ? 1 / maxDensity : 0;
 }
 
-float GridDensityMedium::D(int x, int y, int z) const {
-    if (x < 0 || y < 0 || z < 0 || x >= nx_ || y >= ny_ || z >= nz_) return 0;
-    return density_[(size_t(z) * size_t(ny_) + size_t(y)) * size_t(nx_) + size_t(x)];
-}
-
 float GridDensityMedium::DensityGrid(const Vec3f &pg) const {
     // Samples sit at voxel centres (pbrt-v3 GridDensityMedium::Density).
-    const float sx = pg.x * nx_ - .5f, sy = pg.y * ny_ - .5f, sz = pg.z * nz_ - .5f;
-    const int ix = int(std::floor(sx)), iy = int(std::floor(sy)), iz = int(std::floor(sz));
-    const float dx = sx - ix, dy = sy - iy, dz = sz - iz;
-    auto lerp = [](float t, float a, float b) { return (1 - t) * a + t * b; };
-    const float d00 = lerp(dx, D(ix, iy, iz), D(ix + 1, iy, iz));
-    const float d10 = lerp(dx, D(ix, iy + 1, iz), D(ix + 1, iy + 1, iz));
-    const float d01 = lerp(dx, D(ix, iy, iz + 1), D(ix + 1, iy, iz + 1));
-    const float d11 = lerp(dx, D(ix, iy + 1, iz + 1), D(ix + 1, iy + 1, iz + 1));
-    return lerp(dz, lerp(dy, d00, d10), lerp(dy, d01, d11));
+    return VoxelLerp<float>(nx_, ny_, nz_, pg, [&](int x, int y, int z) {
+        return density_[(size_t(z) * size_t(ny_) + size_t(y)) * size_t(nx_) + size_t(x)];
+    });
 }
 
 float GridDensityMedium::Density(const Vec3f &pRender) const {
@@ -132,22 +140,7 @@ bool GridDensityMedium::GridSegment(const Ray &ray, Ray *rg, float *t0, float *t
     rg->o = gridFromRender_.Point(ray.o);
     rg->d = gridFromRender_.Vector(ray.d);
     rg->tMax = ray.tMax;
-    float a = 0, b = ray.tMax;
-    for (int i = 0; i < 3; ++i) {
-        const float inv = 1 / rg->d[i];
-        float tn = (0 - rg->o[i]) * inv, tf = (1 - rg->o[i]) * inv;
-        if (tn > tf) std::swap(tn, tf);
-        if (std::isnan(tn) || std::isnan(tf)) {  // parallel to the slab, on its plane
-            if (rg->o[i] < 0 || rg->o[i] > 1) return false;
-            continue;
-        }
-        a = std::max(a, tn);
-        b = std::min(b, tf);
-        if (a > b) return false;
-    }
-    *t0 = a;
-    *t1 = b;
-    return b > a;
+    return ClipToBox(*rg, Vec3f(0, 0, 0), Vec3f(1, 1, 1), t0, t1);
 }
 
 bool GridDensityMedium::Extent(const Ray &ray, float *t0, float *t1) const {

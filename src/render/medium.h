@@ -8,6 +8,7 @@
 // (render/medium_interface.h).
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -45,6 +46,33 @@ class HenyeyGreenstein {
   private:
     float g_;
 };
+
+// Trilinear interpolation between the centres of an nx × ny × nz grid over [0,1]^3 (pg in that
+// space; pbrt's grids): value(x, y, z) is a voxel's value, T() outside the grid.
+template <typename T, typename Value>
+T VoxelLerp(int nx, int ny, int nz, const Vec3f &pg, const Value &value) {
+    const float sx = pg.x * float(nx) - .5f, sy = pg.y * float(ny) - .5f,
+                sz = pg.z * float(nz) - .5f;
+    const float fx = std::floor(sx), fy = std::floor(sy), fz = std::floor(sz);
+    // Far outside (or NaN): nothing, and no int overflow.
+    if (!(fx >= -1 && fy >= -1 && fz >= -1 && fx < float(nx) && fy < float(ny) && fz < float(nz)))
+        return T();
+    const int ix = int(fx), iy = int(fy), iz = int(fz);
+    const float dx = sx - fx, dy = sy - fy, dz = sz - fz;
+    auto at = [&](int x, int y, int z) {
+        return x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz ? T() : value(x, y, z);
+    };
+    auto lerp = [](float t, const T &a, const T &b) { return a * (1 - t) + b * t; };
+    const T d00 = lerp(dx, at(ix, iy, iz), at(ix + 1, iy, iz));
+    const T d10 = lerp(dx, at(ix, iy + 1, iz), at(ix + 1, iy + 1, iz));
+    const T d01 = lerp(dx, at(ix, iy, iz + 1), at(ix + 1, iy, iz + 1));
+    const T d11 = lerp(dx, at(ix, iy + 1, iz + 1), at(ix + 1, iy + 1, iz + 1));
+    return lerp(dz, lerp(dy, d00, d10), lerp(dy, d01, d11));
+}
+
+// The interval of ray parameters in [0, r.tMax] inside the box [lo, hi] (slabs; a ray
+// parallel to a slab counts when on or within it); false when empty.
+bool ClipToBox(const Ray &r, const Vec3f &lo, const Vec3f &hi, float *t0, float *t1);
 
 // A scattering event sampled inside a medium (Medium::Sample).
 struct MediumInteraction {
@@ -129,7 +157,6 @@ class GridDensityMedium final : public Medium {
     float Density(const Vec3f &pRender) const;
 
   private:
-    float D(int x, int y, int z) const;
     float DensityGrid(const Vec3f &pg) const;  // pg in grid space [0,1]^3
     // The ray in grid space (same parameter t) and its interval inside [0,1]^3.
     bool GridSegment(const Ray &ray, Ray *rg, float *t0, float *t1) const;

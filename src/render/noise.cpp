@@ -72,6 +72,14 @@ float PerlinNoise(float x, float y, float z) {
     return Mix(wz, y0, y1);
 }
 
+Vec3f PerlinNoiseSlope(const Vec3f &p) {
+    constexpr float delta = .01f;
+    const float n = PerlinNoise(p);
+    return Vec3f(PerlinNoise(p.x + delta, p.y, p.z) - n, PerlinNoise(p.x, p.y + delta, p.z) - n,
+                 PerlinNoise(p.x, p.y, p.z + delta) - n) /
+           delta;
+}
+
 float FBm(const Vec3f &p, float omega, int octaves) {
     float sum = 0, lambda = 1, o = 1;
     for (int i = 0; i < octaves; ++i) {

@@ -10,6 +10,9 @@ namespace prism {
 // Noise in [-1, 1] (roughly), zero at integer lattice points; periodic with period 256.
 float PerlinNoise(float x, float y, float z);
 inline float PerlinNoise(const Vec3f &p) { return PerlinNoise(p.x, p.y, p.z); }
+// The noise's slope along each axis by forward differences over 0.01 (pbrt-v4's DNoise, which
+// its cloud medium uses to make wisps: the same step, so the same clouds).
+Vec3f PerlinNoiseSlope(const Vec3f &p);
 
 // Sum over octaves i < octaves of omega^i · Noise(1.99^i · p).
 float FBm(const Vec3f &p, float omega, int octaves);

@@ -182,6 +182,13 @@ std::vector<Vec3f> ParamSet::GetNormals(const std::string &name) const {
     return Triples(FindTyped(name, {ParamType::Normal}, "normal"));
 }
 
+std::vector<RGB> ParamSet::GetRGBs(const std::string &name) const {
+    std::vector<RGB> out;
+    for (const Vec3f &v : Triples(FindTyped(name, {ParamType::RGB}, "rgb")))
+        out.emplace_back(v.x, v.y, v.z);
+    return out;
+}
+
 std::vector<std::string> ParamSet::GetStrings(const std::string &name) const {
     const Param *p = FindTyped(name, {ParamType::String}, "string");
     if (!p) return {};

@@ -81,6 +81,7 @@ class ParamSet {
     std::vector<Vec2f> GetPoint2s(const std::string &name) const;
     std::vector<Vec3f> GetPoint3s(const std::string &name) const;
     std::vector<Vec3f> GetNormals(const std::string &name) const;
+    std::vector<RGB> GetRGBs(const std::string &name) const;
     std::vector<std::string> GetStrings(const std::string &name) const;
 
     // Marks a parameter used without reading it (e.g. parameters Prism accepts and ignores).
