@@ -1,5 +1,6 @@
 #include "render/bsdf.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/check.h"
@@ -350,6 +351,44 @@ RGB BSDF::fDiffuse(const Vec3f &woW, const Vec3f &wiW) const {
         if (!weight_[i].IsBlack() && parts_[i].HasDiffuse())
             result += weight_[i] * parts_[i].fDiffuse(wo, wi, reflect);
     return result;
+}
+
+namespace {
+
+// pbrt-v4 TrowbridgeReitzDistribution::Regularize, per alpha.
+void RegularizeAlpha(float *alpha) {
+    if (*alpha < 0.3f) *alpha = std::clamp(2 * *alpha, 0.1f, 0.3f);
+}
+
+bool IsMicrofacetFresnel(const Fresnel &f) {
+    return f.kind == FresnelKind::Dielectric || f.kind == FresnelKind::Conductor;
+}
+
+}  // namespace
+
+void BSDF::Regularize() {
+    for (int i = 0; i < n_; ++i) {
+        BxDFLobes &l = parts_[i];
+        if ((!l.ks.IsBlack() || !l.ksTransmit.IsBlack()) && IsMicrofacetFresnel(l.glossyFresnel)) {
+            RegularizeAlpha(&l.alphaX);
+            RegularizeAlpha(&l.alphaY);
+        }
+        // An index-matched dielectric passes light straight through, rough or not (pbrt-v4).
+        const bool matched = l.specularFresnel.kind == FresnelKind::Dielectric && l.eta == 1;
+        if ((!l.kr.IsBlack() || !l.kt.IsBlack()) && IsMicrofacetFresnel(l.specularFresnel) &&
+            !matched) {
+            RegularizeAlpha(&l.roughAlphaX);
+            RegularizeAlpha(&l.roughAlphaY);
+        }
+        if (l.layered.Active()) {
+            RegularizeAlpha(&l.layered.coatAlphaX);
+            RegularizeAlpha(&l.layered.coatAlphaY);
+            if (l.layered.base == LayeredLobe::Base::Conductor) {
+                RegularizeAlpha(&l.layered.baseAlphaX);
+                RegularizeAlpha(&l.layered.baseAlphaY);
+            }
+        }
+    }
 }
 
 bool BSDF::MakeRoughSpecularGlossy() {

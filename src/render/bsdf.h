@@ -173,6 +173,13 @@ struct BSDF {
     // HasGlossy() afterwards.
     bool MakeRoughSpecularGlossy();
 
+    // pbrt-v4's BSDF::Regularize (its path and volpath "regularize"): every Trowbridge–Reitz
+    // alpha below 0.3 of a dielectric or conductor lobe, delta ones included (alpha 0), and of
+    // a layered lobe's coat and conductor base becomes 2·alpha clamped to [0.1, 0.3]; delta
+    // lobes thereby become rough (MakeRoughSpecularGlossy turns them into glossy lobes).
+    // Thin dielectrics, mirrors and diffuse lobes are unchanged, as in pbrt-v4.
+    void Regularize();
+
     // Samples the glossy lobes of one part (Cook's distribution ray tracing): a microfacet
     // normal from the Trowbridge–Reitz distribution of normals visible from wo (Heitz 2018),
     // driven by the stratified u; uc chooses reflection or transmission (in proportion to the

@@ -43,14 +43,16 @@ PathParams ReadPathParams(const IntegratorInputs &in) {
     else if (!named)
         p.Warn(p.Loc(name),
                std::string(name) + " " + Quote(lss) + " is unknown; using the light BVH (\"bvh\")");
+    // pbrt-v4's: roughen near-specular surfaces after the first non-specular bounce.
+    pp.regularize = p.Bool("regularize", false);
     // --light-sampler wins over the file.
     if (!in.lightSampler.empty())
         pp.lightChoice = LightChoiceNamed(in.lightSampler).value_or(pp.lightChoice);
     // The one effect of the path integrators that no material or light turns on.
     in.effects.Enable(Effect::IndirectIllumination, in.why, in.whyLoc);
     p.WarnUnread(
-        "Prism's path integrators read maxdepth, rrthreshold, lightsamplestrategy and "
-        "lightsampler");
+        "Prism's path integrators read maxdepth, rrthreshold, lightsamplestrategy, "
+        "lightsampler and regularize");
     return pp;
 }
 
@@ -61,6 +63,10 @@ PathParams ReadPathParams(const IntegratorInputs &in) {
 //   lightsamplestrategy  string   "spatial"  uniform | power | spatial (the light BVH)
 //   lightsampler         string   "bvh"      pbrt-v4's: uniform | power | bvh | exhaustive (as
 //                                            bvh, a warning); wins over lightsamplestrategy
+//   regularize           bool     false      pbrt-v4's: after a non-specular bounce, surfaces
+//                                            smoother than alpha 0.3 are roughened (alpha
+//                                            doubled, within [0.1, 0.3]): biased, but it finds
+//                                            caustics of small lights
 std::unique_ptr<Integrator> CreatePathIntegrator(const IntegratorInputs &in) {
     return std::make_unique<PathIntegrator>(ReadPathParams(in));
 }
@@ -80,6 +86,7 @@ void PathIntegrator::Prepare(const RenderScene &scene) {
 RGB PathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const PixelSamples &ps,
                        RayCounters &counters, RGB *direct) const {
     PathState path;
+    path.regularize = params_.regularize;
     Ray ray = cameraRay;
     int passes = 0;
     bool directDone = false;

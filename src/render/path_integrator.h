@@ -15,6 +15,7 @@ namespace prism {
 struct PathParams {
     float rrThreshold = 1;  // "rrthreshold": Russian roulette below this throughput
     LightChoice lightChoice = LightChoice::BVH;  // "lightsamplestrategy", "lightsampler"
+    bool regularize = false;                     // pbrt-v4's "regularize" (BSDF::Regularize)
 };
 // Reads path's and volpath's shared parameters (context: the integrator's name, for messages).
 PathParams ReadPathParams(const IntegratorInputs &in);

@@ -16,6 +16,8 @@ struct PathState {
     RGB beta{1};                  // throughput
     bool specularBounce = false;  // the last bounce was a delta lobe's
     float etaScale = 1;           // radiance scaling by refraction, undone for Russian roulette
+    bool regularize = false;      // pbrt-v4's "regularize": BSDF::Regularize after ...
+    bool anyNonSpecular = false;  // ... any bounce that was not a delta lobe's
 };
 
 // Emission no light sample covered (seen by the camera, or after a delta bounce): every light's
@@ -46,14 +48,18 @@ bool SurfaceVertex(const RenderScene &scene, const LightChooser &chooser, Surfac
     // Emission a material carries itself (glTF emissive textures; no light samples it).
     if (mat.HasEmission()) path.L += path.beta * mat.Emitted(tc);
     BSDF bsdf = mat.GetBSDF(si, tc);
+    if (path.regularize && path.anyNonSpecular) bsdf.Regularize();
     bsdf.MakeRoughSpecularGlossy();  // pbrt-v3: rough glass is a microfacet BSDF
     // Direct lighting: one light, light and BSDF samples weighted by MIS.
     if (bsdf.HasNonSpecular())
         path.L += path.beta * SampleOneLightWith(scene, chooser, si, BsdfScatter{bsdf}, ps, bounces,
                                                  counters, vis);
     // Sample the BSDF for the next direction.
-    return SampleNextDirection(bsdf, si.wo, ps, bounces, path.beta, path.specularBounce,
-                               path.etaScale, wi, counters);
+    if (!SampleNextDirection(bsdf, si.wo, ps, bounces, path.beta, path.specularBounce,
+                             path.etaScale, wi, counters))
+        return false;
+    path.anyNonSpecular |= !path.specularBounce;
+    return true;
 }
 
 }  // namespace prism

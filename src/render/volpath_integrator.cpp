@@ -19,6 +19,10 @@ constexpr uint32_t VolPathPurpose = 0x766f6c70;
 //   lightsamplestrategy  string   "spatial"  uniform | power | spatial (the light BVH)
 //   lightsampler         string   "bvh"      pbrt-v4's: uniform | power | bvh | exhaustive (as
 //                                            bvh, a warning); wins over lightsamplestrategy
+//   regularize           bool     false      pbrt-v4's: after a non-specular bounce, surfaces
+//                                            smoother than alpha 0.3 are roughened (alpha
+//                                            doubled, within [0.1, 0.3]): biased, but it finds
+//                                            caustics of small lights
 std::unique_ptr<Integrator> CreateVolPathIntegrator(const IntegratorInputs &in) {
     return std::make_unique<VolPathIntegrator>(ReadPathParams(in));
 }
@@ -32,6 +36,7 @@ IntegratorTraits VolPathIntegrator::Traits() const {
 RGB VolPathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const PixelSamples &ps,
                           RayCounters &counters, RGB *direct) const {
     PathState path;
+    path.regularize = params_.regularize;
     RGB &L = path.L, &beta = path.beta;
     Ray ray = cameraRay;
     int medium = scene.cameraMedium;  // the medium the current ray travels in
@@ -70,6 +75,7 @@ RGB VolPathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const 
             ray = at.SpawnRay(wi, scene.offset);  // from the point itself (no normal)
             from = ray.o;
             path.specularBounce = false;
+            path.anyNonSpecular = true;
             passes = 0;
             counters.reflection++;
             if (bounces == 0 && direct) {
