@@ -234,15 +234,22 @@ std::unique_ptr<Medium> MakeMedium(BuildContext &ctx, const MediumDesc &m) {
                                  context + ": \"density\" values must be finite and not negative");
         Vec3f p0, p1;
         ReadBox(m, context, &p0, &p1);
-        const RGB sigmaT = sigmaA + sigmaS;
-        if (sigmaT.r != sigmaT.g || sigmaT.r != sigmaT.b)
-            ctx.diag.Warn(m.loc, context +
-                                     ": a grid medium's extinction sigma_a + sigma_s "
-                                     "is grey; its first (red) channel is used, as in "
-                                     "pbrt-v3");
-        medium =
-            std::make_unique<GridDensityMedium>(sigmaA, sigmaS, g, step, size.nx, size.ny, size.nz,
-                                                std::move(density), p0, p1, renderFromMedium);
+        if (m.type == "uniformgrid") {
+            // pbrt-v4's grid: chromatic extinction, tracked per channel.
+            medium = std::make_unique<DensityGridMedium>(sigmaA, sigmaS, g, step, size.nx, size.ny,
+                                                         size.nz, std::move(density), p0, p1,
+                                                         renderFromMedium);
+        } else {
+            const RGB sigmaT = sigmaA + sigmaS;
+            if (sigmaT.r != sigmaT.g || sigmaT.r != sigmaT.b)
+                ctx.diag.Warn(m.loc, context +
+                                         ": a grid medium's extinction sigma_a + sigma_s "
+                                         "is grey; its first (red) channel is used, as in "
+                                         "pbrt-v3");
+            medium = std::make_unique<GridDensityMedium>(sigmaA, sigmaS, g, step, size.nx, size.ny,
+                                                         size.nz, std::move(density), p0, p1,
+                                                         renderFromMedium);
+        }
     } else if (rgbGrid) {
         const GridSize size = ReadGridSize(m, context);
         std::vector<RGB> a = ReadRGBGrid(m, context, "sigma_a", size),

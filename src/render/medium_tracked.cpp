@@ -143,6 +143,21 @@ float TrackedMedium::DefaultStep() const { return stepLimit_; }
 
 namespace {
 
+float MaxOf(const std::vector<float> &v) {
+    float m = 0;
+    for (float x : v) m = std::max(m, x);
+    return m;
+}
+
+float SmallestVoxel(int nx, int ny, int nz, const Vec3f &p0, const Vec3f &p1) {
+    return std::min(
+        {(p1.x - p0.x) / float(nx), (p1.y - p0.y) / float(ny), (p1.z - p0.z) / float(nz)});
+}
+
+Vec3f InverseExtent(const Vec3f &p0, const Vec3f &p1) {
+    return Vec3f(1 / (p1.x - p0.x), 1 / (p1.y - p0.y), 1 / (p1.z - p0.z));
+}
+
 RGB MaxOf(const std::vector<RGB> &grid) {
     if (grid.empty()) return RGB(1);
     RGB m;
@@ -170,9 +185,7 @@ RGBGridMedium::RGBGridMedium(float g, float stepSize, int nx, int ny, int nz,
                              const Vec3f &p0, const Vec3f &p1, const Transform &renderFromMedium)
     : TrackedMedium(MaxOf(sigmaA) * scale, MaxOf(sigmaS) * scale, g, stepSize,
                     GridMajorant(sigmaA, sigmaS, size_t(nx) * size_t(ny) * size_t(nz), scale),
-                    std::min({(p1.x - p0.x) / float(nx), (p1.y - p0.y) / float(ny),
-                              (p1.z - p0.z) / float(nz)}),
-                    p0, p1, renderFromMedium),
+                    SmallestVoxel(nx, ny, nz, p0, p1), p0, p1, renderFromMedium),
       nx_(nx),
       ny_(ny),
       nz_(nz),
@@ -180,7 +193,7 @@ RGBGridMedium::RGBGridMedium(float g, float stepSize, int nx, int ny, int nz,
       gridS_(std::move(sigmaS)),
       scale_(scale),
       origin_(p0),
-      invExtent_(1 / (p1.x - p0.x), 1 / (p1.y - p0.y), 1 / (p1.z - p0.z)) {}
+      invExtent_(InverseExtent(p0, p1)) {}
 
 RGB RGBGridMedium::Lookup(const std::vector<RGB> &grid, const Vec3f &pg) const {
     if (grid.empty()) return RGB(scale_);
@@ -194,6 +207,31 @@ void RGBGridMedium::CoefficientsAt(const Vec3f &pMedium, RGB *sigmaA, RGB *sigma
     const Vec3f pg(d.x * invExtent_.x, d.y * invExtent_.y, d.z * invExtent_.z);
     *sigmaA = Lookup(gridA_, pg);
     *sigmaS = Lookup(gridS_, pg);
+}
+
+// Density grid.
+
+DensityGridMedium::DensityGridMedium(const RGB &sigmaA, const RGB &sigmaS, float g, float stepSize,
+                                     int nx, int ny, int nz, std::vector<float> density,
+                                     const Vec3f &p0, const Vec3f &p1,
+                                     const Transform &renderFromMedium)
+    : TrackedMedium(sigmaA, sigmaS, g, stepSize, (sigmaA + sigmaS).MaxComponent() * MaxOf(density),
+                    SmallestVoxel(nx, ny, nz, p0, p1), p0, p1, renderFromMedium),
+      nx_(nx),
+      ny_(ny),
+      nz_(nz),
+      density_(std::move(density)),
+      origin_(p0),
+      invExtent_(InverseExtent(p0, p1)) {}
+
+void DensityGridMedium::CoefficientsAt(const Vec3f &pMedium, RGB *sigmaA, RGB *sigmaS) const {
+    const Vec3f d = pMedium - origin_;
+    const Vec3f pg(d.x * invExtent_.x, d.y * invExtent_.y, d.z * invExtent_.z);
+    const float density = VoxelLerp<float>(nx_, ny_, nz_, pg, [&](int x, int y, int z) {
+        return density_[(size_t(z) * size_t(ny_) + size_t(y)) * size_t(nx_) + size_t(x)];
+    });
+    *sigmaA = sigmaA_ * density;
+    *sigmaS = sigmaS_ * density;
 }
 
 // Cloud.

@@ -68,6 +68,25 @@ class RGBGridMedium final : public TrackedMedium {
     Vec3f origin_, invExtent_;
 };
 
+// pbrt-v4 GridMedium ("uniformgrid"): σa and σs times a density grid of nx × ny × nz values over
+// [p0, p1] (trilinear between voxel centres, 0 outside). Unlike pbrt-v3's grid
+// (GridDensityMedium), the extinction may differ by channel.
+class DensityGridMedium final : public TrackedMedium {
+  public:
+    // density: nx·ny·nz values, x fastest.
+    DensityGridMedium(const RGB &sigmaA, const RGB &sigmaS, float g, float stepSize, int nx, int ny,
+                      int nz, std::vector<float> density, const Vec3f &p0, const Vec3f &p1,
+                      const Transform &renderFromMedium);
+    const char *Name() const override { return "uniformgrid"; }
+
+  private:
+    void CoefficientsAt(const Vec3f &pMedium, RGB *sigmaA, RGB *sigmaS) const override;
+
+    int nx_, ny_, nz_;
+    std::vector<float> density_;
+    Vec3f origin_, invExtent_;
+};
+
 // pbrt-v4 CloudMedium: σa and σs times a density in [0, 1] made of five octaves of Perlin noise
 // at `frequency` (the lookup point first bent by two octaves of the noise's slope, by
 // `wispiness`), thinning with height: full below y = 0 of the medium's space, noise scaled by

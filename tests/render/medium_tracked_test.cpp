@@ -138,7 +138,9 @@ RGB Pixel(const Image &img) { return {img.pixels[0], img.pixels[1], img.pixels[2
 
 // From a scene file: an absorbing chromatic "rgbgrid" slab placed by the CTM, seen against a
 // white sky, transmits exp(-σa d) per channel (7/8 of the unit depth: the half-voxel falloff at
-// the two faces along z of a 2-voxel grid); and a "cloud" renders without warnings.
+// the two faces along z of a 2-voxel grid), and so does pbrt-v4's "uniformgrid" of chromatic
+// σa (pbrt-v3's "heterogeneous" would take the red channel's, with a warning); a "cloud"
+// renders without warnings.
 TEST(TrackedMedium, FromSceneFile) {
     const std::string head =
         "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\" \"float fov\" [ 1 ]\n"
@@ -155,14 +157,22 @@ TEST(TrackedMedium, FromSceneFile) {
         "MakeNamedMedium \"smoke\" \"string type\" \"rgbgrid\" \"integer nz\" 2 "
         "\"rgb sigma_a\" [ 0.2 0.8 1.6  0.2 0.8 1.6 ] \"rgb sigma_s\" [ 0 0 0  0 0 0 ] "
         "\"point3 p0\" [ -5 -5 0 ] \"point3 p1\" [ 5 5 1 ]\n";
-    Rendered r = RenderSceneText("tracked", "rgbgrid.pbrt", head + grid + tail, s);
-    EXPECT_TRUE(r.warnings.empty()) << r.warnings[0].ToString();
+    // pbrt-v4's "uniformgrid" with the same chromatic coefficients times a density grid.
+    const std::string densityGrid =
+        "MakeNamedMedium \"smoke\" \"string type\" \"uniformgrid\" \"integer nz\" 2 "
+        "\"float density\" [ 2 2 ] \"rgb sigma_a\" [ 0.1 0.4 0.8 ] \"rgb sigma_s\" [ 0 0 0 ] "
+        "\"point3 p0\" [ -5 -5 0 ] \"point3 p1\" [ 5 5 1 ]\n";
     const RGB want(std::exp(-0.2f * 0.875f), std::exp(-0.8f * 0.875f), std::exp(-1.6f * 0.875f));
-    ExpectNearRGB(Pixel(r.image), want, 0.01f, "rgbgrid slab");
+    for (const std::string &medium : {grid, densityGrid}) {
+        SCOPED_TRACE(medium);
+        Rendered r = RenderSceneText("tracked", "grid.pbrt", head + medium + tail, s);
+        EXPECT_TRUE(r.warnings.empty()) << r.warnings[0].ToString();
+        ExpectNearRGB(Pixel(r.image), want, 0.01f, "chromatic slab");
+    }
 
     const std::string cloud =
         "MakeNamedMedium \"smoke\" \"string type\" \"cloud\" \"float g\" 0.5\n";
-    r = RenderSceneText("tracked", "cloud.pbrt", head + cloud + tail, s);
+    Rendered r = RenderSceneText("tracked", "cloud.pbrt", head + cloud + tail, s);
     EXPECT_TRUE(r.warnings.empty()) << r.warnings[0].ToString();
     const RGB p = Pixel(r.image);
     EXPECT_TRUE(p.IsFinite());
