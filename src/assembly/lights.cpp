@@ -42,6 +42,7 @@ class SceneLightParams : public DirectiveParamsOf<LightParams> {
         return EmissionSpectrum(ctx_, ps_, light_.colorSpace, name, def);
     }
     Vec3f Point3(const char *name, Vec3f def) const override { return ps_.GetPoint3(name, def); }
+    std::vector<Vec3f> Point3s(const char *name) const override { return ps_.GetPoint3s(name); }
     RGB Scale() const override { return ScaleParam(ps_); }
     std::shared_ptr<const Image> LoadImage(const char *name,
                                            const std::string &file) const override {
@@ -62,8 +63,12 @@ void BuildLights(BuildContext &ctx) {
     for (const LightDesc &l : desc.lights) {
         const ParamSet &ps = l.params;
         const SceneLightParams params(ctx, l);
-        const LightInputs in{params, scene.renderFromWorld * l.worldFromLight, l.loc,
-                             ctx.settings.lightSamples, desc.pbrtVersion.version};
+        const LightInputs in{params,
+                             scene.renderFromWorld * l.worldFromLight,
+                             l.loc,
+                             ctx.settings.lightSamples,
+                             desc.pbrtVersion.version,
+                             scene.renderFromWorld};
         std::unique_ptr<Light> light = CreateLight(l.type, in);
         if (!light) {
             diag.WarnOnce(

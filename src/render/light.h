@@ -177,6 +177,7 @@ class LightParams : public Params {
     // pbrt-v4 divides a light's spectrum by its photometric value.
     virtual RGB Spectrum(const char *name, RGB def) const = 0;
     virtual Vec3f Point3(const char *name, Vec3f def) const = 0;
+    virtual std::vector<Vec3f> Point3s(const char *name) const = 0;  // empty when absent
     // pbrt's "scale": a float or a spectrum, 1 by default.
     virtual RGB Scale() const = 0;
     // The image file named by string parameter `name` (relative to the scene), linear.
@@ -217,6 +218,7 @@ struct LightInputs {
     FileLoc loc;                // the directive
     int lightSamples = 0;       // --light-samples (0: the file's "nsamples")
     int pbrtVersion = 3;        // the pbrt rules the file is read by (scene/pbrt_version.h)
+    Transform renderFromWorld;  // for what a light gives in world space (pbrt-v4's "portal")
 };
 
 // The light registered as `type` (light_list.inc), or null when none is. Throws SceneError for
