@@ -10,6 +10,8 @@ find_package(fmt REQUIRED)               # libfmt-dev 9 — fmt::fmt
 find_package(CLI11 REQUIRED)             # libcli11-dev 2.3 — CLI11::CLI11
 find_package(tinyobjloader REQUIRED)     # libtinyobjloader-dev 2.0rc10 — tinyobjloader::tinyobjloader
 find_package(TinyGLTF REQUIRED)          # libtinygltf-dev 2.7 (header-only)
+find_package(Boost 1.74 REQUIRED)        # libboost-dev 1.74 (headers only: Boost.Random's
+                                         # Sobol direction numbers) — Boost::headers
 if(PRISM_BUILD_TESTS)
   find_package(GTest REQUIRED)           # libgtest-dev 1.12
 endif()

@@ -10,6 +10,6 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   g++ cmake ninja-build ccache pkg-config \
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev libpng-dev \
   libtinyobjloader-dev libtinygltf-dev libcli11-dev libfmt-dev \
-  libgtest-dev python3-matplotlib clang-format \
+  libgtest-dev libboost-dev python3-matplotlib clang-format \
   libopenmpi-dev openmpi-bin >/dev/null
 echo "dependencies installed"

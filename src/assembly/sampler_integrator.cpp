@@ -26,8 +26,7 @@ constexpr SamplerRule SamplerRules[] = {
     {"lowdiscrepancy", SamplePattern::ZeroTwo, nullptr, nullptr},
     {"paddedsobol", SamplePattern::PaddedSobol, nullptr, nullptr},
     {"zsobol", SamplePattern::ZSobol, nullptr, nullptr},
-    {"sobol", SamplePattern::Stratified, "stratified",
-     "Prism has no global Sobol sequence (one dimension per sample dimension)"},
+    {"sobol", SamplePattern::Sobol, nullptr, nullptr},
     {"halton", SamplePattern::Halton, nullptr, nullptr},
     {"pmj02bn", SamplePattern::PaddedSobol, "paddedsobol",
      "pmj02bn's points are per-pixel (0,2)-sequences like paddedsobol's, without the "
@@ -75,12 +74,14 @@ SamplePattern PatternOfSampler(const std::string &name) {
 // how each is drawn: SamplerRules above, docs/USAGE.md "Samplers"). Parameters:
 //   xsamples, ysamples  integer  4, 4  stratified: the samples per pixel are their product
 //   jitter              bool     true  stratified: read, no effect
-//   pixelsamples        integer  16    the others (random: 4); --spp wins
-//   randomization       string   "fastowen"  zsobol, paddedsobol: "fastowen" and
+//   pixelsamples        integer  16    the others (random: 4; sobol: rounded up to a power of
+//                                      two, with a warning, as pbrt does); --spp wins
+//   randomization       string   "fastowen"  zsobol, paddedsobol, sobol: "fastowen" and
 //                                "owen" (a nested uniform scramble), "permutedigits" (XOR),
-//                                "none"; halton: "permutedigits" (its default: random digit
-//                                permutations), "owen", "none"
-//   seed                integer  0     zsobol, paddedsobol, halton: another randomisation
+//                                "none" (sobol's default in a pbrt-v3 file, whose sampler does
+//                                not randomise); halton: "permutedigits" (its default: random
+//                                digit permutations), "owen", "none"
+//   seed                integer  0     zsobol, paddedsobol, sobol, halton: another randomisation
 int SceneSamplesPerPixel(const SceneDescription &desc) {
     const ParamSet &sp = desc.sampler.params;
     if (desc.sampler.type == "stratified") {
@@ -138,8 +139,10 @@ void BuildSampler(BuildContext &ctx) {
     };
     if (DrawsCameraDims(ss.pattern) && !replaced && sp.Find("seed"))
         ss.seed = uint32_t(sp.GetInt("seed", 0));
-    if (IsSobolPattern(ss.pattern)) {
-        const std::string r = randomization("fastowen");
+    if (IsSobolPattern(ss.pattern) || ss.pattern == SamplePattern::Sobol) {
+        // pbrt-v3's SobolSampler draws the bare sequence; pbrt-v4's scrambles it.
+        const bool bare = ss.pattern == SamplePattern::Sobol && desc.pbrtVersion.version != 4;
+        const std::string r = randomization(bare ? "none" : "fastowen");
         if (r == "fastowen" || r == "owen")
             ss.scramble = SobolScramble::Owen;
         else if (r == "permutedigits")
@@ -150,6 +153,9 @@ void BuildSampler(BuildContext &ctx) {
             throw badRandomization(r, "fastowen, owen, permutedigits, none");
         const int res = std::max(scene.resolution.x, scene.resolution.y);
         ss.log2Res = uint8_t(CeilLog2(uint64_t(std::max(res, 1))));
+        if (ss.pattern == SamplePattern::Sobol)
+            ss.sobol =
+                SobolFrame::ForResolution(scene.resolution.x, scene.resolution.y, ss.scramble);
     }
     if (ss.pattern == SamplePattern::Halton) {
         // pbrt-v4's halton: random digit permutations by default; pbrt-v4 refuses fastowen.
@@ -168,6 +174,15 @@ void BuildSampler(BuildContext &ctx) {
                     DrawsCameraDims(ss.pattern)
                         ? "Prism reads its sample count, randomization and seed"
                         : "Prism reads only its sample count");
+    if (ss.pattern == SamplePattern::Sobol && !replaced && spp > 0 && (spp & (spp - 1)) != 0) {
+        // pbrt's SobolSampler takes a power of two samples per pixel (--spp is kept as given).
+        const int rounded = int(uint32_t(1) << CeilLog2(uint64_t(spp)));
+        const Param *p = sp.Find("pixelsamples");
+        diag.Warn(p ? p->loc : loc, context + ": " + std::to_string(spp) +
+                                        " samples per pixel rounded up to " +
+                                        std::to_string(rounded) + ", as pbrt does");
+        spp = rounded;
+    }
     if (settings.spp > 0) spp = settings.spp;
     const int maxSpp = MaxSamplesPerPixel;
     if (spp <= 0 || spp > maxSpp)

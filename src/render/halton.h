@@ -69,7 +69,8 @@ float HaltonSample(const HaltonFrame &frame, uint64_t index, uint32_t dim, uint3
 inline constexpr uint32_t HaltonDimensions = 2048;
 
 // The Halton dimension of PixelSamples' dimension `dim` (render/light_sampling.h) drawn as a
-// 2-D sample (it takes h and h + 1) or a 1-D one, in the order pbrt's paths draw them: the
+// 2-D sample (it takes h and h + 1) or a 1-D one, in the order pbrt's paths draw them (the
+// global Sobol pattern numbers its dimensions the same way): the
 // film position 0 and 1 (the pixel's own dimensions), the time 2, the lens 3 and 4, then per
 // bounce ten: the light choice, the point on the light (2), the direct-lighting BSDF sample
 // (2) and its lobe, the path's BSDF sample (2) and its lobe, the roulette. So the first

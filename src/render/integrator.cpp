@@ -28,6 +28,7 @@ PixelSamples PixelSamplesOf(const SamplerSettings &sampler, int x, int y, uint32
     ps.log2Res = sampler.log2Res;
     ps.scramble = sampler.scramble;
     ps.halton = &sampler.halton;
+    ps.sobol = &sampler.sobol;
     return ps;
 }
 

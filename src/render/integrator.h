@@ -21,6 +21,7 @@
 #include "render/halton.h"
 #include "render/ray_counters.h"
 #include "render/sampler.h"
+#include "render/sobol_sampler.h"
 
 namespace prism {
 
@@ -49,6 +50,8 @@ struct SamplerSettings {
     SobolScramble scramble = SobolScramble::Owen;
     // The Halton pattern's film tiling and randomisation.
     HaltonFrame halton;
+    // The global Sobol pattern's film sequence and randomisation.
+    SobolFrame sobol;
     // One sample per pixel sits at the pixel centre, except in the later passes of a
     // progressive render, whose pattern seeds differ.
     bool JitterFilm() const { return !centres && (spp > 1 || seed != 0); }

@@ -15,6 +15,7 @@
 #include "render/halton.h"
 #include "render/light_bvh.h"
 #include "render/sampler.h"
+#include "render/sobol_sampler.h"
 
 namespace prism {
 
@@ -55,6 +56,10 @@ struct PixelSamples {
     // The pixel's first Halton point, computed at the first draw (a pure function of x, y and
     // the frame, which a PixelSamples does not change; not to be set).
     mutable uint64_t haltonPixel_ = ~uint64_t(0);
+    // The global Sobol pattern's film sequence (SamplerSettings::sobol), and the index of this
+    // camera sample's point, computed at the first draw (not to be set).
+    const SobolFrame *sobol = nullptr;
+    mutable uint64_t sobolIndex_ = ~uint64_t(0);
 
     Vec2f Get2D(uint32_t dim) const { return Get2D(dim, 0, 1); }
     // Sample k of n of this camera sample (strategy "all": n light samples stratified over
@@ -65,6 +70,8 @@ struct PixelSamples {
             return ZSobolSample2D(x, y, i, spp * n, log2Res, dim, passSeed, scramble);
         if (pattern == SamplePattern::Halton && HaltonDim(dim, true) != NoHaltonDim)
             return HaltonGet2D(dim, i, n);
+        if (pattern == SamplePattern::Sobol && HaltonDim(dim, true) != NoHaltonDim)
+            return SobolGet2D(dim, i, n);
         const uint32_t seed = PatternSeed(x, y, 0x32446d00u + dim, PatternPassSeed());
         switch (pattern) {
             case SamplePattern::Independent:
@@ -86,6 +93,10 @@ struct PixelSamples {
             if (h != NoHaltonDim)
                 return HaltonSample(*Halton(), HaltonIndex(sample, 1), h, passSeed);
         }
+        if (pattern == SamplePattern::Sobol) {
+            const uint32_t h = HaltonDim(dim, false);
+            if (h != NoHaltonDim) return Sobol()->Sample(SobolIndex(sample, 1), h, passSeed);
+        }
         const uint32_t seed = PatternSeed(x, y, 0x31446d00u + dim, PatternPassSeed());
         if (pattern == SamplePattern::Independent) return HashFloat(sample, seed);
         if (pattern == SamplePattern::PaddedSobol)
@@ -100,7 +111,8 @@ struct PixelSamples {
     // continue the earlier passes' samples (their seed stays), so the random streams drawn
     // beside the patterns (volpath's medium sampling) are keyed by it, not by `sample`.
     uint64_t SampleNumber() const {
-        return pattern == SamplePattern::Halton ? Halton()->firstSample + sample : sample;
+        if (pattern == SamplePattern::Halton) return Halton()->firstSample + sample;
+        return pattern == SamplePattern::Sobol ? Sobol()->firstSample + sample : sample;
     }
 
   private:
@@ -108,9 +120,10 @@ struct PixelSamples {
     // seed and continue the sequence) the pass's first sample too, so the dimensions Halton
     // leaves to them are drawn anew in every pass.
     uint32_t PatternPassSeed() const {
-        if (pattern != SamplePattern::Halton || !halton || halton->firstSample == 0)
-            return passSeed;
-        return passSeed ^ uint32_t(MixBits64(halton->firstSample));
+        uint64_t first = 0;
+        if (pattern == SamplePattern::Halton && halton) first = halton->firstSample;
+        if (pattern == SamplePattern::Sobol && sobol) first = sobol->firstSample;
+        return first == 0 ? passSeed : passSeed ^ uint32_t(MixBits64(first));
     }
     // Halton: the film's point i of this pixel, and its dimensions h and h + 1 (the position
     // in the pixel for h = 0, moved by the pass's seed in later passes of a progressive render).
@@ -124,6 +137,25 @@ struct PixelSamples {
         const HaltonFrame &h = *Halton();
         if (haltonPixel_ == ~uint64_t(0)) haltonPixel_ = h.PixelIndex(x, y);
         return haltonPixel_ + (h.firstSample * n + i) * h.stride;
+    }
+    // Sobol: the film's point i of n of this pixel per camera sample, and its dimensions h and
+    // h + 1 (the position in the pixel for h = 0), as Halton's.
+    const SobolFrame *Sobol() const {
+        static const SobolFrame single;
+        return sobol ? sobol : &single;
+    }
+    uint64_t SobolIndex(uint32_t i, uint32_t n) const {
+        const SobolFrame &f = *Sobol();
+        const uint64_t point = f.firstSample * n + i;
+        if (n != 1) return f.Index(x, y, point);
+        if (sobolIndex_ == ~uint64_t(0)) sobolIndex_ = f.Index(x, y, point);
+        return sobolIndex_;
+    }
+    Vec2f SobolGet2D(uint32_t dim, uint32_t i, uint32_t n) const {
+        const uint64_t index = SobolIndex(i, n);
+        const uint32_t h = HaltonDim(dim, true);
+        if (h == 0) return Sobol()->PixelOffset(index, x, y);
+        return {Sobol()->Sample(index, h, passSeed), Sobol()->Sample(index, h + 1, passSeed)};
     }
     Vec2f HaltonGet2D(uint32_t dim, uint32_t i, uint32_t n) const {
         const uint64_t index = HaltonIndex(i, n);

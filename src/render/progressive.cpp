@@ -65,10 +65,12 @@ Image RenderProgressive(const RenderScene &scene, const TimeLimit &limit, Render
         options.sampler = scene.sampler;
         options.sampler.spp = spp;
         // Pass 0 keeps the scene's seed: a budget of one pass renders what a plain render
-        // would. Halton's passes continue its sequence instead, so together they are the
-        // points of one render of their total count.
+        // would. Halton's and Sobol's passes continue their sequence instead, so together they are
+        // the points of one render of their total count.
         if (scene.sampler.pattern == SamplePattern::Halton)
             options.sampler.halton.firstSample = uint64_t(done);
+        else if (scene.sampler.pattern == SamplePattern::Sobol)
+            options.sampler.sobol.firstSample = uint64_t(done);
         else
             options.sampler.seed = scene.sampler.seed + pass * 0x9E3779B9u;
         // The AOVs take a pass's tiles as they finish (the variance merges them at once), so a

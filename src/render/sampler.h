@@ -178,14 +178,16 @@ class CMJPattern {
 // Owen-scrambled (0,2)-sequence per dimension, shuffled like ZeroTwo); ZSobol, pbrt-v4's
 // "zsobol" (one Owen-scrambled Sobol sequence over the film, its pixels in permuted Morton
 // order: render/sobol.h ZSobolIndex); Halton, pbrt's "halton" (one randomised Halton sequence
-// over the film: render/halton.h).
+// over the film: render/halton.h); Sobol, pbrt's "sobol" (one Sobol sequence over the film:
+// render/sobol_sampler.h).
 enum class SamplePattern : uint8_t {
     Stratified,
     ZeroTwo,
     Independent,
     PaddedSobol,
     ZSobol,
-    Halton
+    Halton,
+    Sobol
 };
 inline bool IsSobolPattern(SamplePattern p) {
     return p == SamplePattern::PaddedSobol || p == SamplePattern::ZSobol;
@@ -194,7 +196,7 @@ inline bool IsSobolPattern(SamplePattern p) {
 // PixelSamples (pbrt-v4 draws them from its sampler first), not from the camera's own
 // correlated multi-jittered patterns.
 inline bool DrawsCameraDims(SamplePattern p) {
-    return IsSobolPattern(p) || p == SamplePattern::Halton;
+    return IsSobolPattern(p) || p == SamplePattern::Halton || p == SamplePattern::Sobol;
 }
 
 // pbrt-v3's scrambled (0,2)-sequence point n: van der Corput in x, Sobol's second dimension in

@@ -86,9 +86,9 @@ TEST(Cli, IntegratorAndGlossySamplesOptions) {
     RunResult z = RunPrism(scene + "--integrator path --sampler zsobol -o z.png", dir);
     ASSERT_EQ(z.exitCode, 0) << z.err;
     EXPECT_NE(ReadFile(dir / "z.png"), ReadFile(dir / "p.png"));
-    RunResult h = RunPrism(scene + "--integrator path --sampler sobol -o h.png", dir);
+    RunResult h = RunPrism(scene + "--integrator path --sampler maxmindist -o h.png", dir);
     ASSERT_EQ(h.exitCode, 0) << h.err;
-    EXPECT_NE(h.err.find("sampler \"sobol\" is replaced by Prism's stratified sampler"),
+    EXPECT_NE(h.err.find("sampler \"maxmindist\" is replaced by Prism's stratified sampler"),
               std::string::npos)
         << h.err;
     EXPECT_EQ(RunPrism(scene + "--sampler nosuchsampler -o s.png", dir).exitCode, 2);
@@ -224,11 +224,11 @@ TEST(Cli, InfoDescribesScene) {
 
     // Warnings that only building the scene gives (sampler, material) are listed too.
     std::string warn = SphereScene(8, 8, 4);
-    warn.replace(warn.find("\"halton\""), 8, "\"sobol\"");
+    warn.replace(warn.find("\"halton\""), 8, "\"maxmindist\"");
     std::ofstream(dir / "warn.pbrt") << warn;
     r = RunPrism("info warn.pbrt", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.out.find("warn.pbrt:4:1: warning: sampler \"sobol\" is replaced"),
+    EXPECT_NE(r.out.find("warn.pbrt:4:1: warning: sampler \"maxmindist\" is replaced"),
               std::string::npos)
         << r.out;
     // Which integrator runs, and why: the default, the scene's line, or --integrator.

@@ -50,8 +50,9 @@ TEST(Sampler, EachNameDrawsItsPattern) {
         {"Sampler \"pmj02bn\"", SamplePattern::PaddedSobol,
          "sampler \"pmj02bn\" is drawn as \"paddedsobol\""},
         {"Sampler \"halton\"", SamplePattern::Halton, ""},
-        {"Sampler \"sobol\"", SamplePattern::Stratified,
-         "sampler \"sobol\" is replaced by Prism's stratified sampler: Prism has no global"},
+        {"Sampler \"sobol\"", SamplePattern::Sobol, ""},
+        {"Sampler \"maxmindist\"", SamplePattern::Stratified,
+         "sampler \"maxmindist\" is replaced by Prism's stratified sampler: Prism has no"},
         {"Sampler \"nosuch\"", SamplePattern::Stratified,
          "sampler \"nosuch\" is replaced by Prism's stratified sampler: Prism does not know"},
         {"", SamplePattern::Halton, ""},  // no Sampler: pbrt-v3's "halton"
