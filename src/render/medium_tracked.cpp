@@ -32,6 +32,7 @@ TrackedMedium::TrackedMedium(const RGB &sigmaA, const RGB &sigmaS, float g, floa
       mediumFromRender_(renderFromMedium.Inverse()),
       p0_(p0),
       p1_(p1),
+      invExtent_(1 / (p1.x - p0.x), 1 / (p1.y - p0.y), 1 / (p1.z - p0.z)),
       majorant_(majorant) {
     const float s = majorant_ > 0 ? 1 / (8 * majorant_) : Infinity;
     stepLimit_ = std::min(s, 0.5f * RenderLength(renderFromMedium, featureSize));
@@ -154,10 +155,6 @@ float SmallestVoxel(int nx, int ny, int nz, const Vec3f &p0, const Vec3f &p1) {
         {(p1.x - p0.x) / float(nx), (p1.y - p0.y) / float(ny), (p1.z - p0.z) / float(nz)});
 }
 
-Vec3f InverseExtent(const Vec3f &p0, const Vec3f &p1) {
-    return Vec3f(1 / (p1.x - p0.x), 1 / (p1.y - p0.y), 1 / (p1.z - p0.z));
-}
-
 RGB MaxOf(const std::vector<RGB> &grid) {
     if (grid.empty()) return RGB(1);
     RGB m;
@@ -191,9 +188,7 @@ RGBGridMedium::RGBGridMedium(float g, float stepSize, int nx, int ny, int nz,
       nz_(nz),
       gridA_(std::move(sigmaA)),
       gridS_(std::move(sigmaS)),
-      scale_(scale),
-      origin_(p0),
-      invExtent_(InverseExtent(p0, p1)) {}
+      scale_(scale) {}
 
 RGB RGBGridMedium::Lookup(const std::vector<RGB> &grid, const Vec3f &pg) const {
     if (grid.empty()) return RGB(scale_);
@@ -203,8 +198,7 @@ RGB RGBGridMedium::Lookup(const std::vector<RGB> &grid, const Vec3f &pg) const {
 }
 
 void RGBGridMedium::CoefficientsAt(const Vec3f &pMedium, RGB *sigmaA, RGB *sigmaS) const {
-    const Vec3f d = pMedium - origin_;
-    const Vec3f pg(d.x * invExtent_.x, d.y * invExtent_.y, d.z * invExtent_.z);
+    const Vec3f pg = BoxFraction(pMedium);
     *sigmaA = Lookup(gridA_, pg);
     *sigmaS = Lookup(gridS_, pg);
 }
@@ -220,13 +214,10 @@ DensityGridMedium::DensityGridMedium(const RGB &sigmaA, const RGB &sigmaS, float
       nx_(nx),
       ny_(ny),
       nz_(nz),
-      density_(std::move(density)),
-      origin_(p0),
-      invExtent_(InverseExtent(p0, p1)) {}
+      density_(std::move(density)) {}
 
 void DensityGridMedium::CoefficientsAt(const Vec3f &pMedium, RGB *sigmaA, RGB *sigmaS) const {
-    const Vec3f d = pMedium - origin_;
-    const Vec3f pg(d.x * invExtent_.x, d.y * invExtent_.y, d.z * invExtent_.z);
+    const Vec3f pg = BoxFraction(pMedium);
     const float density = VoxelLerp<float>(nx_, ny_, nz_, pg, [&](int x, int y, int z) {
         return density_[(size_t(z) * size_t(ny_) + size_t(y)) * size_t(nx_) + size_t(x)];
     });

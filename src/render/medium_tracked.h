@@ -36,6 +36,11 @@ class TrackedMedium : public Medium {
   protected:
     // σa and σs at a point of the medium's space inside the box.
     virtual void CoefficientsAt(const Vec3f &pMedium, RGB *sigmaA, RGB *sigmaS) const = 0;
+    // A point of the medium's space as a fraction of the box ([0,1]^3 inside it).
+    Vec3f BoxFraction(const Vec3f &pMedium) const {
+        const Vec3f d = pMedium - p0_;
+        return Vec3f(d.x * invExtent_.x, d.y * invExtent_.y, d.z * invExtent_.z);
+    }
 
   private:
     // The ray in the medium's space (same parameter t) and its interval inside the box.
@@ -43,7 +48,7 @@ class TrackedMedium : public Medium {
     RGB SigmaT(const Ray &rm, float t) const;
 
     Transform mediumFromRender_;
-    Vec3f p0_, p1_;
+    Vec3f p0_, p1_, invExtent_;
     float majorant_, stepLimit_;
 };
 
@@ -65,7 +70,6 @@ class RGBGridMedium final : public TrackedMedium {
     int nx_, ny_, nz_;
     std::vector<RGB> gridA_, gridS_;
     float scale_;
-    Vec3f origin_, invExtent_;
 };
 
 // pbrt-v4 GridMedium ("uniformgrid"): σa and σs times a density grid of nx × ny × nz values over
@@ -84,7 +88,6 @@ class DensityGridMedium final : public TrackedMedium {
 
     int nx_, ny_, nz_;
     std::vector<float> density_;
-    Vec3f origin_, invExtent_;
 };
 
 // pbrt-v4 CloudMedium: σa and σs times a density in [0, 1] made of five octaves of Perlin noise
