@@ -30,7 +30,7 @@ void NoteMaterialEffects(BuildContext &ctx, const Material &m, const std::string
         if (m.MayReflectGlossily()) e.Enable(Effect::GlossyReflection, why, loc);
         if (m.MayTransmitGlossily()) e.Enable(Effect::GlossyTransmission, why, loc);
     }
-    if (m.SurfaceNeeds() & NeedUV) e.Enable(Effect::Textures, why + " (textured)", loc);
+    if (m.TextureNeeds() & NeedUV) e.Enable(Effect::Textures, why + " (textured)", loc);
     if (m.bump) e.Enable(Effect::BumpMapping, why + " (bumpmap)", loc);
     if (m.normalMap) e.Enable(Effect::NormalMapping, why + " (normal map)", loc);
 }

@@ -260,7 +260,8 @@ SurfaceInteraction CurveSet::Interaction(size_t prim, float uHit, float /*vHit*/
     }
     // Across the curve as the ray sees it: v = 0.5 on the centre line, 0 and 1 at its edges.
     const Vec3d across = Normalize(Cross(type_ == CurveType::Ribbon ? n : facing, T));
-    const double v = r > 0 ? std::clamp(0.5 + 0.5 * Dot(pHit - c, across) / r, 0.0, 1.0) : 0.5;
+    const double offset = Dot(pHit - c, across);
+    const double v = r > 0 ? std::clamp(0.5 + 0.5 * offset / r, 0.0, 1.0) : 0.5;
     const Vec3d dpdv = Normalize(Cross(n, T)) * (2 * r);
 
     SurfaceInteraction si;
@@ -268,7 +269,13 @@ SurfaceInteraction CurveSet::Interaction(size_t prim, float uHit, float /*vHit*/
     // distance between their hit and the surface above, a hundredth of the radius for their
     // tolerance (a thousandth lets 1 in 6,000 rays leaving a thin tube hit it again:
     // tests/geometry/curves_test.cpp), and the float rounding of p.
-    const double slack = offSurface + 1e-2 * r;
+    double slack = offSurface + 1e-2 * r;
+    if (fibre_ && type_ == CurveType::Cylinder) {
+        // On the centre plane, inside the tube: a bound of the radius moves every ray's
+        // origin along n to outside it (SetFibre).
+        p = c + across * offset;
+        slack = 1.01 * r + offSurface;
+    }
     const Vec3d err = Abs(p) * (8 * double(MachineEpsilon<float>())) + Vec3d(slack, slack, slack);
     RoundHitPoint(p, err, &si.p, &si.pError);
     if (flipNormals_) n = -n;

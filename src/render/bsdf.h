@@ -8,6 +8,7 @@
 
 #include "core/color.h"
 #include "core/vecmath.h"
+#include "render/hair_bxdf.h"
 #include "render/layered_bxdf.h"
 
 namespace prism {
@@ -76,15 +77,22 @@ struct BxDFLobes {
     LayeredLobe layered;
     bool HasLayered() const { return layered.Active() && !layered.IsSpecular(); }
 
+    // pbrt's hair fibre model (Material "hair"), alone in its part. Like the layered lobe it
+    // counts as a diffuse lobe (light samples estimate it; Whitted and distribution trace no
+    // rays from it, as pbrt-v3's Whitted traces none); it reflects and transmits whatever side
+    // the geometric normal puts the directions on.
+    HairLobe hair;
+
     bool HasNonSpecular() const {
         return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() || !ksTransmit.IsBlack() ||
-               fresnelBlend || !thinTransmit.IsBlack() || HasLayered();
+               fresnelBlend || !thinTransmit.IsBlack() || HasLayered() || hair.Active();
     }
     // Lobes that are sampled by light samples only (Lambertian, Oren–Nayar, diffuse
     // transmission, FresnelBlend's diffuse base) and lobes that glossy rays sample
     // (microfacet reflection and transmission, FresnelBlend's glossy coat).
     bool HasDiffuse() const {
-        return !kd.IsBlack() || !kdTransmit.IsBlack() || fresnelBlend || HasLayered();
+        return !kd.IsBlack() || !kdTransmit.IsBlack() || fresnelBlend || HasLayered() ||
+               hair.Active();
     }
     bool HasGlossy() const {
         return !ks.IsBlack() || !ksTransmit.IsBlack() || fresnelBlend || !thinTransmit.IsBlack();

@@ -11,7 +11,15 @@ namespace prism {
 
 namespace {
 
-enum class Lobe { Diffuse, DiffuseTransmit, Glossy, SpecularReflect, SpecularTransmit, Layered };
+enum class Lobe {
+    Diffuse,
+    DiffuseTransmit,
+    Glossy,
+    SpecularReflect,
+    SpecularTransmit,
+    Layered,
+    Hair
+};
 
 struct Choice {
     int part;
@@ -19,9 +27,9 @@ struct Choice {
     float weight;
 };
 
-// At most six lobes per part.
+// At most seven lobes per part.
 struct Choices {
-    Choice c[BSDF::MaxParts * 6];
+    Choice c[BSDF::MaxParts * 7];
     int n = 0;
     float total = 0;
     bool layered = false;  // a layered lobe is among them
@@ -42,6 +50,7 @@ void Collect(const BSDF &b, const Vec3f &wo, bool withSpecular, Choices *ch) {
         // The layered lobe samples its own delta reflection (rejected when !withSpecular).
         if (l.layered.Active())
             ch->Add(i, Lobe::Layered, w.Average() * l.layered.AlbedoEstimate(wo));
+        if (l.hair.Active()) ch->Add(i, Lobe::Hair, w.Average() * l.hair.AlbedoEstimate(wo));
         if (l.fresnelBlend) {
             // pbrt-v3 FresnelBlend::Sample_f: half the samples diffuse, half glossy.
             const float a = std::max(w.Average(), 1e-4f);
@@ -125,6 +134,8 @@ float LobePdf(const BxDFLobes &l, Lobe lobe, const Vec3f &wo, const Vec3f &wi) {
             return l.HasGlossy() ? GlossyPdf(l, wo, wi) : 0.f;
         case Lobe::Layered:
             return l.HasLayered() ? l.layered.Pdf(wo, wi) : 0.f;
+        case Lobe::Hair:
+            return l.hair.Active() ? l.hair.Pdf(wo, wi) : 0.f;
         default:
             return 0;
     }
@@ -208,7 +219,12 @@ bool BSDF::Sample_f(const Vec3f &woW, Vec2f u, float uc, bool withSpecular, BSDF
         return SampleLayered(*this, ch, c.part, wo, u, (target - sum) / c.weight, pChoice,
                              withSpecular, s);
     Vec3f wi;
-    if (c.lobe == Lobe::Glossy) {
+    if (c.lobe == Lobe::Hair) {
+        float unused;
+        const float ucLobe = std::min((target - sum) / c.weight, 0x1.fffffep-1f);
+        if (!l.hair.Sample(wo, ucLobe, u, &wi, &unused)) return false;
+        s->wi = FromLocal(wi);
+    } else if (c.lobe == Lobe::Glossy) {
         RGB unused;
         // uc again, rescaled within the chosen lobe's share, for SampleGlossy's own choice.
         const float ucLobe = std::min((target - sum) / c.weight, 0x1.fffffep-1f);

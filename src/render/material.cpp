@@ -14,7 +14,7 @@ bool MaterialModel::TexturesUseDifferentials() const {
     return false;
 }
 
-unsigned Material::SurfaceNeeds() const {
+unsigned Material::TextureNeeds() const {
     if (IsPassThrough()) return NeedNone;
     // Filtered textures read the (u, v) footprint, solved from dpdu and dpdv.
     const bool all = PerturbsShading() || TexturesUseDifferentials();
@@ -32,7 +32,7 @@ void Material::Prepare() {
     differentials_ = TexturesUseDifferentials();
     fixed_ = false;
     fixedParts_.clear();
-    if (IsPassThrough() || (model_->LobeNeeds() & NeedUV)) return;
+    if (IsPassThrough() || ((model_->LobeNeeds() | model_->GeometryNeeds()) & NeedUV)) return;
     // Every texture is constant: the parts do not depend on the hit.
     BSDF b;
     model_->AddParts(b, TextureContext{}, RGB(1));

@@ -48,9 +48,15 @@ class MaterialModel {
     virtual bool IsRoughGlass() const { return false; }
     // BSDF parts it can add (mixes add their children's; uber's opacity adds one).
     virtual int MaxParts() const { return 1; }
-    // The surface data its lobes read (SurfaceNeeds): by default uv when a texture is not
-    // constant.
+    // The surface data its lobes read (SurfaceNeeds) through textures: by default uv when a
+    // texture is not constant.
     virtual unsigned LobeNeeds() const;
+    // The surface data its lobes read themselves, not through a texture (hair: where across
+    // the fibre, uv's v, and the fibre's direction, dpdu).
+    virtual unsigned GeometryNeeds() const { return NeedNone; }
+    // Whether its lobes scatter light through a whole fibre at once (hair), so that the rays
+    // leaving a hit must not meet the same fibre again (CurveSet::SetFibre).
+    virtual bool IsFibre() const { return false; }
     // Whether a texture it reads filters over the ray's footprint.
     virtual bool TexturesUseDifferentials() const;
     // Radiance the surface emits itself (a "gltf" material's emission), or null.
@@ -110,8 +116,12 @@ class Material {
     bool MayTransmitGlossily() const { return model_->MayTransmitGlossily(); }
     int MaxParts() const { return model_->MaxParts(); }
     // The surface data a hit on this material reads (SurfaceNeeds), decided from its textures:
-    // uv when any texture is not constant, dpdu when a glossy lobe may be anisotropic.
-    unsigned SurfaceNeeds() const;
+    // uv when any texture is not constant, dpdu when a glossy lobe may be anisotropic; and what
+    // the model reads of the surface itself (MaterialModel::GeometryNeeds).
+    unsigned SurfaceNeeds() const { return TextureNeeds() | model_->GeometryNeeds(); }
+    // What of that its textures, bump and normal maps read (the "textures" effect).
+    unsigned TextureNeeds() const;
+    unsigned GeometryNeeds() const { return model_->GeometryNeeds(); }
     // Whether a texture of the material filters over the ray's footprint (Texture::
     // UsesDifferentials), so hits on it compute TextureContext's derivatives. UsesDifferentials
     // is the value Prepare cached.

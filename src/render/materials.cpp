@@ -517,8 +517,12 @@ bool MixMaterial::MayTransmitGlossily() const {
 int MixMaterial::MaxParts() const { return m1_->MaxParts() + m2_->MaxParts(); }
 
 unsigned MixMaterial::LobeNeeds() const {
-    return m1_->SurfaceNeeds() | m2_->SurfaceNeeds() | (Varies(amount_) ? NeedUV : NeedNone);
+    return m1_->TextureNeeds() | m2_->TextureNeeds() | (Varies(amount_) ? NeedUV : NeedNone);
 }
+
+unsigned MixMaterial::GeometryNeeds() const { return m1_->GeometryNeeds() | m2_->GeometryNeeds(); }
+
+bool MixMaterial::IsFibre() const { return m1_->Model().IsFibre() || m2_->Model().IsFibre(); }
 
 bool MixMaterial::TexturesUseDifferentials() const {
     return m1_->TexturesUseDifferentials() || m2_->TexturesUseDifferentials() ||

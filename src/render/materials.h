@@ -203,6 +203,8 @@ class MixMaterial final : public MaterialModel {
     bool MayTransmitGlossily() const override;
     int MaxParts() const override;
     unsigned LobeNeeds() const override;
+    unsigned GeometryNeeds() const override;
+    bool IsFibre() const override;
     bool TexturesUseDifferentials() const override;
 
   private:

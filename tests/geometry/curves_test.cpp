@@ -285,6 +285,50 @@ TEST(Curves, SpawnedRaysDoNotSelfIntersect) {
     }
 }
 
+// A cylinder that scatters through the whole fibre (hair, CurveSet::SetFibre): rays leaving a
+// hit in every direction, into the tube as well as out of it, never meet it again, and the hit
+// lies on the plane through the centre line facing the ray, at v's offset across it.
+TEST(Curves, FibreRaysLeaveInEveryDirection) {
+    PCG32 rng(5);
+    for (float width : {0.002f, 0.2f}) {
+        for (int placement = 0; placement < 4; ++placement) {
+            const Transform t = placement == 0 ? Transform() : testing_util::RandomTransform(rng);
+            const double r = 0.5 * width * Length(t.Vector(Vec3d(1, 0, 0)));
+            if (r < 1e-5 * Length(t.Point(Vec3d(0, 0, 0)))) continue;
+            auto tube = std::make_unique<CurveSet>(t, false, CurveType::Cylinder, StraightX(-1, 1),
+                                                   width, width);
+            tube->SetFibre(true);
+            Accel accel;
+            accel.AddCurves(std::move(tube));
+            accel.Commit();
+            int hits = 0, self = 0;
+            for (int i = 0; i < 1000; ++i) {
+                const Vec3d target = t.Point(Vec3d(rng.UniformDouble() - 0.5, 0, 0));
+                const Vec3d dir = RandomDirD(rng);
+                const double dist = 5 * Length(t.Vector(Vec3d(1, 0, 0)));
+                const Ray cam{Vec3f(target - dir * dist), Vec3f(dir), Infinity};
+                SurfaceInteraction si;
+                if (!accel.Intersect(cam, &si)) continue;
+                ++hits;
+                // On the centre plane: as far from the axis as v says, along the ray's view.
+                const Vec3d axisPoint = t.Point(Vec3d(0, 0, 0));
+                const Vec3d axis = Normalize(t.Vector(Vec3d(1, 0, 0)));
+                Vec3d radial = Vec3d(si.p) - axisPoint;
+                radial = radial - axis * Dot(radial, axis);
+                EXPECT_NEAR(Length(radial), r * std::abs(2 * si.uv.y - 1), 0.02 * r);
+                for (int j = 0; j < 8; ++j) {
+                    const Vec3f w = Vec3f(RandomDirD(rng));
+                    if (accel.Occluded(si.SpawnRayTo(si.p + w * float(dist)))) ++self;
+                    SurfaceInteraction again;
+                    if (accel.Intersect(si.SpawnRay(w), &again)) ++self;
+                }
+            }
+            EXPECT_GT(hits, 600);
+            EXPECT_EQ(self, 0) << "width " << width << " placement " << placement;
+        }
+    }
+}
+
 // Curves in an instance and moving curves go through the same Interaction.
 TEST(Curves, InstancedAndMoving) {
     auto proto = std::make_shared<Accel>();

@@ -14,6 +14,7 @@
 #include "render/bsdf.h"
 #include "render/coated_material.h"
 #include "scene/pbrt_parser.h"
+#include "support/render_text.h"
 
 namespace prism {
 namespace {
@@ -255,17 +256,6 @@ TEST(LayeredBxDF, MixtureWithOtherLobesStaysUnbiased) {
 
 // ---- Through the scene builder ----------------------------------------------------------
 
-const Material &OnlyMaterial(const std::string &world, Diagnostics &diag, RenderScene &keep) {
-    SceneDescription d = ParsePbrtString(
-        "Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n" + world +
-            "Shape \"sphere\"\n",
-        "test.pbrt", diag);
-    BuildSettings o;
-    o.resolution = {8, 8};
-    keep = BuildRenderScene(d, o, diag);
-    return keep.materials[size_t(keep.shapes[0].material)];
-}
-
 SurfaceInteraction FlatHit() {
     SurfaceInteraction si;
     si.n = si.ns = {0, 0, 1};
@@ -276,7 +266,7 @@ SurfaceInteraction FlatHit() {
 TEST(CoatedMaterial, CoatedDiffuseReadsPbrtV4Parameters) {
     Diagnostics diag;
     RenderScene keep;
-    const Material &m = OnlyMaterial(
+    const Material &m = test::BuildSphereMaterial(
         "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.4 0.6] \"float roughness\" 0.09\n"
         "  \"float eta\" 1.33 \"float thickness\" 0.2 \"rgb albedo\" [0.5 0.5 0.5] \"float g\" 2\n"
         "  \"integer maxdepth\" 7 \"integer nsamples\" 2\n",
@@ -299,7 +289,7 @@ TEST(CoatedMaterial, CoatedDiffuseReadsPbrtV4Parameters) {
 TEST(CoatedMaterial, CoatedConductorDividesTheBaseIndexByTheCoats) {
     Diagnostics diag;
     RenderScene keep;
-    const Material &m = OnlyMaterial(
+    const Material &m = test::BuildSphereMaterial(
         "Material \"coatedconductor\" \"rgb conductor.eta\" [0.3 0.6 0.9]\n"
         "  \"rgb conductor.k\" [3 2.4 1.5] \"float interface.eta\" 1.5\n"
         "  \"float conductor.uroughness\" 0.04 \"float conductor.vroughness\" 0.16\n",
@@ -317,8 +307,8 @@ TEST(CoatedMaterial, CoatedConductorDividesTheBaseIndexByTheCoats) {
 
     Diagnostics d2;
     RenderScene keep2;
-    const Material &r =
-        OnlyMaterial("Material \"coatedconductor\" \"rgb reflectance\" [0.9 0.5 0.2]\n", d2, keep2);
+    const Material &r = test::BuildSphereMaterial(
+        "Material \"coatedconductor\" \"rgb reflectance\" [0.9 0.5 0.2]\n", d2, keep2);
     const BSDF br = r.GetBSDF(FlatHit(), {});
     const LayeredLobe &lr = br.Part(0).layered;
     // eta 1 and k from the reflectance, both relative to the coat's 1.5.
@@ -344,8 +334,8 @@ TEST(CoatedMaterial, OnlyASmoothCoatReflectsSpecularly) {
     for (const auto &c : cases) {
         Diagnostics diag;
         RenderScene keep;
-        const Material &m =
-            OnlyMaterial(std::string("Material \"coateddiffuse\" ") + c.params + "\n", diag, keep);
+        const Material &m = test::BuildSphereMaterial(
+            std::string("Material \"coateddiffuse\" ") + c.params + "\n", diag, keep);
         EXPECT_EQ(m.MayReflectSpecularly(), c.specular) << c.params;
         EXPECT_FALSE(m.MayReflectGlossily()) << c.params;
         // What Whitted traces: the coat's Fresnel reflection exactly when it is smooth.
@@ -364,7 +354,8 @@ TEST(CoatedMaterial, BadWalkParametersAreErrorsWithLocation) {
         Diagnostics diag;
         RenderScene keep;
         try {
-            OnlyMaterial(std::string("Material \"coateddiffuse\" ") + bad + "\n", diag, keep);
+            test::BuildSphereMaterial(std::string("Material \"coateddiffuse\" ") + bad + "\n", diag,
+                                      keep);
             FAIL() << "expected a SceneError for " << bad;
         } catch (const SceneError &e) {
             EXPECT_NE(std::string(e.what()).find("test.pbrt:"), std::string::npos) << e.what();

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "scene/load_scene.h"
+#include "scene/pbrt_parser.h"
 #include "support/temp_dir.h"
 
 namespace prism::test {
@@ -65,6 +66,18 @@ Image RenderOnThreads(const RenderScene &scene, int threads) {
     RenderStats stats;
     tbb::task_arena(threads).execute([&] { img = Render(scene, &stats); });
     return img;
+}
+
+const Material &BuildSphereMaterial(const std::string &world, Diagnostics &diag,
+                                    RenderScene &keep) {
+    SceneDescription d = ParsePbrtString(
+        "Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n" + world +
+            "Shape \"sphere\"\n",
+        "test.pbrt", diag);
+    BuildSettings o;
+    o.resolution = {8, 8};
+    keep = BuildRenderScene(d, o, diag);
+    return keep.materials[size_t(keep.shapes[0].material)];
 }
 
 }  // namespace prism::test

@@ -39,6 +39,11 @@ RenderScene BuildSceneText(const std::string &dir, const std::string &name, cons
 Rendered RenderSceneText(const std::string &dir, const std::string &name, const std::string &text,
                          const BuildSettings &opts = {});
 
+// The material of a sphere declared after `world` (a pbrt world block's text: Material,
+// MakeNamedMaterial, Texture ...) under a point light, built at 8x8 into `keep`, with what it
+// warned of in `diag`. Throws SceneError as the scene builder does.
+const Material &BuildSphereMaterial(const std::string &world, Diagnostics &diag, RenderScene &keep);
+
 // Build settings of a w x h image at `spp` samples a pixel (0: the file's) with integrator
 // `integrator` ("": the file's).
 BuildSettings SizedSettings(int w, int h, int spp, const std::string &integrator = "");

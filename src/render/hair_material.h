@@ -1,0 +1,28 @@
+// pbrt's Material "hair" (pbrt-v3 and pbrt-v4): the fibre model of render/hair_bxdf.h, with
+// its absorption given directly, by a colour, or by melanin concentrations. docs/MATERIALS.md.
+#pragma once
+
+#include "render/material.h"
+
+namespace prism {
+
+class HairMaterial final : public MaterialModel {
+  public:
+    struct Params {
+        // Exactly one of the absorption's sources is set: sigmaA, reflectance (its colour), or
+        // the two melanin concentrations.
+        TexturePtr sigmaA, reflectance, eumelanin, pheomelanin;
+        TexturePtr eta, betaM, betaN, alpha;
+    };
+    explicit HairMaterial(Params p) : p_(std::move(p)) {}
+    void AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const override;
+    // Where the ray meets the fibre's width is uv's v; the fibre runs along dpdu.
+    unsigned GeometryNeeds() const override { return NeedAll; }
+    bool IsFibre() const override { return true; }
+    std::vector<const Texture *> Textures() const override;
+
+  private:
+    Params p_;
+};
+
+}  // namespace prism
