@@ -99,6 +99,7 @@ class MaterialBuilder::SceneMaterialParams : public MaterialParams {
     bool RoughGlassRendered() const override {
         return b_.ctx.scene.integrator->Traits().roughGlass;
     }
+    int PbrtVersion() const override { return b_.ctx.desc.pbrtVersion.version == 4 ? 4 : 3; }
 
   private:
     MaterialBuilder &b_;

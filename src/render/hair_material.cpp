@@ -38,8 +38,9 @@ void HairMaterial::AddParts(BSDF &b, const TextureContext &tc, const RGB &weight
                                                    EvalFloat(p_.pheomelanin, tc));
     // pbrt's h: -1 at one edge of the fibre as the ray sees it, 1 at the other.
     const float h = -1 + 2 * tc.uv.y;
-    b.AddPart(weight).hair = HairLobe::Make(
-        h, EvalFloat(p_.eta, tc), sigmaA, EvalFloat(p_.betaM, tc), betaN, EvalFloat(p_.alpha, tc));
+    const float alpha = EvalFloat(p_.alpha, tc) * (p_.pbrtV3Tilt ? -1.f : 1.f);
+    b.AddPart(weight).hair =
+        HairLobe::Make(h, EvalFloat(p_.eta, tc), sigmaA, EvalFloat(p_.betaM, tc), betaN, alpha);
 }
 
 std::vector<const Texture *> HairMaterial::Textures() const {
@@ -58,7 +59,9 @@ std::vector<const Texture *> HairMaterial::Textures() const {
 //   beta_m        float texture     0.3   longitudinal roughness, 0 to 1
 //   beta_n        float texture     0.3   azimuthal roughness, 0 to 1
 //   alpha         float texture     2     the cuticle scales' tilt in degrees
-// sigma_a wins over a colour, and a colour over melanin; what is overridden is warned.
+// sigma_a wins over a colour, and a colour over melanin; what is overridden is warned. The tilt
+// shifts the lobes as the file's own renderer does (pbrt-v3 and pbrt-v4 shift them opposite
+// ways).
 std::shared_ptr<const MaterialModel> CreateHairMaterial(const MaterialParams &p, const FileLoc &) {
     HairMaterial::Params h;
     const char *colour = p.Has("color") ? "color" : p.Has("reflectance") ? "reflectance" : nullptr;
@@ -86,6 +89,7 @@ std::shared_ptr<const MaterialModel> CreateHairMaterial(const MaterialParams &p,
     h.betaM = RangedFloat(p, "beta_m", 0.3f, 0.f, 1.f);
     h.betaN = RangedFloat(p, "beta_n", 0.3f, 0.f, 1.f);
     h.alpha = RangedFloat(p, "alpha", 2.f, -90.f, 90.f);
+    h.pbrtV3Tilt = p.PbrtVersion() == 3;
     return std::make_shared<HairMaterial>(std::move(h));
 }
 

@@ -13,6 +13,10 @@ class HairMaterial final : public MaterialModel {
         // the two melanin concentrations.
         TexturePtr sigmaA, reflectance, eumelanin, pheomelanin;
         TexturePtr eta, betaM, betaN, alpha;
+        // pbrt-v3's tilt (a pbrt-v3 file): its lobes shift along the fibre the other way from
+        // pbrt-v4's for the same alpha; alpha is negated in pbrt-v4's form, which puts them
+        // where pbrt-v3's are and keeps them normalised.
+        bool pbrtV3Tilt = false;
     };
     explicit HairMaterial(Params p) : p_(std::move(p)) {}
     void AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const override;

@@ -169,6 +169,9 @@ class MaterialParams : public Params {
     virtual int MixDepth() const = 0;
     // Whether the scene's integrator renders rough glass rough (IntegratorTraits::roughGlass).
     virtual bool RoughGlassRendered() const = 0;
+    // The pbrt format version whose rules the file is read by (3 for every file that is not
+    // pbrt; scene/pbrt_version.h), where the two renderers' models differ.
+    virtual int PbrtVersion() const { return 3; }
 };
 
 // The model registered as `type` (material_list.inc), or null when none is. Throws SceneError

@@ -60,6 +60,8 @@ constexpr std::array kRules = {
     VersionRule{"Material", "thindielectric", "", 4},
     VersionRule{"Material", "diffusetransmission", "", 4},
     VersionRule{"Material", "measured", "", 4},
+    VersionRule{"Material", "hair", "color", 3},
+    VersionRule{"Material", "hair", "reflectance", 4},
     VersionRule{"Material", "mix", "namedmaterial1", 3},
     VersionRule{"Material", "mix", "materials", 4},
     // Shapes.

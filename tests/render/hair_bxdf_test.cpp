@@ -182,6 +182,8 @@ TEST(HairMaterial, ReadsPbrtsParametersAndDefaults) {
     EXPECT_EQ(l.sigmaA, HairLobe::Make(0, 1.55f, l.sigmaA, 0.3f, 0.3f, 2).sigmaA);
     EXPECT_FLOAT_EQ(l.v0, HairLobe::Make(0, 1.55f, RGB(0), 0.3f, 0.3f, 2).v0);
     EXPECT_FLOAT_EQ(l.s, HairLobe::Make(0, 1.55f, RGB(0), 0.3f, 0.3f, 2).s);
+    // A pbrt-v3 file: pbrt-v3's tilt, the other way along the fibre from pbrt-v4's.
+    EXPECT_FLOAT_EQ(l.sinAlpha, -std::sin(float(Radians(2))));
     EXPECT_EQ(diag.Count(), size_t(0));
 
     // Pheomelanin alone: no eumelanin.
@@ -203,11 +205,13 @@ TEST(HairMaterial, ReadsPbrtsParametersAndDefaults) {
     EXPECT_FLOAT_EQ(l.v0, HairLobe::Make(0, 1, RGB(0), 0.5f, 0.7f, 0).v0);
     EXPECT_EQ(diag.Count(), size_t(2));
 
-    // pbrt-v4's "reflectance" is pbrt-v3's "color".
+    // pbrt-v4's "reflectance" is pbrt-v3's "color", and a pbrt-v4 file tilts the lobes as
+    // pbrt-v4 does.
     l = LobeOf(test::BuildSphereMaterial("Material \"hair\" \"rgb reflectance\" [0.3 0.2 0.1]\n",
                                          diag, keep),
                0.5f);
     EXPECT_EQ(l.sigmaA, HairLobe::SigmaAFromReflectance(RGB(0.3f, 0.2f, 0.1f), 0.3f));
+    EXPECT_FLOAT_EQ(l.sinAlpha, std::sin(float(Radians(2))));
 }
 
 TEST(HairMaterial, OutOfRangeConstantsAreErrorsAtTheParameter) {
