@@ -7,25 +7,15 @@
 // (rejected). A change of behaviour that the table does not follow fails here.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
-#include <utility>
 
-#include "assembly/build_scene.h"
-#include "image/image_io.h"
-#include "scene/load_scene.h"
-#include "support/shared.h"
-#include "support/temp_dir.h"
+#include "support/status_table.h"
 
 namespace prism {
 namespace {
 
-namespace fs = std::filesystem;
-
-using Key = std::pair<std::string, std::string>;  // (directive, type or "—")
+using Key = test::StatusKey;
 
 // The scene of a probe: the parts a probe replaces, around a lit diffuse sphere.
 struct Parts {
@@ -57,33 +47,10 @@ std::map<Key, std::string> Probes() {
     };
     // Directives without a type.
     add("WorldBegin", none, b);
-    add("AttributeBegin", none, with([](Parts &x) { x.world = "AttributeBegin\nAttributeEnd\n"; }));
-    add("AttributeEnd", none, with([](Parts &x) { x.world = "AttributeBegin\nAttributeEnd\n"; }));
+    for (const test::SharedProbe &sp : test::SharedDirectiveProbes())
+        add(sp.directive, none, with([&](Parts &x) { test::ApplySharedProbe(sp, x); }));
     add("Attribute", none,
         with([](Parts &x) { x.world = "Attribute \"shape\" \"float radius\" 0.5\n"; }));
-    for (const char *d : {"Identity", "ReverseOrientation"})
-        add(d, none, with([&](Parts &x) { x.world = std::string(d) + "\n"; }));
-    add("Translate", none, with([](Parts &x) { x.world = "Translate 1 0 0\n"; }));
-    add("Scale", none, with([](Parts &x) { x.world = "Scale 1 2 1\n"; }));
-    add("Rotate", none, with([](Parts &x) { x.world = "Rotate 30 0 1 0\n"; }));
-    add("LookAt", none,
-        with([](Parts &x) { x.camera = "LookAt 0 0 -5 0 0 0 0 1 0\n" + x.camera; }));
-    add("CoordinateSystem", none, with([](Parts &x) { x.world = "CoordinateSystem \"c\"\n"; }));
-    add("CoordSysTransform", none,
-        with([](Parts &x) { x.world = "CoordinateSystem \"c\"\nCoordSysTransform \"c\"\n"; }));
-    add("Transform", none,
-        with([](Parts &x) { x.world = "Transform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1]\n"; }));
-    add("ConcatTransform", none,
-        with([](Parts &x) { x.world = "ConcatTransform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1]\n"; }));
-    add("TransformTimes", none, with([](Parts &x) { x.options = "TransformTimes 0 1\n"; }));
-    add("ActiveTransform", none, with([](Parts &x) {
-            x.world = "ActiveTransform EndTime\nTranslate 0.1 0 0\nActiveTransform All\n";
-        }));
-    for (const char *d : {"ObjectBegin", "ObjectEnd", "ObjectInstance"})
-        add(d, none, with([](Parts &x) {
-                x.world = "ObjectBegin \"o\"\nShape \"sphere\"\nObjectEnd\nObjectInstance \"o\"\n";
-            }));
-    add("Include", none, with([](Parts &x) { x.world = "Include \"part.pbrt\"\n"; }));
     add("Import", none, with([](Parts &x) { x.world = "Import \"part.pbrt\"\n"; }));
     add("MakeNamedMaterial", none, with([](Parts &x) {
             x.material =
@@ -231,84 +198,8 @@ std::map<Key, std::string> Probes() {
     return p;
 }
 
-// The files the probes read, beside them.
-void WriteInputs(const fs::path &dir) {
-    std::ofstream(dir / "lens.dat") << "# radius thickness eta aperture\n"
-                                       "20 4 1.5 16\n-20 2 1 16\n0 28 0 8\n";
-    std::ofstream(dir / "part.pbrt") << "Shape \"sphere\" \"float radius\" 0.5\n";
-    std::ofstream(dir / "quad.ply")
-        << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-           "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
-           "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
-    Image t(4, 4, 3);
-    for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 4; ++x) t.SetRGB(x, y, RGB(0.5f));
-    WriteImage((dir / "t.png").string(), t);
-    WriteImage((dir / "env.exr").string(), t);
-}
-
-// What Prism does with a probe's scene: "rejected" (an error), "warned" or "simulated", and
-// the first message, for the failure report.
-std::pair<std::string, std::string> Observe(const fs::path &dir, const std::string &text) {
-    const fs::path file = dir / "probe.pbrt";
-    std::ofstream(file) << text;
-    Diagnostics diag(false);
-    try {
-        SceneDescription desc = LoadScene(file.string(), diag);
-        BuildSettings settings;
-        settings.resolution = {8, 8};
-        BuildRenderScene(desc, settings, diag);
-    } catch (const SceneError &e) {
-        return {"rejected", e.what()};
-    }
-    if (!diag.Warnings().empty()) return {"warned", diag.Warnings()[0].ToString()};
-    return {"simulated", ""};
-}
-
-// The rows of the table: "| directive | type | status | ... |" after its header.
-std::map<Key, std::string> TableRows() {
-    std::ifstream in(test::Source + "/docs/PBRT4_STATUS.md");
-    EXPECT_TRUE(in) << "docs/PBRT4_STATUS.md";
-    std::map<Key, std::string> rows;
-    std::string line;
-    auto cell = [](std::string s) {
-        size_t a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
-        s = a == std::string::npos ? "" : s.substr(a, b - a + 1);
-        if (s.size() >= 2 && s.front() == '`' && s.back() == '`') s = s.substr(1, s.size() - 2);
-        return s;
-    };
-    while (std::getline(in, line)) {
-        if (line.rfind("| ", 0) != 0) continue;
-        std::vector<std::string> cells;
-        std::stringstream ss(line.substr(1));
-        std::string c;
-        while (std::getline(ss, c, '|')) cells.push_back(cell(c));
-        if (cells.size() < 3 || cells[0] == "directive" || cells[0].rfind("---", 0) == 0) continue;
-        EXPECT_TRUE(rows.emplace(Key{cells[0], cells[1]}, cells[2]).second)
-            << "twice: " << cells[0] << " " << cells[1];
-    }
-    return rows;
-}
-
 TEST(Pbrt4Status, TheTableListsEveryDirectiveAndTypeAsPrismTreatsIt) {
-    const fs::path dir = test::ScratchDir("pbrt4_status");
-    WriteInputs(dir);
-    const std::map<Key, std::string> probes = Probes();
-    const std::map<Key, std::string> rows = TableRows();
-    for (const auto &[key, text] : probes) {
-        SCOPED_TRACE(key.first + " " + key.second);
-        auto row = rows.find(key);
-        if (row == rows.end()) {
-            ADD_FAILURE() << "docs/PBRT4_STATUS.md has no row for " << key.first << " "
-                          << key.second;
-            continue;
-        }
-        const auto [status, message] = Observe(dir, text);
-        EXPECT_EQ(status, row->second) << message << "\nscene:\n" << text;
-    }
-    for (const auto &[key, status] : rows)
-        EXPECT_TRUE(probes.count(key)) << "docs/PBRT4_STATUS.md lists " << key.first << " "
-                                       << key.second << ", which is not pbrt-v4's";
+    test::CheckStatusTable("docs/PBRT4_STATUS.md", "pbrt4_status", Probes());
 }
 
 }  // namespace
