@@ -11,7 +11,7 @@ SRC="$PWD"
 SECONDS_PER_TARGET="${1:-60}"
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(pbrt ply stl obj gltf image gltf_json texture)
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(pbrt ply stl obj gltf image bsdf gltf_json texture)
 BUILD="${PRISM_FUZZ_BUILD_DIR:-build-fuzz}"
 CXX_FUZZ="${CXX_FUZZ:-clang++-14}"
 CC_FUZZ="${CC_FUZZ:-clang-14}"

@@ -4,9 +4,11 @@
 #include <cmath>
 
 #include "assembly/textures.h"
+#include "core/file_io.h"
 #include "render/bsdf.h"
 #include "render/materials.h"
 #include "render/texture.h"
+#include "scene/scene_description.h"
 
 namespace prism {
 
@@ -100,6 +102,14 @@ class MaterialBuilder::SceneMaterialParams : public MaterialParams {
         return b_.ctx.scene.integrator->Traits().roughGlass;
     }
     int PbrtVersion() const override { return b_.ctx.desc.pbrtVersion.version == 4 ? 4 : 3; }
+    std::string ReadFile(const char *n, const std::string &what) const override {
+        const std::string file = String(n, "");
+        if (file.empty())
+            throw SceneError(Loc(n), what + ": \"" + std::string(n) + "\" is required");
+        const std::string path = ResolveScenePath(b_.ctx.desc, file);
+        CheckReadConfinement(path, Loc(n), what, file);
+        return ReadFileOrThrow(path, Loc(n), b_.ctx.budget, what + " " + Quote(file));
+    }
 
   private:
     MaterialBuilder &b_;
@@ -217,7 +227,7 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
     if (model) {
         mat = Material(std::move(model), m.type);
     } else {
-        // fourier, subsurface, kdsubsurface, disney, measured, ... and unknown types.
+        // subsurface, kdsubsurface, disney, measured, ... and unknown types.
         const char *colour = mp.Has("Kd")            ? "Kd"
                              : mp.Has("reflectance") ? "reflectance"
                              : mp.Has("color")       ? "color"

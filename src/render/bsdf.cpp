@@ -276,6 +276,7 @@ float VisibleNormalPdf(const Vec3f &w, const Vec3f &wh, float ax, float ay) {
 RGB BxDFLobes::fDiffuse(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     RGB result = HasLayered() ? layered.f(wo, wi) : RGB(0);
     if (hair.Active()) result += hair.f(wo, wi);
+    if (fourier.Active()) result += fourier.f(wo, wi);
     if (reflect) {
         if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
         if (fresnelBlend) result += FresnelBlendDiffuseF(*this, wo, wi);
@@ -305,6 +306,7 @@ RGB BxDFLobes::f(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
 
 RGB BxDFLobes::fUnlayered(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     RGB result = hair.Active() ? hair.f(wo, wi) : RGB(0);
+    if (fourier.Active()) result += fourier.f(wo, wi);
     if (reflect) {
         if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
         if (!ks.IsBlack()) result += MicrofacetReflectionF(*this, wo, wi);

@@ -8,6 +8,7 @@
 
 #include "core/color.h"
 #include "core/vecmath.h"
+#include "render/fourier_bsdf.h"
 #include "render/hair_bxdf.h"
 #include "render/layered_bxdf.h"
 
@@ -82,17 +83,21 @@ struct BxDFLobes {
     // rays from it, as pbrt-v3's Whitted traces none); it reflects and transmits whatever side
     // the geometric normal puts the directions on.
     HairLobe hair;
+    // pbrt-v3's tabulated BSDF (Material "fourier"), alone in its part, counted as the hair
+    // lobe is: it reflects and transmits by its table, whatever the geometric normal says.
+    FourierLobe fourier;
 
     bool HasNonSpecular() const {
         return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() || !ksTransmit.IsBlack() ||
-               fresnelBlend || !thinTransmit.IsBlack() || HasLayered() || hair.Active();
+               fresnelBlend || !thinTransmit.IsBlack() || HasLayered() || hair.Active() ||
+               fourier.Active();
     }
     // Lobes that are sampled by light samples only (Lambertian, Oren–Nayar, diffuse
     // transmission, FresnelBlend's diffuse base) and lobes that glossy rays sample
     // (microfacet reflection and transmission, FresnelBlend's glossy coat).
     bool HasDiffuse() const {
         return !kd.IsBlack() || !kdTransmit.IsBlack() || fresnelBlend || HasLayered() ||
-               hair.Active();
+               hair.Active() || fourier.Active();
     }
     bool HasGlossy() const {
         return !ks.IsBlack() || !ksTransmit.IsBlack() || fresnelBlend || !thinTransmit.IsBlack();

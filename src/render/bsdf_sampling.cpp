@@ -18,7 +18,8 @@ enum class Lobe {
     SpecularReflect,
     SpecularTransmit,
     Layered,
-    Hair
+    Hair,
+    Fourier
 };
 
 struct Choice {
@@ -27,9 +28,9 @@ struct Choice {
     float weight;
 };
 
-// At most seven lobes per part.
+// At most eight lobes per part.
 struct Choices {
-    Choice c[BSDF::MaxParts * 7];
+    Choice c[BSDF::MaxParts * 8];
     int n = 0;
     float total = 0;
     bool layered = false;  // a layered lobe is among them
@@ -51,6 +52,8 @@ void Collect(const BSDF &b, const Vec3f &wo, bool withSpecular, Choices *ch) {
         if (l.layered.Active())
             ch->Add(i, Lobe::Layered, w.Average() * l.layered.AlbedoEstimate(wo));
         if (l.hair.Active()) ch->Add(i, Lobe::Hair, w.Average() * l.hair.AlbedoEstimate(wo));
+        if (l.fourier.Active())
+            ch->Add(i, Lobe::Fourier, w.Average() * l.fourier.AlbedoEstimate(wo));
         if (l.fresnelBlend) {
             // pbrt-v3 FresnelBlend::Sample_f: half the samples diffuse, half glossy.
             const float a = std::max(w.Average(), 1e-4f);
@@ -136,6 +139,8 @@ float LobePdf(const BxDFLobes &l, Lobe lobe, const Vec3f &wo, const Vec3f &wi) {
             return l.HasLayered() ? l.layered.Pdf(wo, wi) : 0.f;
         case Lobe::Hair:
             return l.hair.Active() ? l.hair.Pdf(wo, wi) : 0.f;
+        case Lobe::Fourier:
+            return l.fourier.Active() ? l.fourier.Pdf(wo, wi) : 0.f;
         default:
             return 0;
     }
@@ -223,6 +228,10 @@ bool BSDF::Sample_f(const Vec3f &woW, Vec2f u, float uc, bool withSpecular, BSDF
         float unused;
         const float ucLobe = std::min((target - sum) / c.weight, 0x1.fffffep-1f);
         if (!l.hair.Sample(wo, ucLobe, u, &wi, &unused)) return false;
+        s->wi = FromLocal(wi);
+    } else if (c.lobe == Lobe::Fourier) {
+        float unused;
+        if (!l.fourier.Sample(wo, u, &wi, &unused)) return false;
         s->wi = FromLocal(wi);
     } else if (c.lobe == Lobe::Glossy) {
         RGB unused;

@@ -172,6 +172,11 @@ class MaterialParams : public Params {
     // The pbrt format version whose rules the file is read by (3 for every file that is not
     // pbrt; scene/pbrt_version.h), where the two renderers' models differ.
     virtual int PbrtVersion() const { return 3; }
+    // The bytes of the file that the string parameter `name` names, resolved against the
+    // scene's folder, confined and charged to the memory budget as the scene's other files
+    // are; a SceneError at the parameter when it cannot be read. `what` names it in messages
+    // ("tabulated BSDF").
+    virtual std::string ReadFile(const char *name, const std::string &what) const = 0;
 };
 
 // The model registered as `type` (material_list.inc), or null when none is. Throws SceneError

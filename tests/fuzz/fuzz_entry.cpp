@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "image/image_io.h"
+#include "render/fourier_bsdf.h"
 #include "scene/gltf_reader.h"
 #include "scene/obj_reader.h"
 #include "scene/pbrt_parser.h"
@@ -154,6 +155,29 @@ void FuzzImage(const uint8_t *data, size_t size, std::string *rejected) {
     }
 }
 
+void FuzzBsdf(const uint8_t *data, size_t size, std::string *rejected) {
+    try {
+        const FourierTable t =
+            FourierTable::Parse(std::string(reinterpret_cast<const char *>(data), size), "fuzz");
+        // Every lookup an accepted table allows: grid points, between them, both sides.
+        const FourierLobe l{&t};
+        for (float zo : {-0.95f, -0.3f, 0.f, 0.4f, 1.f}) {
+            const Vec3f wo = Normalize(Vec3f(0.3f, 0.2f, zo == 0 ? 1e-3f : zo));
+            for (float zi : {-1.f, -0.5f, 0.2f, 0.9f}) {
+                const Vec3f wi = Normalize(Vec3f(-0.4f, 0.1f, zi));
+                l.f(wo, wi);
+                l.Pdf(wo, wi);
+            }
+            Vec3f wi;
+            float pdf;
+            for (float u : {0.f, 0.3f, 0.999f}) l.Sample(wo, {u, 1 - u}, &wi, &pdf);
+            l.AlbedoEstimate(wo);
+        }
+    } catch (const std::runtime_error &e) {
+        if (rejected) *rejected = e.what();
+    }
+}
+
 bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
                 std::string *rejected) {
     if (target == "pbrt")
@@ -168,6 +192,8 @@ bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
         FuzzGltf(data, size, rejected);
     else if (target == "image")
         FuzzImage(data, size, rejected);
+    else if (target == "bsdf")
+        FuzzBsdf(data, size, rejected);
     else if (target == "gltf_json")
         FuzzGltfJson(data, size, rejected);
     else if (target == "texture")

@@ -22,6 +22,8 @@ void FuzzGltf(const uint8_t *data, size_t size,
               std::string *rejected = nullptr);  // ReadGltfFile: .glb if it starts with "glTF"
 void FuzzImage(const uint8_t *data, size_t size,
                std::string *rejected = nullptr);  // ReadImageFromMemory
+void FuzzBsdf(const uint8_t *data, size_t size,
+              std::string *rejected = nullptr);  // FourierTable::Parse, then f, Pdf, Sample
 
 // Structure-aware (fuzz_structured.cpp): the bytes are a generator's choices, not the file.
 void FuzzGltfJson(const uint8_t *data, size_t size,
@@ -32,7 +34,8 @@ void FuzzTextureGraph(const uint8_t *data, size_t size,
 std::string GltfJsonScene(const uint8_t *data, size_t size);
 std::string TextureGraphScene(const uint8_t *data, size_t size);
 
-// Dispatch by target name ("pbrt", "ply", "stl", "obj", "gltf", "image", "gltf_json", "texture");
+// Dispatch by target name ("pbrt", "ply", "stl", "obj", "gltf", "image", "bsdf", "gltf_json",
+// "texture");
 // false if unknown.
 bool FuzzByName(const std::string &target, const uint8_t *data, size_t size,
                 std::string *rejected = nullptr);

@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 namespace prism::fuzz {
 namespace {
 
-const char *Targets[] = {"pbrt", "ply", "stl", "obj", "gltf", "image", "gltf_json", "texture"};
+const char *Targets[] = {"pbrt",  "ply",       "stl",     "obj", "gltf",
+                         "image", "gltf_json", "texture", "bsdf"};
 
 std::vector<fs::path> InputsUnder(const fs::path &dir) {
     std::vector<fs::path> files;

@@ -9,6 +9,7 @@
 #include "assembly/build_scene.h"
 #include "image/image_io.h"
 #include "scene/load_scene.h"
+#include "support/bsdf_file.h"
 #include "support/shared.h"
 #include "support/temp_dir.h"
 
@@ -81,6 +82,7 @@ void WriteStatusProbeInputs(const fs::path &dir) {
         for (int x = 0; x < 4; ++x) t.SetRGB(x, y, RGB(0.5f));
     WriteImage((dir / "t.png").string(), t);
     WriteImage((dir / "env.exr").string(), t);
+    std::ofstream(dir / "m.bsdf", std::ios::binary) << LambertianFourierBsdf(0.5f);
 }
 
 std::pair<std::string, std::string> ObserveStatusProbe(const fs::path &dir,

@@ -34,7 +34,8 @@ void ApplySharedProbe(const SharedProbe &sp, Parts &x) {
 // the source tree): status by key. A key listed twice is a test failure.
 std::map<StatusKey, std::string> StatusTableRows(const std::string &doc);
 
-// The files the probes read (lens.dat, part.pbrt, quad.ply, t.png, env.exr), written in `dir`.
+// The files the probes read (lens.dat, part.pbrt, quad.ply, t.png, env.exr, m.bsdf: a
+// Lambertian table), written in `dir`.
 void WriteStatusProbeInputs(const std::filesystem::path &dir);
 
 // What Prism does with a probe scene written in `dir`: "rejected" (an error), "warned" or
