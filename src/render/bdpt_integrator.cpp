@@ -17,6 +17,9 @@ namespace prism {
 //                                          the light of each light subpath and light sample
 //   visualizestrategies  bool     false    pbrt-v3's per-strategy images: ignored (a warning)
 //   visualizeweights     bool     false    the same, weighted: ignored (a warning)
+//   regularize           bool     false    pbrt-v4's: after a subpath's first non-specular
+//                                          bounce, its surfaces' near-specular lobes are
+//                                          roughened (docs/INTEGRATORS.md "Regularization")
 std::unique_ptr<Integrator> CreateBdptIntegrator(const IntegratorInputs &in) {
     const Params &p = in.params;
     const std::string lss = p.String("lightsamplestrategy", "power");
@@ -37,10 +40,11 @@ std::unique_ptr<Integrator> CreateBdptIntegrator(const IntegratorInputs &in) {
             p.Warn(p.Loc(name),
                    std::string(name) + " is ignored: Prism writes the one image of all strategies");
     in.effects.Enable(Effect::IndirectIllumination, in.why, in.whyLoc);
+    const bool regularize = p.Bool("regularize", false);
     p.WarnUnread(
-        "Prism's bdpt reads maxdepth, lightsamplestrategy, visualizestrategies and "
-        "visualizeweights");
-    return std::make_unique<BdptIntegrator>(choice, in.loc);
+        "Prism's bdpt reads maxdepth, lightsamplestrategy, visualizestrategies, "
+        "visualizeweights and regularize");
+    return std::make_unique<BdptIntegrator>(choice, regularize, in.loc);
 }
 
 IntegratorTraits BdptIntegrator::Traits() const {
@@ -65,7 +69,7 @@ RGB BdptIntegrator::Sample(const RenderScene &scene, const Ray &ray, const Pixel
     const size_t capacity = size_t(ps.trace.maxDepth) + 3;
     if (cameraPath.capacity() < capacity) cameraPath.reserve(capacity);
     if (lightPath.capacity() < capacity) lightPath.reserve(capacity);
-    const BdptContext ctx{scene, chooser_, camera_, sphere_, ps.trace.maxDepth};
+    const BdptContext ctx{scene, chooser_, camera_, sphere_, ps.trace.maxDepth, regularize_};
     const BdptPixelSamples samples(ps);
     CameraSubpath(ctx, ray, samples, ps.diff, cameraPath, rc);
     LightSubpath(ctx, samples, lightPath, rc);

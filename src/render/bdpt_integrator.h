@@ -15,7 +15,8 @@ namespace prism {
 
 class BdptIntegrator : public Integrator {
   public:
-    BdptIntegrator(LightChoice choice, const FileLoc &loc) : choice_(choice), loc_(loc) {}
+    BdptIntegrator(LightChoice choice, bool regularize, const FileLoc &loc)
+        : choice_(choice), regularize_(regularize), loc_(loc) {}
     const char *Name() const override { return "bdpt"; }
     IntegratorTraits Traits() const override;
     void Prepare(const RenderScene &scene) override;
@@ -33,6 +34,7 @@ class BdptIntegrator : public Integrator {
                std::vector<SampleSplat> *splats) const;
 
     LightChoice choice_;
+    bool regularize_;
     FileLoc loc_;
     LightChooser chooser_;
     CameraImportance camera_;

@@ -52,6 +52,9 @@ struct BdptContext {
     const CameraImportance &camera;
     const SceneSphere &sphere;
     int maxDepth;
+    // pbrt-v4's "regularize": after a subpath's first non-specular bounce, its surfaces'
+    // BSDFs are regularized (BSDF::Regularize).
+    bool regularize = false;
 };
 
 // Where a path's subpaths and connections draw their random numbers, by dimension

@@ -51,6 +51,7 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
           RayCounters &rc) {
     const RenderScene &scene = ctx.scene;
     int passes = 0, made = 0;
+    bool anyNonSpecular = false;  // for regularize
     while (made < surfaces) {
         SurfaceInteraction si;
         if (!scene.accel->Intersect(ray, &si, importance ? ShadowRays : CameraRays)) {
@@ -90,6 +91,7 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
         if (cameraHit) ComputeDifferentials(si, *diff, &tc);
         if (!importance && mat.HasEmission()) v.emitted = mat.Emitted(tc);
         v.bsdf.emplace(mat.GetBSDF(v.si, tc));
+        if (ctx.regularize && anyNonSpecular) v.bsdf->Regularize();
         v.bsdf->MakeRoughSpecularGlossy();  // pbrt-v3: rough glass is a microfacet BSDF
         v.pdfFwd = AreaDensity(pdfDir, path[i - 1], v);
         if (++made >= surfaces) return;
@@ -100,6 +102,7 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
         BSDFSample bs;
         if (!v.bsdf->Sample_f(v.wo, ps.Get2D(d0), ps.Get1D(d1), true, &bs)) return;
         RGB w = bs.weight;
+        anyNonSpecular = anyNonSpecular || !bs.specular;
         float pdfRev = 0;
         if (bs.specular) {
             // Delta lobes: radiance is scaled by 1/eta^2 through a refraction, importance not.

@@ -25,6 +25,7 @@ namespace prism {
 //   mutationsperpixel     integer  100     proposals per pixel, over all chains (--spp wins)
 //   largestepprobability  float    0.3     the share of proposals that draw a new state
 //   sigma                 float    0.01    the standard deviation of the small steps
+//   regularize            bool     false   pbrt-v4's: as bdpt's
 std::unique_ptr<Integrator> CreateMltIntegrator(const IntegratorInputs &in) {
     const Params &p = in.params;
     MltParams mp;
@@ -49,10 +50,11 @@ std::unique_ptr<Integrator> CreateMltIntegrator(const IntegratorInputs &in) {
     mp.sigma = p.Float("sigma", 0.01f);
     if (!(mp.sigma > 0) || !std::isfinite(mp.sigma))
         throw SceneError(p.Loc("sigma"), "sigma must be a finite number > 0");
+    mp.regularize = p.Bool("regularize", false);
     in.effects.Enable(Effect::IndirectIllumination, in.why, in.whyLoc);
     p.WarnUnread(
         "Prism's mlt reads maxdepth, bootstrapsamples, chains, mutationsperpixel, "
-        "largestepprobability and sigma");
+        "largestepprobability, sigma and regularize");
     return std::make_unique<MltIntegrator>(mp, in.loc);
 }
 
@@ -134,12 +136,12 @@ RGB MltIntegrator::PathRadiance(const FrameContext &frame, const MltSampler &sam
     }
     thread_local std::vector<BdptVertex> cameraPath, lightPath;
     // The subpaths have exactly t and s vertices: bdpt's walks with depths to match.
-    const BdptContext cameraCtx{scene, chooser_, camera_, sphere_, t - 2};
+    const BdptContext cameraCtx{scene, chooser_, camera_, sphere_, t - 2, params_.regularize};
     CameraSubpath(cameraCtx, ray, sampler, diff ? &*diff : nullptr, cameraPath, rc);
     if (int(cameraPath.size()) != t) return RGB(0);
     lightPath.clear();
     if (s > 0) {
-        const BdptContext lightCtx{scene, chooser_, camera_, sphere_, s - 1};
+        const BdptContext lightCtx{scene, chooser_, camera_, sphere_, s - 1, params_.regularize};
         LightSubpath(lightCtx, sampler, lightPath, rc);
         if (int(lightPath.size()) != s) return RGB(0);
     }

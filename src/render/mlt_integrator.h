@@ -29,6 +29,7 @@ struct MltParams {
     int mutationsPerPixel = 100;        // "mutationsperpixel"
     float largeStepProbability = 0.3f;  // "largestepprobability"
     float sigma = 0.01f;                // "sigma": the small steps' standard deviation
+    bool regularize = false;            // pbrt-v4's "regularize" (BdptContext)
 };
 
 class MltIntegrator : public Integrator {
