@@ -185,8 +185,7 @@ int RunSuite(const SuiteOptions &options) {
         ctx.metrics.insert(ctx.metrics.end(), sectionMetrics[i].begin(), sectionMetrics[i].end());
     }
 
-    std::string targets =
-        "## Targets of issue 10\n\n| target | measured | status |\n|---|---|---|\n";
+    std::string targets = "## Targets\n\n| target | measured | status |\n|---|---|---|\n";
     for (const BenchMetric &m : ctx.metrics) {
         if (m.target.empty()) continue;
         std::string unit = m.unit.empty() ? "" : " " + m.unit;
