@@ -252,11 +252,16 @@ void AovFrame::AddGeometry(const TileContext &ctx, const Bounds2i &tb) {
                 if (albedo_ && firstHit(camera.GenerateRay(cs), &si)) {
                     const Material &m = scene.materials[size_t(scene.Info(si).material)];
                     BSDF bsdf = m.GetBSDF(si, SurfaceTextureContext(si));
+                    const Vec3f wo = bsdf.ToLocal(si.wo);
                     for (int part = 0; part < bsdf.NumParts(); ++part) {
                         const BxDFLobes &l = bsdf.Part(part);
                         // A coated diffuse base (coateddiffuse) is its material's diffuse colour.
                         const bool coated = l.layered.base == LayeredLobe::Base::Diffuse;
-                        albedoSum += bsdf.Weight(part) * (coated ? l.layered.reflectance : l.kd);
+                        RGB a = coated ? l.layered.reflectance : l.kd;
+                        // Hair and tabulated BSDFs have no diffuse colour: their albedo at wo.
+                        if (l.hair.Active()) a += l.hair.Albedo(wo);
+                        if (l.fourier.Active()) a += l.fourier.Albedo(wo);
+                        albedoSum += bsdf.Weight(part) * a;
                     }
                 }
             }

@@ -328,6 +328,34 @@ bool FourierLobe::Sample(const Vec3f &wo, Vec2f u, Vec3f *wi, float *pdf) const 
     return *pdf > 0 && std::isfinite(*pdf);
 }
 
+RGB FourierLobe::Albedo(const Vec3f &wo) const {
+    const FourierTable &t = *table;
+    const int n = t.NumMu(), channels = t.NumChannels();
+    // a_0 of each channel at every grid cosine μi for this μo: the spline's nodes along μi.
+    std::vector<float> a0(size_t(channels * n));
+    std::vector<float> ak;
+    for (int i = 0; i < n; ++i) {
+        t.Coefficients(t.Mu()[size_t(i)], wo.z, &ak);  // zeros where the table has none
+        for (int c = 0; c < channels; ++c) a0[size_t(c * n + i)] = ak[size_t(c * t.MaxOrder())];
+    }
+    double sum[3] = {0, 0, 0};
+    for (int c = 0; c < channels; ++c) {
+        for (int i = 0; i + 1 < n; ++i) {
+            const Segment s = SegmentAt(t.Mu(), &a0[size_t(c * n)], i);
+            const float mid = 0.5f * (t.Mu()[size_t(i)] + t.Mu()[size_t(i + 1)]);
+            double eta2 = 1;  // transmission: f's radiance scale
+            if (mid * wo.z > 0)
+                eta2 = mid > 0 ? 1 / (double(t.Eta()) * t.Eta()) : t.Eta() * t.Eta();
+            sum[c] += 2 * kPi * eta2 * s.width * SegmentIntegral(s, 1);
+        }
+    }
+    if (channels == 1) return RGB(float(sum[0])).Clamped(0.f);
+    const double Y = sum[0], R = sum[1], B = sum[2];
+    const double G = 1.39829 * Y - 0.100913 * B - 0.297375 * R;
+    const RGB a{float(R), float(G), float(B)};
+    return a.IsFinite() ? a.Clamped(0.f) : RGB(0);
+}
+
 float FourierLobe::AlbedoEstimate(const Vec3f &wo) const {
     const float a = float(2 * kPi) * table->Total(wo.z);
     return std::isfinite(a) ? std::clamp(a, 0.f, 1.f) : 0.f;

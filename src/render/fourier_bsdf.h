@@ -68,6 +68,10 @@ struct FourierLobe {
     float Pdf(const Vec3f &wo, const Vec3f &wi) const;
     // The share of light at wo the table scatters (its a_0 integrated), for lobe choice.
     float AlbedoEstimate(const Vec3f &wo) const;
+    // The directional albedo ∫ f |cos θi| dωi at wo, per channel: 2π times each channel's a_0
+    // integrated over μi (its spline through the grid), transmission scaled as f scales it;
+    // not clamped to 1 (a table need not conserve energy). The "albedo" AOV.
+    RGB Albedo(const Vec3f &wo) const;
 };
 
 }  // namespace prism

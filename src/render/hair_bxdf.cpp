@@ -222,6 +222,13 @@ float HairLobe::Pdf(const Vec3f &wo, const Vec3f &wi) const {
     return PathsPdf(*this, fv, pmf, sinThetaI, cosThetaI, std::atan2(wi.z, wi.y) - fv.phiO);
 }
 
+RGB HairLobe::Albedo(const Vec3f &wo) const {
+    const FibreView fv = See(*this, wo);
+    RGB sum;
+    for (const RGB &a : fv.ap) sum += a;
+    return sum.IsFinite() ? sum.Clamped(0.f, 1.f) : RGB(0);
+}
+
 float HairLobe::AlbedoEstimate(const Vec3f &wo) const {
     const FibreView fv = See(*this, wo);
     float sum = 0;

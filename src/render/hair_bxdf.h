@@ -53,6 +53,9 @@ struct HairLobe {
     // The share of light at wo leaving the fibre (the attenuations summed over p), for choosing
     // the lobe among a BSDF's others.
     float AlbedoEstimate(const Vec3f &wo) const;
+    // The directional albedo ∫ f |cos θi| dωi at wo, per channel: the attenuations summed (each
+    // path's lobes integrate to 1). The "albedo" AOV.
+    RGB Albedo(const Vec3f &wo) const;
 };
 
 }  // namespace prism

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "support/bsdf_file.h"
 #include "support/process.h"
 #include "support/temp_dir.h"
 
@@ -131,20 +132,37 @@ TEST(AovCli, ChannelNamesDepthAndPositionOfAPlane) {
     }
 }
 
-// A coateddiffuse's diffuse colour is its base's reflectance, under the coat.
-TEST(AovCli, AlbedoOfACoatedDiffuseIsItsBaseReflectance) {
-    fs::path dir = TempDir("coated");
+// The albedo AOV of the plane under `material`, rendered in the scratch folder `dir` (which
+// holds the files the material reads).
+Exr PlaneAlbedo(const fs::path &dir, const std::string &material) {
     std::string scene = kPlane;
-    scene.replace(scene.find("Shape \"disk\""), 0,
-                  "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.4 0.6]\n");
+    scene.replace(scene.find("Shape \"disk\""), 0, material + "\n");
     std::ofstream(dir / "plane.pbrt") << scene;
     RunResult r = RunPrism("render plane.pbrt -o out.exr --aov albedo -q", dir);
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    Exr e = ReadExr(dir / "out.exr");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return ReadExr(dir / "out.exr");
+}
+
+// A coateddiffuse's diffuse colour is its base's reflectance, under the coat.
+TEST(AovCli, AlbedoOfACoatedDiffuseIsItsBaseReflectance) {
+    Exr e = PlaneAlbedo(TempDir("coated"),
+                        "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.4 0.6]");
+    ASSERT_GT(e.width, 0);
     for (size_t i = 0; i < size_t(e.width) * size_t(e.height); ++i) {
         ASSERT_NEAR(e.channels["albedo.R"][i], 0.2f, 1e-6);
         ASSERT_NEAR(e.channels["albedo.B"][i], 0.6f, 1e-6);
     }
+}
+
+// A tabulated BSDF has no diffuse colour: its albedo is the light it scatters of what arrives
+// from the camera, here a Lambertian table's reflectance.
+TEST(AovCli, AlbedoOfATabulatedBsdfIsItsDirectionalAlbedo) {
+    const fs::path dir = TempDir("fourier");
+    std::ofstream(dir / "lambert.bsdf", std::ios::binary) << LambertianFourierBsdf(0.6f);
+    Exr e = PlaneAlbedo(dir, "Material \"fourier\" \"string bsdffile\" \"lambert.bsdf\"");
+    ASSERT_GT(e.width, 0);
+    for (size_t i = 0; i < size_t(e.width) * size_t(e.height); ++i)
+        ASSERT_NEAR(e.channels["albedo.G"][i], 0.6f, 2e-3);
 }
 
 TEST(AovCli, IdsAreIntegersAtEdgesAndTheBeautyIsUnchanged) {

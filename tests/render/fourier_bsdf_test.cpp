@@ -90,7 +90,10 @@ TEST(FourierBsdf, SamplesFollowTheirDensity) {
             estimate += l.f(wo, wi) * (std::abs(wi.z) / pdf);
         }
         estimate = estimate / float(n);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(estimate[k], albedo[k], 0.015f * albedo[k]) << muO;
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_NEAR(estimate[k], albedo[k], 0.015f * albedo[k]) << muO;
+            EXPECT_NEAR(l.Albedo(wo)[k], albedo[k], 0.01f * albedo[k]) << muO;  // the AOV's
+        }
         EXPECT_GT(albedo.r, albedo.b);
     }
 }

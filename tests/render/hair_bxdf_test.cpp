@@ -80,7 +80,10 @@ TEST(HairLobe, SamplesAreDrawnFromTheirDensity) {
             estimate += l.f(wo, wi) * (std::abs(wi.z) / pdf);
         }
         estimate = estimate / float(n);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(estimate[k], albedo[k], 0.01f * albedo[k] + 1e-4f);
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_NEAR(estimate[k], albedo[k], 0.01f * albedo[k] + 1e-4f);
+            EXPECT_NEAR(l.Albedo(wo)[k], albedo[k], 0.005f * albedo[k] + 1e-4f);  // the AOV's
+        }
         EXPECT_LT(albedo.b, albedo.r);  // melanin absorbs blue most
     }
 }
