@@ -223,27 +223,27 @@ bool BSDF::Sample_f(const Vec3f &woW, Vec2f u, float uc, bool withSpecular, BSDF
     if (c.lobe == Lobe::Layered)
         return SampleLayered(*this, ch, c.part, wo, u, (target - sum) / c.weight, pChoice,
                              withSpecular, s);
+    // uc again, rescaled within the chosen lobe's share, for the lobe's own choices (hair's
+    // path, SampleGlossy's reflection or transmission).
+    const float ucLobe = std::min((target - sum) / c.weight, 0x1.fffffep-1f);
     Vec3f wi;
-    if (c.lobe == Lobe::Hair) {
-        float unused;
-        const float ucLobe = std::min((target - sum) / c.weight, 0x1.fffffep-1f);
-        if (!l.hair.Sample(wo, ucLobe, u, &wi, &unused)) return false;
-        s->wi = FromLocal(wi);
-    } else if (c.lobe == Lobe::Fourier) {
-        float unused;
-        if (!l.fourier.Sample(wo, u, &wi, &unused)) return false;
-        s->wi = FromLocal(wi);
-    } else if (c.lobe == Lobe::Glossy) {
+    if (c.lobe == Lobe::Glossy) {
         RGB unused;
-        // uc again, rescaled within the chosen lobe's share, for SampleGlossy's own choice.
-        const float ucLobe = std::min((target - sum) / c.weight, 0x1.fffffep-1f);
         if (!SampleGlossy(c.part, woW, u, ucLobe, &s->wi, &unused)) return false;
         wi = ToLocal(s->wi);
     } else {
-        // Cosine-weighted (Malley's method) on wo's side, or the other side for transmission.
-        const float r = std::sqrt(u.x), phi = 2 * float(Pi) * u.y;
-        wi = Vec3f(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.f, 1 - u.x)));
-        if ((wo.z < 0) != (c.lobe == Lobe::DiffuseTransmit)) wi.z = -wi.z;
+        float unused;
+        if (c.lobe == Lobe::Hair) {
+            if (!l.hair.Sample(wo, ucLobe, u, &wi, &unused)) return false;
+        } else if (c.lobe == Lobe::Fourier) {
+            if (!l.fourier.Sample(wo, u, &wi, &unused)) return false;
+        } else {
+            // Cosine-weighted (Malley's method) on wo's side, or the other side for
+            // transmission.
+            const float r = std::sqrt(u.x), phi = 2 * float(Pi) * u.y;
+            wi = Vec3f(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.f, 1 - u.x)));
+            if ((wo.z < 0) != (c.lobe == Lobe::DiffuseTransmit)) wi.z = -wi.z;
+        }
         s->wi = FromLocal(wi);
     }
     s->pdf = MixturePdf(*this, ch, wo, wi);

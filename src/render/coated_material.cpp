@@ -9,8 +9,6 @@ namespace prism {
 
 namespace {
 
-float EvalFloat(const TexturePtr &t, const TextureContext &tc) { return t->Evaluate(tc).r; }
-
 // pbrt-v4 TrowbridgeReitzDistribution::RoughnessToAlpha when remapping.
 float Alpha(bool remap, float roughness) {
     const float r = std::max(roughness, 0.f);

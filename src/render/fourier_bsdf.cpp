@@ -232,7 +232,9 @@ float FourierTable::SampleMu(float muO, float u, float *pdf) const {
     if (!CatmullRomWeights(mu_, muO, &off, w)) return 0;
     const int n = NumMu();
     // The row for μo: the rows around it blended by their weights.
-    std::vector<float> f(size_t(n), 0.f), cdf(size_t(n), 0.f);
+    thread_local std::vector<float> f, cdf;  // reused: SampleMu runs per BSDF sample
+    f.assign(size_t(n), 0.f);
+    cdf.assign(size_t(n), 0.f);
     for (int j = 0; j < 4; ++j) {
         if (w[j] == 0 || off + j < 0 || off + j >= n) continue;
         const size_t row = size_t(off + j) * size_t(n);
@@ -278,7 +280,7 @@ RGB Evaluate(const FourierTable &t, const std::vector<float> &ak, int m, double 
 
 RGB FourierLobe::f(const Vec3f &wo, const Vec3f &wi) const {
     const float muI = -wi.z, muO = wo.z;
-    std::vector<float> ak;
+    thread_local std::vector<float> ak;  // reused: f and Pdf run per light sample
     const int m = table->Coefficients(muI, muO, &ak);
     if (m == 0) return RGB(0);
     return Evaluate(*table, ak, m, CosDPhi(-wi, wo), muI, muO);
@@ -286,7 +288,7 @@ RGB FourierLobe::f(const Vec3f &wo, const Vec3f &wi) const {
 
 float FourierLobe::Pdf(const Vec3f &wo, const Vec3f &wi) const {
     const float muI = -wi.z, muO = wo.z;
-    std::vector<float> ak;
+    thread_local std::vector<float> ak;  // reused: f and Pdf run per light sample
     const int m = table->Coefficients(muI, muO, &ak);
     const float total = table->Total(muO);
     if (m == 0 || !(total > 0)) return 0;
@@ -298,7 +300,7 @@ bool FourierLobe::Sample(const Vec3f &wo, Vec2f u, Vec3f *wi, float *pdf) const 
     float pdfMu = 0;
     const float muI = table->SampleMu(muO, u.y, &pdfMu);
     if (!(pdfMu > 0)) return false;
-    std::vector<float> ak;
+    thread_local std::vector<float> ak;  // reused: Sample runs per BSDF sample
     const int m = table->Coefficients(muI, muO, &ak);
     if (m == 0 || !(ak[0] > 0)) return false;
     // φ from the luminance series: its even half [0, π] by inverting its integral

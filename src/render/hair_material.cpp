@@ -8,8 +8,6 @@ namespace prism {
 
 namespace {
 
-float EvalFloat(const TexturePtr &t, const TextureContext &tc) { return t->Evaluate(tc).r; }
-
 // A float texture that, when it is a constant, must lie in [lo, hi]: a SceneError at the
 // parameter otherwise (varying textures are clamped at each hit).
 TexturePtr RangedFloat(const MaterialParams &p, const char *name, float def, float lo, float hi) {

@@ -6,8 +6,6 @@ namespace prism {
 
 namespace {
 
-float EvalFloat(const TexturePtr &t, const TextureContext &tc) { return t->Evaluate(tc).r; }
-
 float Alpha(bool remap, const TexturePtr &r, const TextureContext &tc) {
     float v = EvalFloat(r, tc);
     return remap ? RoughnessToAlpha(v) : v;

@@ -46,6 +46,9 @@ class Texture {
 };
 using TexturePtr = std::shared_ptr<const Texture>;
 
+// A float texture's value (float textures keep it in every channel).
+inline float EvalFloat(const TexturePtr &t, const TextureContext &tc) { return t->Evaluate(tc).r; }
+
 class ConstantTexture final : public Texture {
   public:
     explicit ConstantTexture(RGB v) : value_(v) {}
