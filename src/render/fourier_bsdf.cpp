@@ -25,54 +25,6 @@ float Float(const std::string &b, size_t at) {
     return f;
 }
 
-// The Hermite form of the Catmull–Rom segment [x_i, x_i+1] of values f: its end values and
-// end derivatives with respect to t = (x - x_i) / width.
-struct Segment {
-    double f0, f1, d0, d1, width;
-};
-Segment SegmentAt(const std::vector<float> &x, const float *f, int i) {
-    const int n = int(x.size());
-    Segment s;
-    s.f0 = f[i];
-    s.f1 = f[i + 1];
-    s.width = double(x[size_t(i + 1)]) - x[size_t(i)];
-    s.d0 = i > 0 ? s.width * (s.f1 - f[i - 1]) / (double(x[size_t(i + 1)]) - x[size_t(i - 1)])
-                 : s.f1 - s.f0;
-    s.d1 = i + 2 < n ? s.width * (f[i + 2] - s.f0) / (double(x[size_t(i + 2)]) - x[size_t(i)])
-                     : s.f1 - s.f0;
-    return s;
-}
-// The segment's value and its integral from 0 to t (in units of t).
-double SegmentValue(const Segment &s, double t) {
-    const double t2 = t * t, t3 = t2 * t;
-    return (2 * t3 - 3 * t2 + 1) * s.f0 + (-2 * t3 + 3 * t2) * s.f1 + (t3 - 2 * t2 + t) * s.d0 +
-           (t3 - t2) * s.d1;
-}
-double SegmentIntegral(const Segment &s, double t) {
-    const double t2 = t * t, t3 = t2 * t, t4 = t3 * t;
-    return s.f0 * (t4 / 2 - t3 + t) + s.f1 * (-t4 / 2 + t3) +
-           s.d0 * (t4 / 4 - 2 * t3 / 3 + t2 / 2) + s.d1 * (t4 / 4 - t3 / 3);
-}
-
-// Solves g(t) = target for t in [lo, hi] where g is increasing with derivative dg (Newton's
-// method, falling back to bisection when a step leaves the bracket).
-template <typename G, typename DG>
-double Invert(G g, DG dg, double target, double lo, double hi, double t) {
-    for (int it = 0; it < 60; ++it) {
-        const double r = g(t) - target;
-        if (std::abs(r) < 1e-9 * (1 + std::abs(target)) || hi - lo < 1e-12) break;
-        if (r < 0)
-            lo = t;
-        else
-            hi = t;
-        const double d = dg(t);
-        double next = d > 0 ? t - r / d : 0.5 * (lo + hi);
-        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        t = next;
-    }
-    return t;
-}
-
 double CosDPhi(const Vec3f &a, const Vec3f &b) {
     const double axy = double(a.x) * a.x + double(a.y) * a.y;
     const double bxy = double(b.x) * b.x + double(b.y) * b.y;
@@ -81,36 +33,6 @@ double CosDPhi(const Vec3f &a, const Vec3f &b) {
 }
 
 }  // namespace
-
-bool CatmullRomWeights(const std::vector<float> &x, float v, int *offset, float weights[4]) {
-    const int n = int(x.size());
-    if (n < 2 || !(v >= x.front() && v <= x.back())) return false;
-    const int i =
-        std::clamp(int(std::upper_bound(x.begin(), x.end(), v) - x.begin()) - 1, 0, n - 2);
-    *offset = i - 1;
-    const double x0 = x[size_t(i)], x1 = x[size_t(i + 1)], w = x1 - x0;
-    const double t = (v - x0) / w, t2 = t * t, t3 = t2 * t;
-    double wt[4] = {0, 2 * t3 - 3 * t2 + 1, -2 * t3 + 3 * t2, 0};
-    const double h10 = t3 - 2 * t2 + t, h11 = t3 - t2;
-    if (i > 0) {
-        const double c = h10 * w / (x1 - x[size_t(i - 1)]);
-        wt[2] += c;
-        wt[0] -= c;
-    } else {
-        wt[2] += h10;
-        wt[1] -= h10;
-    }
-    if (i + 2 < n) {
-        const double c = h11 * w / (x[size_t(i + 2)] - x0);
-        wt[3] += c;
-        wt[1] -= c;
-    } else {
-        wt[2] += h11;
-        wt[1] -= h11;
-    }
-    for (int j = 0; j < 4; ++j) weights[j] = float(wt[j]);
-    return true;
-}
 
 float FourierSeries(const float *a, int m, double cosPhi) {
     double sum = 0, cPrev = cosPhi, c = 1;  // cos((k-1)φ), cos(kφ) at k = 0
@@ -181,8 +103,8 @@ FourierTable FourierTable::Parse(const std::string &b, const std::string &name) 
         const float *f = &t.avg_[o * n];
         double sum = 0;
         for (int i = 0; i + 1 < nMu; ++i) {
-            const Segment s = SegmentAt(t.mu_, f, i);
-            sum += s.width * SegmentIntegral(s, 1);
+            const SplineSegment s = SplineSegmentAt(t.mu_, f, i);
+            sum += s.width * s.Integral(1);
             t.cdf_[o * n + size_t(i + 1)] = float(sum);
         }
     }
@@ -248,13 +170,12 @@ float FourierTable::SampleMu(float muO, float u, float *pdf) const {
     const double target = double(u) * total;
     const int i = std::clamp(
         int(std::upper_bound(cdf.begin(), cdf.end(), float(target)) - cdf.begin()) - 1, 0, n - 2);
-    const Segment s = SegmentAt(mu_, f.data(), i);
+    const SplineSegment s = SplineSegmentAt(mu_, f.data(), i);
     const double r = std::max(0.0, (target - cdf[size_t(i)]) / s.width);
-    const double t =
-        Invert([&](double x) { return SegmentIntegral(s, x); },
-               [&](double x) { return SegmentValue(s, x); }, r, 0, 1,
-               s.f0 + s.f1 > 0 ? std::clamp(r / (0.5 * (s.f0 + s.f1)), 0.0, 1.0) : 0.5);
-    *pdf = float(std::max(0.0, SegmentValue(s, t)) / total);
+    const double t = InvertIncreasing(
+        [&](double x) { return s.Integral(x); }, [&](double x) { return s.Value(x); }, r, 0, 1,
+        s.f0 + s.f1 > 0 ? std::clamp(r / (0.5 * (s.f0 + s.f1)), 0.0, 1.0) : 0.5);
+    *pdf = float(std::max(0.0, s.Value(t)) / total);
     return float(mu_[size_t(i)] + t * s.width);
 }
 
@@ -316,7 +237,8 @@ bool FourierLobe::Sample(const Vec3f &wo, Vec2f u, Vec3f *wi, float *pdf) const 
         for (int k = 1; k < m; ++k) sum += ak[size_t(k)] * std::sin(k * phi) / k;
         return sum;
     };
-    double phi = Invert(integral, series, double(v) * ak[0] * kPi, 0, kPi, double(v) * kPi);
+    double phi =
+        InvertIncreasing(integral, series, double(v) * ak[0] * kPi, 0, kPi, double(v) * kPi);
     const double value = series(phi);
     if (!(value > 0)) return false;
     if (flip) phi = 2 * kPi - phi;
@@ -343,12 +265,12 @@ RGB FourierLobe::Albedo(const Vec3f &wo) const {
     double sum[3] = {0, 0, 0};
     for (int c = 0; c < channels; ++c) {
         for (int i = 0; i + 1 < n; ++i) {
-            const Segment s = SegmentAt(t.Mu(), &a0[size_t(c * n)], i);
+            const SplineSegment s = SplineSegmentAt(t.Mu(), &a0[size_t(c * n)], i);
             const float mid = 0.5f * (t.Mu()[size_t(i)] + t.Mu()[size_t(i + 1)]);
             double eta2 = 1;  // transmission: f's radiance scale
             if (mid * wo.z > 0)
                 eta2 = mid > 0 ? 1 / (double(t.Eta()) * t.Eta()) : t.Eta() * t.Eta();
-            sum[c] += 2 * kPi * eta2 * s.width * SegmentIntegral(s, 1);
+            sum[c] += 2 * kPi * eta2 * s.width * s.Integral(1);
         }
     }
     if (channels == 1) return RGB(float(sum[0])).Clamped(0.f);

@@ -16,6 +16,7 @@
 
 #include "core/color.h"
 #include "core/vecmath.h"
+#include "render/spline.h"
 
 namespace prism {
 
@@ -49,11 +50,6 @@ class FourierTable {
     std::vector<int> offset_, order_;  // per entry: where its coefficients start, how many
     std::vector<float> coeffs_;
 };
-
-// Catmull–Rom spline weights of the four nodes around x (nodes sorted): the spline's value at
-// x is Σ weights[j] f[offset + j] (weights of nodes outside the table are 0). False when x is
-// outside [nodes.front(), nodes.back()].
-bool CatmullRomWeights(const std::vector<float> &nodes, float x, int *offset, float weights[4]);
 
 // Σ_k a_k cos(kφ) for k < m.
 float FourierSeries(const float *a, int m, double cosPhi);
