@@ -332,7 +332,7 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                      "%s: %dx%d, %d spp, maxdepth %d, %s precision, %s integrator\n"
                      "time: parse %.3fs, setup %.3fs, BVH build %.3fs, render %.3fs\n"
                      "rays: camera %llu, shadow %llu, reflection %llu, refraction %llu, "
-                     "pass-through %llu, glossy %llu; %.2f Mrays/s\n",
+                     "pass-through %llu, glossy %llu%s; %.2f Mrays/s\n",
                      EscapeControlChars(out).c_str(),  // a Film "filename" is the scene's
                      scene.pixelBounds.pMax.x - scene.pixelBounds.pMin.x,
                      scene.pixelBounds.pMax.y - scene.pixelBounds.pMin.y, stats.spp,
@@ -341,6 +341,7 @@ void RenderJob::Report(const Image &img, const RenderStats &stats) {
                      (unsigned long long)r.camera, (unsigned long long)r.shadow,
                      (unsigned long long)r.reflection, (unsigned long long)r.refraction,
                      (unsigned long long)r.passThrough, (unsigned long long)r.glossy,
+                     r.subsurface ? fmt::format(", subsurface {}", r.subsurface).c_str() : "",
                      stats.renderSeconds > 0 ? r.Total() / stats.renderSeconds * 1e-6 : 0.0);
         // The accuracy knobs, when any differs from Prism's defaults.
         if (opts.rayCutoff > 0 || opts.offset.mode != OffsetMode::ErrorBounds || opts.robust ||

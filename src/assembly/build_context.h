@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "assembly/build_scene.h"
@@ -31,6 +32,8 @@ struct BuildContext {
     double shutterOpen = 0, shutterClose = 1;
     // pbrt-v4's Option directives that change the image (ReadSceneOptions).
     SceneOptions options;
+    // The subsurface materials whose interface-only rendering has been warned of.
+    std::set<const void *> subsurfaceWarned;
 };
 
 // A directive's render-space transform at the shutter's opening (*atOpen) and, when it moves

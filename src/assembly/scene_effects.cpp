@@ -33,6 +33,15 @@ void NoteMaterialEffects(BuildContext &ctx, const Material &m, const std::string
     if (m.TextureNeeds() & NeedUV) e.Enable(Effect::Textures, why + " (textured)", loc);
     if (m.bump) e.Enable(Effect::BumpMapping, why + " (bumpmap)", loc);
     if (m.normalMap) e.Enable(Effect::NormalMapping, why + " (normal map)", loc);
+    if (m.Subsurface()) {
+        if (ctx.scene.integrator->Traits().subsurface)
+            e.Enable(Effect::Subsurface, why, loc);
+        else if (ctx.subsurfaceWarned.insert(&m.Model()).second)
+            ctx.diag.Warn(loc, why + ": Integrator \"" + ctx.scene.integrator->Name() +
+                                   "\" renders a subsurface material's interface alone, as "
+                                   "pbrt-v3 does (\"path\" and \"volpath\" follow the light "
+                                   "through it)");
+    }
 }
 
 void NoteLightEffects(BuildContext &ctx, const std::string &why, const FileLoc &loc) {

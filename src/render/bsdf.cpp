@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/check.h"
+#include "render/bssrdf.h"
 #include "render/microfacet.h"
 
 namespace prism {
@@ -271,6 +272,12 @@ float VisibleNormalPdf(const Vec3f &w, const Vec3f &wh, float ax, float ay) {
     return g1 * std::max(0.f, Dot(w, wh)) * TrowbridgeReitzD(wh, ax, ay) / w.z;
 }
 
+// pbrt-v3's SeparableBSSRDFAdapter in radiance transport: η² Sw(wi).
+RGB SubsurfaceExitF(const BxDFLobes &l, const Vec3f &wi) {
+    const float eta = l.subsurfaceEta;
+    return RGB(eta * eta * SubsurfaceSw(wi.z, eta));
+}
+
 }  // namespace
 
 RGB BxDFLobes::fDiffuse(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
@@ -280,6 +287,7 @@ RGB BxDFLobes::fDiffuse(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     if (reflect) {
         if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
         if (fresnelBlend) result += FresnelBlendDiffuseF(*this, wo, wi);
+        if (subsurfaceEta > 0) result += SubsurfaceExitF(*this, wi);
     } else if (!kdTransmit.IsBlack()) {
         result += kdTransmit * float(InvPi);
     }
@@ -309,6 +317,7 @@ RGB BxDFLobes::fUnlayered(const Vec3f &wo, const Vec3f &wi, bool reflect) const 
     if (fourier.Active()) result += fourier.f(wo, wi);
     if (reflect) {
         if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
+        if (subsurfaceEta > 0) result += SubsurfaceExitF(*this, wi);
         if (!ks.IsBlack()) result += MicrofacetReflectionF(*this, wo, wi);
         if (fresnelBlend) result += FresnelBlendF(*this, wo, wi);
     } else {

@@ -86,18 +86,22 @@ struct BxDFLobes {
     // pbrt-v3's tabulated BSDF (Material "fourier"), alone in its part, counted as the hair
     // lobe is: it reflects and transmits by its table, whatever the geometric normal says.
     FourierLobe fourier;
+    // Where subsurface light leaves (render/subsurface.h), alone in its part: the BSSRDF's
+    // directional factor, f = η² Sw(wi) with η this index (0: no lobe), on wo's side of the
+    // geometric normal, counted and sampled as a Lambertian lobe.
+    float subsurfaceEta = 0;
 
     bool HasNonSpecular() const {
         return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() || !ksTransmit.IsBlack() ||
                fresnelBlend || !thinTransmit.IsBlack() || HasLayered() || hair.Active() ||
-               fourier.Active();
+               fourier.Active() || subsurfaceEta > 0;
     }
     // Lobes that are sampled by light samples only (Lambertian, Oren–Nayar, diffuse
     // transmission, FresnelBlend's diffuse base) and lobes that glossy rays sample
     // (microfacet reflection and transmission, FresnelBlend's glossy coat).
     bool HasDiffuse() const {
         return !kd.IsBlack() || !kdTransmit.IsBlack() || fresnelBlend || HasLayered() ||
-               hair.Active() || fourier.Active();
+               hair.Active() || fourier.Active() || subsurfaceEta > 0;
     }
     bool HasGlossy() const {
         return !ks.IsBlack() || !ksTransmit.IsBlack() || fresnelBlend || !thinTransmit.IsBlack();

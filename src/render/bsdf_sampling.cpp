@@ -64,6 +64,7 @@ void Collect(const BSDF &b, const Vec3f &wo, bool withSpecular, Choices *ch) {
             if (l.HasGlossy())
                 ch->Add(i, Lobe::Glossy, (w * (l.ks + l.ksTransmit + l.thinTransmit)).Average());
         }
+        if (l.subsurfaceEta > 0) ch->Add(i, Lobe::Diffuse, w.Average());
         if (!l.kdTransmit.IsBlack())
             ch->Add(i, Lobe::DiffuseTransmit, (w * l.kdTransmit).Average());
         if (!withSpecular) continue;

@@ -38,6 +38,8 @@ const char *EffectName(Effect e) {
             return "indirect illumination";
         case Effect::Media:
             return "participating media";
+        case Effect::Subsurface:
+            return "subsurface scattering";
         case Effect::Count:
             break;
     }

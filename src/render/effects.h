@@ -30,6 +30,7 @@ enum class Effect : uint32_t {
     Alpha,               // cut-outs: textured "alpha"/"shadowalpha", glTF MASK/BLEND, OBJ map_d
     IndirectIllumination,  // light bouncing off every surface (Integrator "path")
     Media,                 // participating media: a MediumInterface on a shape or the camera
+    Subsurface,            // light leaving subsurface materials elsewhere (path, volpath)
     Count
 };
 

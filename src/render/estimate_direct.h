@@ -153,14 +153,16 @@ RGB EstimateDirectWith(const RenderScene &scene, const SurfaceInteraction &si,
 template <class Scatter, class Visibility>
 RGB SampleOneLightWith(const RenderScene &scene, const LightChooser &chooser,
                        const SurfaceInteraction &si, const Scatter &scatter, const PixelSamples &ps,
-                       int bounce, RayCounters &counters, const Visibility &vis) {
+                       int bounce, RayCounters &counters, const Visibility &vis,
+                       uint32_t dimShift = 0) {
+    // dimShift moves the dimensions within the bounce's (a subsurface exit's light sample).
+    const auto dim = [&](uint32_t d) { return VertexDim(bounce, d + dimShift); };
     // The shading normal at a surface (zero at a medium vertex).
-    const LightPick pick = chooser.Pick(ps.Get1D(VertexDim(bounce, DimLightChoice)), si.p, si.ns);
+    const LightPick pick = chooser.Pick(ps.Get1D(dim(DimLightChoice)), si.p, si.ns);
     if (pick.light < 0 || !(pick.prob > 0)) return RGB(0);
-    return EstimateDirectWith(scene, si, scatter, pick.light, ps.Get2D(VertexDim(bounce, DimLight)),
-                              ps.Get2D(VertexDim(bounce, DimScatter)),
-                              ps.Get1D(VertexDim(bounce, DimScatterLobe)), counters, vis,
-                              pick.prim) /
+    return EstimateDirectWith(scene, si, scatter, pick.light, ps.Get2D(dim(DimLight)),
+                              ps.Get2D(dim(DimScatter)), ps.Get1D(dim(DimScatterLobe)), counters,
+                              vis, pick.prim) /
            pick.prob;
 }
 

@@ -189,6 +189,8 @@ struct IntegratorTraits {
     bool directAov = false;     // Li's direct part is exact (the direct and indirect AOVs)
     bool effectKernel = false;  // runs the kernel specialized per effect set (render/kernel.h)
     bool glossyRays = false;    // traces glossy rays (Integrator "distribution")
+    // Follows light through subsurface materials (else their interface alone, as pbrt-v3).
+    bool subsurface = false;
     // Its tiles splat radiance onto other pixels (TileSamples::splats): the film then merges
     // tiles in order (their splats reach any pixel), never resolves them in place.
     bool splats = false;

@@ -153,10 +153,10 @@ RGB SampleAllLights(const RenderScene &scene, const SurfaceInteraction &si, cons
 
 bool SampleNextDirection(const BSDF &bsdf, const Vec3f &wo, const PixelSamples &ps, int bounces,
                          RGB &beta, bool &specularBounce, float &etaScale, Vec3f *wi,
-                         RayCounters &counters) {
+                         RayCounters &counters, uint32_t dimShift) {
     BSDFSample bs;
-    if (!bsdf.Sample_f(wo, ps.Get2D(VertexDim(bounces, DimBsdf)),
-                       ps.Get1D(VertexDim(bounces, DimBsdfLobe)), true, &bs))
+    if (!bsdf.Sample_f(wo, ps.Get2D(VertexDim(bounces, DimBsdf + dimShift)),
+                       ps.Get1D(VertexDim(bounces, DimBsdfLobe + dimShift)), true, &bs))
         return false;
     beta *= bs.weight;
     specularBounce = bs.specular;

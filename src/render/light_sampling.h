@@ -177,7 +177,14 @@ enum PathDim : uint32_t {
     DimBsdf = 4,         // 2-D: the BSDF sample that continues the path
     DimBsdfLobe = 5,     // 1-D: its lobe
     DimRoulette = 6,     // 1-D: Russian roulette
+    // A subsurface vertex (render/subsurface.h): the probe's axis, channel and hit (1-D), its
+    // radius and angle (2-D), and the exit's light and BSDF samples, which draw dimensions
+    // DimLightChoice .. DimBsdfLobe shifted by DimSubsurfaceExit.
+    DimSubsurface = 7,
+    DimSubsurfaceProbe = 8,
+    DimSubsurfaceExit = 9,
 };
+static_assert(DimSubsurfaceExit + DimBsdfLobe < PathDimsPerBounce);
 inline uint32_t VertexDim(int bounce, uint32_t d) {
     return PathDimBase + uint32_t(bounce) * PathDimsPerBounce + d;
 }
@@ -202,7 +209,7 @@ inline bool SurvivesRoulette(RGB &beta, float etaScale, float threshold, int bou
 // no sample: the path ends.
 bool SampleNextDirection(const BSDF &bsdf, const Vec3f &wo, const PixelSamples &ps, int bounces,
                          RGB &beta, bool &specularBounce, float &etaScale, Vec3f *wi,
-                         RayCounters &counters);
+                         RayCounters &counters, uint32_t dimShift = 0);
 
 // Fills scene.lightPower (each light's power, for LightChoice::Power) once the lights and
 // shapes are built.

@@ -18,6 +18,7 @@
 namespace prism {
 
 class Material;
+class SubsurfaceMaterial;
 
 // Roughness (after remapping) up to which a metal is treated as a polished conductor: a delta
 // reflection that recursion follows. pbrt-v4's threshold (TrowbridgeReitzDistribution::
@@ -59,6 +60,9 @@ class MaterialModel {
     virtual bool IsFibre() const { return false; }
     // Whether a texture it reads filters over the ray's footprint.
     virtual bool TexturesUseDifferentials() const;
+    // The model itself when light refracted into it leaves elsewhere on the same material
+    // (subsurface, kdsubsurface; render/subsurface_material.h), else null.
+    virtual const SubsurfaceMaterial *Subsurface() const { return nullptr; }
     // Radiance the surface emits itself (a "gltf" material's emission), or null.
     virtual const Texture *Emission() const { return nullptr; }
     // glTF occlusion: the factor that scales the environment's light and indirect paths.
@@ -71,7 +75,9 @@ class Material {
   public:
     Material() = default;
     Material(std::shared_ptr<const MaterialModel> model, std::string typeName)
-        : typeName(std::move(typeName)), model_(std::move(model)) {}
+        : typeName(std::move(typeName)),
+          model_(std::move(model)),
+          subsurface_(model_->Subsurface()) {}
 
     std::string typeName;  // as written in the scene, for `prism info`
     const MaterialModel &Model() const { return *model_; }
@@ -105,6 +111,8 @@ class Material {
     void PerturbShading(SurfaceInteraction &si) const;
 
     bool IsPassThrough() const { return model_->IsPassThrough(); }
+    // MaterialModel::Subsurface, cached: the path integrators ask at every hit.
+    const SubsurfaceMaterial *Subsurface() const { return subsurface_; }
     bool IsLambertian() const { return model_->IsLambertian(); }
     // kd as GetBSDF gives it (its one part, of weight 1); only for IsLambertian materials.
     RGB LambertianKd(const TextureContext &tc) const {
@@ -141,6 +149,7 @@ class Material {
         BxDFLobes lobes;
     };
     std::shared_ptr<const MaterialModel> model_;
+    const SubsurfaceMaterial *subsurface_ = nullptr;
     std::vector<FixedPart> fixedParts_;
     bool fixed_ = false;
     bool differentials_ = false;

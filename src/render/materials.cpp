@@ -64,6 +64,8 @@ void ReadUberRoughness(const MaterialParams &p, float def, UberMaterial::Params 
     u->remap = p.Bool("remaproughness", true);
 }
 
+}  // namespace
+
 // pbrt-v4 remaps roughness r to alpha = sqrt(r) (v3 used a polynomial that never reaches 0):
 // constant u/v roughness of a v4 material ("conductor", "dielectric") is converted here.
 void RemapRoughnessAsV4(Roughness &r) {
@@ -76,8 +78,6 @@ void RemapRoughnessAsV4(Roughness &r) {
     v4Alpha(r.v);
     r.remap = false;
 }
-
-}  // namespace
 
 Roughness ReadUVRoughness(const MaterialParams &p, float def, const std::string &prefix) {
     const std::string ur = prefix + "uroughness", vr = prefix + "vroughness";

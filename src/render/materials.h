@@ -25,6 +25,9 @@ Roughness ReadUVRoughness(const MaterialParams &p, float def, const std::string 
 // pbrt-v4's conductor given its normal-incidence reflectance r: eta 1 and this k,
 // 2 sqrt(r / (1 - r)) (r clamped below 1), reproduce r at normal incidence.
 RGB ConductorKFromReflectance(RGB r);
+// pbrt-v4's roughness remapping (alpha = sqrt(roughness)) applied to constant roughness, which
+// then needs no remapping at hits (pbrt-v4's "conductor", "dielectric" and "subsurface").
+void RemapRoughnessAsV4(Roughness &r);
 // An index of refraction that must be a value (default 1.5; 0 means 1, no interface, as in
 // pbrt-v4): SceneError at the parameter for a texture or a non-positive value.
 float ReadConstantIndex(const MaterialParams &p, const char *name);

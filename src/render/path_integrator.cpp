@@ -76,6 +76,7 @@ IntegratorTraits PathIntegrator::Traits() const {
     t.samplePatterns = true;
     t.roughGlass = true;
     t.directAov = true;
+    t.subsurface = true;
     return t;
 }
 

@@ -5,8 +5,11 @@
 // reaches the vertex (render/estimate_direct.h): unoccluded (path) or through media (volpath).
 #pragma once
 
+#include "render/bssrdf.h"
 #include "render/differentials.h"
 #include "render/estimate_direct.h"
+#include "render/subsurface.h"
+#include "render/subsurface_material.h"
 
 namespace prism {
 
@@ -34,9 +37,39 @@ inline void AddUnsampledEmission(const RenderScene &scene, const Ray &ray,
     }
 }
 
+// After a transmission into a subsurface material at si: the exit pi, direct lighting there
+// through the exit lobe, and the direction the path leaves in (pbrt-v3 PathIntegrator's
+// BSSRDF step, with the vertex's own dimensions). si becomes the exit.
+template <class Visibility>
+bool SubsurfaceVertex(const RenderScene &scene, const LightChooser &chooser,
+                      const SubsurfaceMaterial &sss, const Material &mat, const TextureContext &tc,
+                      const PixelSamples &ps, int bounces, const Visibility &vis, PathState &path,
+                      SurfaceInteraction &si, Vec3f *wi, RayCounters &counters) {
+    const TabulatedBssrdf bssrdf = sss.At(tc, si.p, si.ns, si.dpdu);
+    SurfaceInteraction pi;
+    RGB weight;
+    if (!SampleSubsurfaceExit(
+            scene, mat, bssrdf, si.time, ps.Get1D(VertexDim(bounces, DimSubsurface)),
+            ps.Get2D(VertexDim(bounces, DimSubsurfaceProbe)), &pi, &weight, counters))
+        return false;
+    path.beta *= weight;
+    BSDF exit;
+    SubsurfaceExitBsdf(pi, bssrdf.Eta(), &exit);
+    path.L += path.beta * SampleOneLightWith(scene, chooser, pi, BsdfScatter{exit}, ps, bounces,
+                                             counters, vis, DimSubsurfaceExit);
+    // The exit scales no radiance by refraction (pbrt-v3 leaves etaScale alone here).
+    float etaScale = 1;
+    if (!SampleNextDirection(exit, pi.wo, ps, bounces, path.beta, path.specularBounce, etaScale, wi,
+                             counters, DimSubsurfaceExit))
+        return false;
+    si = pi;
+    return true;
+}
+
 // The surface vertex `bounces` of a path at si (material mat, not a pass-through surface).
 // diff: the camera ray's differentials at its first hit, else null. Returns false when the
-// path ends there; else *wi is the direction it continues in.
+// path ends there; else *wi is the direction it continues in, from si (which a subsurface
+// material replaces by the point where the light leaves it).
 template <class Visibility>
 bool SurfaceVertex(const RenderScene &scene, const LightChooser &chooser, SurfaceInteraction &si,
                    const Material &mat, const PixelSamples &ps, int bounces,
@@ -59,6 +92,11 @@ bool SurfaceVertex(const RenderScene &scene, const LightChooser &chooser, Surfac
                              path.etaScale, wi, counters))
         return false;
     path.anyNonSpecular |= !path.specularBounce;
+    // Light refracted into a subsurface material leaves elsewhere on it.
+    if (const SubsurfaceMaterial *sss = mat.Subsurface();
+        sss && Dot(*wi, si.n) * Dot(si.wo, si.n) < 0)
+        return SubsurfaceVertex(scene, chooser, *sss, mat, tc, ps, bounces, vis, path, si, wi,
+                                counters);
     return true;
 }
 

@@ -112,6 +112,8 @@ RGB VolPathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const 
                 directDone = true;
             }
             if (!more) break;
+            // (A subsurface material moved si to where the light leaves, maybe another shape.)
+            info = &scene.Info(si);
             medium = MediumAfter(*info, si, wi, medium);
             ray = si.SpawnRay(wi, scene.offset);
             from = si.p;
