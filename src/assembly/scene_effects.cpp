@@ -38,9 +38,11 @@ void NoteMaterialEffects(BuildContext &ctx, const Material &m, const std::string
             e.Enable(Effect::Subsurface, why, loc);
         else if (ctx.subsurfaceWarned.insert(&m.Model()).second)
             ctx.diag.Warn(loc, why + ": Integrator \"" + ctx.scene.integrator->Name() +
-                                   "\" renders a subsurface material's interface alone, as "
-                                   "pbrt-v3 does (\"path\" and \"volpath\" follow the light "
-                                   "through it)");
+                                   "\" renders a subsurface material's interface alone, as " +
+                                   (ctx.desc.pbrtVersion.version == 4
+                                        ? "pbrt-v4 does (\"volpath\" follows"
+                                        : "pbrt-v3 does (\"path\" and \"volpath\" follow") +
+                                   " the light through it)");
     }
 }
 

@@ -68,7 +68,9 @@ PathParams ReadPathParams(const IntegratorInputs &in) {
 //                                            doubled, within [0.1, 0.3]): biased, but it finds
 //                                            caustics of small lights
 std::unique_ptr<Integrator> CreatePathIntegrator(const IntegratorInputs &in) {
-    return std::make_unique<PathIntegrator>(ReadPathParams(in));
+    PathParams pp = ReadPathParams(in);
+    pp.subsurface = in.pbrtVersion != 4;
+    return std::make_unique<PathIntegrator>(pp);
 }
 
 IntegratorTraits PathIntegrator::Traits() const {
@@ -76,7 +78,7 @@ IntegratorTraits PathIntegrator::Traits() const {
     t.samplePatterns = true;
     t.roughGlass = true;
     t.directAov = true;
-    t.subsurface = true;
+    t.subsurface = params_.subsurface;
     return t;
 }
 
@@ -88,6 +90,7 @@ RGB PathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const Pix
                        RayCounters &counters, RGB *direct) const {
     PathState path;
     path.regularize = params_.regularize;
+    path.subsurface = params_.subsurface;
     Ray ray = cameraRay;
     int passes = 0;
     bool directDone = false;

@@ -16,6 +16,9 @@ struct PathParams {
     float rrThreshold = 1;  // "rrthreshold": Russian roulette below this throughput
     LightChoice lightChoice = LightChoice::BVH;  // "lightsamplestrategy", "lightsampler"
     bool regularize = false;                     // pbrt-v4's "regularize" (BSDF::Regularize)
+    // Follows light through subsurface materials: volpath, and path in a pbrt-v3 file
+    // (pbrt-v4's path renders their interface alone).
+    bool subsurface = true;
 };
 // Reads path's and volpath's shared parameters (context: the integrator's name, for messages).
 PathParams ReadPathParams(const IntegratorInputs &in);

@@ -21,6 +21,7 @@ struct PathState {
     float etaScale = 1;           // radiance scaling by refraction, undone for Russian roulette
     bool regularize = false;      // pbrt-v4's "regularize": BSDF::Regularize after ...
     bool anyNonSpecular = false;  // ... any bounce that was not a delta lobe's
+    bool subsurface = true;       // follow light through subsurface materials (PathParams)
 };
 
 // Emission no light sample covered (seen by the camera, or after a delta bounce): every light's
@@ -94,7 +95,7 @@ bool SurfaceVertex(const RenderScene &scene, const LightChooser &chooser, Surfac
     path.anyNonSpecular |= !path.specularBounce;
     // Light refracted into a subsurface material leaves elsewhere on it.
     if (const SubsurfaceMaterial *sss = mat.Subsurface();
-        sss && Dot(*wi, si.n) * Dot(si.wo, si.n) < 0)
+        sss && path.subsurface && Dot(*wi, si.n) * Dot(si.wo, si.n) < 0)
         return SubsurfaceVertex(scene, chooser, *sss, mat, tc, ps, bounces, vis, path, si, wi,
                                 counters);
     return true;

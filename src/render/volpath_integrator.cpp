@@ -37,6 +37,7 @@ RGB VolPathIntegrator::Li(const RenderScene &scene, const Ray &cameraRay, const 
                           RayCounters &counters, RGB *direct) const {
     PathState path;
     path.regularize = params_.regularize;
+    path.subsurface = params_.subsurface;
     RGB &L = path.L, &beta = path.beta;
     Ray ray = cameraRay;
     int medium = scene.cameraMedium;  // the medium the current ray travels in

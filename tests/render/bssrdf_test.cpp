@@ -181,6 +181,37 @@ TEST(Subsurface, OtherIntegratorsRenderTheInterfaceAndSaySo) {
     EXPECT_LT(test::MeanValue(whitted.image), 0.5 * test::MeanValue(path.image));
 }
 
+// A grey "subsurface" given by pbrt-v4's reflectance and mean free path, with a rough
+// interface: pbrt-v4 renders it under volpath but not under path (whose interface alone it
+// renders). Grey, so that pbrt-v4's spectra and Prism's RGB agree.
+TEST(Subsurface, PbrtV4FilesRenderAsPbrtV4) {
+    auto scene = [](const char *integrator) {
+        return std::string(
+                   "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 30\n"
+                   "Film \"rgb\" \"integer xresolution\" 32 \"integer yresolution\" 32\n"
+                   "Sampler \"independent\" \"integer pixelsamples\" 1024\nIntegrator \"") +
+               integrator +
+               "\" \"integer maxdepth\" 8\nWorldBegin\nAttributeBegin\n"
+               "AreaLightSource \"diffuse\" \"rgb L\" [10 10 10]\n"
+               "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+               "  \"point3 P\" [-1 2 -1  1 2 -1  1 2 1  -1 2 1]\nAttributeEnd\n"
+               "Material \"subsurface\" \"rgb reflectance\" [0.6 0.6 0.6] \"rgb mfp\" [0.1 0.1 "
+               "0.1] "
+               "\"float roughness\" 0.1\nShape \"sphere\" \"float radius\" 0.8\n";
+    };
+    const test::Rendered vol = test::RenderSceneText("bssrdf", "v4vol", scene("volpath"));
+    // pbrt-v4's mean at 4096 spp: 0.11537 0.11534 0.11536.
+    EXPECT_NEAR(test::MeanValue(vol.image), 0.11536, 0.03 * 0.11536);
+    EXPECT_GT(vol.stats.rays.subsurface, 0u);
+    const test::Rendered path = test::RenderSceneText("bssrdf", "v4path", scene("path"));
+    EXPECT_EQ(path.stats.rays.subsurface, 0u);
+    bool warned = false;
+    for (const Warning &w : path.warnings)
+        warned |= w.message.find("as pbrt-v4 does") != std::string::npos;
+    EXPECT_TRUE(warned);
+    EXPECT_LT(test::MeanValue(path.image), 0.5 * test::MeanValue(vol.image));
+}
+
 TEST(Subsurface, ReadsItsParametersAndRefusesBadOnes) {
     Diagnostics diag;
     RenderScene keep;
