@@ -227,7 +227,7 @@ Material MaterialBuilder::MakeMaterial(const MaterialDesc &m, int descIndex,
     if (model) {
         mat = Material(std::move(model), m.type);
     } else {
-        // subsurface, kdsubsurface, disney, measured, ... and unknown types.
+        // measured and unknown types.
         const char *colour = mp.Has("Kd")            ? "Kd"
                              : mp.Has("reflectance") ? "reflectance"
                              : mp.Has("color")       ? "color"

@@ -261,6 +261,7 @@ void AovFrame::AddGeometry(const TileContext &ctx, const Bounds2i &tb) {
                         // Hair and tabulated BSDFs have no diffuse colour: their albedo at wo.
                         if (l.hair.Active()) a += l.hair.Albedo(wo);
                         if (l.fourier.Active()) a += l.fourier.Albedo(wo);
+                        if (l.disney.Active()) a += l.disney.DiffuseColour();
                         albedoSum += bsdf.Weight(part) * a;
                     }
                 }

@@ -284,6 +284,7 @@ RGB BxDFLobes::fDiffuse(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     RGB result = HasLayered() ? layered.f(wo, wi) : RGB(0);
     if (hair.Active()) result += hair.f(wo, wi);
     if (fourier.Active()) result += fourier.f(wo, wi);
+    if (disney.Active()) result += disney.f(wo, wi, reflect);
     if (reflect) {
         if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
         if (fresnelBlend) result += FresnelBlendDiffuseF(*this, wo, wi);
@@ -315,6 +316,7 @@ RGB BxDFLobes::f(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
 RGB BxDFLobes::fUnlayered(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
     RGB result = hair.Active() ? hair.f(wo, wi) : RGB(0);
     if (fourier.Active()) result += fourier.f(wo, wi);
+    if (disney.Active()) result += disney.f(wo, wi, reflect);
     if (reflect) {
         if (!kd.IsBlack()) result += DiffuseReflectionF(*this, wo, wi);
         if (subsurfaceEta > 0) result += SubsurfaceExitF(*this, wi);

@@ -8,6 +8,7 @@
 
 #include "core/color.h"
 #include "core/vecmath.h"
+#include "render/disney_bxdf.h"
 #include "render/fourier_bsdf.h"
 #include "render/hair_bxdf.h"
 #include "render/layered_bxdf.h"
@@ -86,6 +87,9 @@ struct BxDFLobes {
     // pbrt-v3's tabulated BSDF (Material "fourier"), alone in its part, counted as the hair
     // lobe is: it reflects and transmits by its table, whatever the geometric normal says.
     FourierLobe fourier;
+    // pbrt-v3's Disney BSDF (Material "disney"), alone in its part, counted as the hair lobe
+    // is; it picks reflection or transmission components by the geometric normal.
+    DisneyLobe disney;
     // Where subsurface light leaves (render/subsurface.h), alone in its part: the BSSRDF's
     // directional factor, f = η² Sw(wi) with η this index (0: no lobe), on wo's side of the
     // geometric normal, counted and sampled as a Lambertian lobe.
@@ -94,14 +98,14 @@ struct BxDFLobes {
     bool HasNonSpecular() const {
         return !kd.IsBlack() || !ks.IsBlack() || !kdTransmit.IsBlack() || !ksTransmit.IsBlack() ||
                fresnelBlend || !thinTransmit.IsBlack() || HasLayered() || hair.Active() ||
-               fourier.Active() || subsurfaceEta > 0;
+               fourier.Active() || disney.Active() || subsurfaceEta > 0;
     }
     // Lobes that are sampled by light samples only (Lambertian, Oren–Nayar, diffuse
     // transmission, FresnelBlend's diffuse base) and lobes that glossy rays sample
     // (microfacet reflection and transmission, FresnelBlend's glossy coat).
     bool HasDiffuse() const {
         return !kd.IsBlack() || !kdTransmit.IsBlack() || fresnelBlend || HasLayered() ||
-               hair.Active() || fourier.Active() || subsurfaceEta > 0;
+               hair.Active() || fourier.Active() || disney.Active() || subsurfaceEta > 0;
     }
     bool HasGlossy() const {
         return !ks.IsBlack() || !ksTransmit.IsBlack() || fresnelBlend || !thinTransmit.IsBlack();

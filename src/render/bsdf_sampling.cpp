@@ -19,7 +19,8 @@ enum class Lobe {
     SpecularTransmit,
     Layered,
     Hair,
-    Fourier
+    Fourier,
+    Disney
 };
 
 struct Choice {
@@ -54,6 +55,7 @@ void Collect(const BSDF &b, const Vec3f &wo, bool withSpecular, Choices *ch) {
         if (l.hair.Active()) ch->Add(i, Lobe::Hair, w.Average() * l.hair.AlbedoEstimate(wo));
         if (l.fourier.Active())
             ch->Add(i, Lobe::Fourier, w.Average() * l.fourier.AlbedoEstimate(wo));
+        if (l.disney.Active()) ch->Add(i, Lobe::Disney, w.Average() * l.disney.AlbedoEstimate(wo));
         if (l.fresnelBlend) {
             // pbrt-v3 FresnelBlend::Sample_f: half the samples diffuse, half glossy.
             const float a = std::max(w.Average(), 1e-4f);
@@ -142,6 +144,8 @@ float LobePdf(const BxDFLobes &l, Lobe lobe, const Vec3f &wo, const Vec3f &wi) {
             return l.hair.Active() ? l.hair.Pdf(wo, wi) : 0.f;
         case Lobe::Fourier:
             return l.fourier.Active() ? l.fourier.Pdf(wo, wi) : 0.f;
+        case Lobe::Disney:
+            return l.disney.Active() ? l.disney.Pdf(wo, wi) : 0.f;
         default:
             return 0;
     }
@@ -238,6 +242,8 @@ bool BSDF::Sample_f(const Vec3f &woW, Vec2f u, float uc, bool withSpecular, BSDF
             if (!l.hair.Sample(wo, ucLobe, u, &wi, &unused)) return false;
         } else if (c.lobe == Lobe::Fourier) {
             if (!l.fourier.Sample(wo, u, &wi, &unused)) return false;
+        } else if (c.lobe == Lobe::Disney) {
+            if (!l.disney.Sample(wo, ucLobe, u, &wi)) return false;
         } else {
             // Cosine-weighted (Malley's method) on wo's side, or the other side for
             // transmission.

@@ -285,14 +285,14 @@ TEST(MaterialScene, MixCycleIsAnErrorWithLocation) {
 TEST(MaterialScene, UnsupportedMaterialFallsBackToMatteWithItsColour) {
     Diagnostics diag;
     RenderScene s = Build(
-        "Material \"disney\" \"rgb color\" [0.2 0.4 0.6] \"float metallic\" 1\n"
+        "Material \"velvet\" \"rgb color\" [0.2 0.4 0.6] \"float metallic\" 1\n"
         "Shape \"sphere\"\n",
         diag);
     const Material &m = ShapeMaterial(s);
     ASSERT_TRUE(m.ModelAs<MatteMaterial>());
     EXPECT_EQ(m.LambertianKd({}), RGB(0.2f, 0.4f, 0.6f));
     ASSERT_EQ(diag.Count(), size_t(1));
-    EXPECT_NE(diag.Warnings()[0].message.find("disney"), std::string::npos);
+    EXPECT_NE(diag.Warnings()[0].message.find("velvet"), std::string::npos);
 }
 
 TEST(MaterialScene, V4Names) {
