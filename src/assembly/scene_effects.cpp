@@ -33,7 +33,7 @@ void NoteMaterialEffects(BuildContext &ctx, const Material &m, const std::string
     if (m.TextureNeeds() & NeedUV) e.Enable(Effect::Textures, why + " (textured)", loc);
     if (m.bump) e.Enable(Effect::BumpMapping, why + " (bumpmap)", loc);
     if (m.normalMap) e.Enable(Effect::NormalMapping, why + " (normal map)", loc);
-    if (m.Subsurface()) {
+    if (m.HasSubsurface()) {
         if (ctx.scene.integrator->Traits().subsurface)
             e.Enable(Effect::Subsurface, why, loc);
         else if (ctx.subsurfaceWarned.insert(&m.Model()).second)

@@ -132,9 +132,24 @@ float SubsurfaceSw(float cosTheta, float eta) {
     return (1 - FrDielectric(cosTheta, 1, eta)) / (c * float(Pi));
 }
 
-TabulatedBssrdf::TabulatedBssrdf(const BssrdfTable &table, const Vec3f &po, const Vec3f &ns,
+SeparableBssrdf::SeparableBssrdf(const BssrdfTable &table, const Vec3f &po, const Vec3f &ns,
                                  const Vec3f &ss, float eta, const RGB &sigmaA, const RGB &sigmaS)
-    : table_(&table), po_(po), ns_(ns), eta_(eta) {
+    : SeparableBssrdf(po, ns, ss, eta) {
+    table_ = &table;
+    sigmaT_ = sigmaA + sigmaS;
+    for (int c = 0; c < 3; ++c) rho_[c] = sigmaT_[c] > 0 ? sigmaS[c] / sigmaT_[c] : 0.f;
+}
+
+SeparableBssrdf SeparableBssrdf::Disney(const Vec3f &po, const Vec3f &ns, const Vec3f &ss,
+                                        float eta, const RGB &R, const RGB &d) {
+    SeparableBssrdf b(po, ns, ss, eta);
+    b.R_ = R;
+    b.d_ = d;
+    return b;
+}
+
+SeparableBssrdf::SeparableBssrdf(const Vec3f &po, const Vec3f &ns, const Vec3f &ss, float eta)
+    : po_(po), ns_(ns), eta_(eta) {
     // The tangent ss made orthogonal to ns; any frame about ns when it is missing or parallel.
     const Vec3f s = ss - ns * Dot(ss, ns);
     const float len = Length(s);
@@ -144,13 +159,21 @@ TabulatedBssrdf::TabulatedBssrdf(const BssrdfTable &table, const Vec3f &po, cons
     } else {
         CoordinateSystem(ns_, &ss_, &ts_);
     }
-    sigmaT_ = sigmaA + sigmaS;
-    for (int c = 0; c < 3; ++c) rho_[c] = sigmaT_[c] > 0 ? sigmaS[c] / sigmaT_[c] : 0.f;
 }
 
-RGB TabulatedBssrdf::Sr(float r) const {
-    const BssrdfTable &t = *table_;
+RGB SeparableBssrdf::Sr(float r) const {
     RGB result;
+    if (!table_) {
+        const double rr = std::max(double(r), 1e-6);  // the profile's singularity at 0
+        for (int c = 0; c < 3; ++c) {
+            const double d = d_[c];
+            if (!(d > 0)) continue;
+            result[c] =
+                float(R_[c] * (std::exp(-rr / d) + std::exp(-rr / (3 * d))) / (8 * Pi * d * rr));
+        }
+        return result;
+    }
+    const BssrdfTable &t = *table_;
     for (int ch = 0; ch < 3; ++ch) {
         const float rOptical = r * sigmaT_[ch];
         int rhoOff, radOff;
@@ -172,7 +195,15 @@ RGB TabulatedBssrdf::Sr(float r) const {
     return result;
 }
 
-float TabulatedBssrdf::SampleSr(int ch, float u) const {
+float SeparableBssrdf::SampleSr(int ch, float u) const {
+    if (!table_) {
+        // Burley's profile is a mix of two exponentials in r (weights 1/4 and 3/4, as their
+        // integrals): one is drawn, then inverted.
+        const double d = d_[ch];
+        if (!(d > 0)) return -1;
+        if (u < 0.25f) return float(d * -std::log1p(-std::min(4.0 * u, 1 - 1e-7)));
+        return float(3 * d * -std::log1p(-std::min((u - 0.25) / 0.75, 1 - 1e-7)));
+    }
     if (!(sigmaT_[ch] > 0)) return -1;
     const BssrdfTable &t = *table_;
     const float r = SampleCatmullRom2D(t.rho.data(), t.NumRho(), t.radius.data(), t.NumRadius(),
@@ -180,7 +211,13 @@ float TabulatedBssrdf::SampleSr(int ch, float u) const {
     return std::isnan(r) ? -1.f : r / sigmaT_[ch];
 }
 
-float TabulatedBssrdf::PdfSr(int ch, float r) const {
+float SeparableBssrdf::PdfSr(int ch, float r) const {
+    if (!table_) {
+        const double d = d_[ch], rr = std::max(double(r), 1e-6);
+        if (!(d > 0)) return 0;
+        return float(0.25 * std::exp(-rr / d) / (2 * Pi * d * rr) +
+                     0.75 * std::exp(-rr / (3 * d)) / (6 * Pi * d * rr));
+    }
     const BssrdfTable &t = *table_;
     const float rOptical = r * sigmaT_[ch];
     int rhoOff, radOff;
@@ -200,7 +237,7 @@ float TabulatedBssrdf::PdfSr(int ch, float r) const {
     return float(std::max(0.0, sr * sigmaT_[ch] * sigmaT_[ch] / rhoEff));
 }
 
-float TabulatedBssrdf::PdfSp(const Vec3f &pi, const Vec3f &ni) const {
+float SeparableBssrdf::PdfSp(const Vec3f &pi, const Vec3f &ni) const {
     const Vec3f d = po_ - pi;
     const Vec3f dl(Dot(ss_, d), Dot(ts_, d), Dot(ns_, d));
     const Vec3f nl(Dot(ss_, ni), Dot(ts_, ni), Dot(ns_, ni));
@@ -217,7 +254,7 @@ float TabulatedBssrdf::PdfSp(const Vec3f &pi, const Vec3f &ni) const {
     return pdf;
 }
 
-bool TabulatedBssrdf::Probe(float u1, Vec2f u2, Vec3f *from, Vec3f *to, float *uRest) const {
+bool SeparableBssrdf::Probe(float u1, Vec2f u2, Vec3f *from, Vec3f *to, float *uRest) const {
     Vec3f vx, vy, vz;
     if (u1 < 0.5f) {
         vx = ss_, vy = ts_, vz = ns_;

@@ -49,17 +49,22 @@ void SubsurfaceFromDiffuse(const BssrdfTable &t, const RGB &rhoEff, const RGB &m
 // cosθ over the hemisphere.
 float SubsurfaceSw(float cosTheta, float eta);
 
-// The BSSRDF where light enters, at po with shading frame (ss, ts, ns).
-class TabulatedBssrdf {
+// The BSSRDF where light enters, at po with shading frame (ss, ts, ns): its radial profile is
+// the beam-diffusion table's for the coefficients σa, σs, or (Disney) Burley's normalised
+// diffusion R (e^(-r/d) + e^(-r/3d)) / (8π d r) of albedo R and scattering distance d.
+class SeparableBssrdf {
   public:
-    TabulatedBssrdf(const BssrdfTable &table, const Vec3f &po, const Vec3f &ns, const Vec3f &ss,
+    SeparableBssrdf(const BssrdfTable &table, const Vec3f &po, const Vec3f &ns, const Vec3f &ss,
                     float eta, const RGB &sigmaA, const RGB &sigmaS);
+    SeparableBssrdf() = default;  // scatters nothing
+    static SeparableBssrdf Disney(const Vec3f &po, const Vec3f &ns, const Vec3f &ss, float eta,
+                                  const RGB &R, const RGB &d);
 
     float Eta() const { return eta_; }
     // The radial profile at distance r (world units), per channel.
     RGB Sr(float r) const;
     RGB Sp(const Vec3f &pi) const { return Sr(Length(po_ - pi)); }
-    // A radius drawn from channel ch's profile (over its own integral rhoEff); -1 when the
+    // A radius drawn from channel ch's profile (over its own integral: rhoEff, R); -1 when the
     // channel does not scatter.
     float SampleSr(int ch, float u) const;
     // The density of SampleSr(ch) at r, per unit area of the plane (2π r already removed).
@@ -75,10 +80,12 @@ class TabulatedBssrdf {
     bool Probe(float u1, Vec2f u2, Vec3f *from, Vec3f *to, float *uRest) const;
 
   private:
-    const BssrdfTable *table_;
+    SeparableBssrdf(const Vec3f &po, const Vec3f &ns, const Vec3f &ss, float eta);
+    const BssrdfTable *table_ = nullptr;  // null: the Disney profile
     Vec3f po_, ns_, ss_, ts_;
-    float eta_;
-    RGB sigmaT_, rho_;
+    float eta_ = 1;
+    RGB sigmaT_, rho_;  // tabulated
+    RGB R_, d_;         // Disney
 };
 
 }  // namespace prism

@@ -18,7 +18,7 @@
 namespace prism {
 
 class Material;
-class SubsurfaceMaterial;
+class SeparableBssrdf;
 
 // Roughness (after remapping) up to which a metal is treated as a polished conductor: a delta
 // reflection that recursion follows. pbrt-v4's threshold (TrowbridgeReitzDistribution::
@@ -60,9 +60,15 @@ class MaterialModel {
     virtual bool IsFibre() const { return false; }
     // Whether a texture it reads filters over the ray's footprint.
     virtual bool TexturesUseDifferentials() const;
-    // The model itself when light refracted into it leaves elsewhere on the same material
-    // (subsurface, kdsubsurface; render/subsurface_material.h), else null.
-    virtual const SubsurfaceMaterial *Subsurface() const { return nullptr; }
+    // Whether light refracted into it may leave elsewhere on the same material (subsurface,
+    // kdsubsurface, disney with a scattering distance; render/subsurface.h).
+    virtual bool HasSubsurface() const { return false; }
+    // The BSSRDF where light enters at po (shading normal ns, tangent dpdu; texture context
+    // tc) in *out; false where there is none.
+    virtual bool SubsurfaceAt(const TextureContext &tc, const Vec3f &po, const Vec3f &ns,
+                              const Vec3f &dpdu, SeparableBssrdf *out) const {
+        return false;
+    }
     // Radiance the surface emits itself (a "gltf" material's emission), or null.
     virtual const Texture *Emission() const { return nullptr; }
     // glTF occlusion: the factor that scales the environment's light and indirect paths.
@@ -77,7 +83,7 @@ class Material {
     Material(std::shared_ptr<const MaterialModel> model, std::string typeName)
         : typeName(std::move(typeName)),
           model_(std::move(model)),
-          subsurface_(model_->Subsurface()) {}
+          subsurface_(model_->HasSubsurface()) {}
 
     std::string typeName;  // as written in the scene, for `prism info`
     const MaterialModel &Model() const { return *model_; }
@@ -111,8 +117,8 @@ class Material {
     void PerturbShading(SurfaceInteraction &si) const;
 
     bool IsPassThrough() const { return model_->IsPassThrough(); }
-    // MaterialModel::Subsurface, cached: the path integrators ask at every hit.
-    const SubsurfaceMaterial *Subsurface() const { return subsurface_; }
+    // MaterialModel::HasSubsurface, cached: the path integrators ask at every hit.
+    bool HasSubsurface() const { return subsurface_; }
     bool IsLambertian() const { return model_->IsLambertian(); }
     // kd as GetBSDF gives it (its one part, of weight 1); only for IsLambertian materials.
     RGB LambertianKd(const TextureContext &tc) const {
@@ -149,7 +155,7 @@ class Material {
         BxDFLobes lobes;
     };
     std::shared_ptr<const MaterialModel> model_;
-    const SubsurfaceMaterial *subsurface_ = nullptr;
+    bool subsurface_ = false;
     std::vector<FixedPart> fixedParts_;
     bool fixed_ = false;
     bool differentials_ = false;

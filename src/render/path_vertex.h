@@ -9,7 +9,6 @@
 #include "render/differentials.h"
 #include "render/estimate_direct.h"
 #include "render/subsurface.h"
-#include "render/subsurface_material.h"
 
 namespace prism {
 
@@ -43,10 +42,9 @@ inline void AddUnsampledEmission(const RenderScene &scene, const Ray &ray,
 // BSSRDF step, with the vertex's own dimensions). si becomes the exit.
 template <class Visibility>
 bool SubsurfaceVertex(const RenderScene &scene, const LightChooser &chooser,
-                      const SubsurfaceMaterial &sss, const Material &mat, const TextureContext &tc,
-                      const PixelSamples &ps, int bounces, const Visibility &vis, PathState &path,
-                      SurfaceInteraction &si, Vec3f *wi, RayCounters &counters) {
-    const TabulatedBssrdf bssrdf = sss.At(tc, si.p, si.ns, si.dpdu);
+                      const SeparableBssrdf &bssrdf, const Material &mat, const PixelSamples &ps,
+                      int bounces, const Visibility &vis, PathState &path, SurfaceInteraction &si,
+                      Vec3f *wi, RayCounters &counters) {
     SurfaceInteraction pi;
     RGB weight;
     if (!SampleSubsurfaceExit(
@@ -94,10 +92,12 @@ bool SurfaceVertex(const RenderScene &scene, const LightChooser &chooser, Surfac
         return false;
     path.anyNonSpecular |= !path.specularBounce;
     // Light refracted into a subsurface material leaves elsewhere on it.
-    if (const SubsurfaceMaterial *sss = mat.Subsurface();
-        sss && path.subsurface && Dot(*wi, si.n) * Dot(si.wo, si.n) < 0)
-        return SubsurfaceVertex(scene, chooser, *sss, mat, tc, ps, bounces, vis, path, si, wi,
-                                counters);
+    if (mat.HasSubsurface() && path.subsurface && Dot(*wi, si.n) * Dot(si.wo, si.n) < 0) {
+        SeparableBssrdf bssrdf;
+        if (mat.Model().SubsurfaceAt(tc, si.p, si.ns, si.dpdu, &bssrdf))
+            return SubsurfaceVertex(scene, chooser, bssrdf, mat, ps, bounces, vis, path, si, wi,
+                                    counters);
+    }
     return true;
 }
 

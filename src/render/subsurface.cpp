@@ -19,7 +19,7 @@ constexpr int MaxProbeRays = 64;
 }  // namespace
 
 bool SampleSubsurfaceExit(const RenderScene &scene, const Material &mat,
-                          const TabulatedBssrdf &bssrdf, float time, float u1, Vec2f u2,
+                          const SeparableBssrdf &bssrdf, float time, float u1, Vec2f u2,
                           SurfaceInteraction *pi, RGB *weight, RayCounters &counters) {
     Vec3f from, to;
     float uChoice;

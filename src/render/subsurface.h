@@ -1,6 +1,6 @@
 // Where subsurface light leaves (pbrt-v3 PathIntegrator's BSSRDF step): light that refracted
 // into a subsurface material leaves at a point found by a probe ray through the profile's
-// extent (TabulatedBssrdf::Probe), chosen among the probe's hits on the same material, and
+// extent (SeparableBssrdf::Probe), chosen among the probe's hits on the same material, and
 // scatters out there by the exit lobe (BxDFLobes::subsurfaceEta). The path integrators'
 // surface vertex (render/path_vertex.h) takes this step after a transmission.
 #pragma once
@@ -15,14 +15,14 @@ struct RayCounters;
 struct SurfaceInteraction;
 struct BSDF;
 class Material;
-class TabulatedBssrdf;
+class SeparableBssrdf;
 
 // Traces the probe of sample (u1, u2) at the ray time `time`, keeps its hits on `mat` (the
 // material whose BSSRDF this is), and chooses one uniformly: *pi (its wo the shading normal,
 // as pbrt's exit) and *weight = Sp / pdf. False when the sample finds no exit. Counts the
 // probe's rays as RayCounters::subsurface.
 bool SampleSubsurfaceExit(const RenderScene &scene, const Material &mat,
-                          const TabulatedBssrdf &bssrdf, float time, float u1, Vec2f u2,
+                          const SeparableBssrdf &bssrdf, float time, float u1, Vec2f u2,
                           SurfaceInteraction *pi, RGB *weight, RayCounters &counters);
 
 // The exit's BSDF at pi: the exit lobe of index eta, in pi's shading frame.

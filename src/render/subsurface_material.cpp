@@ -23,8 +23,8 @@ std::vector<const Texture *> SubsurfaceMaterial::Textures() const {
     return t;
 }
 
-TabulatedBssrdf SubsurfaceMaterial::At(const TextureContext &tc, const Vec3f &po, const Vec3f &ns,
-                                       const Vec3f &dpdu) const {
+bool SubsurfaceMaterial::SubsurfaceAt(const TextureContext &tc, const Vec3f &po, const Vec3f &ns,
+                                      const Vec3f &dpdu, SeparableBssrdf *out) const {
     RGB sigmaA, sigmaS;
     if (p_.kd) {
         const RGB mfp = p_.mfp->Evaluate(tc).Clamped(0.f) * p_.scale;  // as pbrt: scale × mfp
@@ -36,7 +36,8 @@ TabulatedBssrdf SubsurfaceMaterial::At(const TextureContext &tc, const Vec3f &po
         sigmaA = p_.sigmaA->Evaluate(tc).Clamped(0.f) * p_.scale;
         sigmaS = p_.sigmaS->Evaluate(tc).Clamped(0.f) * p_.scale;
     }
-    return TabulatedBssrdf(*table_, po, ns, dpdu, p_.eta, sigmaA, sigmaS);
+    *out = SeparableBssrdf(*table_, po, ns, dpdu, p_.eta, sigmaA, sigmaS);
+    return true;
 }
 
 namespace {

@@ -35,11 +35,9 @@ class SubsurfaceMaterial final : public MaterialModel {
     bool IsRoughGlass() const override { return p_.interface->IsRoughGlass(); }
     unsigned LobeNeeds() const override;
     std::vector<const Texture *> Textures() const override;
-    const SubsurfaceMaterial *Subsurface() const override { return this; }
-
-    // The BSSRDF where light enters at po (shading normal ns, tangent dpdu; texture context tc).
-    TabulatedBssrdf At(const TextureContext &tc, const Vec3f &po, const Vec3f &ns,
-                       const Vec3f &dpdu) const;
+    bool HasSubsurface() const override { return true; }
+    bool SubsurfaceAt(const TextureContext &tc, const Vec3f &po, const Vec3f &ns, const Vec3f &dpdu,
+                      SeparableBssrdf *out) const override;
     float Eta() const { return p_.eta; }
 
   private:

@@ -76,7 +76,7 @@ TEST(Bssrdf, TheTableAlbedoGrowsWithTheSingleScatteringAlbedo) {
 
 TEST(Bssrdf, RadiiAreDrawnFromTheProfilesDensity) {
     const auto t = BeamDiffusionTable(0, 1.33f);
-    const TabulatedBssrdf b(*t, Vec3f(0, 0, 0), Vec3f(0, 0, 1), Vec3f(1, 0, 0), 1.33f,
+    const SeparableBssrdf b(*t, Vec3f(0, 0, 0), Vec3f(0, 0, 1), Vec3f(1, 0, 0), 1.33f,
                             RGB(0.05f, 0.5f, 2.f), RGB(4, 3, 2));
     for (int ch = 0; ch < 3; ++ch) {
         // The density integrates to 1 over the plane.
@@ -105,7 +105,7 @@ TEST(Bssrdf, RadiiAreDrawnFromTheProfilesDensity) {
         }
     }
     // A channel that does not scatter gives no radius.
-    const TabulatedBssrdf none(*t, Vec3f(0, 0, 0), Vec3f(0, 0, 1), Vec3f(1, 0, 0), 1.33f, RGB(0),
+    const SeparableBssrdf none(*t, Vec3f(0, 0, 0), Vec3f(0, 0, 1), Vec3f(1, 0, 0), 1.33f, RGB(0),
                                RGB(0));
     EXPECT_LT(none.SampleSr(0, 0.5f), 0);
 }
@@ -217,14 +217,17 @@ TEST(Subsurface, ReadsItsParametersAndRefusesBadOnes) {
     RenderScene keep;
     const Material &m = test::BuildSphereMaterial(
         "Material \"subsurface\" \"string name\" \"Skin1\" \"float g\" 0.4\n", diag, keep);
-    ASSERT_NE(m.Subsurface(), nullptr);
-    EXPECT_FLOAT_EQ(m.Subsurface()->Eta(), 1.33f);
+    ASSERT_TRUE(m.HasSubsurface());
+    SeparableBssrdf b;
+    ASSERT_TRUE(m.Model().SubsurfaceAt(TextureContext{}, Vec3f(0, 0, 0), Vec3f(0, 0, 1),
+                                       Vec3f(1, 0, 0), &b));
+    EXPECT_FLOAT_EQ(b.Eta(), 1.33f);
     EXPECT_TRUE(m.MayTransmit());
     // The measured medium's coefficients are reduced ones: g is warned and set to 0.
     EXPECT_EQ(diag.Count(), size_t(1));
     const Material &u = test::BuildSphereMaterial(
         "Material \"subsurface\" \"string name\" \"Unobtainium\"\n", diag, keep);
-    ASSERT_NE(u.Subsurface(), nullptr);
+    ASSERT_TRUE(u.HasSubsurface());
     EXPECT_EQ(diag.Count(), size_t(2));
     for (const char *bad : {"\"float g\" 1", "\"float eta\" 0.5", "\"float scale\" -1"}) {
         try {

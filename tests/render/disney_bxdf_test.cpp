@@ -125,6 +125,10 @@ TEST(DisneyMaterial, RendersAsPbrtV3) {
          "clearcoatgloss\" 0.7 \"float roughness\" 0.35 \"float anisotropic\" 0.7 \"float "
          "metallic\" 0.5",
          RGB(0.250424f, 0.213135f, 0.175997f)},
+        // Burley's BSSRDF in place of the diffuse lobe.
+        {"Material \"disney\" \"rgb color\" [0.8 0.5 0.3] \"rgb scatterdistance\" [0.5 0.25 0.1] "
+         "\"float roughness\" 0.4",
+         RGB(0.248995f, 0.177556f, 0.136795f)},
     };
     for (const Case &c : cases) {
         const test::Rendered r = test::RenderSceneText("disney", "sphere", SphereScene(c.material));
@@ -132,6 +136,8 @@ TEST(DisneyMaterial, RendersAsPbrtV3) {
         for (int ch = 0; ch < 3; ++ch)
             EXPECT_NEAR(m[ch], c.pbrt3[ch], 0.03f * c.pbrt3[ch]) << c.material << " " << ch;
         EXPECT_TRUE(r.warnings.empty());
+        EXPECT_EQ(r.stats.rays.subsurface > 0,
+                  std::string(c.material).find("scatter") != std::string::npos);
     }
 }
 
