@@ -89,7 +89,10 @@ TEST(Curves, BasisConversionIsExact) {
 }
 
 // A straight "cylinder" curve of constant width is a tube of radius width/2 about the x axis:
-// Embree's round-curve hits against the analytic tube, in distance and normal.
+// Embree's round-curve hits against the analytic tube in distance; the hit sits on the centre
+// plane facing the ray with an error bound that covers the tube's point, and the normal is
+// pbrt's: the ray's side at v = 0.5, turned about the axis by (0.5 - v)·180° towards v's edge
+// the other way from the tube's own normal.
 TEST(Curves, CylinderMatchesAnalyticTube) {
     const double r = 0.1;
     Accel accel;
@@ -119,10 +122,17 @@ TEST(Curves, CylinderMatchesAnalyticTube) {
         ++hits;
         worst = std::max(worst, std::abs(double(si.t) - tWant) / tWant);
         EXPECT_NEAR(double(si.t), tWant, 1e-4 * tWant) << i;
-        const Vec3d nWant = Normalize(Vec3d(0, pWant.y, pWant.z));
+        // The side facing the ray and the direction across it, in the plane of the axis.
+        const Vec3d wo = -dir;
+        const Vec3d facing = Normalize(Vec3d(0, wo.y, wo.z));
+        const Vec3d across = Normalize(Cross(facing, Vec3d(1, 0, 0)));
+        const double offset = Dot(pWant, across);
+        EXPECT_NEAR(double(si.uv.y), 0.5 + 0.5 * offset / r, 2e-3) << i;
+        const double theta = (0.5 - double(si.uv.y)) * Pi;
+        const Vec3d nWant = facing * std::cos(theta) + across * std::sin(theta);
         EXPECT_GT(Dot(Vec3d(si.n), nWant), 1 - 1e-4) << i;
-        EXPECT_LT(Length(Vec3d(si.p) - pWant), 1e-4) << i;
-        // The bound covers the actual error of p.
+        // On the centre plane, and the bound covers the tube's point.
+        EXPECT_LT(std::abs(Dot(Vec3d(si.p), facing)), 1e-4) << i;
         for (int k = 0; k < 3; ++k)
             EXPECT_LE(std::abs(double(si.p[k]) - pWant[k]), double(si.pError[k]) + 1e-6) << i;
     }
@@ -270,7 +280,12 @@ TEST(Curves, SpawnedRaysDoNotSelfIntersect) {
                         const float sign =
                             type == CurveType::Cylinder || Dot(si.wo, si.n) >= 0 ? 1.f : -1.f;
                         if (Dot(w, si.n) * sign < 0) w = -w;
-                        if (placement > 0 && std::abs(Dot(w, si.n)) < 0.05f) continue;
+                        // (Grazing rays: left out where Embree's float tolerance decides, for
+                        // transformed curves and for cylinders, whose hits sit on the centre
+                        // plane with n turned as pbrt turns it, not radial.)
+                        if ((placement > 0 || type == CurveType::Cylinder) &&
+                            std::abs(Dot(w, si.n)) < 0.05f)
+                            continue;
                         ++rays;
                         if (accel.Occluded(si.SpawnRayTo(si.p + w * float(dist)))) ++self;
                         SurfaceInteraction again;
