@@ -131,17 +131,6 @@ TEST(Bssrdf, ADiffuseColourIsTheAlbedoOfItsCoefficients) {
 
 // A sphere of each subsurface material under a quad light, seen against black; pbrt-v3's
 // means of these exact scenes (4096 spp, `pbrt --nthreads 2`).
-std::string SphereScene(const std::string &material, int spp) {
-    return "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 30\n"
-           "Film \"image\" \"integer xresolution\" 32 \"integer yresolution\" 32\n"
-           "Sampler \"random\" \"integer pixelsamples\" " +
-           std::to_string(spp) +
-           "\nIntegrator \"path\" \"integer maxdepth\" 8\nWorldBegin\nAttributeBegin\n"
-           "AreaLightSource \"diffuse\" \"rgb L\" [10 10 10]\n"
-           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
-           "  \"point P\" [-1 2 -1  1 2 -1  1 2 1  -1 2 1]\nAttributeEnd\n" +
-           material + "\nShape \"sphere\" \"float radius\" 0.8\nWorldEnd\n";
-}
 
 TEST(Subsurface, RendersAsPbrtV3) {
     struct Case {
@@ -156,7 +145,7 @@ TEST(Subsurface, RendersAsPbrtV3) {
     };
     for (const Case &c : cases) {
         const test::Rendered r =
-            test::RenderSceneText("bssrdf", "sphere", SphereScene(c.material, 1024));
+            test::RenderSceneText("bssrdf", "sphere", test::LitSphereScene(c.material, 1024));
         const RGB m = test::MeanRGB(r.image);
         for (int ch = 0; ch < 3; ++ch)
             EXPECT_NEAR(m[ch], c.pbrt3[ch], 0.03f * c.pbrt3[ch]) << c.material << " " << ch;
@@ -166,7 +155,7 @@ TEST(Subsurface, RendersAsPbrtV3) {
 }
 
 TEST(Subsurface, OtherIntegratorsRenderTheInterfaceAndSaySo) {
-    const std::string scene = SphereScene(
+    const std::string scene = test::LitSphereScene(
         "Material \"kdsubsurface\" \"rgb Kd\" [0.8 0.5 0.3] \"rgb mfp\" [0.2 0.1 0.05]", 16);
     const test::Rendered path = test::RenderSceneText("bssrdf", "path", scene);
     const test::Rendered whitted = test::RenderSceneText(
@@ -229,16 +218,8 @@ TEST(Subsurface, ReadsItsParametersAndRefusesBadOnes) {
         "Material \"subsurface\" \"string name\" \"Unobtainium\"\n", diag, keep);
     ASSERT_TRUE(u.HasSubsurface());
     EXPECT_EQ(diag.Count(), size_t(2));
-    for (const char *bad : {"\"float g\" 1", "\"float eta\" 0.5", "\"float scale\" -1"}) {
-        try {
-            test::BuildSphereMaterial(std::string("Material \"subsurface\" ") + bad + "\n", diag,
-                                      keep);
-            ADD_FAILURE() << bad;
-        } catch (const SceneError &e) {
-            EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
-            EXPECT_NE(std::string(e.what()).find("test.pbrt:4:"), std::string::npos) << e.what();
-        }
-    }
+    test::ExpectMaterialErrors(
+        "subsurface", {"\"float g\" 1", "\"float eta\" 0.5", "\"float scale\" -1"}, "out of range");
 }
 
 }  // namespace

@@ -12,24 +12,12 @@
 #include "render/bsdf.h"
 #include "support/image_stats.h"
 #include "support/render_text.h"
+#include "support/sphere_quadrature.h"
 
 namespace prism {
 namespace {
 
-Vec3f Dir(float cosTheta, float phi) {
-    const float s = std::sqrt(std::max(0.f, 1 - cosTheta * cosTheta));
-    return {s * std::cos(phi), s * std::sin(phi), cosTheta};
-}
-
-// ∫ g dω over the sphere, midpoint rule in (cos θ, φ).
-template <typename G>
-double Integrate(G g, int n = 800) {
-    double sum = 0;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j)
-            sum += g(Dir(-1 + 2 * (i + 0.5f) / n, float(2 * Pi * (j + 0.5) / n)));
-    return sum * 4 * Pi / (double(n) * n);
-}
+using test::DirectionAt;
 
 DisneyLobe Lobe(bool thin) {
     DisneyLobe l;
@@ -57,13 +45,15 @@ TEST(DisneyLobe, SamplesFollowTheirDensity) {
     for (bool thin : {false, true}) {
         const DisneyLobe l = Lobe(thin);
         for (float cosO : {0.9f, 0.4f, -0.6f}) {
-            const Vec3f wo = Dir(cosO, 0.7f);
+            const Vec3f wo = DirectionAt(cosO, 0.7f);
             // f·|cos θi| over the sphere, and its estimate from samples weighted by 1/pdf.
-            const double albedo = Integrate([&](const Vec3f &wi) {
-                return double(l.f(wo, wi, wo.z * wi.z > 0).g) * std::abs(wi.z);
-            });
+            const double albedo = test::IntegrateSphere(
+                [&](const Vec3f &wi) {
+                    return double(l.f(wo, wi, wo.z * wi.z > 0).g) * std::abs(wi.z);
+                },
+                800);
             const double pdfTotal =
-                Integrate([&](const Vec3f &wi) { return double(l.Pdf(wo, wi)); });
+                test::IntegrateSphere([&](const Vec3f &wi) { return double(l.Pdf(wo, wi)); }, 800);
             PCG32 rng(3);
             constexpr int N = 400000;
             double est = 0;
@@ -86,7 +76,8 @@ TEST(DisneyLobe, SamplesFollowTheirDensity) {
 
 TEST(DisneyLobe, ReflectionAndTransmissionKeepToTheirSides) {
     const DisneyLobe l = Lobe(true);
-    const Vec3f wo = Dir(0.8f, 0.3f), up = Dir(0.5f, 2.f), down = Dir(-0.5f, 2.f);
+    const Vec3f wo = DirectionAt(0.8f, 0.3f), up = DirectionAt(0.5f, 2.f),
+                down = DirectionAt(-0.5f, 2.f);
     EXPECT_GT(l.f(wo, up, true).g, 0);
     EXPECT_GT(l.f(wo, down, false).g, 0);
     // Only transmission lobes when the geometric normal says transmission.
@@ -100,17 +91,6 @@ TEST(DisneyLobe, ReflectionAndTransmissionKeepToTheirSides) {
 // pbrt-v3's means of these exact scenes (4096 spp, `pbrt --nthreads 2`). Opaque ones: a
 // transmitting sphere's caustics of the small light are too noisy for a test at this size
 // (the probe scene covers transmission, docs/PBRT3_COMPARISON.md "disney").
-std::string SphereScene(const std::string &material) {
-    return "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 30\n"
-           "Film \"image\" \"integer xresolution\" 32 \"integer yresolution\" 32\n"
-           "Sampler \"random\" \"integer pixelsamples\" 1024\n"
-           "Integrator \"path\" \"integer maxdepth\" 8\nWorldBegin\n"
-           "LightSource \"infinite\" \"rgb L\" [0.1 0.1 0.1]\nAttributeBegin\n"
-           "AreaLightSource \"diffuse\" \"rgb L\" [10 10 10]\n"
-           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
-           "  \"point P\" [-1 2 -1  1 2 -1  1 2 1  -1 2 1]\nAttributeEnd\n" +
-           material + "\nShape \"sphere\" \"float radius\" 0.8\nWorldEnd\n";
-}
 
 TEST(DisneyMaterial, RendersAsPbrtV3) {
     struct Case {
@@ -131,7 +111,8 @@ TEST(DisneyMaterial, RendersAsPbrtV3) {
          RGB(0.248995f, 0.177556f, 0.136795f)},
     };
     for (const Case &c : cases) {
-        const test::Rendered r = test::RenderSceneText("disney", "sphere", SphereScene(c.material));
+        const test::Rendered r =
+            test::RenderSceneText("disney", "sphere", test::LitSphereScene(c.material, 1024, 0.1f));
         const RGB m = test::MeanRGB(r.image);
         for (int ch = 0; ch < 3; ++ch)
             EXPECT_NEAR(m[ch], c.pbrt3[ch], 0.03f * c.pbrt3[ch]) << c.material << " " << ch;

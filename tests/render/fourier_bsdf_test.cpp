@@ -15,25 +15,13 @@
 #include "render/fourier_material.h"
 #include "support/bsdf_file.h"
 #include "support/render_text.h"
+#include "support/sphere_quadrature.h"
 #include "support/temp_dir.h"
 
 namespace prism {
 namespace {
 
-Vec3f Dir(float cosTheta, float phi) {
-    const float s = std::sqrt(std::max(0.f, 1 - cosTheta * cosTheta));
-    return {s * std::cos(phi), s * std::sin(phi), cosTheta};
-}
-
-// ∫ g dω over the sphere, midpoint rule in (cos θ, φ).
-template <typename G>
-RGB Integrate(G g, int n = 600) {
-    RGB sum;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j)
-            sum += g(Dir(-1 + 2 * (i + 0.5f) / n, float(2 * Pi * (j + 0.5) / n)));
-    return sum * float(4 * Pi / (double(n) * n));
-}
+using test::DirectionAt;
 
 // A glossy, coloured table on uneven cosines: a lobe about the mirror direction that narrows
 // towards grazing, a little transmission, three channels (luminance, red, blue).
@@ -59,9 +47,9 @@ TEST(FourierBsdf, ALambertianTableIsLambertian) {
     const FourierTable t = FourierTable::Parse(test::LambertianFourierBsdf(0.6f), "lambert");
     const FourierLobe l{&t};
     for (float muO : {0.9f, 0.5f, -0.7f}) {
-        const Vec3f wo = Dir(muO, 0.3f);
+        const Vec3f wo = DirectionAt(muO, 0.3f);
         for (float c : {0.8f, 0.4f, 0.2f}) {
-            const Vec3f wi = Dir(muO > 0 ? c : -c, 2.f);  // reflection, on wo's side
+            const Vec3f wi = DirectionAt(muO > 0 ? c : -c, 2.f);  // reflection, on wo's side
             EXPECT_NEAR(l.f(wo, wi).g, 0.6f / float(Pi), 2e-4f) << muO << " " << c;
             EXPECT_NEAR(l.Pdf(wo, wi), c / float(Pi), 2e-3f);
             EXPECT_EQ(l.f(wo, Vec3f(wi.x, wi.y, -wi.z)).g, 0.f);  // no transmission
@@ -76,9 +64,11 @@ TEST(FourierBsdf, SamplesFollowTheirDensity) {
     const FourierLobe l{&t};
     PCG32 rng(9);
     for (float muO : {0.95f, 0.6f, 0.2f, -0.5f}) {
-        const Vec3f wo = Dir(muO, 1.f);
-        const RGB albedo = Integrate([&](const Vec3f &wi) { return l.f(wo, wi) * std::abs(wi.z); });
-        const RGB pdfNorm = Integrate([&](const Vec3f &wi) { return RGB(l.Pdf(wo, wi)); });
+        const Vec3f wo = DirectionAt(muO, 1.f);
+        const RGB albedo = test::IntegrateSphere(
+            [&](const Vec3f &wi) { return l.f(wo, wi) * std::abs(wi.z); }, 600);
+        const RGB pdfNorm =
+            test::IntegrateSphere([&](const Vec3f &wi) { return RGB(l.Pdf(wo, wi)); }, 600);
         EXPECT_NEAR(pdfNorm.g, 1, 0.01f) << muO;
         RGB estimate;
         const int n = 100000;
@@ -141,8 +131,8 @@ TEST(FourierBsdf, CorruptedFilesAreRefusedOrReadSafely) {
             const FourierLobe l{&t};
             ++read;
             for (int k = 0; k < 8; ++k) {
-                const Vec3f wo = Dir(-1 + 2 * rng.Uniform(), 6 * rng.Uniform());
-                const Vec3f wi = Dir(-1 + 2 * rng.Uniform(), 6 * rng.Uniform());
+                const Vec3f wo = DirectionAt(-1 + 2 * rng.Uniform(), 6 * rng.Uniform());
+                const Vec3f wi = DirectionAt(-1 + 2 * rng.Uniform(), 6 * rng.Uniform());
                 const RGB f = l.f(wo, wi);
                 EXPECT_TRUE(f.IsFinite() && f.r >= 0 && f.g >= 0 && f.b >= 0);
                 EXPECT_GE(l.Pdf(wo, wi), 0.f);
@@ -173,7 +163,7 @@ TEST(FourierMaterial, ReadsItsFileAsTheSceneNamesIt) {
     si.n = si.ns = {0, 0, 1};
     si.dpdu = {1, 0, 0};
     const BSDF b = m.GetBSDF(si, {});
-    EXPECT_NEAR(b.f(Dir(0.7f, 0), Dir(0.5f, 2)).g, 0.5f / float(Pi), 2e-4f);
+    EXPECT_NEAR(b.f(DirectionAt(0.7f, 0), DirectionAt(0.5f, 2)).g, 0.5f / float(Pi), 2e-4f);
 
     for (const std::string &bad :
          {std::string("\"string bsdffile\" \"missing.bsdf\""),

@@ -1,7 +1,9 @@
 #include "support/render_text.h"
 
+#include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <utility>
 
@@ -78,6 +80,40 @@ const Material &BuildSphereMaterial(const std::string &world, Diagnostics &diag,
     o.resolution = {8, 8};
     keep = BuildRenderScene(d, o, diag);
     return keep.materials[size_t(keep.shapes[0].material)];
+}
+
+std::string LitSphereScene(const std::string &material, int spp, float sky) {
+    std::string skyLine;
+    if (sky > 0) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", double(sky));
+        const std::string v = buf;
+        skyLine = "LightSource \"infinite\" \"rgb L\" [" + v + " " + v + " " + v + "]\n";
+    }
+    return "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 30\n"
+           "Film \"image\" \"integer xresolution\" 32 \"integer yresolution\" 32\n"
+           "Sampler \"random\" \"integer pixelsamples\" " +
+           std::to_string(spp) + "\nIntegrator \"path\" \"integer maxdepth\" 8\nWorldBegin\n" +
+           skyLine +
+           "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [10 10 10]\n"
+           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+           "  \"point P\" [-1 2 -1  1 2 -1  1 2 1  -1 2 1]\nAttributeEnd\n" +
+           material + "\nShape \"sphere\" \"float radius\" 0.8\nWorldEnd\n";
+}
+
+void ExpectMaterialErrors(const std::string &type, const std::vector<std::string> &bad,
+                          const std::string &fragment) {
+    for (const std::string &b : bad) {
+        Diagnostics diag;
+        RenderScene keep;
+        try {
+            BuildSphereMaterial("Material \"" + type + "\" " + b + "\n", diag, keep);
+            ADD_FAILURE() << type << " " << b;
+        } catch (const SceneError &e) {
+            EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("test.pbrt:4:"), std::string::npos) << e.what();
+        }
+    }
 }
 
 }  // namespace prism::test

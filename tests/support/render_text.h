@@ -44,6 +44,18 @@ Rendered RenderSceneText(const std::string &dir, const std::string &name, const 
 // warned of in `diag`. Throws SceneError as the scene builder does.
 const Material &BuildSphereMaterial(const std::string &world, Diagnostics &diag, RenderScene &keep);
 
+// Material `type` with each one of `bad` (parameter text) must be a SceneError at that
+// material's parameter line (BuildSphereMaterial's test.pbrt:4) whose message says `fragment`.
+void ExpectMaterialErrors(const std::string &type, const std::vector<std::string> &bad,
+                          const std::string &fragment);
+
+// A sphere of radius 0.8 declared after `material` (a Material line) at the origin, seen from
+// 4 away, under a 2 × 2 quad light of radiance 10 two above it and, when sky > 0, a constant
+// sky of that radiance: 32 × 32 pixels at `spp` samples of pbrt-v3's "random" sampler, path
+// traced to maxdepth 8. The material tests compare its means with pbrt-v3's renders of the
+// same text.
+std::string LitSphereScene(const std::string &material, int spp, float sky = 0);
+
 // Build settings of a w x h image at `spp` samples a pixel (0: the file's) with integrator
 // `integrator` ("": the file's).
 BuildSettings SizedSettings(int w, int h, int spp, const std::string &integrator = "");
