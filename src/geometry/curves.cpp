@@ -279,11 +279,13 @@ SurfaceInteraction CurveSet::Interaction(size_t prim, float uHit, float /*vHit*/
     // tests/geometry/curves_test.cpp), and the float rounding of p.
     double slack = offSurface + 1e-2 * r;
     if (type_ == CurveType::Cylinder) {
-        // On the centre plane, inside the tube, where pbrt places every curve hit: a bound of
-        // the radius moves every ray's origin along n to outside it, so no ray leaving the
-        // hit meets the same tube (hair's fibres scatter through it whole: SetFibre).
+        // On the centre plane, inside the tube, where pbrt places every curve hit. Rays leave
+        // along ±n, which is not radial: at offset x·r across, moving k along n ends
+        // (x·r - k·sin(xπ/2), k·cos(xπ/2)) from the axis, outside the tube for every x once
+        // k >= 2r. So the bound is a little over twice the radius, and no ray leaving the hit
+        // meets the same tube (hair's fibres scatter through it whole: SetFibre).
         p = c + across * offset;
-        slack = 1.05 * r + offSurface;
+        slack = 2.05 * r + offSurface;
     }
     const Vec3d err = Abs(p) * (8 * double(MachineEpsilon<float>())) + Vec3d(slack, slack, slack);
     RoundHitPoint(p, err, &si.p, &si.pError);

@@ -280,12 +280,7 @@ TEST(Curves, SpawnedRaysDoNotSelfIntersect) {
                         const float sign =
                             type == CurveType::Cylinder || Dot(si.wo, si.n) >= 0 ? 1.f : -1.f;
                         if (Dot(w, si.n) * sign < 0) w = -w;
-                        // (Grazing rays: left out where Embree's float tolerance decides, for
-                        // transformed curves and for cylinders, whose hits sit on the centre
-                        // plane with n turned as pbrt turns it, not radial.)
-                        if ((placement > 0 || type == CurveType::Cylinder) &&
-                            std::abs(Dot(w, si.n)) < 0.05f)
-                            continue;
+                        if (placement > 0 && std::abs(Dot(w, si.n)) < 0.05f) continue;
                         ++rays;
                         if (accel.Occluded(si.SpawnRayTo(si.p + w * float(dist)))) ++self;
                         SurfaceInteraction again;
