@@ -201,6 +201,23 @@ TEST(Subsurface, PbrtV4FilesRenderAsPbrtV4) {
     EXPECT_LT(test::MeanValue(path.image), 0.5 * test::MeanValue(vol.image));
 }
 
+// Coefficients and distances at the ends of float's range: probes of enormous or vanishing
+// radii, infinite or zero coefficients from a mean free path of 0 or 1e38. Every pixel stays
+// finite and nothing aborts.
+TEST(Subsurface, ExtremeCoefficientsRenderFiniteImages) {
+    for (const char *material :
+         {"Material \"subsurface\" \"rgb sigma_a\" [1e-30 1e-30 1e-30] \"rgb sigma_s\" [1e-30 "
+          "1e-30 1e-30]",
+          "Material \"subsurface\" \"rgb sigma_a\" [0 0 0] \"rgb sigma_s\" [1e-38 0 1e38]",
+          "Material \"subsurface\" \"float scale\" 1e30 \"float g\" 0.99 \"float eta\" 10",
+          "Material \"kdsubsurface\" \"rgb Kd\" [5 -1 0.5] \"rgb mfp\" [0 1e-38 1e38]",
+          "Material \"disney\" \"rgb scatterdistance\" [1e30 1e-30 1e38]"}) {
+        const test::Rendered r =
+            test::RenderSceneText("bssrdf", "extreme", test::LitSphereScene(material, 4));
+        for (float v : r.image.pixels) ASSERT_TRUE(std::isfinite(v)) << material;
+    }
+}
+
 TEST(Subsurface, ReadsItsParametersAndRefusesBadOnes) {
     Diagnostics diag;
     RenderScene keep;
