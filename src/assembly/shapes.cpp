@@ -175,7 +175,6 @@ struct ShapeBuilder : BuildStep {
         int index;
         if (geom.curves) {
             scene.features.curveSegments += geom.curves->NumSegments();
-            geom.curves->SetFibre(scene.materials[size_t(material)].Model().IsFibre());
             index = accel.AddCurves(std::move(geom.curves), mask);
         } else if (geom.mesh) {
             scene.features.meshes++;

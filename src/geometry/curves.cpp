@@ -283,7 +283,7 @@ SurfaceInteraction CurveSet::Interaction(size_t prim, float uHit, float /*vHit*/
         // along ±n, which is not radial: at offset x·r across, moving k along n ends
         // (x·r - k·sin(xπ/2), k·cos(xπ/2)) from the axis, outside the tube for every x once
         // k >= 2r. So the bound is a little over twice the radius, and no ray leaving the hit
-        // meets the same tube (hair's fibres scatter through it whole: SetFibre).
+        // meets the same tube (hair's fibres scatter through it whole).
         p = c + across * offset;
         slack = 2.05 * r + offSurface;
     }

@@ -111,24 +111,16 @@ class CurveSet {
     // Phase 2 for Embree's hit (segment `prim`, its parameter u and v) at t along the ray.
     // uv follows pbrt-v3: u along the whole curve (0 to 1 over all segments), v across it (0
     // to 1, 0.5 on the centre line, as the ray sees the width). n: "flat" faces the ray,
-    // "cylinder" is the tube's outward normal, "ribbon" the interpolated "N" made
-    // perpendicular to the curve; flipped by ReverseOrientation XOR handedness, as pbrt does.
+    // "cylinder" is pbrt's normal turned across the band (its hit on the plane through the
+    // centre line, with a bound that starts every leaving ray outside the tube), "ribbon" the
+    // interpolated "N" made perpendicular to the curve; flipped by ReverseOrientation XOR
+    // handedness, as pbrt does.
     SurfaceInteraction Interaction(size_t prim, float u, float v, float t, const Vec3f &rayO,
                                    const Vec3f &rayD, float time = 0, int shape = -1) const;
-
-    // A "cylinder" curve whose material scatters light through the whole fibre at once (hair:
-    // render/hair_bxdf.h) must not be met again by the rays that leave it, which go through
-    // the tube as often as away from it: its hits are then placed where pbrt-v3 and pbrt-v4
-    // place them, on the plane through the centre line facing the ray (at the same offset
-    // across it), with an error bound of the radius, so rays leaving in either direction start
-    // outside the tube.
-    void SetFibre(bool fibre) { fibre_ = fibre; }
-    bool IsFibre() const { return fibre_; }
 
   private:
     CurveType type_;
     bool flipNormals_;
-    bool fibre_ = false;
     int tessellationRate_;
     std::vector<float> vertices_;  // padded by one float4 (Embree reads past the last)
     std::vector<uint32_t> indices_;

@@ -22,7 +22,6 @@ class HairMaterial final : public MaterialModel {
     void AddParts(BSDF &b, const TextureContext &tc, const RGB &weight) const override;
     // Where the ray meets the fibre's width is uv's v; the fibre runs along dpdu.
     unsigned GeometryNeeds() const override { return NeedAll; }
-    bool IsFibre() const override { return true; }
     std::vector<const Texture *> Textures() const override;
 
   private:

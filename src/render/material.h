@@ -55,9 +55,6 @@ class MaterialModel {
     // The surface data its lobes read themselves, not through a texture (hair: where across
     // the fibre, uv's v, and the fibre's direction, dpdu).
     virtual unsigned GeometryNeeds() const { return NeedNone; }
-    // Whether its lobes scatter light through a whole fibre at once (hair), so that the rays
-    // leaving a hit must not meet the same fibre again (CurveSet::SetFibre).
-    virtual bool IsFibre() const { return false; }
     // Whether a texture it reads filters over the ray's footprint.
     virtual bool TexturesUseDifferentials() const;
     // Whether light refracted into it may leave elsewhere on the same material (subsurface,

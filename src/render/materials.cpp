@@ -520,8 +520,6 @@ unsigned MixMaterial::LobeNeeds() const {
 
 unsigned MixMaterial::GeometryNeeds() const { return m1_->GeometryNeeds() | m2_->GeometryNeeds(); }
 
-bool MixMaterial::IsFibre() const { return m1_->Model().IsFibre() || m2_->Model().IsFibre(); }
-
 bool MixMaterial::TexturesUseDifferentials() const {
     return m1_->TexturesUseDifferentials() || m2_->TexturesUseDifferentials() ||
            (amount_ && amount_->UsesDifferentials());

@@ -207,7 +207,6 @@ class MixMaterial final : public MaterialModel {
     int MaxParts() const override;
     unsigned LobeNeeds() const override;
     unsigned GeometryNeeds() const override;
-    bool IsFibre() const override;
     bool TexturesUseDifferentials() const override;
 
   private:

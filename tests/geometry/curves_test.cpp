@@ -295,9 +295,9 @@ TEST(Curves, SpawnedRaysDoNotSelfIntersect) {
     }
 }
 
-// A cylinder that scatters through the whole fibre (hair, CurveSet::SetFibre): rays leaving a
-// hit in every direction, into the tube as well as out of it, never meet it again, and the hit
-// lies on the plane through the centre line facing the ray, at v's offset across it.
+// A cylinder, as hair scatters through it whole: rays leaving a hit in every direction, into the
+// tube as well as out of it, never meet it again, and the hit lies on the plane through the centre
+// line facing the ray, at v's offset across it.
 TEST(Curves, FibreRaysLeaveInEveryDirection) {
     PCG32 rng(5);
     for (float width : {0.002f, 0.2f}) {
@@ -307,7 +307,6 @@ TEST(Curves, FibreRaysLeaveInEveryDirection) {
             if (r < 1e-5 * Length(t.Point(Vec3d(0, 0, 0)))) continue;
             auto tube = std::make_unique<CurveSet>(t, false, CurveType::Cylinder, StraightX(-1, 1),
                                                    width, width);
-            tube->SetFibre(true);
             Accel accel;
             accel.AddCurves(std::move(tube));
             accel.Commit();
