@@ -161,6 +161,28 @@ SeparableBssrdf::SeparableBssrdf(const Vec3f &po, const Vec3f &ns, const Vec3f &
     }
 }
 
+bool SeparableBssrdf::TabulatedSr(int ch, float r, double *sr, double *rhoEff) const {
+    const BssrdfTable &t = *table_;
+    const float rOptical = r * sigmaT_[ch];
+    int rhoOff, radOff;
+    float rhoW[4], radW[4];
+    if (!CatmullRomWeights(t.rho.data(), t.NumRho(), rho_[ch], &rhoOff, rhoW) ||
+        !CatmullRomWeights(t.radius.data(), t.NumRadius(), rOptical, &radOff, radW))
+        return false;
+    double v = 0, eff = 0;
+    for (int i = 0; i < 4; ++i) {
+        if (rhoW[i] == 0) continue;
+        eff += double(t.rhoEff[size_t(rhoOff + i)]) * rhoW[i];
+        for (int j = 0; j < 4; ++j)
+            if (radW[j] != 0) v += double(rhoW[i]) * radW[j] * t.Profile(rhoOff + i, radOff + j);
+    }
+    // The table holds 2π r Sr (the profile's marginal in r).
+    if (rOptical != 0) v /= 2 * Pi * rOptical;
+    *sr = v * sigmaT_[ch] * sigmaT_[ch];
+    if (rhoEff) *rhoEff = eff;
+    return true;
+}
+
 RGB SeparableBssrdf::Sr(float r) const {
     RGB result;
     if (!table_) {
@@ -173,24 +195,9 @@ RGB SeparableBssrdf::Sr(float r) const {
         }
         return result;
     }
-    const BssrdfTable &t = *table_;
     for (int ch = 0; ch < 3; ++ch) {
-        const float rOptical = r * sigmaT_[ch];
-        int rhoOff, radOff;
-        float rhoW[4], radW[4];
-        if (!CatmullRomWeights(t.rho.data(), t.NumRho(), rho_[ch], &rhoOff, rhoW) ||
-            !CatmullRomWeights(t.radius.data(), t.NumRadius(), rOptical, &radOff, radW))
-            continue;
-        double sr = 0;
-        for (int i = 0; i < 4; ++i) {
-            if (rhoW[i] == 0) continue;
-            for (int j = 0; j < 4; ++j)
-                if (radW[j] != 0)
-                    sr += double(rhoW[i]) * radW[j] * t.Profile(rhoOff + i, radOff + j);
-        }
-        // The table holds 2π r Sr (the profile's marginal in r).
-        if (rOptical != 0) sr /= 2 * Pi * rOptical;
-        result[ch] = float(std::max(0.0, sr * sigmaT_[ch] * sigmaT_[ch]));
+        double sr;
+        if (TabulatedSr(ch, r, &sr, nullptr)) result[ch] = float(std::max(0.0, sr));
     }
     return result;
 }
@@ -218,23 +225,9 @@ float SeparableBssrdf::PdfSr(int ch, float r) const {
         return float(0.25 * std::exp(-rr / d) / (2 * Pi * d * rr) +
                      0.75 * std::exp(-rr / (3 * d)) / (6 * Pi * d * rr));
     }
-    const BssrdfTable &t = *table_;
-    const float rOptical = r * sigmaT_[ch];
-    int rhoOff, radOff;
-    float rhoW[4], radW[4];
-    if (!CatmullRomWeights(t.rho.data(), t.NumRho(), rho_[ch], &rhoOff, rhoW) ||
-        !CatmullRomWeights(t.radius.data(), t.NumRadius(), rOptical, &radOff, radW))
-        return 0;
-    double sr = 0, rhoEff = 0;
-    for (int i = 0; i < 4; ++i) {
-        if (rhoW[i] == 0) continue;
-        rhoEff += double(t.rhoEff[size_t(rhoOff + i)]) * rhoW[i];
-        for (int j = 0; j < 4; ++j)
-            if (radW[j] != 0) sr += double(rhoW[i]) * radW[j] * t.Profile(rhoOff + i, radOff + j);
-    }
-    if (rOptical != 0) sr /= 2 * Pi * rOptical;
-    if (!(rhoEff > 0)) return 0;
-    return float(std::max(0.0, sr * sigmaT_[ch] * sigmaT_[ch] / rhoEff));
+    double sr, rhoEff;
+    if (!TabulatedSr(ch, r, &sr, &rhoEff) || !(rhoEff > 0)) return 0;
+    return float(std::max(0.0, sr / rhoEff));
 }
 
 float SeparableBssrdf::PdfSp(const Vec3f &pi, const Vec3f &ni) const {

@@ -81,6 +81,9 @@ class SeparableBssrdf {
 
   private:
     SeparableBssrdf(const Vec3f &po, const Vec3f &ns, const Vec3f &ss, float eta);
+    // The tabulated profile of channel ch at radius r in world units (*sr, not clamped) and
+    // the interpolated effective albedo (*rhoEff, when not null); false outside the table.
+    bool TabulatedSr(int ch, float r, double *sr, double *rhoEff) const;
     const BssrdfTable *table_ = nullptr;  // null: the Disney profile
     Vec3f po_, ns_, ss_, ts_;
     float eta_ = 1;

@@ -46,7 +46,7 @@ enum Component { CDiffuse, CSpecular, CClearcoat, CTransmit, CDiffuseTransmit, N
 void Weights(const DisneyLobe &l, const Vec3f &wo, float w[NumComponents]) {
     const float c = std::abs(wo.z);
     w[CDiffuse] = (l.diffuse + l.fakeSS + l.retro + l.sheen).Average();
-    w[CSpecular] = std::max((l.specular * DisneyFresnel(l, c)).Average(), 0.02f);
+    w[CSpecular] = std::max(DisneyFresnel(l, c).Average(), 0.02f);
     w[CClearcoat] = l.clearcoat > 0
                         ? std::max(0.25f * l.clearcoat * (0.04f + 0.96f * SchlickWeight(c)), 0.01f)
                         : 0.f;
@@ -152,13 +152,11 @@ RGB DisneyLobe::f(const Vec3f &wo, const Vec3f &wi, bool reflect) const {
         result += retro * (InvPiF * rr * (Fo + Fi + Fo * Fi * (rr - 1)));
     }
     if (!sheen.IsBlack()) result += sheen * SchlickWeight(cosD);
+    // The specular lobe, its Fresnel term at the normal facing the outside, as pbrt-v3's
+    // microfacet reflection takes it: seen from inside, the inside's (total internal reflection).
     const Vec3f whUp = wh.z < 0 ? -wh : wh;
-    if (!specular.IsBlack()) {
-        const float D = TrowbridgeReitzD(whUp, ax, ay), G = G1(wo, ax, ay) * G1(wi, ax, ay);
-        // The Fresnel term at the normal facing the outside, as pbrt-v3's microfacet
-        // reflection takes it: seen from inside, the inside's (total internal reflection).
-        result += specular * DisneyFresnel(*this, Dot(wi, whUp)) * (D * G / (4 * cosI * cosO));
-    }
+    const float D = TrowbridgeReitzD(whUp, ax, ay), G = G1(wo, ax, ay) * G1(wi, ax, ay);
+    result += DisneyFresnel(*this, Dot(wi, whUp)) * (D * G / (4 * cosI * cosO));
     if (clearcoat > 0) {
         const float Dr = GTR1(std::abs(wh.z), ClearcoatAlpha(*this));
         const float Fr = 0.04f + 0.96f * SchlickWeight(Dot(wo, wh));

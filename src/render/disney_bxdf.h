@@ -20,9 +20,10 @@ struct DisneyLobe {
     // (all three with the material's roughness) and sheen.
     RGB diffuse, fakeSS, retro, sheen;
     float roughness = 0;
-    // The specular lobe: scale, the Fresnel blend's normal-incidence colour, metallic and
-    // index, and the Trowbridge–Reitz alphas.
-    RGB specular, cspec0;
+    // The specular lobe (unscaled, as the reference pbrt-v3 builds it; later pbrt-v3 sources
+    // scale it by the colour as well): the Fresnel blend's normal-incidence colour, metallic
+    // and index, and the Trowbridge–Reitz alphas.
+    RGB cspec0;
     float metallic = 0, eta = 1.5f, ax = 0.001f, ay = 0.001f;
     float clearcoat = 0, clearcoatGloss = 1;
     // Microfacet transmission (scale, alphas; thin: pbrt's height-correlated masking, else the

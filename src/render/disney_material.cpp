@@ -5,6 +5,7 @@
 
 #include "render/bsdf.h"
 #include "render/bssrdf.h"
+#include "render/materials.h"
 
 namespace prism {
 
@@ -17,11 +18,7 @@ RGB ScatterDistance(const TexturePtr &sd, const TextureContext &tc) {
 
 }  // namespace
 
-bool DisneyMaterial::HasSubsurface() const {
-    if (p_.thin || !p_.scatterDistance) return false;
-    const auto *c = dynamic_cast<const ConstantTexture *>(p_.scatterDistance.get());
-    return !c || !c->Value().Clamped(0.f).IsBlack();
-}
+bool DisneyMaterial::HasSubsurface() const { return !p_.thin && MaybeNonBlack(p_.scatterDistance); }
 
 bool DisneyMaterial::SubsurfaceAt(const TextureContext &tc, const Vec3f &po, const Vec3f &ns,
                                   const Vec3f &dpdu, SeparableBssrdf *out) const {
@@ -58,9 +55,7 @@ void DisneyMaterial::AddParts(BSDF &b, const TextureContext &tc, const RGB &weig
             // The diffuse light enters the BSSRDF through a smooth dielectric transmission.
             part.kt = RGB(1);
             part.eta = e;
-            part.specularFresnel.kind = FresnelKind::Dielectric;
-            part.specularFresnel.etaI = 1;
-            part.specularFresnel.etaT = e;
+            part.specularFresnel = Dielectric(1, e);
         }
         l.retro = c * diffuseWeight;
         const float sheen = EvalFloat(p_.sheen, tc);
@@ -78,9 +73,6 @@ void DisneyMaterial::AddParts(BSDF &b, const TextureContext &tc, const RGB &weig
     l.cspec0 = dielectric * (1 - metallic) + c * metallic;
     l.metallic = metallic;
     l.eta = e;
-    // The reference pbrt-v3 (docs/PBRT3_COMPARISON.md) builds the specular lobe with R = 1;
-    // later pbrt-v3 sources scale it by the colour as well.
-    l.specular = RGB(1);
     l.clearcoat = std::max(0.f, EvalFloat(p_.clearcoat, tc));
     l.clearcoatGloss = EvalFloat(p_.clearcoatGloss, tc);
     l.thin = p_.thin;
@@ -101,9 +93,7 @@ void DisneyMaterial::AddParts(BSDF &b, const TextureContext &tc, const RGB &weig
 }
 
 unsigned DisneyMaterial::LobeNeeds() const {
-    const auto *a = dynamic_cast<const ConstantTexture *>(p_.anisotropic.get());
-    const bool aniso = !a || a->Value().r != 0;
-    return MaterialModel::LobeNeeds() | (aniso ? NeedDpdu : NeedNone);
+    return MaterialModel::LobeNeeds() | (MaybeNonZero(p_.anisotropic) ? NeedDpdu : NeedNone);
 }
 
 std::vector<const Texture *> DisneyMaterial::Textures() const {

@@ -15,25 +15,11 @@ const ConstantTexture *AsConstant(const TexturePtr &t) {
     return dynamic_cast<const ConstantTexture *>(t.get());
 }
 
-// False only when the texture is a constant black (or absent): the lobe can never appear.
-bool MaybeNonBlack(const TexturePtr &t) {
-    if (!t) return false;
-    const ConstantTexture *c = AsConstant(t);
-    return !c || !c->Value().Clamped(0.f).IsBlack();
-}
-
 // True unless the texture is a constant of at least 1 in every channel.
 bool MaybeBelowOne(const TexturePtr &t) {
     if (!t) return false;
     const ConstantTexture *c = AsConstant(t);
     return !c || c->Value().r < 1 || c->Value().g < 1 || c->Value().b < 1;
-}
-
-// False only when the (float) texture is absent or the constant 0.
-bool MaybeNonZero(const TexturePtr &t) {
-    if (!t) return false;
-    const ConstantTexture *c = AsConstant(t);
-    return !c || c->Value().r != 0;
 }
 
 bool Varies(const TexturePtr &t) { return t && !t->IsConstant(); }
@@ -44,14 +30,6 @@ bool MaybeAnisotropic(const TexturePtr &u, const TexturePtr &v) {
     if (u == v) return false;
     const ConstantTexture *cu = AsConstant(u), *cv = AsConstant(v);
     return !cu || !cv || cu->Value().r != cv->Value().r;
-}
-
-Fresnel Dielectric(float etaI, float etaT) {
-    Fresnel f;
-    f.kind = FresnelKind::Dielectric;
-    f.etaI = etaI;
-    f.etaT = etaT;
-    return f;
 }
 
 TexturePtr Constant(RGB v) { return std::make_shared<ConstantTexture>(v); }
@@ -65,6 +43,28 @@ void ReadUberRoughness(const MaterialParams &p, float def, UberMaterial::Params 
 }
 
 }  // namespace
+
+Fresnel Dielectric(float etaI, float etaT) {
+    Fresnel f;
+    f.kind = FresnelKind::Dielectric;
+    f.etaI = etaI;
+    f.etaT = etaT;
+    return f;
+}
+
+// False only when the (float) texture is absent or the constant 0.
+bool MaybeNonZero(const TexturePtr &t) {
+    if (!t) return false;
+    const ConstantTexture *c = AsConstant(t);
+    return !c || c->Value().r != 0;
+}
+
+// False only when the texture is a constant black (or absent): the lobe can never appear.
+bool MaybeNonBlack(const TexturePtr &t) {
+    if (!t) return false;
+    const ConstantTexture *c = AsConstant(t);
+    return !c || !c->Value().Clamped(0.f).IsBlack();
+}
 
 // pbrt-v4 remaps roughness r to alpha = sqrt(r) (v3 used a polynomial that never reaches 0):
 // constant u/v roughness of a v4 material ("conductor", "dielectric") is converted here.

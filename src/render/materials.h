@@ -25,6 +25,13 @@ Roughness ReadUVRoughness(const MaterialParams &p, float def, const std::string 
 // pbrt-v4's conductor given its normal-incidence reflectance r: eta 1 and this k,
 // 2 sqrt(r / (1 - r)) (r clamped below 1), reproduce r at normal incidence.
 RGB ConductorKFromReflectance(RGB r);
+// False only when the texture is absent or a constant black (after clamping below 0): the lobe
+// it scales can never appear.
+bool MaybeNonBlack(const TexturePtr &t);
+// False only when the (float) texture is absent or the constant 0.
+bool MaybeNonZero(const TexturePtr &t);
+// The dielectric Fresnel term between indices etaI (outside) and etaT (inside).
+Fresnel Dielectric(float etaI, float etaT);
 // pbrt-v4's roughness remapping (alpha = sqrt(roughness)) applied to constant roughness, which
 // then needs no remapping at hits (pbrt-v4's "conductor", "dielectric" and "subsurface").
 void RemapRoughnessAsV4(Roughness &r);

@@ -27,7 +27,6 @@ DisneyLobe Lobe(bool thin) {
     l.retro = RGB(0.3f, 0.2f, 0.1f);
     l.sheen = RGB(0.2f);
     l.roughness = 0.4f;
-    l.specular = RGB(0.8f, 0.6f, 0.4f);
     l.cspec0 = RGB(0.2f, 0.15f, 0.1f);
     l.metallic = 0.3f;
     l.eta = 1.5f;
