@@ -81,6 +81,8 @@ void BuildLights(BuildContext &ctx) {
         // A light that is neither delta nor an area light surrounds the scene (infinite).
         if (!light->IsDelta() && !light->IsArea()) scene.features.environment = true;
         scene.lights.push_back(std::move(light));
+        scene.lightMedia.resize(scene.lights.size());
+        scene.lightMedia.back() = {l.medium, l.medium};
         NoteLightEffects(ctx, "LightSource " + Quote(l.type), l.loc);
     }
 }
@@ -171,6 +173,8 @@ const AreaLightDesc *AddAreaLight(BuildContext &ctx, const ShapeDesc &s, int sha
     }
     const DiffuseAreaLight &al = *light;
     scene.lights.push_back(std::move(light));
+    scene.lightMedia.resize(scene.lights.size());
+    scene.lightMedia.back() = {s.mediumInside, s.mediumOutside};
     ShapeInfo &info = scene.shapes[size_t(shape)];
     info.areaLight = int(scene.lights.size()) - 1;
     scene.features.areaLights = true;

@@ -6,6 +6,7 @@
 
 #include "render/area_light.h"
 #include "render/bdpt_vertex.h"
+#include "render/medium_tracking.h"
 #include "render/ray_counters.h"
 #include "render/render_scene.h"
 
@@ -24,17 +25,21 @@ Vec3f Direction(const BdptVertex &from, const BdptVertex &to) {
     return Normalize(to.p - from.p);
 }
 
-// f at surface vertex v toward wi: the BSDF for radiance (camera paths), its adjoint with the
-// shading-normal correction for importance (light paths).
+// f at surface or medium vertex v toward wi: the BSDF for radiance (camera paths), its adjoint
+// with the shading-normal correction for importance (light paths); in a medium the phase
+// function, its own adjoint.
 RGB VertexF(const BdptVertex &v, const Vec3f &wi, bool importance) {
+    if (v.type == BdptVertexType::Medium) return RGB(v.phase->p(v.wo, wi));
     if (importance) return v.bsdf->f(wi, v.wo) * ShadingCorrection(v, v.wo, wi);
     return v.bsdf->f(v.wo, wi);
 }
 
-// The density with which surface vertex v scatters toward `to` when it was reached from
-// `from`, per unit area at `to`.
+// The density with which surface or medium vertex v scatters toward `to` when it was reached
+// from `from`, per unit area at `to`.
 float ScatterDensity(const BdptVertex &v, const BdptVertex &from, const BdptVertex &to) {
-    const float pdf = v.bsdf->Pdf(Direction(v, from), Direction(v, to), true);
+    const Vec3f wo = Direction(v, from), wi = Direction(v, to);
+    const float pdf =
+        v.type == BdptVertexType::Medium ? v.phase->p(wo, wi) : v.bsdf->Pdf(wo, wi, true);
     return AreaDensity(pdf, v, to);
 }
 
@@ -138,11 +143,23 @@ void FillDensities(const BdptContext &ctx, const std::vector<BdptVertex> &lightP
     if (ptMinus) d.light[size_t(s + 1)] = ScatterDensity(pt, qs, *ptMinus);
 }
 
-bool Visible(const RenderScene &scene, const BdptVertex &from, const BdptVertex &to,
-             RayCounters &rc) {
+// The transmittance of the connection from `from` to `to`: 0 when a surface blocks it, else
+// that of the media on the way (through invisible boundaries, as the walks pass them, and as
+// pbrt-v3's bdpt connects through them with or without media). Grids' ratio tracking draws
+// from a stream the camera vertex's sample `seedDim` and the strategy seed.
+RGB Transmittance(const BdptContext &ctx, const BdptVertex &from, const BdptVertex &to,
+                  const BdptSamples &ps, uint32_t seedDim, int s, RayCounters &rc) {
+    const RenderScene &scene = ctx.scene;
     rc.shadow++;
-    if (to.infinite) return !scene.accel->Occluded(from.si.SpawnRay(to.wo, scene.offset));
-    return !scene.accel->Occluded(from.si.SpawnRayTo(to.p, scene.offset));
+    const Ray ray = to.infinite ? from.si.SpawnRay(to.wo, scene.offset)
+                                : from.si.SpawnRayTo(to.p, scene.offset);
+    if (scene.media.empty()) {
+        MediumSampler unused(0);
+        return ShadowTransmittance(scene, ray, -1, to.infinite, unused, rc);
+    }
+    MediumSampler sampler(SampleSeed(ps, seedDim, uint32_t(s)));
+    return ShadowTransmittance(scene, ray, MediumToward(scene, from, ray.d), to.infinite, sampler,
+                               rc);
 }
 
 thread_local PathDensities densities;
@@ -201,6 +218,7 @@ RGB ConnectStrategy(const BdptContext &ctx, const std::vector<BdptVertex> &light
         if (s == 1 && (!lt.IsArea())) return RGB(0);  // delta and infinite lights: not seen
         CameraImportance::Sample cs;
         if (!ctx.camera.SampleWi(qs0.p, ps.Get2D(BdptLightDim(s - 1, 2)), &cs)) return RGB(0);
+        const uint32_t seedDim = BdptLightDim(s - 1, 6);
         sampled.type = BdptVertexType::Camera;
         sampled.p = cs.pLens;
         sampled.beta = RGB(cs.we / cs.pdf);
@@ -209,11 +227,12 @@ RGB ConnectStrategy(const BdptContext &ctx, const std::vector<BdptVertex> &light
             if (!area.TwoSided() && Dot(qs0.ng, cs.wi) <= 0) return RGB(0);
             L = qs0.beta * (AbsDot(qs0.ng, cs.wi) * cs.we / cs.pdf);
         } else {
-            L = qs0.beta * VertexF(qs0, cs.wi, true) * (AbsDot(qs0.ns, cs.wi) * cs.we / cs.pdf);
+            L = qs0.beta * VertexF(qs0, cs.wi, true) * (qs0.AbsCos(cs.wi) * cs.we / cs.pdf);
         }
         if (L.IsBlack()) return L;
         cameraV = &sampled;
-        if (!Visible(scene, qs0, sampled, rc)) return RGB(0);
+        L *= Transmittance(ctx, qs0, sampled, ps, seedDim, s, rc);
+        if (L.IsBlack()) return L;
         *raster = cs.raster;
     } else if (s == 1) {
         // A light sample seen from the camera path's pt (next-event estimation).
@@ -246,10 +265,11 @@ RGB ConnectStrategy(const BdptContext &ctx, const std::vector<BdptVertex> &light
         if (!(pdf > 0) || Li.IsBlack()) return RGB(0);
         if (sampled.infinite) sampled.wo = wi;
         sampled.pdfFwd = EmitterDensities(ctx, sampled, l, nullptr).origin;
-        L = pt0.beta * pt0.bsdf->f(pt0.wo, wi) * Li * (AbsDot(wi, pt0.ns) / (pdf * prob));
+        L = pt0.beta * VertexF(pt0, wi, false) * Li * (pt0.AbsCos(wi) / (pdf * prob));
         if (L.IsBlack()) return L;
         lightV = &sampled;
-        if (!Visible(scene, pt0, sampled, rc)) return RGB(0);
+        L *= Transmittance(ctx, pt0, sampled, ps, BdptCameraDim(t - 1, 6), s, rc);
+        if (L.IsBlack()) return L;
     } else {
         // Two surface vertices joined by a shadow ray.
         if (!qs0.Connectible() || !pt0.Connectible() || pt0.infinite) return RGB(0);
@@ -257,10 +277,11 @@ RGB ConnectStrategy(const BdptContext &ctx, const std::vector<BdptVertex> &light
         const float d2 = LengthSquared(d);
         if (!(d2 > 0)) return RGB(0);
         d = d / std::sqrt(d2);
-        const float G = AbsDot(pt0.ns, d) * AbsDot(qs0.ns, d) / d2;
-        L = qs0.beta * VertexF(qs0, -d, true) * pt0.bsdf->f(pt0.wo, d) * pt0.beta * G;
+        const float G = pt0.AbsCos(d) * qs0.AbsCos(d) / d2;
+        L = qs0.beta * VertexF(qs0, -d, true) * VertexF(pt0, d, false) * pt0.beta * G;
         if (L.IsBlack()) return L;
-        if (!Visible(scene, pt0, qs0, rc)) return RGB(0);
+        L *= Transmittance(ctx, pt0, qs0, ps, BdptCameraDim(t - 1, 6), s, rc);
+        if (L.IsBlack()) return L;
     }
     FillDensities(ctx, light, camera, s, t, lightV, cameraV, l, densities);
     const Light &lt = *scene.lights[size_t(l)];

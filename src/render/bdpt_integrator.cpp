@@ -7,6 +7,7 @@
 #include "core/params.h"
 #include "render/bdpt_vertex.h"
 #include "render/effects.h"
+#include "render/medium_tracking.h"
 #include "render/render_scene.h"
 
 namespace prism {
@@ -52,12 +53,14 @@ IntegratorTraits BdptIntegrator::Traits() const {
     t.samplePatterns = true;
     t.roughGlass = true;
     t.splats = true;
+    t.media = true;
     return t;
 }
 
 void BdptIntegrator::Prepare(const RenderScene &scene) {
     chooser_ = LightChooser(scene, choice_);
     sphere_ = BoundingSphere(scene);
+    infinityMedium_ = scene.media.empty() ? -1 : MediumAtInfinity(scene);
     if (scene.camera) camera_ = CameraImportance(*scene.camera, scene.pixelBounds);
     if (scene.camera && !camera_.Supported())
         throw SceneError(loc_, "Integrator \"bdpt\" needs a perspective camera (as in pbrt-v3)");
@@ -69,7 +72,8 @@ RGB BdptIntegrator::Sample(const RenderScene &scene, const Ray &ray, const Pixel
     const size_t capacity = size_t(ps.trace.maxDepth) + 3;
     if (cameraPath.capacity() < capacity) cameraPath.reserve(capacity);
     if (lightPath.capacity() < capacity) lightPath.reserve(capacity);
-    const BdptContext ctx{scene, chooser_, camera_, sphere_, ps.trace.maxDepth, regularize_};
+    const BdptContext ctx{scene,       chooser_,       camera_, sphere_, ps.trace.maxDepth,
+                          regularize_, infinityMedium_};
     const BdptPixelSamples samples(ps);
     CameraSubpath(ctx, ray, samples, ps.diff, cameraPath, rc);
     LightSubpath(ctx, samples, lightPath, rc);

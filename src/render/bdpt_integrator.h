@@ -3,7 +3,8 @@
 // camera path hitting a light, s = 1 a light sample (next-event estimation), t = 1 light
 // tracing onto the film (TileSamples splats) — weighted by multiple importance sampling
 // (the balance heuristic, as pbrt-v3). Subpaths and connections: render/bdpt_vertex.h.
-// Participating media are not rendered (a warning, Traits().media false). docs/INTEGRATORS.md.
+// In participating media the subpaths scatter at medium vertices and connections carry the
+// transmittance between their ends (pbrt-v3's bdpt with media). docs/INTEGRATORS.md.
 #pragma once
 
 #include "render/bdpt_camera.h"
@@ -39,6 +40,7 @@ class BdptIntegrator : public Integrator {
     LightChooser chooser_;
     CameraImportance camera_;
     SceneSphere sphere_;
+    int infinityMedium_ = -1;  // MediumAtInfinity
 };
 
 }  // namespace prism

@@ -2,10 +2,13 @@
 // (render/bdpt_vertex.h).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <optional>
 
 #include "render/area_light.h"
 #include "render/bdpt_vertex.h"
 #include "render/differentials.h"
+#include "render/medium_tracking.h"
 #include "render/ray_counters.h"
 #include "render/render_scene.h"
 
@@ -13,6 +16,19 @@ namespace prism {
 
 uint32_t BdptCameraDim(int vertex, uint32_t d) { return 16 + uint32_t(vertex) * 8 + d; }
 uint32_t BdptLightDim(int vertex, uint32_t d) { return (1u << 16) + uint32_t(vertex) * 8 + d; }
+
+uint64_t SampleSeed(const BdptSamples &ps, uint32_t dim, uint32_t salt) {
+    const float u = ps.Get1D(dim);
+    uint32_t bits;
+    std::memcpy(&bits, &u, sizeof bits);
+    return MixBits64(uint64_t(bits) << 32 | salt);
+}
+
+int MediumToward(const RenderScene &scene, const BdptVertex &v, const Vec3f &w) {
+    if (v.type == BdptVertexType::Surface) return MediumAfter(*v.shape, v.si, w, v.medium);
+    if (v.type == BdptVertexType::Light && !v.infinite) return scene.LightMedium(v.light, v.ng, w);
+    return v.medium;
+}
 
 // The density pdf of a direction leaving `from` as a density per unit area at `to` (per unit
 // solid angle when `to` is at infinity). From an infinite light, pdf is the density per unit
@@ -43,25 +59,82 @@ bool HasInfiniteLight(const RenderScene &scene) {
     return false;
 }
 
-// Follows `ray` from path.back() for at most `surfaces` more surface vertices, each sampling
-// its BSDF for the next (importance: the adjoint BSDF, for light paths). pdfDir: the density
-// of ray's direction at path.back(). Camera paths that escape end at the infinite lights.
-void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importance, int surfaces,
-          const BdptSamples &ps, const RayDifferential *diff, std::vector<BdptVertex> &path,
-          RayCounters &rc) {
+// The random numbers of the medium sampling of the segment leaving vertex `vertex` of a
+// subpath: the first two from the path's samples, the rest from a stream a third one seeds.
+MediumSampler SegmentSampler(const BdptSamples &ps, bool importance, int vertex) {
+    auto dim = [&](uint32_t d) {
+        return importance ? BdptLightDim(vertex, d) : BdptCameraDim(vertex, d);
+    };
+    return MediumSampler(SampleSeed(ps, dim(5), 0), ps.Get2D(dim(4)));
+}
+
+// Follows `ray`, in `medium`, from path.back() for at most `vertices` more surface or medium
+// vertices, each sampling its BSDF or phase function for the next (importance: the adjoint
+// BSDF, for light paths). pdfDir: the density of ray's direction at path.back(). Camera paths
+// that escape end at the infinite lights.
+void Walk(const BdptContext &ctx, Ray ray, int medium, RGB beta, float pdfDir, bool importance,
+          int vertices, const BdptSamples &ps, const RayDifferential *diff,
+          std::vector<BdptVertex> &path, RayCounters &rc) {
     const RenderScene &scene = ctx.scene;
     int passes = 0, made = 0;
     bool anyNonSpecular = false;  // for regularize
-    while (made < surfaces) {
+    Vec3f from = path.back().p;   // where the current medium segment begins
+    // The medium sampling of the segments from path.back() (more than one when the ray
+    // crosses boundaries): one stream, made when a medium first needs it.
+    std::optional<MediumSampler> sampler;
+    while (made < vertices) {
         SurfaceInteraction si;
-        if (!scene.accel->Intersect(ray, &si, importance ? ShadowRays : CameraRays)) {
+        const bool found = scene.accel->Intersect(ray, &si, importance ? ShadowRays : CameraRays);
+        const size_t i = path.size();
+        const int vertex = int(i);
+        auto dim = [&](uint32_t d) {
+            return importance ? BdptLightDim(vertex, d) : BdptCameraDim(vertex, d);
+        };
+        if (medium >= 0) {
+            // The medium up to the hit: a scattering point, or the transmittance to the hit.
+            if (!sampler) sampler = SegmentSampler(ps, importance, vertex - 1);
+            MediumInteraction mi;
+            bool scattered = false;
+            const Medium &m = *scene.media[size_t(medium)];
+            beta *= m.Sample(MediumSegment(ray, from, found ? &si.p : nullptr), *sampler, &mi,
+                             &scattered);
+            if (beta.IsBlack() || !beta.IsFinite()) return;
+            if (scattered) {
+                passes = 0;
+                BdptVertex &v = path.emplace_back();
+                v.type = BdptVertexType::Medium;
+                v.p = mi.p;
+                v.si.p = mi.p;
+                v.si.time = ray.time;
+                v.wo = -Normalize(ray.d);
+                v.beta = beta;
+                v.medium = medium;
+                v.phase = &m.Phase();
+                v.pdfFwd = AreaDensity(pdfDir, path[i - 1], v);
+                if (++made >= vertices) return;
+                Vec3f wi;
+                const float pdf = m.Phase().Sample_p(v.wo, &wi, ps.Get2D(dim(0)));
+                if (!(pdf > 0)) return;
+                pdfDir = pdf;  // the phase function is its own density: beta is unchanged
+                path[i - 1].pdfRev = AreaDensity(pdf, v, path[i - 1]);
+                anyNonSpecular = true;
+                rc.reflection++;
+                ray = v.si.SpawnRay(wi, scene.offset);
+                from = v.p;
+                sampler.reset();
+                continue;
+            }
+        }
+        if (!found) {
             if (!importance && HasInfiniteLight(scene)) {
                 BdptVertex &v = path.emplace_back();
                 v.type = BdptVertexType::Light;
                 v.infinite = true;
-                v.wo = ray.d;  // toward the light, as a light vertex at infinity keeps it
+                // Toward the light, as a light vertex at infinity keeps it.
+                v.wo = Normalize(ray.d);
                 v.beta = beta;
                 v.pdfFwd = pdfDir;
+                v.medium = medium;
             }
             return;
         }
@@ -70,13 +143,14 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
         if (mat.IsPassThrough()) {
             // pbrt: a surface without a BSDF continues the ray without counting a bounce.
             if (++passes > MaxPassThrough) return;
+            medium = MediumAfter(info, si, ray.d, medium);
             ray = si.SpawnRay(ray.d, scene.offset);
+            from = si.p;
             rc.passThrough++;
             continue;
         }
         const bool cameraHit = passes == 0 && made == 0 && diff;
         passes = 0;
-        const size_t i = path.size();
         BdptVertex &v = path.emplace_back();
         v.type = BdptVertexType::Surface;
         v.si = si;
@@ -87,6 +161,8 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
         v.wo = -ray.d;
         v.beta = beta;
         v.light = info.areaLight;
+        v.medium = medium;
+        v.shape = &info;
         TextureContext tc = SurfaceTextureContext(si);
         if (cameraHit) ComputeDifferentials(si, *diff, &tc);
         if (!importance && mat.HasEmission()) v.emitted = mat.Emitted(tc);
@@ -94,13 +170,10 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
         if (ctx.regularize && anyNonSpecular) v.bsdf->Regularize();
         v.bsdf->MakeRoughSpecularGlossy();  // pbrt-v3: rough glass is a microfacet BSDF
         v.pdfFwd = AreaDensity(pdfDir, path[i - 1], v);
-        if (++made >= surfaces) return;
+        if (++made >= vertices) return;
         // The next direction.
-        const int vertex = int(i);
-        const uint32_t d0 = importance ? BdptLightDim(vertex, 0) : BdptCameraDim(vertex, 0);
-        const uint32_t d1 = importance ? BdptLightDim(vertex, 1) : BdptCameraDim(vertex, 1);
         BSDFSample bs;
-        if (!v.bsdf->Sample_f(v.wo, ps.Get2D(d0), ps.Get1D(d1), true, &bs)) return;
+        if (!v.bsdf->Sample_f(v.wo, ps.Get2D(dim(0)), ps.Get1D(dim(1)), true, &bs)) return;
         RGB w = bs.weight;
         anyNonSpecular = anyNonSpecular || !bs.specular;
         float pdfRev = 0;
@@ -123,7 +196,10 @@ void Walk(const BdptContext &ctx, Ray ray, RGB beta, float pdfDir, bool importan
             rc.reflection++;
         beta = beta * w;
         if (beta.IsBlack() || !beta.IsFinite()) return;
+        medium = MediumAfter(info, v.si, bs.wi, medium);
         ray = v.si.SpawnRay(bs.wi, scene.offset);
+        from = v.p;
+        sampler.reset();
     }
 }
 
@@ -139,7 +215,8 @@ void CameraSubpath(const BdptContext &ctx, const Ray &ray, const BdptSamples &ps
     z0.pdfFwd = 1;
     float pdfPos, pdfDir;
     ctx.camera.Pdf(ray.d, &pdfPos, &pdfDir);
-    Walk(ctx, ray, RGB(1), pdfDir, false, ctx.maxDepth + 1, ps, diff, path, rc);
+    z0.medium = ctx.scene.cameraMedium;
+    Walk(ctx, ray, z0.medium, RGB(1), pdfDir, false, ctx.maxDepth + 1, ps, diff, path, rc);
 }
 
 void LightSubpath(const BdptContext &ctx, const BdptSamples &ps, std::vector<BdptVertex> &path,
@@ -173,15 +250,28 @@ void LightSubpath(const BdptContext &ctx, const BdptSamples &ps, std::vector<Bdp
     y0.pdfFwd = prob * pdfOrigin;
     y0.beta = ls.Le / (prob * pdfOrigin);
     const float cosLight = ls.n == Vec3f(0, 0, 0) ? 1.f : AbsDot(ls.n, ls.ray.d);
-    const RGB beta = ls.Le * (cosLight / (prob * ls.pdfPos * ls.pdfDir));
+    RGB beta = ls.Le * (cosLight / (prob * ls.pdfPos * ls.pdfDir));
+    // The medium the emitted ray begins in. Light from infinitely far has crossed the medium
+    // around the scene on its way to the disk it starts from: none of it when that medium is
+    // unbounded and absorbs (as the camera paths escaping into it see), all of it when the
+    // medium is empty out there (a grid's box).
+    if (y0.infinite) {
+        y0.medium = ctx.infinityMedium;
+        if (y0.medium >= 0) {
+            MediumSampler sampler(SampleSeed(ps, BdptLightDim(0, 7), 0));
+            beta *= scene.media[size_t(y0.medium)]->Tr(Ray{ls.ray.o, -ls.ray.d}, sampler);
+        }
+    } else {
+        y0.medium = scene.LightMedium(l, ls.n, ls.ray.d);
+    }
     if (beta.IsBlack() || !beta.IsFinite()) return;
     // Point and spot lights (no normal) keep their ray as drawn, with its tMin.
     const Ray ray =
         y0.infinite || ls.n == Vec3f(0, 0, 0) ? ls.ray : y0.si.SpawnRay(ls.ray.d, scene.offset);
     rc.shadow++;  // light rays are counted with the shadow rays
     // The next vertex's density: the direction's, or the disk's at infinity.
-    Walk(ctx, ray, beta, y0.infinite ? ls.pdfPos : ls.pdfDir, true, ctx.maxDepth, ps, nullptr, path,
-         rc);
+    Walk(ctx, ray, y0.medium, beta, y0.infinite ? ls.pdfPos : ls.pdfDir, true, ctx.maxDepth, ps,
+         nullptr, path, rc);
 }
 
 }  // namespace prism

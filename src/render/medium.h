@@ -20,15 +20,24 @@
 namespace prism {
 
 // The random numbers of medium sampling: a PCG32 stream seeded from the pixel, sample and
-// path vertex, so renders stay a pure function of the pixel.
+// path vertex, so renders stay a pure function of the pixel. The first two may be given
+// (Lead): a sampler's stratified numbers, or a Markov chain's, which its small mutations then
+// move a little (a homogeneous medium's channel and distance).
 class MediumSampler {
   public:
     explicit MediumSampler(uint64_t seed, uint64_t stream = 0x6d656469756dULL)
         : rng_(seed, stream) {}
-    float Get1D() { return rng_.Uniform(); }
+    MediumSampler(uint64_t seed, Vec2f lead)
+        : rng_(seed, 0x6d656469756dULL), lead_(lead), next_(0) {}
+    float Get1D() {
+        if (next_ < 2) return next_++ == 0 ? lead_.x : lead_.y;
+        return rng_.Uniform();
+    }
 
   private:
     PCG32 rng_;
+    Vec2f lead_;
+    int next_ = 2;  // lead_'s next number (2: none left)
 };
 
 // Henyey–Greenstein phase function for the cosine between wo and wi, both pointing away from

@@ -44,4 +44,18 @@ RGB ShadowTransmittance(const RenderScene &scene, const Ray &ray, int medium, bo
     return tr;
 }
 
+int MediumAtInfinity(const RenderScene &scene) {
+    int medium = scene.cameraMedium;
+    if (!scene.accel) return medium;
+    // Any direction does, in a scene whose interfaces agree; this one meets no axis-aligned
+    // wall edge-on.
+    Ray ray{Vec3f(0, 0, 0), Normalize(Vec3f(0.301f, 0.512f, 0.805f))};
+    SurfaceInteraction hit;
+    for (int crossings = 0; crossings < 100000 && scene.accel->Intersect(ray, &hit); ++crossings) {
+        medium = MediumAfter(scene.Info(hit), hit, ray.d, medium);
+        ray = hit.SpawnRay(ray.d, scene.offset);
+    }
+    return medium;
+}
+
 }  // namespace prism

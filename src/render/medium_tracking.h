@@ -46,4 +46,12 @@ bool IntersectTr(const RenderScene &scene, Ray ray, int medium, bool infinite,
 RGB ShadowTransmittance(const RenderScene &scene, const Ray &ray, int medium, bool infinite,
                         MediumSampler &sampler, RayCounters &counters);
 
+// The medium a ray escaping the scene ends in: a straight line from the camera (the origin of
+// render space) crossing every surface on its way, each MediumInterface changing the medium
+// as a ray through it would; the camera's medium when nothing is in the way. Where the light
+// of infinite and distant lights begins (pbrt-v3 starts it in vacuum whatever surrounds the
+// scene, which lights a scene inside an unbounded medium through strategies that its camera
+// paths, dying in that medium, never match).
+int MediumAtInfinity(const RenderScene &scene);
+
 }  // namespace prism

@@ -10,6 +10,7 @@
 #include "image/image.h"
 #include "render/bdpt_vertex.h"
 #include "render/effects.h"
+#include "render/medium_tracking.h"
 #include "render/mlt_sampler.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
@@ -61,12 +62,14 @@ std::unique_ptr<Integrator> CreateMltIntegrator(const IntegratorInputs &in) {
 IntegratorTraits MltIntegrator::Traits() const {
     IntegratorTraits t;
     t.roughGlass = true;
+    t.media = true;
     return t;
 }
 
 void MltIntegrator::Prepare(const RenderScene &scene) {
     chooser_ = LightChooser(scene, LightChoice::Power);
     sphere_ = BoundingSphere(scene);
+    infinityMedium_ = scene.media.empty() ? -1 : MediumAtInfinity(scene);
     if (scene.camera) camera_ = CameraImportance(*scene.camera, scene.pixelBounds);
     if (scene.camera && !camera_.Supported())
         throw SceneError(loc_, "Integrator \"mlt\" needs a perspective camera (as in pbrt-v3)");
@@ -136,12 +139,14 @@ RGB MltIntegrator::PathRadiance(const FrameContext &frame, const MltSampler &sam
     }
     thread_local std::vector<BdptVertex> cameraPath, lightPath;
     // The subpaths have exactly t and s vertices: bdpt's walks with depths to match.
-    const BdptContext cameraCtx{scene, chooser_, camera_, sphere_, t - 2, params_.regularize};
+    const BdptContext cameraCtx{scene, chooser_,           camera_,        sphere_,
+                                t - 2, params_.regularize, infinityMedium_};
     CameraSubpath(cameraCtx, ray, sampler, diff ? &*diff : nullptr, cameraPath, rc);
     if (int(cameraPath.size()) != t) return RGB(0);
     lightPath.clear();
     if (s > 0) {
-        const BdptContext lightCtx{scene, chooser_, camera_, sphere_, s - 1, params_.regularize};
+        const BdptContext lightCtx{scene, chooser_,           camera_,        sphere_,
+                                   s - 1, params_.regularize, infinityMedium_};
         LightSubpath(lightCtx, sampler, lightPath, rc);
         if (int(lightPath.size()) != s) return RGB(0);
     }

@@ -8,7 +8,7 @@
 // acceptance probability, and the image is the splats times b / mutationsperpixel. A whole-
 // frame integrator (Integrator::RendersWholeFrame): chain i's random numbers are a pure
 // function of i and its splats are summed in chain order, so the image is the same for any
-// thread count. Participating media are not rendered (as bdpt). docs/INTEGRATORS.md.
+// thread count. Participating media are rendered as bdpt renders them. docs/INTEGRATORS.md.
 #pragma once
 
 #include <cstdint>
@@ -55,6 +55,7 @@ class MltIntegrator : public Integrator {
     LightChooser chooser_;
     CameraImportance camera_;
     SceneSphere sphere_;
+    int infinityMedium_ = -1;  // MediumAtInfinity
 };
 
 }  // namespace prism

@@ -119,6 +119,20 @@ struct RenderScene {
     // medium only when features.effects has Effect::Media (render/kernel.h KernelMedia).
     std::vector<std::unique_ptr<Medium>> media;
     int cameraMedium = -1;
+    // The media around each light (by index into lights), where the rays it emits begin
+    // (pbrt-v3's light MediumInterface): an area light's shape's inside and outside, for other
+    // lights the outside medium current at LightSource for both. Missing: vacuum.
+    struct LightMedia {
+        int inside = -1, outside = -1;
+    };
+    std::vector<LightMedia> lightMedia;
+    // The medium of a ray light `light` emits from a point with normal n (zero: none) in
+    // direction w.
+    int LightMedium(int light, const Vec3f &n, const Vec3f &w) const {
+        if (light < 0 || size_t(light) >= lightMedia.size()) return -1;
+        const LightMedia &m = lightMedia[size_t(light)];
+        return Dot(n, w) > 0 ? m.outside : m.inside;
+    }
     SceneFeatures features;
     // Some material filters a texture over the ray's footprint (Material::UsesDifferentials):
     // camera rays carry ray differentials (render/differentials.h), specular bounces keep them.

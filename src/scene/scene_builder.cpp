@@ -441,6 +441,7 @@ void SceneBuilder::LightSource(const std::string &type, ParsedParameterVector pa
     static_cast<SceneEntity &>(l) = Entity("LightSource", type, std::move(params), loc);
     AddAttributes(l.params, AttributeTarget::Light);
     l.worldFromLight = ctm_;
+    l.medium = MediumIndex(gs_.mediumOutside, gs_.mediumLoc);
     scene_.lights.push_back(std::move(l));
 }
 

@@ -64,6 +64,9 @@ struct MediumDesc : SceneEntity {
 
 struct LightDesc : SceneEntity {
     Transform worldFromLight;
+    // The outside medium of the MediumInterface current at LightSource (pbrt-v3: the medium
+    // its emitted rays begin in; index into SceneDescription::media, -1: vacuum).
+    int medium = -1;
 };
 
 struct AreaLightDesc : SceneEntity {

@@ -15,6 +15,7 @@
 #include "support/image_stats.h"
 #include "support/render_text.h"
 #include "support/temp_dir.h"
+#include "support/text.h"
 
 namespace prism {
 namespace {
@@ -55,12 +56,8 @@ std::string Room(const std::string &integrator, int spp) {
            std::to_string(spp) + "]\n" + integrator +
            "\nWorldBegin\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\n"
            "Translate 0 3.2 0\nShape \"sphere\" \"float radius\" [0.3]\nAttributeEnd\n"
-           "Material \"matte\" \"rgb Kd\" [0.7 0.7 0.7]\n"
-           "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3  4 5 6 4 6 7  8 9 10 8 10 11"
-           "  12 13 14 12 14 15  16 17 18 16 18 19  20 21 22 20 22 23]\n"
-           "  \"point P\" [-2 0 -2 2 0 -2 2 0 2 -2 0 2   -2 0 -2 2 0 -2 2 4 -2 -2 4 -2"
-           "   -2 0 2 2 0 2 2 4 2 -2 4 2   2 0 -2 2 0 2 2 4 2 2 4 -2   -2 0 -2 -2 0 2 -2 4 2"
-           " -2 4 -2  -2 4 -2 2 4 -2 2 4 2 -2 4 2]\n"
+           "Material \"matte\" \"rgb Kd\" [0.7 0.7 0.7]\n" +
+           kClosedRoom +
            "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [0.2 0.3 0.6]\n"
            "Translate -0.6 0.6 -0.9\nShape \"sphere\" \"float radius\" [0.6]\nAttributeEnd\n";
 }

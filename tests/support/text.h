@@ -21,4 +21,8 @@ extern const char *const kCliHead;
 // material state is the floor's). For the integrators' tests of a plainly lit diffuse scene.
 extern const char *const kLitFloorFromLookAt;
 
+// A pbrt Shape: the six inward faces of the box [-2, 2] x [0, 4] x [-2, 2] (floor, walls and
+// ceiling) as one triangle mesh, in the current material. The bidirectional integrators' rooms.
+extern const char *const kClosedRoom;
+
 }  // namespace prism::test
