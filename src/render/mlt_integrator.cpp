@@ -143,8 +143,10 @@ RGB MltIntegrator::PathRadiance(const FrameContext &frame, const MltSampler &sam
                                 t - 2, params_.regularize, infinityMedium_};
     CameraSubpath(cameraCtx, ray, sampler, diff ? &*diff : nullptr, cameraPath, rc);
     if (int(cameraPath.size()) != t) return RGB(0);
+    // A light sample (s = 1, t > 1) draws its own light: no light subpath, which a light may
+    // not emit along the direction drawn (a projection light's cone outside its frustum).
     lightPath.clear();
-    if (s > 0) {
+    if (s > 1 || (s == 1 && t == 1)) {
         const BdptContext lightCtx{scene, chooser_,           camera_,        sphere_,
                                    s - 1, params_.regularize, infinityMedium_};
         LightSubpath(lightCtx, sampler, lightPath, rc);
