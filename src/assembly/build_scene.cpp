@@ -43,7 +43,10 @@ RenderScene BuildRenderScene(const SceneDescription &desc, const BuildSettings &
     FinishEffects(ctx);
     ComputeLightPower(scene);  // the path and directlighting integrators' light choice
     // Rays carry differentials only where a texture filters over their footprint.
-    for (const Material &m : scene.materials) scene.differentials |= m.UsesDifferentials();
+    for (const Material &m : scene.materials) {
+        scene.differentials |= m.UsesDifferentials();
+        scene.passThrough |= m.IsPassThrough();
+    }
     scene.allEffects = settings.allEffects;
     scene.estimateNoise = settings.estimateNoise;
     scene.integrator->Prepare(scene);  // the lights exist: e.g. the light choice

@@ -154,6 +154,8 @@ RGB Transmittance(const BdptContext &ctx, const BdptVertex &from, const BdptVert
     const Ray ray = to.infinite ? from.si.SpawnRay(to.wo, scene.offset)
                                 : from.si.SpawnRayTo(to.p, scene.offset);
     if (scene.media.empty()) {
+        // Without media or invisible surfaces, anything in the way blocks the connection.
+        if (!scene.passThrough) return scene.accel->Occluded(ray) ? RGB(0) : RGB(1);
         MediumSampler unused(0);
         return ShadowTransmittance(scene, ray, -1, to.infinite, unused, rc);
     }

@@ -134,6 +134,8 @@ struct RenderScene {
         return Dot(n, w) > 0 ? m.outside : m.inside;
     }
     SceneFeatures features;
+    // Some surface has no BSDF (Material::IsPassThrough): rays cross it without a bounce.
+    bool passThrough = false;
     // Some material filters a texture over the ray's footprint (Material::UsesDifferentials):
     // camera rays carry ray differentials (render/differentials.h), specular bounces keep them.
     bool differentials = false;
