@@ -1,6 +1,8 @@
 // glTF accessors: the bounds-checked view of an accessor's elements (tinygltf validates none)
 // and the readers of positions, normals, texture coordinates and indices built on it.
+#include <algorithm>
 #include <cstring>
+#include <memory>
 
 #include "scene/gltf_converter.h"
 
@@ -50,13 +52,80 @@ int ComponentCount(int type) {
 
 }  // namespace
 
+const unsigned char *GltfConverter::ViewBytes(int bufferView, uint64_t byteOffset, uint64_t bytes,
+                                              const std::string &name, const std::string &role) {
+    if (bufferView < 0 || size_t(bufferView) >= model_.bufferViews.size())
+        Fail(name + ": " + role + " has no valid buffer view");
+    const tinygltf::BufferView &bv = model_.bufferViews[size_t(bufferView)];
+    if (bv.buffer < 0 || size_t(bv.buffer) >= model_.buffers.size())
+        Fail(name + ": buffer view " + std::to_string(bufferView) + " has no valid buffer");
+    const tinygltf::Buffer &buf = model_.buffers[size_t(bv.buffer)];
+    // All in 64-bit with each term bounded by a size_t, so nothing can overflow.
+    const uint64_t viewEnd = uint64_t(bv.byteOffset) + uint64_t(bv.byteLength);
+    if (bv.byteOffset > buf.data.size() || viewEnd > buf.data.size())
+        Fail(name + ": buffer view " + std::to_string(bufferView) + " reaches past the end of " +
+             "its buffer (" + std::to_string(viewEnd) + " > " + std::to_string(buf.data.size()) +
+             " bytes)");
+    if (byteOffset > bv.byteLength || bytes > bv.byteLength - byteOffset)
+        Fail(name + ": " + role + " reaches past the end of its buffer view (" +
+             std::to_string(byteOffset) + " + " + std::to_string(bytes) + " > " +
+             std::to_string(bv.byteLength) + " bytes)");
+    return buf.data.data() + bv.byteOffset + byteOffset;
+}
+
+// glTF 2.0 §3.6.2.3: `count` elements replace the base's at strictly increasing indices below
+// the accessor's count; indices and values are tightly packed in their buffer views.
+void GltfConverter::ApplySparse(const tinygltf::Accessor &a, const std::string &name,
+                                uint64_t elemSize, std::vector<unsigned char> &elements) {
+    const auto &sp = a.sparse;
+    const Where where(*this, where_ + "/sparse");
+    if (sp.count < 1 || uint64_t(sp.count) > uint64_t(a.count))
+        Fail(name + ": sparse count " + std::to_string(sp.count) + " is not 1 to the accessor's " +
+             std::to_string(a.count));
+    const int type = sp.indices.componentType;
+    const int isz = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                    : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                    : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
+                                                                     : 0;
+    if (isz == 0) Fail(name + ": sparse indices must be unsigned byte, short or int");
+    const uint64_t count = uint64_t(sp.count);
+    const unsigned char *indices =
+        ViewBytes(sp.indices.bufferView, uint64_t(std::max(sp.indices.byteOffset, 0)),
+                  count * uint64_t(isz), name, "its sparse indices");
+    const unsigned char *values =
+        ViewBytes(sp.values.bufferView, uint64_t(std::max(sp.values.byteOffset, 0)),
+                  count * elemSize, name, "its sparse values");
+    uint64_t previous = 0;
+    for (uint64_t k = 0; k < count; ++k) {
+        uint64_t index = 0;
+        if (isz == 1) {
+            index = indices[k];
+        } else if (isz == 2) {
+            uint16_t x;
+            std::memcpy(&x, indices + 2 * k, 2);
+            index = x;
+        } else {
+            uint32_t x;
+            std::memcpy(&x, indices + 4 * k, 4);
+            index = x;
+        }
+        if (index >= uint64_t(a.count))
+            Fail(name + ": sparse index " + std::to_string(index) + " is out of range (" +
+                 std::to_string(a.count) + " elements)");
+        if (k > 0 && index <= previous)
+            Fail(name + ": sparse indices must increase strictly (" + std::to_string(index) +
+                 " follows " + std::to_string(previous) + ")");
+        previous = index;
+        std::memcpy(elements.data() + index * elemSize, values + k * elemSize, size_t(elemSize));
+    }
+}
+
 AccessorView GltfConverter::View(int index, const std::string &what) {
     if (index < 0 || size_t(index) >= model_.accessors.size())
         Fail(what + " refers to accessor " + std::to_string(index) + ", which does not exist");
     const Where where(*this, "/accessors/" + std::to_string(index));
     const tinygltf::Accessor &a = model_.accessors[size_t(index)];
     std::string name = "accessor " + std::to_string(index) + " (" + what + ")";
-    if (a.sparse.isSparse) Fail(name + " is sparse, which is not supported");
     AccessorView v;
     v.componentType = a.componentType;
     v.components = ComponentCount(a.type);
@@ -65,32 +134,66 @@ AccessorView GltfConverter::View(int index, const std::string &what) {
     int cs = ComponentSize(a.componentType);
     if (cs == 0 || v.components == 0) Fail(name + " has an invalid type");
     if (a.count == 0) return v;
-    if (a.bufferView < 0 || size_t(a.bufferView) >= model_.bufferViews.size())
-        Fail(name + " has no valid buffer view");
-    const tinygltf::BufferView &bv = model_.bufferViews[size_t(a.bufferView)];
-    if (bv.buffer < 0 || size_t(bv.buffer) >= model_.buffers.size())
-        Fail(name + ": buffer view " + std::to_string(a.bufferView) + " has no valid buffer");
-    const tinygltf::Buffer &buf = model_.buffers[size_t(bv.buffer)];
-    uint64_t elemSize = uint64_t(cs) * uint64_t(v.components);
-    uint64_t stride = bv.byteStride ? bv.byteStride : elemSize;
-    if (stride < elemSize)
-        Fail(name + ": byteStride " + std::to_string(stride) +
-             " is smaller than the element size " + std::to_string(elemSize));
-    // All in 64-bit with the count bounded first, so nothing can overflow.
-    uint64_t viewEnd = uint64_t(bv.byteOffset) + uint64_t(bv.byteLength);
-    if (bv.byteOffset > buf.data.size() || viewEnd > buf.data.size())
-        Fail(name + ": buffer view " + std::to_string(a.bufferView) + " reaches past the end of " +
-             "its buffer (" + std::to_string(viewEnd) + " > " + std::to_string(buf.data.size()) +
-             " bytes)");
-    if (a.count > bv.byteLength || a.byteOffset > bv.byteLength)
-        Fail(name + " reaches past the end of its buffer view");
-    uint64_t need = uint64_t(a.byteOffset) + stride * (uint64_t(a.count) - 1) + elemSize;
-    if (need > bv.byteLength)
-        Fail(name + " reaches past the end of its buffer view (" + std::to_string(need) + " > " +
-             std::to_string(bv.byteLength) + " bytes)");
-    v.data = buf.data.data() + bv.byteOffset + a.byteOffset;
-    v.stride = size_t(stride);
+    const uint64_t elemSize = uint64_t(cs) * uint64_t(v.components);
+    if (a.bufferView >= 0) {
+        if (size_t(a.bufferView) >= model_.bufferViews.size())
+            Fail(name + " has no valid buffer view");
+        const tinygltf::BufferView &bv = model_.bufferViews[size_t(a.bufferView)];
+        uint64_t stride = bv.byteStride ? bv.byteStride : elemSize;
+        if (stride < elemSize)
+            Fail(name + ": byteStride " + std::to_string(stride) +
+                 " is smaller than the element size " + std::to_string(elemSize));
+        if (a.byteOffset > bv.byteLength ||
+            (a.count > 1 && stride > bv.byteLength / (uint64_t(a.count) - 1)))
+            Fail(name + " reaches past the end of its buffer view");
+        v.data = ViewBytes(a.bufferView, a.byteOffset, stride * (uint64_t(a.count) - 1) + elemSize,
+                           name, "the accessor");
+        v.stride = size_t(stride);
+        if (!a.sparse.isSparse) return v;
+    }
+    // No buffer view (zeros, glTF 2.0 §3.6.2.3) or a sparse accessor: the elements made whole,
+    // tightly packed, within the memory budget.
+    if (uint64_t(a.count) > (uint64_t(1) << 40) / elemSize)
+        Fail(name + " has too many elements (" + std::to_string(a.count) + ")");
+    const uint64_t bytes = uint64_t(a.count) * elemSize;
+    if (budget_) budget_->Check(bytes, name, loc_);
+    auto elements = std::make_shared<std::vector<unsigned char>>(size_t(bytes));
+    if (v.data)
+        for (size_t i = 0; i < v.count; ++i)
+            std::memcpy(elements->data() + i * elemSize, v.data + i * v.stride, size_t(elemSize));
+    if (a.sparse.isSparse) ApplySparse(a, name, elemSize, *elements);
+    v.data = elements->data();
+    v.stride = size_t(elemSize);
+    v.owned = std::move(elements);
     return v;
+}
+
+void GltfConverter::CheckAttributeType(const AccessorView &v, AttributeKind kind,
+                                       const std::string &what) {
+    const int t = v.componentType;
+    if (t == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
+    const bool unsignedSmall =
+        t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    const bool signedSmall =
+        t == TINYGLTF_COMPONENT_TYPE_BYTE || t == TINYGLTF_COMPONENT_TYPE_SHORT;
+    bool core = false, quantized = false;  // allowed by glTF 2.0 itself, by the extension
+    switch (kind) {
+        case AttributeKind::Position:
+            quantized = unsignedSmall || signedSmall;
+            break;
+        case AttributeKind::Direction:
+            quantized = signedSmall && v.normalized;
+            break;
+        case AttributeKind::TexCoord:
+            core = unsignedSmall && v.normalized;
+            quantized = unsignedSmall || signedSmall;
+            break;
+    }
+    if (core || (quantized && quantization_)) return;
+    const char *allowed =
+        kind == AttributeKind::TexCoord ? "float or normalized unsigned byte/short" : "float";
+    Fail(what + " accessor must have " + allowed + " components" +
+         (quantized ? " (these need KHR_mesh_quantization in extensionsUsed)" : ""));
 }
 
 // One component as double; normalized integers map to [0, 1] / [-1, 1] (glTF 2.0 §3.11).
@@ -140,12 +243,12 @@ double Component(const AccessorView &v, size_t i, int c) {
     return 0;
 }
 
-std::vector<Vec3f> GltfConverter::ReadVec3(int accessor, const std::string &what) {
+std::vector<Vec3f> GltfConverter::ReadVec3(int accessor, const std::string &what,
+                                           AttributeKind kind) {
     AccessorView v = View(accessor, what);
     const Where where(*this, "/accessors/" + std::to_string(accessor));
     if (v.components != 3) Fail(what + " accessor must be VEC3");
-    if (v.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
-        Fail(what + " accessor must have float components");
+    CheckAttributeType(v, kind, what);
     std::vector<Vec3f> out(v.count);
     for (size_t i = 0; i < v.count; ++i) {
         out[i] =
@@ -160,14 +263,14 @@ std::vector<Vec2f> GltfConverter::ReadTexcoords(int accessor, const std::string 
     AccessorView v = View(accessor, name);
     const Where where(*this, "/accessors/" + std::to_string(accessor));
     if (v.components != 2) Fail(name + " accessor must be VEC2");
-    bool ok = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-              (v.normalized && (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-    if (!ok) Fail(name + " accessor must be float or normalized unsigned byte/short");
+    CheckAttributeType(v, AttributeKind::TexCoord, name);
     std::vector<Vec2f> out(v.count);
     // glTF's texture origin is the top-left corner, pbrt's (and Prism's) the bottom-left.
-    for (size_t i = 0; i < v.count; ++i)
+    for (size_t i = 0; i < v.count; ++i) {
         out[i] = Vec2f(float(Component(v, i, 0)), float(1.0 - Component(v, i, 1)));
+        if (!std::isfinite(out[i].x) || !std::isfinite(out[i].y))
+            Fail(name + " accessor contains a value that is not a finite number");
+    }
     return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -16,12 +17,23 @@
 
 namespace prism::gltf_internal {
 
-// Validated view of one accessor's elements.
+// Validated view of one accessor's elements: in its buffer, or (an accessor without a buffer
+// view, or a sparse one) in `owned`, the elements made whole.
 struct AccessorView {
     const unsigned char *data = nullptr;
     size_t count = 0, stride = 0;
     int componentType = 0, components = 0;
     bool normalized = false;
+    std::shared_ptr<const std::vector<unsigned char>> owned;
+};
+
+// The element types a vertex attribute accepts (View checks them): floats, glTF's normalized
+// integers, and what KHR_mesh_quantization adds.
+enum class AttributeKind {
+    Position,   // float; with quantization (un)signed byte or short, normalized or not
+    Direction,  // NORMAL, TANGENT: float; with quantization normalized signed byte or short
+    TexCoord,   // float, normalized unsigned byte or short; with quantization any (un)signed
+                // byte or short, normalized or not
 };
 
 // One component of element i as double (normalized integers in [0, 1] / [-1, 1]).
@@ -49,7 +61,16 @@ class GltfConverter {
 
   private:
     AccessorView View(int accessorIndex, const std::string &what);
-    std::vector<Vec3f> ReadVec3(int accessor, const std::string &what);
+    // The bytes [byteOffset, byteOffset + bytes) of buffer view `bufferView`, checked to lie in
+    // it and its buffer (`name` and `role` for the errors).
+    const unsigned char *ViewBytes(int bufferView, uint64_t byteOffset, uint64_t bytes,
+                                   const std::string &name, const std::string &role);
+    // Writes the sparse elements of accessor `a` into `elements` (count × elemSize bytes).
+    void ApplySparse(const tinygltf::Accessor &a, const std::string &name, uint64_t elemSize,
+                     std::vector<unsigned char> &elements);
+    // Fails unless v's element type suits a vertex attribute of this kind.
+    void CheckAttributeType(const AccessorView &v, AttributeKind kind, const std::string &what);
+    std::vector<Vec3f> ReadVec3(int accessor, const std::string &what, AttributeKind kind);
     std::vector<Vec2f> ReadTexcoords(int accessor, const std::string &name = "TEXCOORD_0");
     std::vector<int> ReadIndices(int accessor, size_t vertexCount);
 
@@ -112,7 +133,8 @@ class GltfConverter {
     int currentMaterial_ = -1;               // the material ConvertMaterials is converting
     std::set<int> materialsUsingTexCoord1_;  // their primitives read TEXCOORD_1 ("uv1")
     bool warnedMissingTexCoord1_ = false;
-    int defaultMaterial_ = -1;  // DefaultMaterial's index, once added
+    bool quantization_ = false;  // KHR_mesh_quantization is in extensionsUsed
+    int defaultMaterial_ = -1;   // DefaultMaterial's index, once added
     bool haveCamera_ = false;
     mutable std::string where_;  // the JSON pointer of what is being converted ("": the file)
 };

@@ -307,11 +307,11 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
                        "mesh \"" + mesh.name + "\" has a primitive without POSITION; skipped");
             continue;
         }
-        std::vector<Vec3f> P = ReadVec3(pos->second, "POSITION");
+        std::vector<Vec3f> P = ReadVec3(pos->second, "POSITION", AttributeKind::Position);
         std::vector<Vec3f> N;
         std::vector<Vec2f> uv;
         if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
-            N = ReadVec3(it->second, "NORMAL");
+            N = ReadVec3(it->second, "NORMAL", AttributeKind::Direction);
             if (N.size() != P.size()) Fail("NORMAL and POSITION accessors differ in count");
         }
         if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
@@ -590,6 +590,7 @@ const SimulatedExtension kSimulated[] = {
     {"KHR_materials_ior", {}},
     {"KHR_materials_emissive_strength", {}},
     {"KHR_texture_transform", {}},
+    {"KHR_mesh_quantization", {}},
     {"KHR_materials_transmission", {{"transmissionTexture", "transmissionFactor alone"}}},
     {"KHR_materials_specular",
      {{"specularTexture", "specularFactor alone"},
@@ -632,6 +633,8 @@ std::string IgnoredBecause(const std::string &name) {
 // An extension the file requires but Prism does not simulate is an error: the file says it
 // cannot be rendered without it.
 void GltfConverter::CheckExtensions() {
+    for (const std::string &e : model_.extensionsUsed)
+        quantization_ = quantization_ || e == "KHR_mesh_quantization";
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
         const std::string &e = model_.extensionsRequired[i];
         if (FindSimulated(e)) continue;

@@ -92,8 +92,8 @@ void GltfConverter::AddSurfaceParams(const tinygltf::Primitive &prim, size_t ver
     auto it = prim.attributes.find("TANGENT");
     if (it == prim.attributes.end()) return;
     AccessorView v = View(it->second, "TANGENT");
-    if (v.components != 4 || v.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
-        Fail("TANGENT accessor must be VEC4 of floats");
+    if (v.components != 4) Fail("TANGENT accessor must be VEC4");
+    CheckAttributeType(v, AttributeKind::Direction, "TANGENT");
     if (v.count != vertices) Fail("TANGENT and POSITION accessors differ in count");
     std::vector<double> t(4 * v.count);
     for (size_t i = 0; i < v.count; ++i)

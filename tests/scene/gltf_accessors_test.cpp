@@ -1,0 +1,211 @@
+// glTF accessors (scene/gltf_accessors.cpp): KHR_mesh_quantization's integer attributes read
+// as the numbers they encode, sparse accessors (over a buffer view or zeros) made whole, and
+// clean errors for what either gets wrong.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "scene/gltf_reader.h"
+#include "support/temp_dir.h"
+#include "support/text.h"
+
+namespace prism {
+namespace {
+
+using namespace test;
+
+template <typename T>
+void Put(std::string &buf, std::initializer_list<T> values) {
+    for (T v : values) {
+        char b[sizeof(T)];
+        std::memcpy(b, &v, sizeof(T));
+        buf.append(b, sizeof(T));
+    }
+}
+
+std::string Replace(std::string s, const std::string &from, const std::string &to) {
+    const size_t p = s.find(from);
+    EXPECT_NE(p, std::string::npos) << from;
+    if (p != std::string::npos) s.replace(p, from.size(), to);
+    return s;
+}
+
+// One triangle whose attributes are quantized: POSITION as shorts (normalized), NORMAL as
+// normalized bytes, TEXCOORD_0 as unnormalized unsigned shorts (the node's scale would
+// dequantize them in a real file; here the raw values are checked).
+std::string QuantizedBuffer() {
+    std::string b;
+    Put<int16_t>(b, {0, 0, 0, 0, 0, 32767, 0, 0, -32767, 0, 0, 0});  // 3 × (x y z pad): 24 B
+    Put<int8_t>(b, {0, 0, 127, 0, 0, 127, 0, 0, -127, 0, 0, 0});     // 3 × (x y z pad): 12 B
+    Put<uint16_t>(b, {0, 0, 2, 0, 0, 3});                            // 12 B
+    return b;                                                        // 48 B
+}
+
+const char *kQuantized = R"({
+  "asset": {"version": "2.0"},
+  EXTENSIONS
+  "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}}]}],
+  "buffers": [{"uri": "BUFFER", "byteLength": 48}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 24, "byteStride": 8},
+    {"buffer": 0, "byteOffset": 24, "byteLength": 12, "byteStride": 4},
+    {"buffer": 0, "byteOffset": 36, "byteLength": 12}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5122, "normalized": true, "count": 3, "type": "VEC3",
+     "min": [-1, 0, 0], "max": [0, 1, 0]},
+    {"bufferView": 1, "componentType": 5120, "normalized": true, "count": 3, "type": "VEC3"},
+    {"bufferView": 2, "componentType": 5123, "count": 3, "type": "VEC2"}
+  ]
+})";
+
+const char *kUsed =
+    R"("extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],)";
+
+std::string WriteQuantized(const std::string &name, const std::string &extensions) {
+    std::string json = Replace(kQuantized, "EXTENSIONS", extensions);
+    json = Replace(json, "BUFFER",
+                   "data:application/octet-stream;base64," + Base64(QuantizedBuffer()));
+    return WriteScratchFile(name + ".gltf", json);
+}
+
+std::string ErrorOf(const std::string &path) {
+    Diagnostics diag;
+    try {
+        ReadGltfFile(path, diag);
+    } catch (const SceneError &e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(GltfAccessors, QuantizedAttributesReadAsTheirValues) {
+    Diagnostics diag;
+    const SceneDescription d = ReadGltfFile(WriteQuantized("gltfa_quant", kUsed), diag);
+    ASSERT_EQ(d.shapes.size(), 1u);
+    const ParamSet &ps = d.shapes[0].params;
+    EXPECT_EQ(ps.GetPoint3s("P"),
+              (std::vector<Vec3f>{Vec3f(0, 0, 0), Vec3f(0, 1, 0), Vec3f(-1, 0, 0)}));
+    EXPECT_EQ(ps.GetNormals("N"),
+              (std::vector<Vec3f>{Vec3f(0, 0, 1), Vec3f(0, 1, 0), Vec3f(-1, 0, 0)}));
+    // Unnormalized texture coordinates are the integers (v flipped to pbrt's convention).
+    EXPECT_EQ(ps.GetPoint2s("uv"), (std::vector<Vec2f>{Vec2f(0, 1), Vec2f(2, 1), Vec2f(0, -2)}));
+    for (const Warning &w : diag.Warnings())
+        EXPECT_EQ(w.message.find("KHR_mesh_quantization"), std::string::npos) << w.message;
+}
+
+TEST(GltfAccessors, IntegerAttributesNeedTheQuantizationExtension) {
+    const std::string e = ErrorOf(WriteQuantized("gltfa_noquant", ""));
+    EXPECT_NE(e.find("POSITION accessor must have float components"), std::string::npos) << e;
+    EXPECT_NE(e.find("KHR_mesh_quantization"), std::string::npos) << e;
+    EXPECT_NE(e.find("gltfa_noquant.gltf"), std::string::npos) << e;
+    // Normals stay normalized signed integers, even with the extension.
+    std::string json = Replace(kQuantized, "EXTENSIONS", kUsed);
+    json =
+        Replace(json, R"("componentType": 5120, "normalized": true)", R"("componentType": 5120)");
+    json = Replace(json, "BUFFER",
+                   "data:application/octet-stream;base64," + Base64(QuantizedBuffer()));
+    const std::string n = ErrorOf(WriteScratchFile("gltfa_badnormal.gltf", json));
+    EXPECT_NE(n.find("NORMAL accessor must have float components"), std::string::npos) << n;
+}
+
+// A quad whose POSITION accessor is sparse: over its buffer view (vertex 2 moved) or over
+// zeros (no buffer view; vertices 1 to 3 given).
+std::string SparseBuffer() {
+    std::string b;
+    Put<float>(b, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});  // 48 B: the quad
+    Put<uint16_t>(b, {0, 1, 2, 0, 2, 3});                 // 12 B: indices (at 48)
+    Put<uint8_t>(b, {2, 0, 0, 0});                        // 4 B: sparse index 2 (at 60)
+    Put<float>(b, {2, 2, 0});                             // 12 B: its value (at 64)
+    Put<uint32_t>(b, {1, 2, 3});                          // 12 B: sparse indices (at 76)
+    Put<float>(b, {1, 0, 0, 1, 1, 0, 0, 1, 0});           // 36 B: their values (at 88)
+    return b;                                             // 124 B
+}
+
+const char *kSparse = R"({
+  "asset": {"version": "2.0"},
+  "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"mesh": 1}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]},
+             {"primitives": [{"attributes": {"POSITION": 2}, "indices": 1}]}],
+  "buffers": [{"uri": "BUFFER", "byteLength": 124}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 48},
+    {"buffer": 0, "byteOffset": 48, "byteLength": 12},
+    {"buffer": 0, "byteOffset": 60, "byteLength": 4},
+    {"buffer": 0, "byteOffset": 64, "byteLength": 12},
+    {"buffer": 0, "byteOffset": 76, "byteLength": 12},
+    {"buffer": 0, "byteOffset": 88, "byteLength": 36}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+     "sparse": {"count": 1, "indices": {"bufferView": 2, "componentType": 5121},
+                "values": {"bufferView": 3}}},
+    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"},
+    {"componentType": 5126, "count": 4, "type": "VEC3",
+     "sparse": {"count": 3, "indices": {"bufferView": 4, "componentType": 5125},
+                "values": {"bufferView": 5}}}
+  ]
+})";
+
+std::string WriteSparse(const std::string &name,
+                        const std::vector<std::pair<std::string, std::string>> &edits = {}) {
+    std::string json = kSparse;
+    for (const auto &[from, to] : edits) json = Replace(json, from, to);
+    json =
+        Replace(json, "BUFFER", "data:application/octet-stream;base64," + Base64(SparseBuffer()));
+    return WriteScratchFile(name + ".gltf", json);
+}
+
+TEST(GltfAccessors, SparseAccessorsAreMadeWhole) {
+    Diagnostics diag;
+    const SceneDescription d = ReadGltfFile(WriteSparse("gltfa_sparse"), diag);
+    ASSERT_EQ(d.shapes.size(), 2u);
+    EXPECT_EQ(d.shapes[0].params.GetPoint3s("P"),
+              (std::vector<Vec3f>{Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(2, 2, 0), Vec3f(0, 1, 0)}));
+    EXPECT_EQ(d.shapes[1].params.GetPoint3s("P"),
+              (std::vector<Vec3f>{Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(1, 1, 0), Vec3f(0, 1, 0)}));
+}
+
+// The sparse buffer with sparse indices `indices` for the zero-based accessor.
+std::string WriteSparseIndices(const std::string &name, const uint32_t (&indices)[3]) {
+    std::string buf = SparseBuffer();
+    std::memcpy(buf.data() + 76, indices, sizeof indices);
+    return WriteScratchFile(
+        name + ".gltf",
+        Replace(kSparse, "BUFFER", "data:application/octet-stream;base64," + Base64(buf)));
+}
+
+TEST(GltfAccessors, MalformedSparseAccessorsAreSceneErrors) {
+    struct Case {
+        std::string from, to, error;
+    };
+    const Case cases[] = {
+        {"\"count\": 1, \"indices\": {\"bufferView\": 2",
+         "\"count\": 5, \"indices\": {\"bufferView\": 2", "sparse count 5 is not 1 to"},
+        {"\"componentType\": 5121}", "\"componentType\": 5126}", "sparse indices must be unsigned"},
+        {"\"values\": {\"bufferView\": 3}", "\"values\": {\"bufferView\": 3, \"byteOffset\": 4}",
+         "its sparse values reaches past the end of its buffer view"},
+        {"\"indices\": {\"bufferView\": 4", "\"indices\": {\"bufferView\": 40",
+         "its sparse indices has no valid buffer view"},
+    };
+    int n = 0;
+    for (const Case &c : cases) {
+        const std::string e =
+            ErrorOf(WriteSparse("gltfa_bad" + std::to_string(n++), {{c.from, c.to}}));
+        EXPECT_NE(e.find(c.error), std::string::npos) << c.error << ": " << e;
+        EXPECT_NE(e.find("accessor"), std::string::npos) << e;
+    }
+    std::string e = ErrorOf(WriteSparseIndices("gltfa_range", {1, 2, 9}));
+    EXPECT_NE(e.find("sparse index 9 is out of range (4 elements)"), std::string::npos) << e;
+    e = ErrorOf(WriteSparseIndices("gltfa_order", {2, 1, 3}));
+    EXPECT_NE(e.find("sparse indices must increase strictly (1 follows 2)"), std::string::npos)
+        << e;
+}
+
+}  // namespace
+}  // namespace prism
