@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "scene/gltf_reader.h"
+#include "support/errors.h"
 #include "support/temp_dir.h"
 #include "support/text.h"
 
@@ -16,20 +17,9 @@ namespace {
 
 using namespace test;
 
-template <typename T>
-void Put(std::string &buf, std::initializer_list<T> values) {
-    for (T v : values) {
-        char b[sizeof(T)];
-        std::memcpy(b, &v, sizeof(T));
-        buf.append(b, sizeof(T));
-    }
-}
-
-std::string Replace(std::string s, const std::string &from, const std::string &to) {
-    const size_t p = s.find(from);
-    EXPECT_NE(p, std::string::npos) << from;
-    if (p != std::string::npos) s.replace(p, from.size(), to);
-    return s;
+std::string Replace(const std::string &s, const std::string &from, const std::string &to) {
+    EXPECT_NE(s.find(from), std::string::npos) << from;
+    return ReplaceFirst(s, from, to);
 }
 
 // One triangle whose attributes are quantized: POSITION as shorts (normalized), NORMAL as
@@ -37,10 +27,10 @@ std::string Replace(std::string s, const std::string &from, const std::string &t
 // dequantize them in a real file; here the raw values are checked).
 std::string QuantizedBuffer() {
     std::string b;
-    Put<int16_t>(b, {0, 0, 0, 0, 0, 32767, 0, 0, -32767, 0, 0, 0});  // 3 × (x y z pad): 24 B
-    Put<int8_t>(b, {0, 0, 127, 0, 0, 127, 0, 0, -127, 0, 0, 0});     // 3 × (x y z pad): 12 B
-    Put<uint16_t>(b, {0, 0, 2, 0, 0, 3});                            // 12 B
-    return b;                                                        // 48 B
+    PutBytes<int16_t>(b, {0, 0, 0, 0, 0, 32767, 0, 0, -32767, 0, 0, 0});  // 3 × (x y z pad): 24 B
+    PutBytes<int8_t>(b, {0, 0, 127, 0, 0, 127, 0, 0, -127, 0, 0, 0});     // 3 × (x y z pad): 12 B
+    PutBytes<uint16_t>(b, {0, 0, 2, 0, 0, 3});                            // 12 B
+    return b;                                                             // 48 B
 }
 
 const char *kQuantized = R"({
@@ -74,13 +64,10 @@ std::string WriteQuantized(const std::string &name, const std::string &extension
 }
 
 std::string ErrorOf(const std::string &path) {
-    Diagnostics diag;
-    try {
+    return test::ErrorOf<SceneError>([&] {
+        Diagnostics diag;
         ReadGltfFile(path, diag);
-    } catch (const SceneError &e) {
-        return e.what();
-    }
-    return "";
+    });
 }
 
 TEST(GltfAccessors, QuantizedAttributesReadAsTheirValues) {
@@ -117,13 +104,13 @@ TEST(GltfAccessors, IntegerAttributesNeedTheQuantizationExtension) {
 // zeros (no buffer view; vertices 1 to 3 given).
 std::string SparseBuffer() {
     std::string b;
-    Put<float>(b, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});  // 48 B: the quad
-    Put<uint16_t>(b, {0, 1, 2, 0, 2, 3});                 // 12 B: indices (at 48)
-    Put<uint8_t>(b, {2, 0, 0, 0});                        // 4 B: sparse index 2 (at 60)
-    Put<float>(b, {2, 2, 0});                             // 12 B: its value (at 64)
-    Put<uint32_t>(b, {1, 2, 3});                          // 12 B: sparse indices (at 76)
-    Put<float>(b, {1, 0, 0, 1, 1, 0, 0, 1, 0});           // 36 B: their values (at 88)
-    return b;                                             // 124 B
+    PutBytes<float>(b, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});  // 48 B: the quad
+    PutBytes<uint16_t>(b, {0, 1, 2, 0, 2, 3});                 // 12 B: indices (at 48)
+    PutBytes<uint8_t>(b, {2, 0, 0, 0});                        // 4 B: sparse index 2 (at 60)
+    PutBytes<float>(b, {2, 2, 0});                             // 12 B: its value (at 64)
+    PutBytes<uint32_t>(b, {1, 2, 3});                          // 12 B: sparse indices (at 76)
+    PutBytes<float>(b, {1, 0, 0, 1, 1, 0, 0, 1, 0});           // 36 B: their values (at 88)
+    return b;                                                  // 124 B
 }
 
 const char *kSparse = R"({

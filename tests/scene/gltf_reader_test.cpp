@@ -18,29 +18,18 @@ namespace {
 
 using namespace test;
 
-template <typename T>
-void Put(std::string &buf, std::initializer_list<T> values) {
-    for (T v : values) {
-        char b[sizeof(T)];
-        std::memcpy(b, &v, sizeof(T));
-        buf.append(b, sizeof(T));
-    }
-}
-
 // 140 bytes: 4 positions (0), 6 ushort indices (48), 4 normals (60), 4 texcoords (108).
 std::string QuadBuffer() {
     std::string b;
-    Put<float>(b, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
-    Put<uint16_t>(b, {0, 1, 2, 0, 2, 3});
-    for (int i = 0; i < 4; ++i) Put<float>(b, {0, 0, 1});
-    Put<float>(b, {0, 0, 1, 0, 1, 1, 0, 1});
+    PutBytes<float>(b, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
+    PutBytes<uint16_t>(b, {0, 1, 2, 0, 2, 3});
+    for (int i = 0; i < 4; ++i) PutBytes<float>(b, {0, 0, 1});
+    PutBytes<float>(b, {0, 0, 1, 0, 1, 1, 0, 1});
     return b;
 }
 
-std::string Replace(std::string s, const std::string &from, const std::string &to) {
-    size_t p = s.find(from);
-    if (p != std::string::npos) s.replace(p, from.size(), to);
-    return s;
+std::string Replace(const std::string &s, const std::string &from, const std::string &to) {
+    return ReplaceFirst(s, from, to);
 }
 
 const char *kGltf = R"({

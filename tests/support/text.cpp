@@ -46,6 +46,12 @@ const char *const kLitFloorFromLookAt =
     "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
     "  \"point P\" [-3 0 -3  3 0 -3  3 0 3  -3 0 3]\n";
 
+std::string ReplaceFirst(std::string s, const std::string &from, const std::string &to) {
+    const size_t p = s.find(from);
+    if (p != std::string::npos) s.replace(p, from.size(), to);
+    return s;
+}
+
 const char *const kClosedRoom =
     "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3  4 5 6 4 6 7  8 9 10 8 10 11"
     "  12 13 14 12 14 15  16 17 18 16 18 19  20 21 22 20 22 23]\n"

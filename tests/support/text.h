@@ -2,9 +2,24 @@
 // use it too.
 #pragma once
 
+#include <cstring>
+#include <initializer_list>
 #include <string>
 
 namespace prism::test {
+
+// Appends each value's bytes to `buf` (binary buffers for glTF files).
+template <typename T>
+void PutBytes(std::string &buf, std::initializer_list<T> values) {
+    for (T v : values) {
+        char b[sizeof(T)];
+        std::memcpy(b, &v, sizeof(T));
+        buf.append(b, sizeof(T));
+    }
+}
+
+// `s` with its first `from` replaced by `to` (unchanged when there is none).
+std::string ReplaceFirst(std::string s, const std::string &from, const std::string &to);
 
 // `bin` in base64 (RFC 4648, padded), for glTF data URIs.
 std::string Base64(const std::string &bin);
