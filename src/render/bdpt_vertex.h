@@ -31,6 +31,9 @@ enum class BdptVertexType : uint8_t { Camera, Light, Surface, Medium };
 // bounce, whose strategies MIS skips. As in pbrt-v3, the densities leave out the medium's
 // distance sampling: the weights stay a function of the path alone, so they still sum to one.
 struct BdptVertex {
+    // Every member has its initializer: a user-provided constructor keeps value-initialization
+    // (emplace_back()) from first zeroing the whole vertex, the BSDF's storage (4.7 KB) too.
+    BdptVertex() {}
     BdptVertexType type = BdptVertexType::Surface;
     RGB beta;     // the subpath's throughput up to this vertex
     Vec3f p, ng;  // position and geometric normal (zero for point lights, the camera, media)
