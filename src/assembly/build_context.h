@@ -26,7 +26,7 @@ struct BuildContext {
     std::map<std::string, TexturePtr> floatTextures, rgbTextures;    // by texture name
     std::map<std::string, std::shared_ptr<const Image>> imageCache;  // by path and encoding
     // MIP pyramids of those images for filtered lookups, by image and wrap mode.
-    std::map<std::pair<const Image *, int>, std::shared_ptr<const MIPMap>> mipCache;
+    std::map<std::pair<const Image *, TextureWrap>, std::shared_ptr<const MIPMap>> mipCache;
     // The camera's shutter (pbrt-v3 "shutteropen"/"shutterclose", default 0 1; BuildCamera):
     // motion is sampled over it, rays carrying their time as a fraction of it (Ray::time).
     double shutterOpen = 0, shutterClose = 1;

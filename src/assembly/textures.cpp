@@ -160,10 +160,10 @@ struct TextureBuilder : BuildStep {
         void Charge(size_t bytes, const std::string &what, const char *param) const override {
             b_.budget.Charge(bytes, what, Loc(param));
         }
-        std::shared_ptr<const MIPMap> Mip(const std::shared_ptr<const Image> &img, WrapMode wrap,
+        std::shared_ptr<const MIPMap> Mip(const std::shared_ptr<const Image> &img, TextureWrap wrap,
                                           const std::string &file,
                                           const char *param) const override {
-            auto &cached = b_.ctx.mipCache[{img.get(), int(wrap)}];
+            auto &cached = b_.ctx.mipCache[{img.get(), wrap}];
             if (!cached) {
                 const FileLoc loc = Loc(param);
                 // The levels above the image take a third of it (in RGB floats).

@@ -25,24 +25,11 @@ const std::array<float, WeightLUTSize> &WeightLUT() {
     return lut;
 }
 
-int Wrap(int x, int n, WrapMode wrap, bool *black) {
-    switch (wrap) {
-        case WrapMode::Repeat:
-            return ((x % n) + n) % n;
-        case WrapMode::Clamp:
-            return Clamp(x, 0, n - 1);
-        case WrapMode::Black:
-            if (x < 0 || x >= n) *black = true;
-            return Clamp(x, 0, n - 1);
-    }
-    return x;
-}
-
 bool Finite(Vec2f v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
 }  // namespace
 
-MIPMap::MIPMap(std::shared_ptr<const Image> image, WrapMode wrap)
+MIPMap::MIPMap(std::shared_ptr<const Image> image, TextureWrap wrap)
     : image_(std::move(image)), wrap_(wrap) {
     maxRes_ = float(std::max(image_->width, image_->height));
     int w = image_->width, h = image_->height;
@@ -86,8 +73,8 @@ int MIPMap::Height(int level) const {
 RGB MIPMap::Texel(int level, int x, int y) const {
     const int w = Width(level), h = Height(level);
     bool black = false;
-    x = Wrap(x, w, wrap_, &black);
-    y = Wrap(y, h, wrap_, &black);
+    x = WrapTexel(x, w, wrap_.s, &black);
+    y = WrapTexel(y, h, wrap_.t, &black);
     if (black) return RGB(0);
     if (level == 0) return image_->GetRGB(x, h - 1 - y);
     return levels_[size_t(level - 1)].texels[size_t(y) * size_t(w) + size_t(x)];

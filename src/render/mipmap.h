@@ -41,7 +41,7 @@ inline bool OddFloor(double x) {
 
 class MIPMap {
   public:
-    MIPMap(std::shared_ptr<const Image> image, WrapMode wrap);
+    MIPMap(std::shared_ptr<const Image> image, TextureWrap wrap);
     int Levels() const { return int(levels_.size()) + 1; }
     // The bytes the levels above 0 take (the memory budget).
     size_t Bytes() const;
@@ -68,7 +68,7 @@ class MIPMap {
     RGB EWALevel(int level, Vec2f st, Vec2f dst0, Vec2f dst1) const;
 
     std::shared_ptr<const Image> image_;
-    WrapMode wrap_;
+    TextureWrap wrap_;
     std::vector<Level> levels_;  // levels 1, 2, ... down to 1 x 1
     float maxRes_;               // max(width, height) of level 0
 };

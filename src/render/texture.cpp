@@ -141,8 +141,27 @@ RGB CheckerboardTexture::Evaluate(const TextureContext &c) const {
     return OddFloor(st.x) == OddFloor(st.y) ? tex1_->Evaluate(c) : tex2_->Evaluate(c);
 }
 
+int WrapTexel(int x, int n, WrapMode wrap, bool *black) {
+    switch (wrap) {
+        case WrapMode::Repeat:
+            return ((x % n) + n) % n;
+        case WrapMode::Mirror: {
+            // Period 2n: texels 0 .. n-1, then n-1 .. 0 (in 64 bits: 2n may not fit an int).
+            const int64_t period = 2 * int64_t(n);
+            const int64_t m = ((int64_t(x) % period) + period) % period;
+            return int(m < n ? m : period - 1 - m);
+        }
+        case WrapMode::Clamp:
+            return Clamp(x, 0, n - 1);
+        case WrapMode::Black:
+            if (x < 0 || x >= n) *black = true;
+            return Clamp(x, 0, n - 1);
+    }
+    return x;
+}
+
 ImageTexture::ImageTexture(TextureMapping mapping, std::shared_ptr<const Image> image,
-                           WrapMode wrap, float scale, bool invert, TextureFilter filter,
+                           TextureWrap wrap, float scale, bool invert, TextureFilter filter,
                            std::shared_ptr<const MIPMap> mip, float maxAnisotropy)
     : mapping_(mapping),
       image_(std::move(image)),
@@ -155,20 +174,11 @@ ImageTexture::ImageTexture(TextureMapping mapping, std::shared_ptr<const Image> 
       maxAnisotropy_(maxAnisotropy) {}
 
 RGB ImageTexture::Texel(int x, int y) const {
-    int w = image_->width, h = image_->height;
-    switch (wrap_) {
-        case WrapMode::Repeat:
-            x = ((x % w) + w) % w;
-            y = ((y % h) + h) % h;
-            break;
-        case WrapMode::Clamp:
-            x = Clamp(x, 0, w - 1);
-            y = Clamp(y, 0, h - 1);
-            break;
-        case WrapMode::Black:
-            if (x < 0 || x >= w || y < 0 || y >= h) return RGB(0);
-            break;
-    }
+    const int w = image_->width, h = image_->height;
+    bool black = false;
+    x = WrapTexel(x, w, wrap_.s, &black);
+    y = WrapTexel(y, h, wrap_.t, &black);
+    if (black) return RGB(0);
     // Texture t runs upward; image rows run downward.
     return image_->GetRGB(x, h - 1 - y);
 }
@@ -381,7 +391,10 @@ TexturePtr CreateCheckerboardTexture(const TextureParams &p, const FileLoc &loc)
 
 // Texture "imagemap" (texture_list.inc). Parameters:
 //   filename                string         ""       the image, relative to the scene; required
-//   wrap                    string         "repeat"  repeat | black | clamp
+//   wrap                    string         "repeat"  repeat | black | clamp | mirror (a Prism
+//                                                   extension: glTF's MIRRORED_REPEAT)
+//   wraps, wrapt            string         (wrap)   Prism: the wrap along s or t alone (glTF's
+//                                                   wrapS, wrapT)
 //   scale                   float          1        multiplies the texels
 //   invert                  bool           false    1 - the texel
 //   gamma                   bool           —        true: sRGB, false: linear (default: sRGB for
@@ -400,14 +413,18 @@ TexturePtr CreateCheckerboardTexture(const TextureParams &p, const FileLoc &loc)
 TexturePtr CreateImageTexture(const TextureParams &p, const FileLoc &loc) {
     const std::string file = p.String("filename", "");
     if (file.empty()) throw SceneError(loc, "imagemap texture needs a \"filename\"");
-    const std::string wrapName = p.String("wrap", "repeat");
-    WrapMode wrap = WrapMode::Repeat;
-    if (wrapName == "black")
-        wrap = WrapMode::Black;
-    else if (wrapName == "clamp")
-        wrap = WrapMode::Clamp;
-    else if (wrapName != "repeat")
-        p.Warn(p.Loc("wrap"), "unknown wrap mode " + Quote(wrapName) + "; using repeat");
+    auto wrapMode = [&](const char *param, WrapMode def) {
+        if (!p.Has(param)) return def;
+        const std::string name = p.String(param, "");
+        if (name == "repeat") return WrapMode::Repeat;
+        if (name == "black") return WrapMode::Black;
+        if (name == "clamp") return WrapMode::Clamp;
+        if (name == "mirror") return WrapMode::Mirror;
+        p.Warn(p.Loc(param), "unknown wrap mode " + Quote(name) + "; using repeat");
+        return WrapMode::Repeat;
+    };
+    const WrapMode both = wrapMode("wrap", WrapMode::Repeat);
+    const TextureWrap wrap(wrapMode("wraps", both), wrapMode("wrapt", both));
     using Enc = TextureParams::Encoding;
     Enc enc = Enc::Auto;
     if (p.Has("gamma")) enc = p.Bool("gamma", false) ? Enc::SRGB : Enc::Linear;

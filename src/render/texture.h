@@ -158,7 +158,18 @@ class CheckerboardTexture final : public Texture {
     AAMode aa_;
 };
 
-enum class WrapMode { Repeat, Black, Clamp };
+// How an image texture's lookups outside [0, 1] wrap, per axis: pbrt's repeat, black and clamp,
+// and glTF's MIRRORED_REPEAT (mirror: every other tile reflected).
+enum class WrapMode { Repeat, Black, Clamp, Mirror };
+struct TextureWrap {
+    WrapMode s = WrapMode::Repeat, t = WrapMode::Repeat;
+    constexpr TextureWrap() = default;
+    constexpr TextureWrap(WrapMode both) : s(both), t(both) {}  // NOLINT: one mode for both
+    constexpr TextureWrap(WrapMode s_, WrapMode t_) : s(s_), t(t_) {}
+    bool operator<(const TextureWrap &o) const { return s != o.s ? s < o.s : t < o.t; }
+};
+// Texel x of a row of n under `wrap`; *black set for a black border's outside texels.
+int WrapTexel(int x, int n, WrapMode wrap, bool *black);
 class MIPMap;
 
 // How an image texture is looked up (pbrt's imagemap "filter"): Point (nearest texel of the
@@ -171,7 +182,7 @@ const char *TextureFilterName(TextureFilter f);
 // and EWA read the MIP pyramid `mip` (render/mipmap.h) built from the image.
 class ImageTexture final : public Texture {
   public:
-    ImageTexture(TextureMapping mapping, std::shared_ptr<const Image> image, WrapMode wrap,
+    ImageTexture(TextureMapping mapping, std::shared_ptr<const Image> image, TextureWrap wrap,
                  float scale, bool invert, TextureFilter filter = TextureFilter::Bilinear,
                  std::shared_ptr<const MIPMap> mip = nullptr, float maxAnisotropy = 8);
     RGB Evaluate(const TextureContext &c) const override;
@@ -182,7 +193,7 @@ class ImageTexture final : public Texture {
     RGB Texel(int x, int y) const;
     TextureMapping mapping_;
     std::shared_ptr<const Image> image_;
-    WrapMode wrap_;
+    TextureWrap wrap_;
     float scale_;
     bool invert_;
     TextureFilter filter_;
@@ -285,7 +296,7 @@ class TextureParams : public Params {
                                                    Encoding enc, float gamma) const = 0;
     virtual void Charge(size_t bytes, const std::string &what, const char *param) const = 0;
     virtual std::shared_ptr<const MIPMap> Mip(const std::shared_ptr<const Image> &image,
-                                              WrapMode wrap, const std::string &file,
+                                              TextureWrap wrap, const std::string &file,
                                               const char *param) const = 0;
     virtual TextureFilter Filter() const = 0;
     // --texture-filter none or point: no texture filters over the footprint.

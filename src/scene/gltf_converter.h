@@ -96,6 +96,9 @@ class GltfConverter {
     void AddTexCoordParams(ParamSet &ps, const std::string &param, int texCoord,
                            const tinygltf::ExtensionMap &ext, int material);
     std::string ImageFilename(int imageIndex);
+    // The imagemap "wraps"/"wrapt" of sampler `sampler`'s wrapS and wrapT (none for repeat, the
+    // default, and for no sampler).
+    void AddSamplerWrap(ParamSet &ps, int sampler);
     // gltf_surface.cpp: normalTexture on a material; alphaMode and TANGENT on a primitive.
     void AddNormalMap(const tinygltf::Material &m, ParamSet &materialParams);
     void AddSurfaceParams(const tinygltf::Primitive &prim, size_t vertices, ParamSet &shapeParams);

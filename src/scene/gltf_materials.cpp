@@ -186,6 +186,19 @@ std::string GltfConverter::ImageFilename(int imageIndex) {
     return filename;
 }
 
+void GltfConverter::AddSamplerWrap(ParamSet &ps, int sampler) {
+    if (sampler < 0 || size_t(sampler) >= model_.samplers.size()) return;
+    const tinygltf::Sampler &smp = model_.samplers[size_t(sampler)];
+    auto add = [&](const char *param, int mode) {
+        if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
+            AddString(ps, param, "clamp", loc_);
+        else if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
+            AddString(ps, param, "mirror", loc_);
+    };
+    add("wraps", smp.wrapS);
+    add("wrapt", smp.wrapT);
+}
+
 // An "imagemap" texture for a glTF texture, shared by every material that uses it; "" if the
 // texture has no usable image. `linear`: the image holds data (metallicRoughness, occlusion),
 // not sRGB colours.
@@ -206,10 +219,7 @@ std::string GltfConverter::TextureFor(int textureIndex, bool linear) {
                 t.loc = loc_;
                 AddString(t.params, "filename", file, loc_);
                 if (linear) AddBool(t.params, "gamma", false, loc_);
-                if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size() &&
-                    model_.samplers[size_t(tex.sampler)].wrapS ==
-                        TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
-                    AddString(t.params, "wrap", "clamp", loc_);
+                AddSamplerWrap(t.params, tex.sampler);
                 // Pixel-art samplers (magFilter and minFilter NEAREST) look texels up
                 // unfiltered; every other texture is EWA-filtered (docs/MATERIALS.md).
                 if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size() &&

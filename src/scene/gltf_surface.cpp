@@ -52,9 +52,7 @@ std::string GltfConverter::AlphaTextureFor(int material) {
             AddString(t.params, "filename", file, loc_);
             AddString(t.params, "channel", "alpha", loc_);
             AddFloat(t.params, "scale", factor, loc_);
-            if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size() &&
-                model_.samplers[size_t(tex.sampler)].wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
-                AddString(t.params, "wrap", "clamp", loc_);
+            AddSamplerWrap(t.params, tex.sampler);
             name = t.name;
             desc_.textures.push_back(std::move(t));
         }

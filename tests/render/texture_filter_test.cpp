@@ -5,6 +5,7 @@
 // supersampled reference.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -230,6 +231,35 @@ TEST(MIPMap, LevelsAverageAndLookupsWithoutFootprintAreBilinear) {
     // A footprint covering the whole texture reads its mean.
     EXPECT_NEAR(mip.Trilinear(Vec2f(0.3f, 0.6f), 4.f).r, mean / 32, 1e-5);
     EXPECT_NEAR(mip.EWA(Vec2f(0.3f, 0.6f), {4, 0}, {0, 4}, 8).r, mean / 32, 1e-5);
+}
+
+// Wrap modes per axis (imagemap "wrap", "wraps", "wrapt"): repeat, clamp, black, and mirror
+// (glTF's MIRRORED_REPEAT), in the unfiltered lookup and in every MIP level.
+TEST(ImageTexture, WrapModesPerAxis) {
+    bool black = false;
+    const int mirror[] = {2, 1, 0, 0, 1, 2, 2, 1, 0};  // x = -3 .. 5 of a row of 3
+    for (int x = -3; x <= 5; ++x)
+        EXPECT_EQ(WrapTexel(x, 3, WrapMode::Mirror, &black), mirror[x + 3]);
+    EXPECT_EQ(WrapTexel(-2147483647 - 1, 3, WrapMode::Mirror, &black), 1);  // 2n overflows no int
+    EXPECT_EQ(WrapTexel(-1, 3, WrapMode::Repeat, &black), 2);
+    EXPECT_EQ(WrapTexel(7, 3, WrapMode::Clamp, &black), 2);
+    EXPECT_FALSE(black);
+    EXPECT_EQ(WrapTexel(3, 3, WrapMode::Black, &black), 2);
+    EXPECT_TRUE(black);
+
+    auto img = NoiseImage(4, 4, 2);
+    const TextureWrap wrap(WrapMode::Mirror, WrapMode::Clamp);
+    ImageTexture point(TextureMapping{}, img, wrap, 1, false, TextureFilter::Point);
+    // s in (1, 2) reads the row mirrored; t above 1 reads the top row.
+    for (Vec2f uv : {Vec2f(1.1f, 0.3f), Vec2f(1.6f, 1.7f), Vec2f(-0.4f, -2.f)}) {
+        const float s = uv.x < 0 ? -uv.x : uv.x < 1 ? uv.x : 2 - uv.x;
+        const float t = std::clamp(uv.y, 0.f, 0x1.fffffep-1f);
+        TextureContext mirrored{uv, {}}, inside{Vec2f(s, t), {}};
+        EXPECT_EQ(point.Evaluate(mirrored), point.Evaluate(inside)) << uv.x << " " << uv.y;
+    }
+    MIPMap mip(img, wrap);
+    for (int level = 0; level < mip.Levels(); ++level)
+        EXPECT_EQ(mip.Texel(level, -1, 9), mip.Texel(level, 0, 9999)) << level;
 }
 
 // An orthographic camera looking straight at a 1 x 1 quad textured with `file`, a

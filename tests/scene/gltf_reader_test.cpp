@@ -277,6 +277,8 @@ TEST(GltfReader, Materials) {
     // default (EWA).
     EXPECT_EQ(emb->params.GetString("filter", ""), "point");
     EXPECT_EQ(image->params.GetString("filter", "default"), "default");
+    // Its sampler's wrap modes: none given, repeat (the default).
+    EXPECT_FALSE(emb->params.Has("wraps") || emb->params.Has("wrapt"));
     EXPECT_EQ(EmbeddedImageIndex("embedded:0"), 0);
     EXPECT_EQ(EmbeddedImageIndex("embedded:12"), 12);
     EXPECT_EQ(EmbeddedImageIndex("textures/a.png"), -1);
@@ -289,6 +291,20 @@ TEST(GltfReader, Materials) {
 }
 
 // KHR_texture_transform, _specular, _clearcoat and textured emission reach the material.
+// wrapS and wrapT per axis: MIRRORED_REPEAT is "mirror", CLAMP_TO_EDGE "clamp".
+TEST(GltfReader, SamplerWrapModesPerAxis) {
+    Diagnostics diag;
+    const SceneDescription d =
+        ReadGltfFile(WriteGltf("gltft_wrap", 0, true, "4",
+                               {{R"("samplers": [{"magFilter": 9728, "minFilter": 9728}])",
+                                 R"("samplers": [{"wrapS": 33648, "wrapT": 33071}])"}}),
+                     diag);
+    const TextureDesc *emb = FindTexture(d, d.materials[4].params.GetTexture("basecolormap"));
+    ASSERT_TRUE(emb);
+    EXPECT_EQ(emb->params.GetString("wraps", ""), "mirror");
+    EXPECT_EQ(emb->params.GetString("wrapt", ""), "clamp");
+}
+
 TEST(GltfReader, MaterialExtensionsAndTextureTransform) {
     std::string json = Replace(
         kGltf, R"({"name": "embedded", "pbrMetallicRoughness": {"baseColorTexture": {"index": 1},
