@@ -36,6 +36,9 @@ enum class AttributeKind {
                 // byte or short, normalized or not
 };
 
+// glTF's T · R · S: translation t, unit quaternion q (x, y, z, w), scale s.
+Matrix4 TrsMatrix(const double t[3], const double q[4], const double s[3]);
+
 // One component of element i as double (normalized integers in [0, 1] / [-1, 1]).
 double Component(const AccessorView &v, size_t i, int c);
 
@@ -79,6 +82,9 @@ class GltfConverter {
     // once, saturating) against budget_.
     void CheckExpansion(const std::vector<int> &roots) const;
     void AddMesh(int meshIndex, const Transform &worldFromObject);
+    // gltf_instancing.cpp: EXT_mesh_gpu_instancing, node's mesh once per instance (an object
+    // instanced by the renderer, or copies when it emits light).
+    void AddMeshInstances(const tinygltf::Node &node, const Matrix4 &world);
     void AddCamera(const tinygltf::Node &node, const Matrix4 &world);
     void AddLight(const tinygltf::Node &node, const Matrix4 &world);
     void CheckExtensions();
@@ -136,8 +142,9 @@ class GltfConverter {
     int currentMaterial_ = -1;               // the material ConvertMaterials is converting
     std::set<int> materialsUsingTexCoord1_;  // their primitives read TEXCOORD_1 ("uv1")
     bool warnedMissingTexCoord1_ = false;
-    bool quantization_ = false;  // KHR_mesh_quantization is in extensionsUsed
-    int defaultMaterial_ = -1;   // DefaultMaterial's index, once added
+    bool quantization_ = false;               // KHR_mesh_quantization is in extensionsUsed
+    std::map<int, std::string> meshObjects_;  // mesh → its ObjectDesc (EXT_mesh_gpu_instancing)
+    int defaultMaterial_ = -1;                // DefaultMaterial's index, once added
     bool haveCamera_ = false;
     mutable std::string where_;  // the JSON pointer of what is being converted ("": the file)
 };

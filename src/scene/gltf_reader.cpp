@@ -236,16 +236,7 @@ Matrix4 NodeLocalMatrix(const tinygltf::Node &n, const FileLoc &loc) {
         if (len > 0)
             for (int i = 0; i < 4; ++i) q[i] = n.rotation[size_t(i)] / len;
     }
-    double x = q[0], y = q[1], z = q[2], w = q[3];
-    double R[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                      {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                      {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-    Matrix4 m = Matrix4::Identity();
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) m.m[r][c] = R[r][c] * s[c];
-        m.m[r][3] = t[r];
-    }
-    return m;
+    return TrsMatrix(t, q, s);
 }
 
 // Turns a primitive's vertex sequence v (*indices) into triangles, three each, for glTF's
@@ -512,7 +503,9 @@ void GltfConverter::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<i
         Fail(e.Message());
     }
     Matrix4 world = parent * local;
-    if (node.mesh >= 0) {
+    if (node.mesh >= 0 && node.extensions.count("EXT_mesh_gpu_instancing")) {
+        AddMeshInstances(node, world);
+    } else if (node.mesh >= 0) {
         Transform t;
         bool ok = true;
         try {
@@ -591,6 +584,7 @@ const SimulatedExtension kSimulated[] = {
     {"KHR_materials_emissive_strength", {}},
     {"KHR_texture_transform", {}},
     {"KHR_mesh_quantization", {}},
+    {"EXT_mesh_gpu_instancing", {}},
     {"KHR_materials_transmission", {{"transmissionTexture", "transmissionFactor alone"}}},
     {"KHR_materials_specular",
      {{"specularTexture", "specularFactor alone"},
@@ -620,7 +614,6 @@ std::string IgnoredBecause(const std::string &name) {
         {"KHR_materials_unlit", "unlit materials are shaded as lit ones"},
         {"KHR_materials_dispersion", "one index of refraction for every colour"},
         {"KHR_materials_variants", "the materials the file names by default are used"},
-        {"EXT_mesh_gpu_instancing", "each mesh is drawn once, at its node"},
     };
     auto it = why.find(name);
     return it == why.end() ? "" : " (" + it->second + ")";
