@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <tuple>
 
 #include "scene/gltf_converter.h"
 
@@ -272,6 +273,33 @@ std::vector<Vec2f> GltfConverter::ReadTexcoords(int accessor, const std::string 
             Fail(name + " accessor contains a value that is not a finite number");
     }
     return out;
+}
+
+// glTF 2.0 §3.7.2.2: each target i displaces the attributes it names by weight_i times its
+// values (weights beyond the list are 0). Targets' POSITION and NORMAL are read as the
+// attributes are (quantized types with KHR_mesh_quantization), TANGENT is not morphed.
+void GltfConverter::ApplyMorphTargets(const tinygltf::Primitive &prim,
+                                      const std::vector<double> &weights, std::vector<Vec3f> &P,
+                                      std::vector<Vec3f> &N) {
+    for (size_t i = 0; i < prim.targets.size() && i < weights.size(); ++i) {
+        const float w = float(weights[i]);
+        if (!std::isfinite(w)) Fail("morph target weight " + std::to_string(i) + " is not finite");
+        if (w == 0) continue;
+        const std::map<std::string, int> &target = prim.targets[i];
+        const std::string name = "morph target " + std::to_string(i);
+        for (auto [attribute, values, kind] :
+             {std::tuple{"POSITION", &P, AttributeKind::Position},
+              std::tuple{"NORMAL", &N, AttributeKind::Direction}}) {
+            auto it = target.find(attribute);
+            if (it == target.end() || values->empty()) continue;
+            const std::vector<Vec3f> d = ReadVec3(it->second, name + " " + attribute, kind);
+            if (d.size() != values->size())
+                Fail(name + " " + attribute + " and the primitive's differ in count");
+            for (size_t v = 0; v < d.size(); ++v) (*values)[v] += d[v] * w;
+        }
+    }
+    for (Vec3f &n : N)
+        if (LengthSquared(n) > 0) n = Normalize(n);
 }
 
 std::vector<int> GltfConverter::ReadIndices(int accessor, size_t vertexCount) {

@@ -81,7 +81,12 @@ class GltfConverter {
     // Checks what traversing `roots` would expand (node and mesh instances, counted per node
     // once, saturating) against budget_.
     void CheckExpansion(const std::vector<int> &roots) const;
-    void AddMesh(int meshIndex, const Transform &worldFromObject);
+    // nodeWeights: the node's morph target weights (empty: the mesh's own).
+    void AddMesh(int meshIndex, const Transform &worldFromObject,
+                 const std::vector<double> &nodeWeights = {});
+    // Adds each morph target's POSITION and NORMAL displacements times its weight to P and N.
+    void ApplyMorphTargets(const tinygltf::Primitive &prim, const std::vector<double> &weights,
+                           std::vector<Vec3f> &P, std::vector<Vec3f> &N);
     // gltf_instancing.cpp: EXT_mesh_gpu_instancing, node's mesh once per instance (an object
     // instanced by the renderer, or copies when it emits light).
     void AddMeshInstances(const tinygltf::Node &node, const Matrix4 &world);
@@ -142,9 +147,12 @@ class GltfConverter {
     int currentMaterial_ = -1;               // the material ConvertMaterials is converting
     std::set<int> materialsUsingTexCoord1_;  // their primitives read TEXCOORD_1 ("uv1")
     bool warnedMissingTexCoord1_ = false;
-    bool quantization_ = false;               // KHR_mesh_quantization is in extensionsUsed
-    std::map<int, std::string> meshObjects_;  // mesh → its ObjectDesc (EXT_mesh_gpu_instancing)
-    int defaultMaterial_ = -1;                // DefaultMaterial's index, once added
+    bool quantization_ = false;  // KHR_mesh_quantization is in extensionsUsed
+    bool warnedSkin_ = false;
+    // Mesh (and the node, when its own morph weights shape it) → its ObjectDesc
+    // (EXT_mesh_gpu_instancing).
+    std::map<std::pair<int, const tinygltf::Node *>, std::string> meshObjects_;
+    int defaultMaterial_ = -1;  // DefaultMaterial's index, once added
     bool haveCamera_ = false;
     mutable std::string where_;  // the JSON pointer of what is being converted ("": the file)
 };

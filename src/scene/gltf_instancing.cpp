@@ -71,19 +71,22 @@ void GltfConverter::AddMeshInstances(const tinygltf::Node &node, const Matrix4 &
                               areaLightOfMaterial_[size_t(p.material)] >= 0);
     std::string object;
     if (!emits) {
-        auto it = meshObjects_.find(node.mesh);
+        const std::pair<int, const tinygltf::Node *> key(node.mesh,
+                                                         node.weights.empty() ? nullptr : &node);
+        auto it = meshObjects_.find(key);
         if (it == meshObjects_.end()) {
             // The mesh in its own space, moved from the scene's shapes into an object.
             const size_t first = desc_.shapes.size();
-            AddMesh(node.mesh, Transform());
+            AddMesh(node.mesh, Transform(), node.weights);
             ObjectDesc o;
-            o.name = "gltf:mesh" + std::to_string(node.mesh) + ":instances";
+            o.name = "gltf:mesh" + std::to_string(node.mesh) + ":instances" +
+                     (key.second ? ":" + std::to_string(meshObjects_.size()) : "");
             o.loc = loc_;
             for (size_t i = first; i < desc_.shapes.size(); ++i)
                 o.shapes.push_back(std::move(desc_.shapes[i]));
             desc_.shapes.resize(first);
             desc_.objects.push_back(std::move(o));
-            it = meshObjects_.emplace(node.mesh, desc_.objects.back().name).first;
+            it = meshObjects_.emplace(key, desc_.objects.back().name).first;
         }
         object = it->second;
     }
@@ -108,7 +111,7 @@ void GltfConverter::AddMeshInstances(const tinygltf::Node &node, const Matrix4 &
             continue;  // a zero scale hides the instance
         }
         if (emits) {
-            AddMesh(node.mesh, worldFromInstance);
+            AddMesh(node.mesh, worldFromInstance, node.weights);
         } else {
             InstanceDesc inst;
             inst.object = object;

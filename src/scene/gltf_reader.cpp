@@ -271,7 +271,8 @@ void ToTriangleList(int mode, std::vector<int> *indices) {
 
 }  // namespace
 
-void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
+void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject,
+                            const std::vector<double> &nodeWeights) {
     if (meshIndex < 0 || size_t(meshIndex) >= model_.meshes.size()) {
         const Where where(*this, where_ + "/mesh");  // the node's
         Fail("node refers to mesh " + std::to_string(meshIndex) + ", which does not exist");
@@ -305,6 +306,8 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject) {
             N = ReadVec3(it->second, "NORMAL", AttributeKind::Direction);
             if (N.size() != P.size()) Fail("NORMAL and POSITION accessors differ in count");
         }
+        if (!prim.targets.empty())
+            ApplyMorphTargets(prim, nodeWeights.empty() ? mesh.weights : nodeWeights, P, N);
         if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
             uv = ReadTexcoords(it->second);
             if (uv.size() != P.size()) Fail("TEXCOORD_0 and POSITION accessors differ in count");
@@ -503,6 +506,12 @@ void GltfConverter::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<i
         Fail(e.Message());
     }
     Matrix4 world = parent * local;
+    if (node.mesh >= 0 && node.skin >= 0 && !warnedSkin_) {
+        warnedSkin_ = true;
+        diag_.Warn(loc_, "skins are not simulated: node " + std::to_string(nodeIndex) +
+                             (node.name.empty() ? "" : " \"" + node.name + "\"") +
+                             " and every skinned mesh render in their bind pose, at their node");
+    }
     if (node.mesh >= 0 && node.extensions.count("EXT_mesh_gpu_instancing")) {
         AddMeshInstances(node, world);
     } else if (node.mesh >= 0) {
@@ -513,7 +522,7 @@ void GltfConverter::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<i
         } catch (const std::invalid_argument &) {
             ok = false;  // zero scale hides a node; nothing to render
         }
-        if (ok) AddMesh(node.mesh, t);
+        if (ok) AddMesh(node.mesh, t, node.weights);
     }
     if (node.camera >= 0 && !haveCamera_) AddCamera(node, world);
     AddLight(node, world);

@@ -1,8 +1,9 @@
 // glTF accessors (scene/gltf_accessors.cpp): KHR_mesh_quantization's integer attributes read
-// as the numbers they encode, sparse accessors (over a buffer view or zeros) made whole, and
-// clean errors for what either gets wrong.
+// as the numbers they encode, sparse accessors (over a buffer view or zeros) made whole, clean
+// errors for what either gets wrong, and morph targets displacing by their default weights.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -192,6 +193,86 @@ TEST(GltfAccessors, MalformedSparseAccessorsAreSceneErrors) {
     e = ErrorOf(WriteSparseIndices("gltfa_order", {2, 1, 3}));
     EXPECT_NE(e.find("sparse indices must increase strictly (1 follows 2)"), std::string::npos)
         << e;
+}
+
+// A triangle with two morph targets: target 0 moves vertex 2 by (0, 0, 2) (dense), target 1
+// moves vertex 0 by (1, 0, 0) (sparse over zeros); normals point up and target 0 tilts
+// vertex 2's.
+std::string MorphBuffer() {
+    std::string b;
+    PutBytes<float>(b, {0, 0, 0, 1, 0, 0, 0, 1, 0});   // 36 B: POSITION
+    PutBytes<float>(b, {0, 0, 2, 0, 0, 2, 0, 0, 2});   // 36 B: target 0 POSITION (at 36)
+    PutBytes<uint8_t>(b, {0, 0, 0, 0});                // 4 B: target 1 sparse index (at 72)
+    PutBytes<float>(b, {1, 0, 0});                     // 12 B: its value (at 76)
+    PutBytes<float>(b, {0, 0, 1, 0, 0, 1, 0, 0, 1});   // 36 B: NORMAL (at 88)
+    PutBytes<float>(b, {0, 0, 0, 0, 0, 0, 1, 0, -1});  // 36 B: target 0 NORMAL (at 124)
+    return b;                                          // 160 B
+}
+
+const char *kMorph = R"({
+  "asset": {"version": "2.0"},
+  "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0 NODEWEIGHTS}],
+  "meshes": [{"weights": [0.5, 1],
+              "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 3},
+                              "targets": [{"POSITION": 1, "NORMAL": 4}, {"POSITION": 2}]}]}],
+  "buffers": [{"uri": "BUFFER", "byteLength": 160}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 36},
+    {"buffer": 0, "byteOffset": 36, "byteLength": 36},
+    {"buffer": 0, "byteOffset": 72, "byteLength": 4},
+    {"buffer": 0, "byteOffset": 76, "byteLength": 12},
+    {"buffer": 0, "byteOffset": 88, "byteLength": 36},
+    {"buffer": 0, "byteOffset": 124, "byteLength": 36}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+    {"componentType": 5126, "count": 3, "type": "VEC3",
+     "sparse": {"count": 1, "indices": {"bufferView": 2, "componentType": 5121},
+                "values": {"bufferView": 3}}},
+    {"bufferView": 4, "componentType": 5126, "count": 3, "type": "VEC3"},
+    {"bufferView": 5, "componentType": 5126, "count": 3, "type": "VEC3"}
+  ]
+})";
+
+SceneDescription ReadMorph(const std::string &name, const std::string &nodeWeights) {
+    std::string json = Replace(kMorph, "NODEWEIGHTS", nodeWeights);
+    json = Replace(json, "BUFFER", "data:application/octet-stream;base64," + Base64(MorphBuffer()));
+    Diagnostics diag;
+    return ReadGltfFile(WriteScratchFile(name + ".gltf", json), diag);
+}
+
+TEST(GltfAccessors, MorphTargetsDisplaceByTheirWeights) {
+    // The mesh's weights 0.5 and 1.
+    SceneDescription d = ReadMorph("gltfa_morph", "");
+    ASSERT_EQ(d.shapes.size(), 1u);
+    EXPECT_EQ(d.shapes[0].params.GetPoint3s("P"),
+              (std::vector<Vec3f>{Vec3f(1, 0, 1), Vec3f(1, 0, 1), Vec3f(0, 1, 1)}));
+    const std::vector<Vec3f> N = d.shapes[0].params.GetNormals("N");
+    ASSERT_EQ(N.size(), 3u);
+    EXPECT_EQ(N[0], Vec3f(0, 0, 1));
+    // (0, 0, 1) + 0.5 (1, 0, -1), normalized.
+    EXPECT_NEAR(N[2].x, std::sqrt(0.5f), 1e-6f);
+    EXPECT_NEAR(N[2].z, std::sqrt(0.5f), 1e-6f);
+    // The node's weights win: target 0 in full, target 1 not at all.
+    d = ReadMorph("gltfa_morph_node", ", \"weights\": [1, 0]");
+    EXPECT_EQ(d.shapes[0].params.GetPoint3s("P"),
+              (std::vector<Vec3f>{Vec3f(0, 0, 2), Vec3f(1, 0, 2), Vec3f(0, 1, 2)}));
+}
+
+TEST(GltfAccessors, SkinsAreWarnedOnce) {
+    std::string json = Replace(kMorph, "NODEWEIGHTS", ", \"skin\": 0");
+    json = Replace(json, "\"meshes\":", "\"skins\": [{\"joints\": [0]}],\n  \"meshes\":");
+    json = Replace(json, "BUFFER", "data:application/octet-stream;base64," + Base64(MorphBuffer()));
+    Diagnostics diag;
+    const SceneDescription d = ReadGltfFile(WriteScratchFile("gltfa_skin.gltf", json), diag);
+    EXPECT_EQ(d.shapes.size(), 1u);  // drawn, in its bind pose
+    int skinWarnings = 0;
+    for (const Warning &w : diag.Warnings())
+        skinWarnings += w.message.find("skins are not simulated: node 0") != std::string::npos;
+    EXPECT_EQ(skinWarnings, 1);
 }
 
 }  // namespace
