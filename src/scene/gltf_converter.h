@@ -81,9 +81,16 @@ class GltfConverter {
     // Checks what traversing `roots` would expand (node and mesh instances, counted per node
     // once, saturating) against budget_.
     void CheckExpansion(const std::vector<int> &roots) const;
-    // nodeWeights: the node's morph target weights (empty: the mesh's own).
+    // nodeWeights: the node's morph target weights (empty: the mesh's own); skin: the node's
+    // skin (its joints then place the vertices in the world: worldFromObject is identity).
     void AddMesh(int meshIndex, const Transform &worldFromObject,
-                 const std::vector<double> &nodeWeights = {});
+                 const std::vector<double> &nodeWeights = {}, int skin = -1);
+    // A node's world matrix from the nodes' own (rest) transforms, through its parents.
+    Matrix4 NodeWorldMatrix(int node);
+    // gltf_skin.cpp: P and N moved by skin `skin`'s joints at their rest transforms (linear
+    // blend skinning with JOINTS_n/WEIGHTS_n), into world space.
+    void ApplySkin(int skin, const tinygltf::Primitive &prim, std::vector<Vec3f> &P,
+                   std::vector<Vec3f> &N);
     // Adds each morph target's POSITION and NORMAL displacements times its weight to P and N.
     void ApplyMorphTargets(const tinygltf::Primitive &prim, const std::vector<double> &weights,
                            std::vector<Vec3f> &P, std::vector<Vec3f> &N);
@@ -148,7 +155,7 @@ class GltfConverter {
     std::set<int> materialsUsingTexCoord1_;  // their primitives read TEXCOORD_1 ("uv1")
     bool warnedMissingTexCoord1_ = false;
     bool quantization_ = false;  // KHR_mesh_quantization is in extensionsUsed
-    bool warnedSkin_ = false;
+    std::vector<int> parents_;   // each node's parent (-1: a root), once NodeWorldMatrix needs it
     // Mesh (and the node, when its own morph weights shape it) → its ObjectDesc
     // (EXT_mesh_gpu_instancing).
     std::map<std::pair<int, const tinygltf::Node *>, std::string> meshObjects_;

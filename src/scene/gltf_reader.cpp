@@ -271,8 +271,31 @@ void ToTriangleList(int mode, std::vector<int> *indices) {
 
 }  // namespace
 
+Matrix4 GltfConverter::NodeWorldMatrix(int nodeIndex) {
+    if (parents_.empty()) {
+        parents_.assign(model_.nodes.size(), -1);
+        for (size_t i = 0; i < model_.nodes.size(); ++i)
+            for (int c : model_.nodes[i].children)
+                if (c >= 0 && size_t(c) < parents_.size() && parents_[size_t(c)] < 0)
+                    parents_[size_t(c)] = int(i);
+    }
+    Matrix4 world = Matrix4::Identity();
+    int depth = 0;
+    for (int i = nodeIndex; i >= 0; i = parents_[size_t(i)]) {
+        if (size_t(i) >= model_.nodes.size())
+            Fail("reference to node " + std::to_string(i) + ", which does not exist");
+        if (++depth > 1000) Fail("node hierarchy is deeper than 1000 levels (or a cycle)");
+        try {
+            world = NodeLocalMatrix(model_.nodes[size_t(i)], loc_) * world;
+        } catch (const SceneError &e) {
+            Fail(e.Message());
+        }
+    }
+    return world;
+}
+
 void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject,
-                            const std::vector<double> &nodeWeights) {
+                            const std::vector<double> &nodeWeights, int skin) {
     if (meshIndex < 0 || size_t(meshIndex) >= model_.meshes.size()) {
         const Where where(*this, where_ + "/mesh");  // the node's
         Fail("node refers to mesh " + std::to_string(meshIndex) + ", which does not exist");
@@ -308,6 +331,7 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject,
         }
         if (!prim.targets.empty())
             ApplyMorphTargets(prim, nodeWeights.empty() ? mesh.weights : nodeWeights, P, N);
+        if (skin >= 0) ApplySkin(skin, prim, P, N);
         if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
             uv = ReadTexcoords(it->second);
             if (uv.size() != P.size()) Fail("TEXCOORD_0 and POSITION accessors differ in count");
@@ -506,13 +530,11 @@ void GltfConverter::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<i
         Fail(e.Message());
     }
     Matrix4 world = parent * local;
-    if (node.mesh >= 0 && node.skin >= 0 && !warnedSkin_) {
-        warnedSkin_ = true;
-        diag_.Warn(loc_, "skins are not simulated: node " + std::to_string(nodeIndex) +
-                             (node.name.empty() ? "" : " \"" + node.name + "\"") +
-                             " and every skinned mesh render in their bind pose, at their node");
-    }
-    if (node.mesh >= 0 && node.extensions.count("EXT_mesh_gpu_instancing")) {
+    if (node.mesh >= 0 && node.skin >= 0) {
+        // Skinned: the joints place the vertices in the world; the node's transform is not
+        // applied (glTF 2.0 §3.7.3).
+        AddMesh(node.mesh, Transform(), node.weights, node.skin);
+    } else if (node.mesh >= 0 && node.extensions.count("EXT_mesh_gpu_instancing")) {
         AddMeshInstances(node, world);
     } else if (node.mesh >= 0) {
         Transform t;

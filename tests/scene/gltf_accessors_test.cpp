@@ -1,6 +1,7 @@
 // glTF accessors (scene/gltf_accessors.cpp): KHR_mesh_quantization's integer attributes read
 // as the numbers they encode, sparse accessors (over a buffer view or zeros) made whole, clean
-// errors for what either gets wrong, and morph targets displacing by their default weights.
+// errors for what either gets wrong, morph targets displacing by their default weights, and
+// skins posing their meshes at the joints' rest transforms.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -262,17 +263,80 @@ TEST(GltfAccessors, MorphTargetsDisplaceByTheirWeights) {
               (std::vector<Vec3f>{Vec3f(0, 0, 2), Vec3f(1, 0, 2), Vec3f(0, 1, 2)}));
 }
 
-TEST(GltfAccessors, SkinsAreWarnedOnce) {
-    std::string json = Replace(kMorph, "NODEWEIGHTS", ", \"skin\": 0");
-    json = Replace(json, "\"meshes\":", "\"skins\": [{\"joints\": [0]}],\n  \"meshes\":");
-    json = Replace(json, "BUFFER", "data:application/octet-stream;base64," + Base64(MorphBuffer()));
+// A skinned triangle: vertex 0 on joint 0, vertex 1 on joint 1, vertex 2 half on each. Joint
+// 1's node rests 2 above joint 0's; the mesh's own node is moved, which a skinned mesh
+// ignores. The inverse bind matrices (identity, then 2 down) put the bind pose at the rest
+// pose, when given.
+std::string SkinBuffer() {
+    std::string b;
+    PutBytes<float>(b, {0, 0, 0, 1, 0, 0, 0, 1, 0});               // 36 B: POSITION
+    PutBytes<uint8_t>(b, {0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0});    // 12 B: JOINTS_0 (at 36)
+    PutBytes<float>(b, {1, 0, 0, 0, 1, 0, 0, 0, 0.5, 0.5, 0, 0});  // 48 B: WEIGHTS_0 (at 48)
+    PutBytes<float>(b, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});   // (at 96)
+    PutBytes<float>(b, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -2, 0, 1});  // (at 160)
+    return b;                                                               // 224 B
+}
+
+const char *kSkin = R"({
+  "asset": {"version": "2.0"},
+  "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0, "skin": 0, "translation": [5, 0, 0]},
+            {"children": [2]}, {"translation": [0, 2, 0]}],
+  "skins": [{"joints": [1, 2] IBM}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}}]}],
+  "buffers": [{"uri": "BUFFER", "byteLength": 224}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 36},
+    {"buffer": 0, "byteOffset": 36, "byteLength": 12},
+    {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+    {"buffer": 0, "byteOffset": 96, "byteLength": 128}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5121, "count": 3, "type": "VEC4"},
+    {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC4"},
+    {"bufferView": 3, "componentType": 5126, "count": 2, "type": "MAT4"}
+  ]
+})";
+
+std::vector<Vec3f> SkinnedPositions(const std::string &name, const std::string &ibm) {
+    std::string json = Replace(kSkin, "IBM", ibm);
+    json = Replace(json, "BUFFER", "data:application/octet-stream;base64," + Base64(SkinBuffer()));
     Diagnostics diag;
-    const SceneDescription d = ReadGltfFile(WriteScratchFile("gltfa_skin.gltf", json), diag);
-    EXPECT_EQ(d.shapes.size(), 1u);  // drawn, in its bind pose
-    int skinWarnings = 0;
-    for (const Warning &w : diag.Warnings())
-        skinWarnings += w.message.find("skins are not simulated: node 0") != std::string::npos;
-    EXPECT_EQ(skinWarnings, 1);
+    const SceneDescription d = ReadGltfFile(WriteScratchFile(name + ".gltf", json), diag);
+    EXPECT_EQ(d.shapes.size(), 1u);
+    if (d.shapes.empty()) return {};
+    const Transform &t = d.shapes[0].worldFromObject;
+    std::vector<Vec3f> P;
+    for (Vec3f p : d.shapes[0].params.GetPoint3s("P")) P.push_back(Vec3f(t.Point(Vec3d(p))));
+    return P;
+}
+
+TEST(GltfAccessors, SkinsPoseTheirMeshesAtTheJointsRestTransforms) {
+    // No inverse bind matrices: joint 1's rest lifts its vertices by 2, half of it vertex 2's;
+    // the mesh node's own translation is not applied.
+    EXPECT_EQ(SkinnedPositions("gltfa_skin", ""),
+              (std::vector<Vec3f>{Vec3f(0, 0, 0), Vec3f(1, 2, 0), Vec3f(0, 2, 0)}));
+    // Inverse bind matrices that undo the rest transforms: the mesh as written.
+    EXPECT_EQ(SkinnedPositions("gltfa_skin_ibm", ", \"inverseBindMatrices\": 3"),
+              (std::vector<Vec3f>{Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}));
+}
+
+TEST(GltfAccessors, MalformedSkinsAreSceneErrors) {
+    auto error = [](const std::string &name, const std::string &from, const std::string &to) {
+        std::string json = Replace(Replace(kSkin, "IBM", ""), from, to);
+        json =
+            Replace(json, "BUFFER", "data:application/octet-stream;base64," + Base64(SkinBuffer()));
+        return ErrorOf(WriteScratchFile(name + ".gltf", json));
+    };
+    std::string e = error("gltfa_skin_joint", "\"joints\": [1, 2]", "\"joints\": [1]");
+    EXPECT_NE(e.find("JOINTS_0 names joint 1 of a skin of 1"), std::string::npos) << e;
+    e = error("gltfa_skin_noweights", ", \"WEIGHTS_0\": 2", "");
+    EXPECT_NE(e.find("needs JOINTS_0 and WEIGHTS_0"), std::string::npos) << e;
+    e = error("gltfa_skin_ibmtype", "\"joints\": [1, 2]",
+              "\"joints\": [1, 2], \"inverseBindMatrices\": 2");
+    EXPECT_NE(e.find("inverseBindMatrices accessor must be MAT4"), std::string::npos) << e;
 }
 
 }  // namespace
