@@ -88,9 +88,10 @@ class GltfConverter {
     // A node's world matrix from the nodes' own (rest) transforms, through its parents.
     Matrix4 NodeWorldMatrix(int node);
     // gltf_skin.cpp: P and N moved by skin `skin`'s joints at their rest transforms (linear
-    // blend skinning with JOINTS_n/WEIGHTS_n), into world space.
+    // blend skinning with JOINTS_n/WEIGHTS_n), into world space; *frames: each vertex's
+    // blended matrix (for its TANGENT).
     void ApplySkin(int skin, const tinygltf::Primitive &prim, std::vector<Vec3f> &P,
-                   std::vector<Vec3f> &N);
+                   std::vector<Vec3f> &N, std::vector<Matrix4> *frames);
     // Adds each morph target's POSITION and NORMAL displacements times its weight to P and N.
     void ApplyMorphTargets(const tinygltf::Primitive &prim, const std::vector<double> &weights,
                            std::vector<Vec3f> &P, std::vector<Vec3f> &N);
@@ -119,7 +120,9 @@ class GltfConverter {
     void AddSamplerWrap(ParamSet &ps, int sampler);
     // gltf_surface.cpp: normalTexture on a material; alphaMode and TANGENT on a primitive.
     void AddNormalMap(const tinygltf::Material &m, ParamSet &materialParams);
-    void AddSurfaceParams(const tinygltf::Primitive &prim, size_t vertices, ParamSet &shapeParams);
+    // skinFrames: a skinned primitive's per-vertex matrices, which move its TANGENTs.
+    void AddSurfaceParams(const tinygltf::Primitive &prim, size_t vertices, ParamSet &shapeParams,
+                          const std::vector<Matrix4> *skinFrames = nullptr);
     std::string AlphaTextureFor(int material);
 
     // A SceneError at the JSON value being converted (where_: its line and column in a .gltf,

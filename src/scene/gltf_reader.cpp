@@ -331,7 +331,8 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject,
         }
         if (!prim.targets.empty())
             ApplyMorphTargets(prim, nodeWeights.empty() ? mesh.weights : nodeWeights, P, N);
-        if (skin >= 0) ApplySkin(skin, prim, P, N);
+        std::vector<Matrix4> skinFrames;
+        if (skin >= 0) ApplySkin(skin, prim, P, N, &skinFrames);
         if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
             uv = ReadTexcoords(it->second);
             if (uv.size() != P.size()) Fail("TEXCOORD_0 and POSITION accessors differ in count");
@@ -381,7 +382,7 @@ void GltfConverter::AddMesh(int meshIndex, const Transform &worldFromObject,
         if (prim.material >= 0 && model_.materials[size_t(prim.material)].alphaMode == "BLEND" &&
             areaLightOfMaterial_[size_t(prim.material)] >= 0)
             AddFloat(s.params, "shadowalpha", 0, loc_);
-        AddSurfaceParams(prim, P.size(), s.params);
+        AddSurfaceParams(prim, P.size(), s.params, skin >= 0 ? &skinFrames : nullptr);
         desc_.shapes.push_back(std::move(s));
     }
 }

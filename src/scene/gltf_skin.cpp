@@ -3,6 +3,7 @@
 // by the weighted sum of its joints' matrices (linear blend skinning), normals by that sum's
 // inverse transpose. Animations are not read: the rest transforms are the pose.
 #include <cmath>
+#include <utility>
 
 #include "scene/gltf_converter.h"
 
@@ -22,7 +23,7 @@ void Cofactor(const Matrix4 &m, double c[3][3]) {
 }  // namespace
 
 void GltfConverter::ApplySkin(int skinIndex, const tinygltf::Primitive &prim, std::vector<Vec3f> &P,
-                              std::vector<Vec3f> &N) {
+                              std::vector<Vec3f> &N, std::vector<Matrix4> *frames) {
     if (skinIndex < 0 || size_t(skinIndex) >= model_.skins.size())
         Fail("node refers to skin " + std::to_string(skinIndex) + ", which does not exist");
     const tinygltf::Skin &skin = model_.skins[size_t(skinIndex)];
@@ -92,8 +93,11 @@ void GltfConverter::ApplySkin(int skinIndex, const tinygltf::Primitive &prim, st
         if (set >= 7) break;
     }
     for (size_t v = 0; v < P.size(); ++v) {
-        if (!(total[v] > 0)) continue;  // no weight: the vertex stays where it is
         Matrix4 &m = blend[v];
+        if (!(total[v] > 0)) {
+            m = Matrix4::Identity();  // no weight: the vertex stays where it is
+            continue;
+        }
         for (auto &row : m.m)
             for (double &x : row) x /= total[v];  // weights normally sum to one already
         const Vec3f p = P[v];
@@ -112,6 +116,7 @@ void GltfConverter::ApplySkin(int skinIndex, const tinygltf::Primitive &prim, st
             if (LengthSquared(out) > 0) N[v] = Normalize(out);
         }
     }
+    if (frames) *frames = std::move(blend);
 }
 
 }  // namespace prism::gltf_internal

@@ -64,8 +64,8 @@ std::string GltfConverter::AlphaTextureFor(int material) {
 // A primitive's shape parameters: cut-outs for MASK and stochastic transparency for BLEND
 // materials (for camera and shadow rays; AddMesh turns blended emitters' shadows off), and
 // the TANGENT attribute when its material has a normal map.
-void GltfConverter::AddSurfaceParams(const tinygltf::Primitive &prim, size_t vertices,
-                                     ParamSet &ps) {
+void GltfConverter::AddSurfaceParams(const tinygltf::Primitive &prim, size_t vertices, ParamSet &ps,
+                                     const std::vector<Matrix4> *skinFrames) {
     if (prim.material < 0) return;
     const tinygltf::Material &m = model_.materials[size_t(prim.material)];
     if (m.alphaMode == "MASK" || m.alphaMode == "BLEND") {
@@ -100,6 +100,24 @@ void GltfConverter::AddSurfaceParams(const tinygltf::Primitive &prim, size_t ver
             if (!std::isfinite(t[4 * i + size_t(c)]))
                 Fail("TANGENT accessor contains a value that is not a finite number");
         }
+    if (skinFrames && skinFrames->size() == v.count) {
+        // A tangent is a direction on the surface: the skinned frame's linear part moves it,
+        // and a mirroring frame flips the bitangent's sign (w).
+        for (size_t i = 0; i < v.count; ++i) {
+            const Matrix4 &m = (*skinFrames)[i];
+            double *ti = &t[4 * i];
+            double o[3];
+            for (int r = 0; r < 3; ++r)
+                o[r] = m.m[r][0] * ti[0] + m.m[r][1] * ti[1] + m.m[r][2] * ti[2];
+            const double len = std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+            if (len > 0)
+                for (int r = 0; r < 3; ++r) ti[r] = o[r] / len;
+            const double det = m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
+                               m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
+                               m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
+            if (det < 0) ti[3] = -ti[3];
+        }
+    }
     AddFloats(ps, "tangent", t, loc_);
 }
 

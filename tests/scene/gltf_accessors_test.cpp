@@ -323,6 +323,43 @@ TEST(GltfAccessors, SkinsPoseTheirMeshesAtTheJointsRestTransforms) {
               (std::vector<Vec3f>{Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)}));
 }
 
+TEST(GltfAccessors, SkinsTurnTheirTangents) {
+    // Joint 1 also turned 90 degrees about z: vertex 1's tangent (1, 0, 0) follows it to
+    // (0, 1, 0); vertex 0's stays. The bitangent sign (w) is kept (no mirroring).
+    std::string buffer = SkinBuffer();
+    PutBytes<float>(buffer, {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1});  // 48 B: TANGENT (at 224)
+    const float h = float(std::sqrt(0.5));
+    std::string json = Replace(kSkin, "IBM", "");
+    json = Replace(json, "{\"translation\": [0, 2, 0]}",
+                   "{\"translation\": [0, 2, 0], \"rotation\": [0, 0, " + std::to_string(h) + ", " +
+                       std::to_string(h) + "]}");
+    json = Replace(json, "\"WEIGHTS_0\": 2}", "\"WEIGHTS_0\": 2, \"TANGENT\": 4}, \"material\": 0");
+    json = Replace(json, "\"byteLength\": 224", "\"byteLength\": 272");
+    json = Replace(json, "{\"buffer\": 0, \"byteOffset\": 96, \"byteLength\": 128}",
+                   "{\"buffer\": 0, \"byteOffset\": 96, \"byteLength\": 128},\n"
+                   "    {\"buffer\": 0, \"byteOffset\": 224, \"byteLength\": 48}");
+    json = Replace(
+        json, "\"count\": 2, \"type\": \"MAT4\"}",
+        "\"count\": 2, \"type\": \"MAT4\"},\n"
+        "    {\"bufferView\": 4, \"componentType\": 5126, \"count\": 3, \"type\": \"VEC4\"}");
+    json = Replace(json, "\"meshes\":",
+                   "\"materials\": [{\"normalTexture\": {\"index\": 0}}],\n"
+                   "  \"textures\": [{\"source\": 0}],\n"
+                   "  \"images\": [{\"uri\": \"data:image/png;base64," +
+                       Base64("PNGDATA") + "\"}],\n  \"meshes\":");
+    json = Replace(json, "BUFFER", "data:application/octet-stream;base64," + Base64(buffer));
+    Diagnostics diag;
+    const SceneDescription d =
+        ReadGltfFile(WriteScratchFile("gltfa_skin_tangent.gltf", json), diag);
+    ASSERT_EQ(d.shapes.size(), 1u);
+    const std::vector<float> t = d.shapes[0].params.GetFloats("tangent");
+    ASSERT_EQ(t.size(), 12u);
+    EXPECT_NEAR(t[0], 1, 1e-6);
+    EXPECT_NEAR(t[4], 0, 1e-6);
+    EXPECT_NEAR(t[5], 1, 1e-6);
+    EXPECT_EQ(t[7], 1);
+}
+
 TEST(GltfAccessors, MalformedSkinsAreSceneErrors) {
     auto error = [](const std::string &name, const std::string &from, const std::string &to) {
         std::string json = Replace(Replace(kSkin, "IBM", ""), from, to);
