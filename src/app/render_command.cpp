@@ -189,6 +189,7 @@ RenderJob::RenderJob(const RenderArgs &args, bool writer)
     LoadOptions loadOpts;
     loadOpts.budget = s_->budget.get();
     loadOpts.pbrt.pbrtVersion = PbrtVersionNumber(a.pbrtVersion);
+    loadOpts.camera = a.camera;
     if (a.tessellate > 0) opts.replaceAnalyticShape = TessellateWith(a.tessellate);
 
     if (a.threads > 0)
@@ -506,6 +507,9 @@ std::function<void()> AddRenderOptions(CLI::App *cmd, RenderArgs *args) {
         "--lookat", args->lookAt,
         "Camera ex,ey,ez,lx,ly,lz,ux,uy,uz as pbrt's LookAt, unmirrored in right-handed OBJ/glTF "
         "worlds (replaces the scene's camera)");
+    cmd->add_option("--camera", args->camera,
+                    "glTF: view through this camera, by name or index (default: the first the "
+                    "scene reaches)");
     cmd->add_option("--fov", args->fov, "Field of view in degrees on the shorter image axis")
         ->check(CLI::Range(0.001, 179.999));
     cmd->add_option(

@@ -17,7 +17,7 @@ class App;
 namespace prism {
 
 struct RenderArgs {
-    std::string scene, output, res, crop, precision = "double", lookAt, maxMemory;
+    std::string scene, output, res, crop, precision = "double", lookAt, maxMemory, camera;
     int spp = 0, threads = 0, maxDepth = -1, lightSamples = 0, glossySamples = 0;
     std::string integrator;     // empty: the scene's
     std::string sampler;        // --sampler; empty: the scene's

@@ -60,6 +60,8 @@ class GltfConverter {
 
     // With a budget (--max-memory), Read refuses a node graph whose expansion does not fit.
     void SetBudget(const MemoryBudget *budget) { budget_ = budget; }
+    // The camera to view through (--camera): a camera's name or index; "" the first reached.
+    void SetCamera(const std::string &camera) { cameraName_ = camera; }
     void Read();
 
   private:
@@ -99,6 +101,8 @@ class GltfConverter {
     // instanced by the renderer, or copies when it emits light).
     void AddMeshInstances(const tinygltf::Node &node, const Matrix4 &world);
     void AddCamera(const tinygltf::Node &node, const Matrix4 &world);
+    void ResolveCamera();           // cameraName_ → wantedCamera_, or an error naming the cameras
+    void CheckCameraFound() const;  // after the traversal: the wanted camera was used
     void AddLight(const tinygltf::Node &node, const Matrix4 &world);
     void CheckExtensions();
     void ConvertMaterials();
@@ -158,7 +162,9 @@ class GltfConverter {
     std::set<int> materialsUsingTexCoord1_;  // their primitives read TEXCOORD_1 ("uv1")
     bool warnedMissingTexCoord1_ = false;
     bool quantization_ = false;  // KHR_mesh_quantization is in extensionsUsed
-    std::vector<int> parents_;   // each node's parent (-1: a root), once NodeWorldMatrix needs it
+    std::string cameraName_;
+    int wantedCamera_ = -1;
+    std::vector<int> parents_;  // each node's parent (-1: a root), once NodeWorldMatrix needs it
     // Mesh (and the node, when its own morph weights shape it) → its ObjectDesc
     // (EXT_mesh_gpu_instancing).
     std::map<std::pair<int, const tinygltf::Node *>, std::string> meshObjects_;

@@ -547,7 +547,8 @@ void GltfConverter::Traverse(int nodeIndex, const Matrix4 &parent, std::vector<i
         }
         if (ok) AddMesh(node.mesh, t, node.weights);
     }
-    if (node.camera >= 0 && !haveCamera_) AddCamera(node, world);
+    if (node.camera >= 0 && !haveCamera_ && (wantedCamera_ < 0 || node.camera == wantedCamera_))
+        AddCamera(node, world);
     AddLight(node, world);
     path.push_back(nodeIndex);
     for (int c : node.children) Traverse(c, world, path);
@@ -695,9 +696,37 @@ void GltfConverter::CheckExtensions() {
         }
 }
 
+void GltfConverter::ResolveCamera() {
+    if (cameraName_.empty()) return;
+    for (size_t i = 0; i < model_.cameras.size(); ++i)
+        if (model_.cameras[i].name == cameraName_) {
+            wantedCamera_ = int(i);
+            return;
+        }
+    const bool digits = cameraName_.find_first_not_of("0123456789") == std::string::npos;
+    if (digits && cameraName_.size() < 10 &&
+        size_t(std::stoi(cameraName_)) < model_.cameras.size()) {
+        wantedCamera_ = std::stoi(cameraName_);
+        return;
+    }
+    std::string names;
+    for (size_t i = 0; i < model_.cameras.size(); ++i)
+        names += (i ? ", " : "") + std::to_string(i) +
+                 (model_.cameras[i].name.empty() ? "" : " \"" + model_.cameras[i].name + "\"");
+    Fail("--camera " + Quote(cameraName_) + ": the file has no such camera (" +
+         (names.empty() ? std::string("it has none") : "its cameras: " + names) + ")");
+}
+
+void GltfConverter::CheckCameraFound() const {
+    if (wantedCamera_ >= 0 && !haveCamera_)
+        Fail("--camera " + Quote(cameraName_) + ": no node of the scene uses camera " +
+             std::to_string(wantedCamera_));
+}
+
 void GltfConverter::Read() {
     CheckExtensions();
     ConvertMaterials();
+    ResolveCamera();
     if (model_.scenes.empty()) {
         // No scene: glTF allows this for libraries of assets; render every root node.
         std::vector<bool> isChild(model_.nodes.size(), false);
@@ -710,6 +739,7 @@ void GltfConverter::Read() {
         CheckExpansion(roots);
         std::vector<int> path;
         for (int r : roots) Traverse(r, Matrix4::Identity(), path);
+        CheckCameraFound();
         return;
     }
     int sceneIndex = model_.defaultScene;
@@ -718,6 +748,7 @@ void GltfConverter::Read() {
     const Where where(*this, "/scenes/" + std::to_string(sceneIndex) + "/nodes");
     std::vector<int> path;
     for (int n : model_.scenes[size_t(sceneIndex)].nodes) Traverse(n, Matrix4::Identity(), path);
+    CheckCameraFound();
 }
 
 }  // namespace gltf_internal
@@ -727,7 +758,8 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, uint64
     return ReadGltfFile(path, diag, budget);
 }
 
-SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, MemoryBudget &memory) {
+SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, MemoryBudget &memory,
+                              const std::string &camera) {
     using namespace gltf_internal;
     FileLoc loc{path};
     std::error_code ec;
@@ -776,6 +808,7 @@ SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, Memory
     desc.baseDir = DirectoryOf(path);
     GltfConverter converter(model, path, diag, desc);
     converter.SetBudget(&memory);
+    converter.SetCamera(camera);
     converter.Read();
     // What the description keeps after the model is freed: mesh parameters and embedded images.
     uint64_t geometry = 0, images = 0;

@@ -17,7 +17,10 @@ class MemoryBudget;
 // read: the .gltf/.glb file, each external buffer, and after conversion the mesh parameters
 // and embedded images the description keeps (external images are read by tinygltf and given
 // back; the renderer charges them when it decodes them). Buffers must be regular files.
-SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, MemoryBudget &budget);
+// `camera`: the camera to view through, by its name or its index in the file's cameras (""
+// : the first one the scene's traversal reaches); one the scene does not use is an error.
+SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, MemoryBudget &budget,
+                              const std::string &camera = "");
 // The same with a budget of its own of `maxMemory` bytes (0: the default budget).
 SceneDescription ReadGltfFile(const std::string &path, Diagnostics &diag, uint64_t maxMemory = 0);
 

@@ -311,6 +311,10 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
     if (!IsSceneExtension(ext))
         throw SceneError(FileLoc{path}, "unsupported scene format \"" + ext + "\" (expected " +
                                             SceneExtensionList() + ")");
+    if (!opts.camera.empty() && ext != ".gltf" && ext != ".glb")
+        throw SceneError(FileLoc{path}, "--camera " + Quote(opts.camera) +
+                                            " picks among a glTF file's cameras; a " + ext +
+                                            " scene has one camera at most");
 
     // Every reader holds the whole file in memory (tinyobjloader, tinygltf, PLY, pbrt) and
     // charges it, and what it builds from it, to the budget.
@@ -329,7 +333,7 @@ SceneDescription LoadScene(const std::string &path, Diagnostics &diag, const Loa
         desc = ReadObjFile(path, diag, &budget);
         bounds = SceneMeshBounds(desc);
     } else if (ext == ".gltf" || ext == ".glb") {
-        desc = ReadGltfFile(path, diag, budget);
+        desc = ReadGltfFile(path, diag, budget, opts.camera);
         bounds = SceneMeshBounds(desc);
     } else if (ext == ".stl") {
         desc = ReadStlFile(path, diag, &budget);

@@ -30,6 +30,9 @@ struct LoadOptions {
     // alone.
     MemoryBudget *budget = nullptr;
     uint64_t maxMemory = 0;
+    // glTF: the camera to view through, by name or index (--camera); "": the first the scene
+    // reaches. Other formats have one camera at most: naming one is an error.
+    std::string camera;
 };
 
 // Throws SceneError: `cannot open file "..."` for a missing file, `unsupported scene format

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <fstream>
 
+#include "core/memory.h"
+#include "support/errors.h"
 #include "support/shared.h"
 #include "support/temp_dir.h"
 #include "support/text.h"
@@ -206,6 +208,33 @@ TEST(GltfReader, OrthographicAndPortraitCameras) {
     EXPECT_NEAR(p.camera.params.GetFloat("fov", 0), expect, 1e-4);
     EXPECT_EQ(p.film.params.GetInt("xresolution", 0), 640);
     EXPECT_EQ(p.film.params.GetInt("yresolution", 0), 1280);
+}
+
+// --camera: a camera by name or index among those the scene's nodes use; the default is the
+// first one the traversal reaches; anything else is an error that lists the cameras.
+TEST(GltfReader, CameraChosenByNameOrIndex) {
+    const std::vector<std::pair<std::string, std::string>> edits = {
+        {R"("scenes": [{"nodes": [0]})", R"("scenes": [{"nodes": [0, 5]})"},
+        {R"({"type": "orthographic")", R"({"name": "top", "type": "orthographic")"}};
+    auto read = [&](const std::string &camera) {
+        Diagnostics diag;
+        MemoryBudget budget(0);
+        return ReadGltfFile(WriteGltf("gltft_cameras", 0, true, "4", edits), diag, budget, camera);
+    };
+    EXPECT_EQ(read("").camera.type, "perspective");
+    EXPECT_EQ(read("top").camera.type, "orthographic");
+    EXPECT_EQ(read("1").camera.type, "orthographic");
+    EXPECT_EQ(read("0").camera.type, "perspective");
+    auto error = [&](const std::string &camera) {
+        return ErrorOf<SceneError>([&] { read(camera); });
+    };
+    std::string e = error("side");
+    EXPECT_NE(
+        e.find("--camera \"side\": the file has no such camera (its cameras: 0, 1 \"top\", 2)"),
+        std::string::npos)
+        << e;
+    e = error("2");  // in the file, but no node of scene 0 uses it
+    EXPECT_NE(e.find("no node of the scene uses camera 2"), std::string::npos) << e;
 }
 
 TEST(GltfReader, SpotLight) {
