@@ -60,7 +60,7 @@ IntegratorTraits BdptIntegrator::Traits() const {
 void BdptIntegrator::Prepare(const RenderScene &scene) {
     chooser_ = LightChooser(scene, choice_);
     sphere_ = BoundingSphere(scene);
-    infinityMedium_ = scene.media.empty() ? -1 : MediumAtInfinity(scene);
+    infinityMedium_ = MediumAtInfinity(scene);
     if (scene.camera) camera_ = CameraImportance(*scene.camera, scene.pixelBounds);
     if (scene.camera && !camera_.Supported())
         throw SceneError(loc_, "Integrator \"bdpt\" needs a perspective camera (as in pbrt-v3)");

@@ -59,13 +59,16 @@ bool HasInfiniteLight(const RenderScene &scene) {
     return false;
 }
 
+// Dimension d of vertex `vertex` of a light (importance) or camera subpath.
+uint32_t SubpathDim(bool importance, int vertex, uint32_t d) {
+    return importance ? BdptLightDim(vertex, d) : BdptCameraDim(vertex, d);
+}
+
 // The random numbers of the medium sampling of the segment leaving vertex `vertex` of a
 // subpath: the first two from the path's samples, the rest from a stream a third one seeds.
 MediumSampler SegmentSampler(const BdptSamples &ps, bool importance, int vertex) {
-    auto dim = [&](uint32_t d) {
-        return importance ? BdptLightDim(vertex, d) : BdptCameraDim(vertex, d);
-    };
-    return MediumSampler(SampleSeed(ps, dim(5), 0), ps.Get2D(dim(4)));
+    return MediumSampler(SampleSeed(ps, SubpathDim(importance, vertex, 5), 0),
+                         ps.Get2D(SubpathDim(importance, vertex, 4)));
 }
 
 // Follows `ray`, in `medium`, from path.back() for at most `vertices` more surface or medium
@@ -87,9 +90,7 @@ void Walk(const BdptContext &ctx, Ray ray, int medium, RGB beta, float pdfDir, b
         const bool found = scene.accel->Intersect(ray, &si, importance ? ShadowRays : CameraRays);
         const size_t i = path.size();
         const int vertex = int(i);
-        auto dim = [&](uint32_t d) {
-            return importance ? BdptLightDim(vertex, d) : BdptCameraDim(vertex, d);
-        };
+        auto dim = [&](uint32_t d) { return SubpathDim(importance, vertex, d); };
         if (medium >= 0) {
             // The medium up to the hit: a scattering point, or the transmittance to the hit.
             if (!sampler) sampler = SegmentSampler(ps, importance, vertex - 1);

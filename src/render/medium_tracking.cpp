@@ -46,7 +46,7 @@ RGB ShadowTransmittance(const RenderScene &scene, const Ray &ray, int medium, bo
 
 int MediumAtInfinity(const RenderScene &scene) {
     int medium = scene.cameraMedium;
-    if (!scene.accel) return medium;
+    if (scene.media.empty() || !scene.accel) return medium;  // nothing to cross
     // Any direction does, in a scene whose interfaces agree; this one meets no axis-aligned
     // wall edge-on.
     Ray ray{Vec3f(0, 0, 0), Normalize(Vec3f(0.301f, 0.512f, 0.805f))};

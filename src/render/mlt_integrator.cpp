@@ -69,7 +69,7 @@ IntegratorTraits MltIntegrator::Traits() const {
 void MltIntegrator::Prepare(const RenderScene &scene) {
     chooser_ = LightChooser(scene, LightChoice::Power);
     sphere_ = BoundingSphere(scene);
-    infinityMedium_ = scene.media.empty() ? -1 : MediumAtInfinity(scene);
+    infinityMedium_ = MediumAtInfinity(scene);
     if (scene.camera) camera_ = CameraImportance(*scene.camera, scene.pixelBounds);
     if (scene.camera && !camera_.Supported())
         throw SceneError(loc_, "Integrator \"mlt\" needs a perspective camera (as in pbrt-v3)");

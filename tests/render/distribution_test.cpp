@@ -12,6 +12,7 @@
 #include "image/image_io.h"
 #include "render/bsdf.h"
 #include "render/distribution_integrator.h"
+#include "render/materials.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
 #include "scene/load_scene.h"
@@ -82,14 +83,6 @@ Fresnel Conductor() {
     f.kind = FresnelKind::Conductor;
     f.eta = RGB(0.2f, 0.92f, 1.1f);
     f.k = RGB(3.9f, 2.45f, 2.14f);
-    return f;
-}
-
-Fresnel Dielectric(float etaI, float etaT) {
-    Fresnel f;
-    f.kind = FresnelKind::Dielectric;
-    f.etaI = etaI;
-    f.etaT = etaT;
     return f;
 }
 
