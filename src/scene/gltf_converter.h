@@ -36,7 +36,7 @@ enum class AttributeKind {
                 // byte or short, normalized or not
 };
 
-// glTF's T · R · S: translation t, unit quaternion q (x, y, z, w), scale s.
+// glTF's T · R · S: translation t, quaternion q (x, y, z, w; normalized here), scale s.
 Matrix4 TrsMatrix(const double t[3], const double q[4], const double s[3]);
 
 // One component of element i as double (normalized integers in [0, 1] / [-1, 1]).

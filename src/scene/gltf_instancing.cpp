@@ -9,7 +9,11 @@
 namespace prism::gltf_internal {
 
 Matrix4 TrsMatrix(const double t[3], const double q[4], const double s[3]) {
-    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    double len = 0;
+    for (int i = 0; i < 4; ++i) len += q[i] * q[i];
+    len = std::sqrt(len);
+    const double d = len > 0 ? len : 1;  // a zero quaternion is the identity anyway
+    const double x = q[0] / d, y = q[1] / d, z = q[2] / d, w = q[3] / d;
     const double R[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
                             {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
                             {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
@@ -101,9 +105,6 @@ void GltfConverter::AddMeshInstances(const tinygltf::Node &node, const Matrix4 &
                         Fail(std::string("instance ") + attrs[a].name +
                              " accessor contains a value that is not a finite number");
                 }
-        const double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-        if (len > 0)
-            for (double &c : q) c /= len;
         Transform worldFromInstance;
         try {
             worldFromInstance = Transform(world * TrsMatrix(t, q, s));

@@ -230,11 +230,7 @@ Matrix4 NodeLocalMatrix(const tinygltf::Node &n, const FileLoc &loc) {
     }
     if (!n.rotation.empty()) {
         if (n.rotation.size() != 4) throw SceneError(loc, "node rotation must have 4 numbers");
-        double len = 0;
-        for (int i = 0; i < 4; ++i) len += n.rotation[size_t(i)] * n.rotation[size_t(i)];
-        len = std::sqrt(len);
-        if (len > 0)
-            for (int i = 0; i < 4; ++i) q[i] = n.rotation[size_t(i)] / len;
+        for (int i = 0; i < 4; ++i) q[i] = n.rotation[size_t(i)];
     }
     return TrsMatrix(t, q, s);
 }

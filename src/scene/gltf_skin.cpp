@@ -107,12 +107,11 @@ void GltfConverter::ApplySkin(int skinIndex, const tinygltf::Primitive &prim, st
         if (!N.empty()) {
             double c[3][3];
             Cofactor(m, c);
-            const double det = m.m[0][0] * c[0][0] + m.m[0][1] * c[0][1] + m.m[0][2] * c[0][2];
             const Vec3f n = N[v];
             Vec3f out(float(c[0][0] * n.x + c[0][1] * n.y + c[0][2] * n.z),
                       float(c[1][0] * n.x + c[1][1] * n.y + c[1][2] * n.z),
                       float(c[2][0] * n.x + c[2][1] * n.y + c[2][2] * n.z));
-            if (det < 0) out = -out;
+            if (m.Determinant3x3() < 0) out = -out;
             if (LengthSquared(out) > 0) N[v] = Normalize(out);
         }
     }

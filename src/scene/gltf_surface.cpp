@@ -112,10 +112,7 @@ void GltfConverter::AddSurfaceParams(const tinygltf::Primitive &prim, size_t ver
             const double len = std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
             if (len > 0)
                 for (int r = 0; r < 3; ++r) ti[r] = o[r] / len;
-            const double det = m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
-                               m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
-                               m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
-            if (det < 0) ti[3] = -ti[3];
+            if (m.Determinant3x3() < 0) ti[3] = -ti[3];
         }
     }
     AddFloats(ps, "tangent", t, loc_);
